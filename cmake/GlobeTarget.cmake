@@ -1,0 +1,15 @@
+# globe_target(NAME): the one place that sets language standard, warnings and
+# sanitizers for every target of the project.
+function(globe_target name)
+  target_compile_features(${name} PUBLIC cxx_std_20)
+  set_target_properties(${name} PROPERTIES CXX_EXTENSIONS OFF)
+  target_compile_options(${name} PRIVATE -Wall -Wextra -Wpedantic)
+  if(GLOBE_WERROR)
+    target_compile_options(${name} PRIVATE -Werror)
+  endif()
+  if(GLOBE_SANITIZE)
+    target_compile_options(${name} PRIVATE -fsanitize=${GLOBE_SANITIZE} -fno-omit-frame-pointer
+                                           -fno-sanitize-recover=all)
+    target_link_options(${name} PRIVATE -fsanitize=${GLOBE_SANITIZE})
+  endif()
+endfunction()

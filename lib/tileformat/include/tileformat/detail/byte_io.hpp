@@ -1,0 +1,88 @@
+// Little-endian byte writer and bounds-checked reader. Readers never cast
+// structs onto bytes; every read checks the remaining length first and throws
+// FormatError citing the section the caller is decoding.
+#pragma once
+
+#include <bit>
+#include <cstdint>
+#include <cstring>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "tileformat/error.hpp"
+
+namespace tileformat::detail {
+
+class ByteWriter {
+ public:
+  void u8(uint8_t v) { out_.push_back(v); }
+  void u16(uint16_t v) { put(v); }
+  void u32(uint32_t v) { put(v); }
+  void i32(int32_t v) { put(static_cast<uint32_t>(v)); }
+  void f64(double v) { put(std::bit_cast<uint64_t>(v)); }
+  void bytes(std::span<const uint8_t> b) { out_.insert(out_.end(), b.begin(), b.end()); }
+  size_t size() const { return out_.size(); }
+  // Overwrites a u32 written earlier at `offset` (for sizes known later).
+  void patch_u32(size_t offset, uint32_t v) {
+    for (int i = 0; i < 4; ++i) out_[offset + i] = static_cast<uint8_t>(v >> (8 * i));
+  }
+  std::vector<uint8_t> take() { return std::move(out_); }
+
+ private:
+  template <typename T>
+  void put(T v) {
+    for (size_t i = 0; i < sizeof(T); ++i) out_.push_back(static_cast<uint8_t>(v >> (8 * i)));
+  }
+  std::vector<uint8_t> out_;
+};
+
+class ByteReader {
+ public:
+  // `what` names the structure being read, `section` its spec section.
+  ByteReader(std::span<const uint8_t> in, std::string what, std::string section)
+      : in_(in), what_(std::move(what)), section_(std::move(section)) {}
+
+  uint8_t u8() { return static_cast<uint8_t>(get<uint8_t>()); }
+  uint16_t u16() { return get<uint16_t>(); }
+  uint32_t u32() { return get<uint32_t>(); }
+  int32_t i32() { return static_cast<int32_t>(get<uint32_t>()); }
+  double f64() { return std::bit_cast<double>(get<uint64_t>()); }
+  std::span<const uint8_t> bytes(size_t n) {
+    need(n);
+    auto s = in_.subspan(pos_, n);
+    pos_ += n;
+    return s;
+  }
+  size_t remaining() const { return in_.size() - pos_; }
+  size_t position() const { return pos_; }
+  void set_section(std::string section) { section_ = std::move(section); }
+
+  [[noreturn]] void fail(const std::string& msg) const {
+    throw FormatError(section_, what_ + ": " + msg);
+  }
+  void expect_end() const {
+    if (remaining() != 0) fail(std::to_string(remaining()) + " trailing bytes");
+  }
+
+ private:
+  void need(size_t n) const {
+    if (remaining() < n)
+      fail("truncated at byte " + std::to_string(pos_) + " (need " + std::to_string(n) +
+           ", have " + std::to_string(remaining()) + ")");
+  }
+  template <typename T>
+  T get() {
+    need(sizeof(T));
+    T v = 0;
+    for (size_t i = 0; i < sizeof(T); ++i) v |= static_cast<T>(T{in_[pos_ + i]} << (8 * i));
+    pos_ += sizeof(T);
+    return v;
+  }
+  std::span<const uint8_t> in_;
+  size_t pos_ = 0;
+  std::string what_;
+  std::string section_;
+};
+
+}  // namespace tileformat::detail

@@ -1,0 +1,90 @@
+// Packages: one SQLite file with the MBTiles 1.3 schema (docs/tileformat.md §3).
+//
+// PackageWriter builds a package under a temporary name (<final>.tmp) and
+// renames it to the final name only in commit(); destroying an uncommitted
+// writer deletes the temporary file, so the final name only ever holds a
+// complete package. Identical blobs are stored once.
+//
+// PackageReader opens a package read-only with memory mapping. Spans it
+// returns point into SQLite's buffers and stay valid only until the next call.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "tileformat/sqlite_db.hpp"
+#include "tileformat/tile_id.hpp"
+
+namespace tileformat {
+
+inline constexpr int64_t kApplicationId = 0x4d504258;  // "MPBX"
+inline constexpr const char* kMBlockFormat = "application/vnd.globe.mblock";
+
+class PackageWriter {
+ public:
+  // Throws PackageError if `final_path` exists and !overwrite, or if the
+  // temporary file cannot be created.
+  PackageWriter(std::string final_path, bool overwrite);
+  ~PackageWriter();  // rolls back (deletes the temporary file) unless committed
+  PackageWriter(const PackageWriter&) = delete;
+  PackageWriter& operator=(const PackageWriter&) = delete;
+
+  void set_metadata(const std::string& name, const std::string& value);
+  // Stores the tile; a blob identical to one stored before is shared.
+  void put_tile(TileId id, std::span<const uint8_t> blob);
+  // Writes metadata, builds indexes, syncs, and renames to the final path.
+  void commit();
+
+  const std::string& temp_path() const { return temp_path_; }
+  uint64_t tiles_written() const { return tiles_; }
+  uint64_t unique_blobs() const { return unique_; }
+  uint64_t blob_bytes() const { return blob_bytes_; }
+
+ private:
+  void flush_batch();
+  std::string final_path_, temp_path_;
+  std::unique_ptr<SqliteDb> db_;
+  std::unique_ptr<SqliteStatement> find_blob_, insert_blob_, insert_map_;
+  std::map<std::string, std::string> metadata_;
+  uint64_t tiles_ = 0, unique_ = 0, blob_bytes_ = 0, in_batch_ = 0;
+  bool committed_ = false;
+};
+
+struct ZoomSummary {
+  int zoom = 0;
+  uint64_t tiles = 0;
+  uint64_t bytes = 0;  // sum over tiles (shared blobs counted per tile)
+  uint32_t min_x = 0, max_x = 0, min_y = 0, max_y = 0;  // XYZ
+};
+
+class PackageReader {
+ public:
+  explicit PackageReader(const std::string& path);  // throws PackageError
+
+  const std::map<std::string, std::string>& metadata() const { return metadata_; }
+  std::optional<std::string> meta(const std::string& key) const;
+  int64_t application_id() const { return application_id_; }
+
+  // Copy of the tile blob, or nullopt if the package has none at `id`.
+  std::optional<std::vector<uint8_t>> tile(TileId id);
+  // Calls fn for every tile in (zoom, row, column) order of the TMS index.
+  void for_each_tile(const std::function<void(TileId, std::span<const uint8_t>)>& fn,
+                     std::optional<int> zoom = std::nullopt);
+  std::vector<ZoomSummary> zoom_summaries();
+  uint64_t unique_blobs();
+  SqliteDb& db() { return *db_; }
+
+ private:
+  std::unique_ptr<SqliteDb> db_;
+  std::unique_ptr<SqliteStatement> get_tile_;
+  std::map<std::string, std::string> metadata_;
+  int64_t application_id_ = 0;
+};
+
+}  // namespace tileformat

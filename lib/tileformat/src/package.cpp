@@ -1,0 +1,217 @@
+// Package writer and reader (docs/tileformat.md §3).
+#include "tileformat/package.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+
+#include "tileformat/error.hpp"
+
+namespace tileformat {
+namespace {
+
+constexpr uint64_t kBatchTiles = 512;
+
+int64_t fnv1a(std::span<const uint8_t> bytes) {
+  uint64_t h = 1469598103934665603ull;
+  for (uint8_t b : bytes) h = (h ^ b) * 1099511628211ull;
+  return static_cast<int64_t>(h);
+}
+
+void fsync_path(const std::string& path) {
+  int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
+
+}  // namespace
+
+PackageWriter::PackageWriter(std::string final_path, bool overwrite)
+    : final_path_(std::move(final_path)), temp_path_(final_path_ + ".tmp") {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(final_path_, ec) && !overwrite)
+    throw PackageError(final_path_ + ": output exists; pass --force to replace it");
+  fs::remove(temp_path_, ec);  // a stale temporary file from a killed run
+  db_ = std::make_unique<SqliteDb>(temp_path_, SqliteDb::Mode::kReadWriteCreate);
+  db_->exec("PRAGMA application_id = " + std::to_string(kApplicationId));
+  db_->exec("PRAGMA page_size = 4096; PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF;");
+  db_->exec(
+      "CREATE TABLE metadata (name TEXT NOT NULL, value TEXT);"
+      "CREATE TABLE blobs (blob_id INTEGER PRIMARY KEY, hash INTEGER NOT NULL, tile_data BLOB "
+      "NOT NULL);"
+      "CREATE INDEX blobs_hash ON blobs (hash);"
+      "CREATE TABLE map (zoom_level INTEGER NOT NULL, tile_column INTEGER NOT NULL, tile_row "
+      "INTEGER NOT NULL, blob_id INTEGER NOT NULL);"
+      "CREATE VIEW tiles AS SELECT map.zoom_level AS zoom_level, map.tile_column AS tile_column, "
+      "map.tile_row AS tile_row, blobs.tile_data AS tile_data FROM map JOIN blobs ON "
+      "map.blob_id = blobs.blob_id;");
+  find_blob_ = std::make_unique<SqliteStatement>(*db_, "SELECT blob_id, tile_data FROM blobs WHERE hash = ?");
+  insert_blob_ = std::make_unique<SqliteStatement>(*db_, "INSERT INTO blobs (hash, tile_data) VALUES (?, ?)");
+  insert_map_ = std::make_unique<SqliteStatement>(
+      *db_, "INSERT INTO map (zoom_level, tile_column, tile_row, blob_id) VALUES (?, ?, ?, ?)");
+  db_->exec("BEGIN");
+}
+
+PackageWriter::~PackageWriter() {
+  if (committed_) return;
+  find_blob_.reset();
+  insert_blob_.reset();
+  insert_map_.reset();
+  db_.reset();
+  std::error_code ec;
+  std::filesystem::remove(temp_path_, ec);
+}
+
+void PackageWriter::set_metadata(const std::string& name, const std::string& value) {
+  metadata_[name] = value;
+}
+
+void PackageWriter::put_tile(TileId id, std::span<const uint8_t> blob) {
+  const int64_t hash = fnv1a(blob);
+  int64_t blob_id = -1;
+  find_blob_->bind(1, hash);
+  while (find_blob_->step()) {
+    auto stored = find_blob_->column_blob(1);
+    if (stored.size() == blob.size() && std::memcmp(stored.data(), blob.data(), blob.size()) == 0) {
+      blob_id = find_blob_->column_int(0);
+      break;
+    }
+  }
+  find_blob_->reset();
+  if (blob_id < 0) {
+    insert_blob_->bind(1, hash).bind(2, blob);
+    insert_blob_->step();
+    insert_blob_->reset();
+    blob_id = db_->last_insert_rowid();
+    ++unique_;
+    blob_bytes_ += blob.size();
+  }
+  const uint32_t row = TileId::flip_row(id.y, TileId::tiles_per_axis(id.z));
+  insert_map_->bind(1, id.z).bind(2, id.x).bind(3, row).bind(4, blob_id);
+  insert_map_->step();
+  insert_map_->reset();
+  ++tiles_;
+  if (++in_batch_ >= kBatchTiles) flush_batch();
+}
+
+void PackageWriter::flush_batch() {
+  db_->exec("COMMIT; BEGIN");
+  in_batch_ = 0;
+}
+
+void PackageWriter::commit() {
+  SqliteStatement meta(*db_, "INSERT INTO metadata (name, value) VALUES (?, ?)");
+  for (const auto& [name, value] : metadata_) {  // std::map: sorted, deterministic
+    meta.bind(1, name).bind(2, value);
+    meta.step();
+    meta.reset();
+  }
+  db_->exec(
+      "CREATE UNIQUE INDEX map_index ON map (zoom_level, tile_column, tile_row);"
+      "CREATE UNIQUE INDEX metadata_name ON metadata (name);"
+      "COMMIT;");
+  db_->exec("PRAGMA journal_mode = DELETE");
+  find_blob_.reset();
+  insert_blob_.reset();
+  insert_map_.reset();
+  db_->close();
+  db_.reset();
+  fsync_path(temp_path_);
+  std::error_code ec;
+  std::filesystem::rename(temp_path_, final_path_, ec);
+  if (ec) throw PackageError(final_path_ + ": cannot rename the finished package into place: " + ec.message());
+  const auto dir = std::filesystem::absolute(final_path_).parent_path();
+  fsync_path(dir.string());
+  committed_ = true;
+}
+
+PackageReader::PackageReader(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw PackageError(path + ": no such file");
+  if (!fs::is_regular_file(path, ec)) throw PackageError(path + ": not a regular file");
+  db_ = std::make_unique<SqliteDb>(path, SqliteDb::Mode::kReadOnly);
+  try {
+    db_->exec("PRAGMA mmap_size = 2147418112");
+    application_id_ = db_->query_int("PRAGMA application_id").value_or(0);
+    SqliteStatement st(*db_, "SELECT name, value FROM metadata");
+    while (st.step()) metadata_[st.column_text(0)] = st.column_text(1);
+    get_tile_ = std::make_unique<SqliteStatement>(
+        *db_, "SELECT tile_data FROM tiles WHERE zoom_level = ? AND tile_column = ? AND tile_row = ?");
+  } catch (const PackageError& e) {
+    throw PackageError(path + ": not a tile package (MBTiles tables missing or unreadable): " +
+                       e.what());
+  }
+}
+
+std::optional<std::string> PackageReader::meta(const std::string& key) const {
+  auto it = metadata_.find(key);
+  if (it == metadata_.end()) return std::nullopt;
+  return it->second;
+}
+
+std::optional<std::vector<uint8_t>> PackageReader::tile(TileId id) {
+  if (id.z < 0 || id.z > kMaxZoom || id.x >= TileId::tiles_per_axis(id.z) ||
+      id.y >= TileId::tiles_per_axis(id.z))
+    return std::nullopt;
+  get_tile_->bind(1, id.z).bind(2, id.x).bind(3, TileId::flip_row(id.y, TileId::tiles_per_axis(id.z)));
+  std::optional<std::vector<uint8_t>> out;
+  if (get_tile_->step()) {
+    auto b = get_tile_->column_blob(0);
+    out.emplace(b.begin(), b.end());
+  }
+  get_tile_->reset();
+  return out;
+}
+
+void PackageReader::for_each_tile(const std::function<void(TileId, std::span<const uint8_t>)>& fn,
+                                  std::optional<int> zoom) {
+  std::string sql = "SELECT zoom_level, tile_column, tile_row, tile_data FROM tiles";
+  if (zoom) sql += " WHERE zoom_level = " + std::to_string(*zoom);
+  sql += " ORDER BY zoom_level, tile_row DESC, tile_column";
+  SqliteStatement st(*db_, sql);
+  while (st.step()) {
+    const int64_t z = st.column_int(0), col = st.column_int(1), row = st.column_int(2);
+    if (z < 0 || z > kMaxZoom || col < 0 || row < 0 ||
+        static_cast<uint64_t>(col) >= TileId::tiles_per_axis(static_cast<int>(z)) ||
+        static_cast<uint64_t>(row) >= TileId::tiles_per_axis(static_cast<int>(z)))
+      throw FormatError("3", db_->path() + ": tile index out of range: zoom " + std::to_string(z) +
+                                 ", column " + std::to_string(col) + ", row " + std::to_string(row));
+    TileId id{static_cast<int>(z), static_cast<uint32_t>(col),
+              TileId::flip_row(static_cast<uint32_t>(row), TileId::tiles_per_axis(static_cast<int>(z)))};
+    fn(id, st.column_blob(3));
+  }
+}
+
+std::vector<ZoomSummary> PackageReader::zoom_summaries() {
+  std::vector<ZoomSummary> out;
+  SqliteStatement st(*db_,
+                     "SELECT map.zoom_level, COUNT(*), SUM(LENGTH(blobs.tile_data)), "
+                     "MIN(tile_column), MAX(tile_column), MIN(tile_row), MAX(tile_row) FROM map "
+                     "JOIN blobs ON map.blob_id = blobs.blob_id GROUP BY map.zoom_level "
+                     "ORDER BY map.zoom_level");
+  while (st.step()) {
+    ZoomSummary s;
+    s.zoom = static_cast<int>(st.column_int(0));
+    s.tiles = static_cast<uint64_t>(st.column_int(1));
+    s.bytes = static_cast<uint64_t>(st.column_int(2));
+    const uint64_t n = TileId::tiles_per_axis(s.zoom);
+    s.min_x = static_cast<uint32_t>(st.column_int(3));
+    s.max_x = static_cast<uint32_t>(st.column_int(4));
+    s.min_y = TileId::flip_row(static_cast<uint32_t>(st.column_int(6)), n);
+    s.max_y = TileId::flip_row(static_cast<uint32_t>(st.column_int(5)), n);
+    out.push_back(s);
+  }
+  return out;
+}
+
+uint64_t PackageReader::unique_blobs() {
+  return static_cast<uint64_t>(db_->query_int("SELECT COUNT(*) FROM blobs").value_or(0));
+}
+
+}  // namespace tileformat

@@ -1,0 +1,106 @@
+// SQLite wrapper: checked calls, errors with file name and SQL.
+#include "tileformat/sqlite_db.hpp"
+
+#include <sqlite3.h>
+
+#include "tileformat/error.hpp"
+
+namespace tileformat {
+
+SqliteDb::SqliteDb(const std::string& path, Mode mode) : path_(path) {
+  const int flags = mode == Mode::kReadOnly ? SQLITE_OPEN_READONLY
+                                            : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
+  int rc = sqlite3_open_v2(path.c_str(), &db_, flags | SQLITE_OPEN_NOMUTEX, nullptr);
+  if (rc != SQLITE_OK) {
+    std::string msg = db_ ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw PackageError(path + ": cannot open database: " + msg);
+  }
+  sqlite3_extended_result_codes(db_, 1);
+}
+
+SqliteDb::~SqliteDb() {
+  if (db_) sqlite3_close_v2(db_);
+}
+
+void SqliteDb::close() {
+  if (!db_) return;
+  int rc = sqlite3_close(db_);
+  if (rc != SQLITE_OK) fail("close", "");
+  db_ = nullptr;
+}
+
+int64_t SqliteDb::last_insert_rowid() const { return sqlite3_last_insert_rowid(db_); }
+
+void SqliteDb::fail(const std::string& what, const std::string& sql) const {
+  std::string msg = path_ + ": " + what + " failed: " + (db_ ? sqlite3_errmsg(db_) : "closed");
+  if (!sql.empty()) msg += " [SQL: " + sql.substr(0, 200) + "]";
+  throw PackageError(msg);
+}
+
+void SqliteDb::exec(const std::string& sql) {
+  char* err = nullptr;
+  if (sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &err) != SQLITE_OK) {
+    std::string msg = err ? err : "unknown error";
+    sqlite3_free(err);
+    throw PackageError(path_ + ": " + msg + " [SQL: " + sql.substr(0, 200) + "]");
+  }
+}
+
+std::optional<int64_t> SqliteDb::query_int(const std::string& sql) {
+  SqliteStatement st(*this, sql);
+  if (!st.step() || st.column_is_null(0)) return std::nullopt;
+  return st.column_int(0);
+}
+
+SqliteStatement::SqliteStatement(SqliteDb& db, const std::string& sql) : db_(db), sql_(sql) {
+  if (sqlite3_prepare_v2(db.handle(), sql.c_str(), -1, &stmt_, nullptr) != SQLITE_OK)
+    db.fail("prepare", sql);
+}
+
+SqliteStatement::~SqliteStatement() { sqlite3_finalize(stmt_); }
+
+SqliteStatement& SqliteStatement::bind(int index, int64_t value) {
+  if (sqlite3_bind_int64(stmt_, index, value) != SQLITE_OK) db_.fail("bind", sql_);
+  return *this;
+}
+SqliteStatement& SqliteStatement::bind(int index, const std::string& value) {
+  if (sqlite3_bind_text(stmt_, index, value.data(), static_cast<int>(value.size()),
+                        SQLITE_TRANSIENT) != SQLITE_OK)
+    db_.fail("bind", sql_);
+  return *this;
+}
+SqliteStatement& SqliteStatement::bind(int index, std::span<const uint8_t> blob) {
+  if (sqlite3_bind_blob(stmt_, index, blob.data(), static_cast<int>(blob.size()),
+                        SQLITE_TRANSIENT) != SQLITE_OK)
+    db_.fail("bind", sql_);
+  return *this;
+}
+
+bool SqliteStatement::step() {
+  int rc = sqlite3_step(stmt_);
+  if (rc == SQLITE_ROW) return true;
+  if (rc == SQLITE_DONE) return false;
+  db_.fail("step", sql_);
+}
+
+void SqliteStatement::reset() {
+  sqlite3_reset(stmt_);
+  sqlite3_clear_bindings(stmt_);
+}
+
+int64_t SqliteStatement::column_int(int col) const { return sqlite3_column_int64(stmt_, col); }
+std::string SqliteStatement::column_text(int col) const {
+  auto p = sqlite3_column_text(stmt_, col);
+  return p ? std::string(reinterpret_cast<const char*>(p), sqlite3_column_bytes(stmt_, col)) : "";
+}
+std::span<const uint8_t> SqliteStatement::column_blob(int col) const {
+  auto p = static_cast<const uint8_t*>(sqlite3_column_blob(stmt_, col));
+  return {p, static_cast<size_t>(sqlite3_column_bytes(stmt_, col))};
+}
+bool SqliteStatement::column_is_null(int col) const {
+  return sqlite3_column_type(stmt_, col) == SQLITE_NULL;
+}
+
+}  // namespace tileformat

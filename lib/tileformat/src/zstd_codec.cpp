@@ -1,0 +1,38 @@
+// zstd wrapper (docs/tileformat.md §5).
+#include "tileformat/detail/zstd_codec.hpp"
+
+#include <zstd.h>
+
+#include "tileformat/error.hpp"
+
+namespace tileformat::detail {
+
+std::vector<uint8_t> zstd_compress(std::span<const uint8_t> in, int level) {
+  std::vector<uint8_t> out(ZSTD_compressBound(in.size()));
+  size_t n = ZSTD_compress(out.data(), out.size(), in.data(), in.size(), level);
+  if (ZSTD_isError(n))
+    throw std::runtime_error(std::string("zstd compression failed: ") + ZSTD_getErrorName(n));
+  out.resize(n);
+  return out;
+}
+
+std::vector<uint8_t> zstd_decompress(std::span<const uint8_t> in, size_t expected_size,
+                                     const std::string& what, const std::string& section) {
+  unsigned long long declared = ZSTD_getFrameContentSize(in.data(), in.size());
+  if (declared == ZSTD_CONTENTSIZE_ERROR || declared == ZSTD_CONTENTSIZE_UNKNOWN)
+    throw FormatError(section, what + ": not a zstd frame with a known size");
+  if (declared != expected_size)
+    throw FormatError(section, what + ": zstd frame holds " + std::to_string(declared) +
+                                   " bytes, expected " + std::to_string(expected_size));
+  size_t frame = ZSTD_findFrameCompressedSize(in.data(), in.size());
+  if (ZSTD_isError(frame) || frame != in.size())
+    throw FormatError(section, what + ": zstd frame is truncated or followed by extra bytes");
+  std::vector<uint8_t> out(expected_size);
+  size_t n = ZSTD_decompress(out.data(), out.size(), in.data(), in.size());
+  if (ZSTD_isError(n) || n != expected_size)
+    throw FormatError(section, what + ": corrupt zstd data (" +
+                                   (ZSTD_isError(n) ? ZSTD_getErrorName(n) : "short output") + ")");
+  return out;
+}
+
+}  // namespace tileformat::detail

@@ -1,0 +1,117 @@
+#!/usr/bin/env bash
+# Fetches the real sample datasets (see samples/README.md) from Debian packages
+# with `apt-get download`, without installing those packages. Files are cached
+# under samples/data/ (git-ignored) and checked against samples/checksums.sha256.
+# Formats GDAL cannot read directly are described by GDAL VRTs and converted to
+# GeoTIFF (jacksboro .npz, brasilia raw Float32).
+#
+# Usage: samples/fetch.sh [small|all]    (default: small, used by the tests)
+#   small: lux, olinda, jacksboro, brasilia, etopo20        (~3 MB of packages)
+#   all:   small + nothing else yet (the benchmarks synthesize larger DEMs)
+# Exit codes: 0 ok, 1 a download/checksum/conversion failed, 2 usage error.
+set -euo pipefail
+
+tier=${1:-small}
+case "$tier" in small|all) ;; *) echo "usage: $0 [small|all]" >&2; exit 2;; esac
+
+here=$(cd "$(dirname "$0")" && pwd)
+data="$here/data"
+debs="$data/debs"
+mkdir -p "$debs"
+
+# id | package | path inside the package | output name
+small_sets=(
+  "lux|r-cran-terra|usr/lib/R/site-library/terra/ex/elev.tif|lux.tif"
+  "olinda|r-cran-stars|usr/lib/R/site-library/stars/tif/olinda_dem_utm25s.tif|olinda.tif"
+  "jacksboro|python-matplotlib-data|usr/share/matplotlib/mpl-data/sample_data/jacksboro_fault_dem.npz|jacksboro.npz"
+  "brasilia|libterralib-doc|usr/share/doc/libterralib-dev/examples/data/elevation.raw|brasilia.raw"
+  "etopo20|ferret-datasets|usr/share/ferret-vis/data/etopo20.cdf|etopo20.cdf"
+)
+
+apt_updated=0
+fetch_package() { # package -> path of the .deb in $debs
+  local pkg=$1 deb
+  deb=$(ls "$debs/${pkg}"_*.deb 2>/dev/null | head -n 1 || true)
+  if [ -z "$deb" ]; then
+    if [ $apt_updated = 0 ] && [ -z "$(ls /var/lib/apt/lists/ 2>/dev/null | grep -v lock | head -n 1)" ]; then
+      apt-get update -qq; apt_updated=1
+    fi
+    echo "fetch: downloading $pkg" >&2
+    (cd "$debs" && apt-get download -qq "$pkg" 2>/dev/null) || {
+      if [ $apt_updated = 0 ]; then apt-get update -qq; apt_updated=1; (cd "$debs" && apt-get download -qq "$pkg" 2>/dev/null); else return 1; fi
+    }
+    deb=$(ls "$debs/${pkg}"_*.deb | head -n 1)
+  fi
+  echo "$deb"
+}
+
+extract_file() { # package, inner path, output name
+  local pkg=$1 inner=$2 out=$3 deb tmp
+  [ -f "$data/$out" ] && return 0
+  deb=$(fetch_package "$pkg")
+  tmp=$(mktemp -d)
+  dpkg-deb --fsys-tarfile "$deb" | tar -x -C "$tmp" "./$inner"
+  mv "$tmp/$inner" "$data/$out.part" && mv "$data/$out.part" "$data/$out"
+  rm -rf "$tmp"
+}
+
+for entry in "${small_sets[@]}"; do
+  IFS='|' read -r id pkg inner out <<<"$entry"
+  extract_file "$pkg" "$inner" "$out"
+done
+
+# jacksboro: .npz is a zip holding one .npy (Int16, C order). GDAL reads it
+# through /vsizip/ with a raw VRT; the .npy header length gives the offset.
+if [ ! -f "$data/jacksboro.tif" ]; then
+  npy=elevation.npy
+  unzip -o -q "$data/jacksboro.npz" "$npy" -d "$data/jacksboro.d"
+  raw="$data/jacksboro.d/$npy"
+  hdr=$(od -An -tu1 -N2 -j8 "$raw" | awk '{print $1 + 256*$2 + 10}')
+  shape=$(head -c "$hdr" "$raw" | LC_ALL=C tr -d "\000" | LC_ALL=C sed -n "s/.*'shape': *(\([0-9]*\), *\([0-9]*\)).*/\1 \2/p")
+  read -r rows cols <<<"$shape"
+  cat > "$data/jacksboro.vrt" <<VRT
+<VRTDataset rasterXSize="$cols" rasterYSize="$rows">
+  <SRS>EPSG:4269</SRS>
+  <GeoTransform>-84.41375, 0.000833333333333333, 0, 36.73292, 0, -0.000833333333333333</GeoTransform>
+  <VRTRasterBand dataType="Int16" band="1" subClass="VRTRawRasterBand">
+    <SourceFilename relativeToVRT="0">$raw</SourceFilename>
+    <ImageOffset>$hdr</ImageOffset><PixelOffset>2</PixelOffset><LineOffset>$((cols * 2))</LineOffset>
+    <ByteOrder>LSB</ByteOrder>
+  </VRTRasterBand>
+</VRTDataset>
+VRT
+  gdal_translate -q -co COMPRESS=DEFLATE "$data/jacksboro.vrt" "$data/jacksboro.tif.part.tif"
+  mv "$data/jacksboro.tif.part.tif" "$data/jacksboro.tif"
+fi
+
+# brasilia: 382 x 422 little-endian Float32, north-up rows, 30 m pixels,
+# UTM 23S on SAD69 (EPSG:29193), lower-left corner 183557 E, 8246277 N.
+if [ ! -f "$data/brasilia.tif" ]; then
+  cols=382 rows=422
+  cat > "$data/brasilia.vrt" <<VRT
+<VRTDataset rasterXSize="$cols" rasterYSize="$rows">
+  <SRS>EPSG:29193</SRS>
+  <GeoTransform>183557, 30, 0, $((8246277 + rows * 30)), 0, -30</GeoTransform>
+  <VRTRasterBand dataType="Float32" band="1" subClass="VRTRawRasterBand">
+    <SourceFilename relativeToVRT="0">$data/brasilia.raw</SourceFilename>
+    <ImageOffset>0</ImageOffset><PixelOffset>4</PixelOffset><LineOffset>$((cols * 4))</LineOffset>
+    <ByteOrder>LSB</ByteOrder>
+  </VRTRasterBand>
+</VRTDataset>
+VRT
+  gdal_translate -q -co COMPRESS=DEFLATE "$data/brasilia.vrt" "$data/brasilia.tif.part.tif"
+  mv "$data/brasilia.tif.part.tif" "$data/brasilia.tif"
+fi
+
+# etopo20: netCDF (lon 0..360). GeoTIFF keeps the georeferencing explicit.
+if [ ! -f "$data/etopo20.tif" ]; then
+  gdal_translate -q -a_srs EPSG:4326 -co COMPRESS=DEFLATE "$data/etopo20.cdf" "$data/etopo20.tif.part.tif"
+  mv "$data/etopo20.tif.part.tif" "$data/etopo20.tif"
+fi
+
+# Checksums of the fetched originals (the converted files are derived).
+if [ -f "$here/checksums.sha256" ]; then
+  (cd "$data" && sha256sum --quiet -c "$here/checksums.sha256") || {
+    echo "fetch: checksum mismatch in $data; delete it and run again" >&2; exit 1; }
+fi
+echo "fetch: samples ready in $data ($tier tier)" >&2
