@@ -156,7 +156,7 @@ std::optional<std::string> PackageReader::meta(const std::string& key) const {
 }
 
 std::optional<std::vector<uint8_t>> PackageReader::tile(TileId id) {
-  if (id.z < 0 || id.z > kMaxZoom || id.x >= TileId::tiles_per_axis(id.z) ||
+  if (id.z < 0 || id.z > kMaxZoom || id.x >= 2 * TileId::tiles_per_axis(id.z) ||
       id.y >= TileId::tiles_per_axis(id.z))
     return std::nullopt;
   get_tile_->bind(1, id.z).bind(2, id.x).bind(3, TileId::flip_row(id.y, TileId::tiles_per_axis(id.z)));
@@ -178,7 +178,7 @@ void PackageReader::for_each_tile(const std::function<void(TileId, std::span<con
   while (st.step()) {
     const int64_t z = st.column_int(0), col = st.column_int(1), row = st.column_int(2);
     if (z < 0 || z > kMaxZoom || col < 0 || row < 0 ||
-        static_cast<uint64_t>(col) >= TileId::tiles_per_axis(static_cast<int>(z)) ||
+        static_cast<uint64_t>(col) >= 2 * TileId::tiles_per_axis(static_cast<int>(z)) ||
         static_cast<uint64_t>(row) >= TileId::tiles_per_axis(static_cast<int>(z)))
       throw FormatError("3", db_->path() + ": tile index out of range: zoom " + std::to_string(z) +
                                  ", column " + std::to_string(col) + ", row " + std::to_string(row));

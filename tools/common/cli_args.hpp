@@ -1,0 +1,45 @@
+// A small, strict command-line parser: declared options only, values checked,
+// unknown options rejected with UsageError. Commands parse into a Settings
+// struct in setup() and do the work in run().
+#pragma once
+
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace globe {
+
+class CliArgs {
+ public:
+  CliArgs(std::string program, std::string usage_line) : program_(std::move(program)), usage_(std::move(usage_line)) {}
+
+  // Declares an option taking a value (--name VALUE or --name=VALUE).
+  void option(const std::string& names, const std::string& value_name, const std::string& help,
+              std::function<void(const std::string&)> on_value);
+  // Declares a flag without a value.
+  void flag(const std::string& names, const std::string& help, std::function<void()> on_flag);
+  // Parses argv (excluding the program and command names); returns the
+  // positional arguments. Throws UsageError. Returns nullopt after --help.
+  std::optional<std::vector<std::string>> parse(const std::vector<std::string>& args);
+  std::string help() const;
+
+  // Value parsers that throw UsageError naming the option.
+  static int to_int(const std::string& option, const std::string& v, int lo, int hi);
+  static double to_double(const std::string& option, const std::string& v);
+  static std::vector<double> to_doubles(const std::string& option, const std::string& v, size_t n);
+
+ private:
+  struct Opt {
+    std::vector<std::string> names;
+    std::string value_name, help;
+    std::function<void(const std::string&)> on_value;
+    std::function<void()> on_flag;
+  };
+  const Opt* find(const std::string& name) const;
+  std::string program_, usage_;
+  std::vector<Opt> opts_;
+};
+
+}  // namespace globe

@@ -1,0 +1,77 @@
+// Progress reporting (see progress.hpp).
+#include "progress.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+
+namespace globe {
+namespace {
+std::string json_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (static_cast<unsigned char>(c) < 0x20) continue;
+    out += c;
+  }
+  return out;
+}
+}  // namespace
+
+Progress::Progress(ProgressMode mode) : mode_(mode), tty_(isatty(STDERR_FILENO) != 0) {}
+
+void Progress::begin(const std::string& phase, uint64_t total) {
+  phase_ = phase;
+  total_ = total;
+  done_ = 0;
+  start_ = last_ = std::chrono::steady_clock::now();
+  if (mode_ == ProgressMode::kJson) print(false);
+}
+
+void Progress::advance(uint64_t n) {
+  done_ += n;
+  auto now = std::chrono::steady_clock::now();
+  auto interval = mode_ == ProgressMode::kJson ? std::chrono::milliseconds(1000) : std::chrono::milliseconds(200);
+  if (now - last_ >= interval) {
+    last_ = now;
+    print(false);
+  }
+}
+
+void Progress::end() { print(true); }
+
+void Progress::note(const std::string& message) {
+  if (mode_ == ProgressMode::kQuiet) return;
+  if (mode_ == ProgressMode::kJson)
+    std::fprintf(stderr, "{\"message\":\"%s\"}\n", json_escape(message).c_str());
+  else
+    std::fprintf(stderr, "%s\n", message.c_str());
+}
+
+void Progress::print(bool final) {
+  if (mode_ == ProgressMode::kQuiet) return;
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const double rate = secs > 0 ? done_ / secs : 0;
+  const double eta = rate > 0 && total_ > done_ ? (total_ - done_) / rate : 0;
+  if (mode_ == ProgressMode::kJson) {
+    std::fprintf(stderr,
+                 "{\"phase\":\"%s\",\"done\":%llu,\"total\":%llu,\"rate\":%.1f,\"eta_s\":%.1f,\"final\":%s}\n",
+                 json_escape(phase_).c_str(), static_cast<unsigned long long>(done_),
+                 static_cast<unsigned long long>(total_), rate, eta, final ? "true" : "false");
+    return;
+  }
+  if (!tty_ && !final) return;  // no bar redraws into logs; one line per phase
+  const int width = 30;
+  const int filled = total_ ? static_cast<int>(width * static_cast<double>(done_) / total_) : width;
+  std::string bar(filled, '#');
+  bar.resize(width, '.');
+  std::fprintf(stderr, "%s%-22s [%s] %llu/%llu  %.0f/s  %s%s", tty_ ? "\r" : "", phase_.c_str(),
+               bar.c_str(), static_cast<unsigned long long>(done_),
+               static_cast<unsigned long long>(total_), rate,
+               final ? ("in " + std::to_string(static_cast<int>(secs * 10) / 10.0).substr(0, 5) + " s").c_str()
+                     : ("ETA " + std::to_string(static_cast<int>(eta)) + " s").c_str(),
+               final ? "\n" : "   ");
+  std::fflush(stderr);
+}
+
+}  // namespace globe
