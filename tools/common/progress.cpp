@@ -60,17 +60,17 @@ void Progress::print(bool final) {
                  static_cast<unsigned long long>(total_), rate, eta, final ? "true" : "false");
     return;
   }
-  if (!tty_ && !final) return;  // no bar redraws into logs; one line per phase
+  // Without a TTY: no redraws, and one line only for phases worth logging.
+  if (!tty_ && (!final || secs < 1.0)) return;
   const int width = 30;
   const int filled = total_ ? static_cast<int>(width * static_cast<double>(done_) / total_) : width;
   std::string bar(filled, '#');
   bar.resize(width, '.');
-  std::fprintf(stderr, "%s%-22s [%s] %llu/%llu  %.0f/s  %s%s", tty_ ? "\r" : "", phase_.c_str(),
-               bar.c_str(), static_cast<unsigned long long>(done_),
-               static_cast<unsigned long long>(total_), rate,
-               final ? ("in " + std::to_string(static_cast<int>(secs * 10) / 10.0).substr(0, 5) + " s").c_str()
-                     : ("ETA " + std::to_string(static_cast<int>(eta)) + " s").c_str(),
-               final ? "\n" : "   ");
+  char tail[64];
+  if (final) std::snprintf(tail, sizeof tail, "in %.1f s\n", secs);
+  else std::snprintf(tail, sizeof tail, "ETA %.0f s   ", eta);
+  std::fprintf(stderr, "%s%-22s [%s] %llu/%llu  %.0f/s  %s", tty_ ? "\r" : "", phase_.c_str(), bar.c_str(),
+               static_cast<unsigned long long>(done_), static_cast<unsigned long long>(total_), rate, tail);
   std::fflush(stderr);
 }
 

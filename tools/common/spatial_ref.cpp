@@ -10,7 +10,7 @@ namespace globe {
 
 SpatialRef SpatialRef::from_user_input(const std::string& text, const std::string& context) {
   SpatialRef s;
-  s.h_.reset(OSRNewSpatialReference(nullptr));
+  s.reset(OSRNewSpatialReference(nullptr));
   CPLErrorReset();
   if (OSRSetFromUserInput(s.h_.get(), text.c_str()) != OGRERR_NONE)
     throw UsageError(context + ": '" + text + "' is not a CRS PROJ knows (" + gdal_last_error() +
@@ -21,7 +21,7 @@ SpatialRef SpatialRef::from_user_input(const std::string& text, const std::strin
 
 SpatialRef SpatialRef::from_wkt(const std::string& wkt, const std::string& context) {
   SpatialRef s;
-  s.h_.reset(OSRNewSpatialReference(nullptr));
+  s.reset(OSRNewSpatialReference(nullptr));
   if (OSRSetFromUserInput(s.h_.get(), wkt.c_str()) != OGRERR_NONE)
     throw InputError(context + ": unreadable CRS definition");
   OSRSetAxisMappingStrategy(s.h_.get(), OAMS_TRADITIONAL_GIS_ORDER);

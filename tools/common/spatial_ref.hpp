@@ -26,10 +26,10 @@ class SpatialRef {
   std::string name() const;
 
  private:
-  struct Free {
-    void operator()(OGRSpatialReferenceH h) const { OSRRelease(h); }
-  };
-  std::unique_ptr<std::remove_pointer_t<OGRSpatialReferenceH>, Free> h_;
+  void reset(OGRSpatialReferenceH h) {
+    h_ = std::shared_ptr<std::remove_pointer_t<OGRSpatialReferenceH>>(h, [](OGRSpatialReferenceH p) { OSRRelease(p); });
+  }
+  std::shared_ptr<std::remove_pointer_t<OGRSpatialReferenceH>> h_;  // immutable after construction
 };
 
 class CoordTransform {

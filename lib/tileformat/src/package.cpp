@@ -105,11 +105,13 @@ void PackageWriter::flush_batch() {
 }
 
 void PackageWriter::commit() {
-  SqliteStatement meta(*db_, "INSERT INTO metadata (name, value) VALUES (?, ?)");
-  for (const auto& [name, value] : metadata_) {  // std::map: sorted, deterministic
-    meta.bind(1, name).bind(2, value);
-    meta.step();
-    meta.reset();
+  {
+    SqliteStatement meta(*db_, "INSERT INTO metadata (name, value) VALUES (?, ?)");
+    for (const auto& [name, value] : metadata_) {  // std::map: sorted, deterministic
+      meta.bind(1, name).bind(2, value);
+      meta.step();
+      meta.reset();
+    }
   }
   db_->exec(
       "CREATE UNIQUE INDEX map_index ON map (zoom_level, tile_column, tile_row);"

@@ -1,0 +1,16 @@
+// The subcommands of globe-tiler. Each parses its arguments (throwing
+// UsageError), does its work and returns an exit code; only main() catches
+// and reports errors.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace globe {
+
+int run_terrain(const std::vector<std::string>& args, const std::string& command_line);
+int run_info(const std::vector<std::string>& args);
+int run_validate(const std::vector<std::string>& args);
+int run_extract(const std::vector<std::string>& args);
+
+}  // namespace globe

@@ -1,0 +1,149 @@
+// KPatch error trees (see error_tree.hpp).
+#include "error_tree.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace globe {
+
+using tileformat::KPatchLayout;
+using tileformat::KPatchNode;
+using tileformat::Point;
+
+double lattice_deviation(const KPatchLayout& layout, size_t index, const std::vector<int32_t>& q,
+                         const std::vector<uint8_t>& valid) {
+  const KPatchNode& n = layout.nodes()[index];
+  const int L = layout.lattice(), size = layout.steps() + 1;
+  // Lattice step vectors along the two legs (integers for every depth <= D).
+  const Point wu{(n.b.x - n.apex.x) / L, (n.b.y - n.apex.y) / L};
+  const Point wv{(n.c.x - n.apex.x) / L, (n.c.y - n.apex.y) / L};
+  const double ww = static_cast<double>(wu.x * wu.x + wu.y * wu.y);
+  const int x0 = std::min({n.apex.x, n.b.x, n.c.x}), x1 = std::max({n.apex.x, n.b.x, n.c.x});
+  const int y0 = std::min({n.apex.y, n.b.y, n.c.y}), y1 = std::max({n.apex.y, n.b.y, n.c.y});
+  auto h = [&](int i, int j) {
+    return static_cast<double>(q[static_cast<size_t>(n.apex.y + i * wu.y + j * wv.y) * size + n.apex.x + i * wu.x +
+                                 j * wv.x]);
+  };
+  double worst = 0;
+  for (int y = y0; y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x) {
+      const size_t idx = static_cast<size_t>(y) * size + x;
+      if (!valid.empty() && !valid[idx]) continue;
+      const int dx = x - n.apex.x, dy = y - n.apex.y;
+      const double a = (dx * wu.x + dy * wu.y) / ww, b = (dx * wv.x + dy * wv.y) / ww;
+      if (a < 0 || b < 0 || a + b > L) continue;
+      const int i = std::min(static_cast<int>(a), L), j = std::min(static_cast<int>(b), L);
+      const double fa = a - i, fb = b - j;
+      double z;
+      if (i + j >= L) z = h(i, j);  // on the hypotenuse: a lattice vertex
+      else if (fa + fb <= 1) z = h(i, j) + fa * (h(i + 1, j) - h(i, j)) + fb * (h(i, j + 1) - h(i, j));
+      else z = h(i + 1, j + 1) + (1 - fa) * (h(i, j + 1) - h(i + 1, j + 1)) + (1 - fb) * (h(i + 1, j) - h(i + 1, j + 1));
+      worst = std::max(worst, std::abs(z - q[idx]));
+    }
+  }
+  return worst;
+}
+
+namespace {
+
+uint32_t quanta(double v) { return static_cast<uint32_t>(std::ceil(v - 1e-9)); }
+
+// For node `index` of depth >= 2: the child block (0..3) holding it and the
+// index of the same triangle in that block (two depths shallower).
+std::pair<int, size_t> child_node(const KPatchLayout& layout, size_t index) {
+  const KPatchNode& n = layout.nodes()[index];
+  const int d = n.depth, m = d / 2;
+  const size_t local = index - layout.node_offset(d);
+  const size_t per_cell = (d % 2 == 0) ? 2 : 4;
+  const int cells = 1 << m, cell = static_cast<int>(local / per_cell), sub = static_cast<int>(local % per_cell);
+  const int cx = cell % cells, cy = cell / cells;
+  const int half = cells / 2;  // level-m cells per child block side, at level m - 1 in the child
+  const int qx = cx / half, qy = cy / half;
+  const int lx = cx % half, ly = cy % half;
+  const size_t child_index = (d % 2 == 0) ? layout.even_node(m - 1, lx, ly, sub) : layout.odd_node(m - 1, lx, ly, sub);
+  return {qx + 2 * qy, child_index};
+}
+
+}  // namespace
+
+std::vector<uint32_t> node_errors(const KPatchLayout& layout, const std::vector<int32_t>& q,
+                                  const std::vector<uint8_t>& valid,
+                                  const std::array<const std::vector<uint32_t>*, 4>& children) {
+  const auto& nodes = layout.nodes();
+  std::vector<uint32_t> err(nodes.size(), 0);
+  const bool finest = std::none_of(children.begin(), children.end(), [](auto* c) { return c != nullptr; });
+  for (int d = layout.depth(); d >= 0; --d) {
+    for (size_t i = layout.node_offset(d); i < layout.node_offset(d + 1); ++i) {
+      const KPatchNode& n = nodes[i];
+      const uint32_t below = n.children[0] < 0 ? 0 : std::max(err[n.children[0]], err[n.children[1]]);
+      if (d >= 2 && !finest) {
+        auto [c, ci] = child_node(layout, i);
+        if (children[c]) {
+          err[i] = (*children[c])[ci];
+          continue;
+        }
+      }
+      // Depth D draws every sample: no deviation from this block's own data.
+      const uint32_t own = d == layout.depth() ? 0 : quanta(lattice_deviation(layout, i, q, valid));
+      // Finest data (or no finer data): exact, saturated. Coarser: a bound.
+      err[i] = (finest || d >= 2) ? std::max(own, below) : own + below;
+    }
+  }
+  return err;
+}
+
+std::vector<uint32_t> vertex_errors(const KPatchLayout& layout, const Neighbourhood& nb) {
+  std::vector<uint32_t> out(layout.vertex_count(), 0);
+  // Node error of node (m, gx, gy, sub) addressed in cell coordinates that may
+  // leave the block by one block in any direction.
+  auto locate = [&](int m, int gx, int gy, int& lx, int& ly) -> const std::vector<uint32_t>* {
+    const int cells = 1 << m;
+    const int bx = gx < 0 ? -1 : (gx >= cells ? 1 : 0), by = gy < 0 ? -1 : (gy >= cells ? 1 : 0);
+    lx = gx - bx * cells;
+    ly = gy - by * cells;
+    return nb[by + 1][bx + 1];
+  };
+  auto cell_error = [&](int m, int gx, int gy) -> uint32_t {
+    int lx, ly;
+    const auto* e = locate(m, gx, gy, lx, ly);
+    if (!e) return 0;
+    return std::max((*e)[layout.even_node(m, lx, ly, 0)], (*e)[layout.even_node(m, lx, ly, 1)]);
+  };
+  auto odd_error = [&](int m, int gx, int gy, int k) -> uint32_t {
+    int lx, ly;
+    const auto* e = locate(m, gx, gy, lx, ly);
+    return e ? (*e)[layout.odd_node(m, lx, ly, k)] : 0;
+  };
+  auto n3 = [&](int m, int gx, int gy) {
+    uint32_t v = 0;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) v = std::max(v, cell_error(m, gx + dx, gy + dy));
+    return v;
+  };
+  const int levels = layout.depth() / 2;
+  for (int m = 0; m <= levels; ++m) {
+    const int cells = 1 << m;
+    for (int cy = 0; cy < cells; ++cy)
+      for (int cx = 0; cx < cells; ++cx) out[layout.cell_vertex(m, cx, cy)] = n3(m, cx, cy);
+    if (m == levels) break;
+    // Horizontal edges: between cell (cx, row-1) above and (cx, row) below.
+    for (int row = 0; row <= cells; ++row)
+      for (int cx = 0; cx < cells; ++cx) {
+        uint32_t v = std::max(odd_error(m, cx, row - 1, 2), odd_error(m, cx, row, 0));
+        for (int sy : {2 * row - 1, 2 * row})
+          for (int sx : {2 * cx, 2 * cx + 1}) v = std::max(v, n3(m + 1, sx, sy));
+        out[layout.hedge_vertex(m, row, cx)] = v;
+      }
+    // Vertical edges: between cell (col-1, cy) on the left and (col, cy) on the right.
+    for (int cy = 0; cy < cells; ++cy)
+      for (int col = 0; col <= cells; ++col) {
+        uint32_t v = std::max(odd_error(m, col - 1, cy, 1), odd_error(m, col, cy, 3));
+        for (int sx : {2 * col - 1, 2 * col})
+          for (int sy : {2 * cy, 2 * cy + 1}) v = std::max(v, n3(m + 1, sx, sy));
+        out[layout.vedge_vertex(m, cy, col)] = v;
+      }
+  }
+  return out;
+}
+
+}  // namespace globe

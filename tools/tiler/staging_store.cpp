@@ -1,0 +1,78 @@
+// Scratch storage (see staging_store.hpp).
+#include "staging_store.hpp"
+
+#include <filesystem>
+
+namespace globe {
+
+using tileformat::SqliteDb;
+using tileformat::SqliteStatement;
+
+StagingStore::StagingStore(std::string path) : path_(std::move(path)) {
+  std::error_code ec;
+  std::filesystem::remove(path_, ec);
+  db_ = std::make_unique<SqliteDb>(path_, SqliteDb::Mode::kReadWriteCreate);
+  db_->exec("PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF; PRAGMA cache_size = -16384;");
+  db_->exec("CREATE TABLE stage (kind INTEGER, z INTEGER, x INTEGER, y INTEGER, data BLOB, PRIMARY KEY (kind, z, y, x))");
+  put_ = std::make_unique<SqliteStatement>(*db_, "INSERT OR REPLACE INTO stage VALUES (?, ?, ?, ?, ?)");
+  get_ = std::make_unique<SqliteStatement>(*db_, "SELECT data FROM stage WHERE kind = ? AND z = ? AND x = ? AND y = ?");
+  db_->exec("BEGIN");
+}
+
+StagingStore::~StagingStore() {
+  put_.reset();
+  get_.reset();
+  db_.reset();
+  std::error_code ec;
+  std::filesystem::remove(path_, ec);
+}
+
+void StagingStore::put(Stage stage, tileformat::TileId id, const std::vector<uint8_t>& data) {
+  put_->bind(1, static_cast<int>(stage)).bind(2, id.z).bind(3, id.x).bind(4, id.y).bind(5, data);
+  put_->step();
+  put_->reset();
+}
+
+std::optional<std::vector<uint8_t>> StagingStore::get(Stage stage, tileformat::TileId id) {
+  get_->bind(1, static_cast<int>(stage)).bind(2, id.z).bind(3, id.x).bind(4, id.y);
+  std::optional<std::vector<uint8_t>> out;
+  if (get_->step()) {
+    auto b = get_->column_blob(0);
+    out.emplace(b.begin(), b.end());
+  }
+  get_->reset();
+  return out;
+}
+
+std::vector<tileformat::TileId> StagingStore::list(Stage stage, int z) {
+  SqliteStatement st(*db_, "SELECT x, y FROM stage WHERE kind = ? AND z = ? ORDER BY y, x");
+  st.bind(1, static_cast<int>(stage)).bind(2, z);
+  std::vector<tileformat::TileId> out;
+  while (st.step())
+    out.push_back({z, static_cast<uint32_t>(st.column_int(0)), static_cast<uint32_t>(st.column_int(1))});
+  return out;
+}
+
+void StagingStore::drop(Stage stage, int z) {
+  SqliteStatement st(*db_, "DELETE FROM stage WHERE kind = ? AND z = ?");
+  st.bind(1, static_cast<int>(stage)).bind(2, z);
+  st.step();
+}
+
+void StagingStore::commit() { db_->exec("COMMIT; BEGIN"); }
+
+std::vector<uint8_t> pack_u32(const std::vector<uint32_t>& v) {
+  std::vector<uint8_t> out(v.size() * 4);
+  for (size_t i = 0; i < v.size(); ++i)
+    for (int b = 0; b < 4; ++b) out[4 * i + b] = static_cast<uint8_t>(v[i] >> (8 * b));
+  return out;
+}
+
+std::vector<uint32_t> unpack_u32(const std::vector<uint8_t>& bytes) {
+  std::vector<uint32_t> out(bytes.size() / 4);
+  for (size_t i = 0; i < out.size(); ++i)
+    for (int b = 0; b < 4; ++b) out[i] |= uint32_t{bytes[4 * i + b]} << (8 * b);
+  return out;
+}
+
+}  // namespace globe

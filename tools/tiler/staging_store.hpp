@@ -1,0 +1,39 @@
+// Scratch storage for a terrain build: per-level intermediate blocks live in
+// a temporary SQLite file (not in memory), so peak memory does not grow with
+// the input. Deleted when the build ends, successfully or not.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tileformat/sqlite_db.hpp"
+#include "tileformat/tile_id.hpp"
+
+namespace globe {
+
+enum class Stage : int { kRaw = 1, kFinal = 2, kNodeErrors = 3 };
+
+class StagingStore {
+ public:
+  explicit StagingStore(std::string path);
+  ~StagingStore();
+
+  void put(Stage stage, tileformat::TileId id, const std::vector<uint8_t>& data);
+  std::optional<std::vector<uint8_t>> get(Stage stage, tileformat::TileId id);
+  // Tiles of one stage and zoom, sorted by (y, x).
+  std::vector<tileformat::TileId> list(Stage stage, int z);
+  void drop(Stage stage, int z);
+  void commit();  // ends the current write transaction
+
+ private:
+  std::string path_;
+  std::unique_ptr<tileformat::SqliteDb> db_;
+  std::unique_ptr<tileformat::SqliteStatement> put_, get_;
+};
+
+std::vector<uint8_t> pack_u32(const std::vector<uint32_t>& v);
+std::vector<uint32_t> unpack_u32(const std::vector<uint8_t>& bytes);
+
+}  // namespace globe

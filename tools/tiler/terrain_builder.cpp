@@ -1,0 +1,390 @@
+// Terrain package builder (see terrain_builder.hpp).
+#include "terrain_builder.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include "block_fill.hpp"
+#include "error_tree.hpp"
+#include "errors.hpp"
+#include "parallel_batches.hpp"
+#include "staging_store.hpp"
+#include "tile_warper.hpp"
+#include "tileformat/blob_header.hpp"
+#include "tileformat/error.hpp"
+#include "tileformat/kpatch.hpp"
+#include "tileformat/mblock.hpp"
+#include "tileformat/package.hpp"
+
+namespace globe {
+namespace {
+
+using tileformat::KPatchLayout;
+using tileformat::MBlock;
+using tileformat::TileId;
+
+constexpr int kStageZstdLevel = 1;
+constexpr int kFinalZstdLevel = 9;
+
+struct Block {
+  std::vector<int32_t> q;
+  std::vector<uint8_t> valid;  // always size*size here
+};
+
+std::string json_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+class Builder {
+ public:
+  Builder(const DemPlan& plan, const TerrainSettings& s, Progress& progress)
+      : plan_(plan), s_(s), progress_(progress), size_(plan.steps + 1),
+        layouts_{KPatchLayout(plan.steps, s.lattice, 0), KPatchLayout(plan.steps, s.lattice, 1)},
+        threads_(s.threads > 0 ? s.threads : std::max(1u, std::thread::hardware_concurrency())),
+        global_(plan.tiling.scheme != "local") {}
+
+  BuildSummary run() {
+    const auto start = std::chrono::steady_clock::now();
+    std::unique_ptr<tileformat::PackageWriter> writer;
+    try {
+      writer = std::make_unique<tileformat::PackageWriter>(s_.output, s_.force);
+    } catch (const tileformat::PackageError& e) {
+      throw OutputError(e.what());
+    }
+    StagingStore stage(s_.output + ".staging");
+    warpers_.resize(threads_);
+    for (int z = plan_.max_zoom; z >= plan_.min_zoom; --z) {
+      pass_raw(stage, z);
+      pass_final(stage, z);
+      stage.drop(Stage::kRaw, z);
+      stage.drop(Stage::kFinal, z + 1);
+      stage.drop(Stage::kNodeErrors, z + 1);
+      pass_encode(stage, *writer, z);
+      stage.commit();
+    }
+    warpers_.clear();
+    if (writer->tiles_written() == 0)
+      throw InputError(plan_.sources[0].path + ": no tile holds valid data in the requested area" +
+                       (s_.bbox ? " (check --bbox)" : "") + "; nothing written");
+    write_metadata(*writer);
+    BuildSummary sum;
+    sum.tiles = writer->tiles_written();
+    sum.unique_blobs = writer->unique_blobs();
+    sum.blob_bytes = writer->blob_bytes();
+    sum.samples = sum.tiles * static_cast<uint64_t>(size_) * size_;
+    try {
+      writer->commit();
+    } catch (const tileformat::PackageError& e) {
+      throw OutputError(e.what());
+    }
+    std::error_code ec;
+    sum.file_bytes = std::filesystem::file_size(s_.output, ec);
+    sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return sum;
+  }
+
+ private:
+  std::vector<uint8_t> encode_stage(const Block& b) const {
+    MBlock m;
+    m.size = size_;
+    m.lattice = s_.lattice;
+    m.step = plan_.step_m;
+    m.q = b.q;
+    if (std::any_of(b.valid.begin(), b.valid.end(), [](uint8_t v) { return v == 0; })) m.valid = b.valid;
+    m.vertex_error.assign(layouts_[0].vertex_count(), 0);
+    return tileformat::encode_mblock(m, kStageZstdLevel);
+  }
+  Block decode_stage(const std::vector<uint8_t>& bytes) const {
+    MBlock m = tileformat::decode_mblock(bytes);
+    Block b{std::move(m.q), std::move(m.valid)};
+    if (b.valid.empty()) b.valid.assign(b.q.size(), 1);
+    return b;
+  }
+
+  std::optional<TileId> neighbour(TileId id, int dx, int dy) const {
+    const int64_t nx = static_cast<int64_t>(plan_.tiling.tiles_x(id.z)), ny = static_cast<int64_t>(plan_.tiling.tiles_y(id.z));
+    int64_t x = int64_t{id.x} + dx, y = int64_t{id.y} + dy;
+    if (y < 0 || y >= ny) return std::nullopt;
+    if (x < 0 || x >= nx) {
+      if (!global_) return std::nullopt;
+      x = (x + nx) % nx;
+    }
+    return TileId{id.z, static_cast<uint32_t>(x), static_cast<uint32_t>(y)};
+  }
+
+  std::vector<TileId> finest_tiles(int z) const {
+    std::vector<TileId> out;
+    for (const auto& area : plan_.data_areas) {
+      auto r = plan_.tiling.tiles_covering(area, z);
+      for (uint32_t y = r.min_y; !r.empty() && y <= r.max_y; ++y)
+        for (uint32_t x = r.min_x; x <= r.max_x; ++x) out.push_back({z, x, y});
+    }
+    sort_unique(out);
+    return out;
+  }
+  static void sort_unique(std::vector<TileId>& v) {
+    std::sort(v.begin(), v.end(), [](TileId a, TileId b) { return std::tie(a.y, a.x) < std::tie(b.y, b.x); });
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+  }
+
+  // Pass 1: raw samples of every tile of zoom z.
+  void pass_raw(StagingStore& stage, int z) {
+    std::vector<TileId> tiles;
+    const bool finest = z == plan_.max_zoom;
+    if (finest) {
+      tiles = finest_tiles(z);
+    } else {
+      for (const TileId& c : stage.list(Stage::kFinal, z + 1)) tiles.push_back(c.parent());
+      sort_unique(tiles);
+    }
+    std::map<TileId, std::vector<uint8_t>> cache;
+    progress_.begin("z" + std::to_string(z) + (finest ? " warp" : " pyramid"), tiles.size());
+    parallel_batches<std::vector<uint8_t>>(
+        tiles.size(), threads_, batch_size(),
+        [&](size_t begin, size_t end) {
+          cache.clear();
+          if (finest) return;
+          for (size_t i = begin; i < end; ++i)
+            for (const TileId& c : tiles[i].children())
+              if (auto b = stage.get(Stage::kFinal, c)) cache.emplace(c, std::move(*b));
+        },
+        [&](size_t i, int worker) { return finest ? warp_tile(tiles[i], worker) : decimate(tiles[i], cache); },
+        [&](size_t i, std::vector<uint8_t>&& blob) {
+          if (!blob.empty()) stage.put(Stage::kRaw, tiles[i], blob);
+          progress_.advance();
+        });
+    progress_.end();
+  }
+
+  std::vector<uint8_t> warp_tile(TileId id, int worker) {
+    if (!warpers_[worker]) warpers_[worker] = std::make_unique<TileWarper>(plan_, s_.resampling);
+    std::vector<double> h;
+    warpers_[worker]->warp(id, h);
+    Block b{std::vector<int32_t>(h.size(), 0), std::vector<uint8_t>(h.size(), 0)};
+    size_t valid = 0;
+    for (size_t i = 0; i < h.size(); ++i) {
+      if (std::isnan(h[i])) continue;
+      const double qv = std::round(h[i] / plan_.step_m);
+      if (!(std::abs(qv) <= tileformat::kMaxQuantum))
+        throw InputError(plan_.sources[0].path + ": height " + std::to_string(h[i]) + " in tile " + id.str() +
+                         " does not fit the quantization grid; use a larger --precision");
+      b.q[i] = static_cast<int32_t>(qv);
+      b.valid[i] = 1;
+      ++valid;
+    }
+    if (valid == 0) return {};
+    return encode_stage(b);
+  }
+
+  std::vector<uint8_t> decimate(TileId id, const std::map<TileId, std::vector<uint8_t>>& cache) const {
+    std::array<std::optional<Block>, 4> kids;
+    const auto children = id.children();
+    for (int c = 0; c < 4; ++c)
+      if (auto it = cache.find(children[c]); it != cache.end()) kids[c] = decode_stage(it->second);
+    const int n = plan_.steps;
+    Block b{std::vector<int32_t>(size_t(size_) * size_, 0), std::vector<uint8_t>(size_t(size_) * size_, 0)};
+    size_t valid = 0;
+    for (int y = 0; y <= n; ++y)
+      for (int x = 0; x <= n; ++x) {
+        const int fx = 2 * x, fy = 2 * y;
+        // Children holding the fine sample (several on the middle lines).
+        for (int cy : {0, 1}) {
+          if ((cy == 0 && fy > n) || (cy == 1 && fy < n)) continue;
+          bool done = false;
+          for (int cx : {0, 1}) {
+            if ((cx == 0 && fx > n) || (cx == 1 && fx < n)) continue;
+            const auto& k = kids[cx + 2 * cy];
+            if (!k) continue;
+            const size_t src = size_t(fy - cy * n) * size_ + (fx - cx * n), dst = size_t(y) * size_ + x;
+            if (k->valid[src]) {
+              b.q[dst] = k->q[src];
+              b.valid[dst] = 1;
+              ++valid;
+            }
+            done = true;
+            break;
+          }
+          if (done) break;
+        }
+      }
+    if (valid == 0) return {};
+    return encode_stage(b);
+  }
+
+  // Pass 2: shared edges from the owners, hole filling, node errors.
+  void pass_final(StagingStore& stage, int z) {
+    const std::vector<TileId> tiles = stage.list(Stage::kRaw, z);
+    std::map<TileId, std::vector<uint8_t>> raw, child_err;
+    progress_.begin("z" + std::to_string(z) + " errors", tiles.size());
+    parallel_batches<FinalOut>(
+        tiles.size(), threads_, batch_size(),
+        [&](size_t begin, size_t end) {
+          raw.clear();
+          child_err.clear();
+          for (size_t i = begin; i < end; ++i) {
+            for (auto [dx, dy] : {std::pair{0, 0}, std::pair{1, 0}, std::pair{0, 1}, std::pair{1, 1}})
+              if (auto nb = neighbour(tiles[i], dx, dy); nb && !raw.count(*nb))
+                if (auto b = stage.get(Stage::kRaw, *nb)) raw.emplace(*nb, std::move(*b));
+            if (z < plan_.max_zoom)
+              for (const TileId& c : tiles[i].children())
+                if (auto e = stage.get(Stage::kNodeErrors, c)) child_err.emplace(c, std::move(*e));
+          }
+        },
+        [&](size_t i, int) { return finalize(tiles[i], raw, child_err); },
+        [&](size_t i, FinalOut&& out) {
+          if (!out.block.empty()) {
+            stage.put(Stage::kFinal, tiles[i], out.block);
+            stage.put(Stage::kNodeErrors, tiles[i], out.errors);
+          }
+          progress_.advance();
+        });
+    progress_.end();
+  }
+
+  struct FinalOut {
+    std::vector<uint8_t> block, errors;  // both empty: the tile holds no data
+  };
+  FinalOut finalize(TileId id, const std::map<TileId, std::vector<uint8_t>>& raw,
+                    const std::map<TileId, std::vector<uint8_t>>& child_err) const {
+    const int n = plan_.steps;
+    auto load = [&](int dx, int dy) -> std::optional<Block> {
+      auto nb = neighbour(id, dx, dy);
+      if (!nb) return std::nullopt;
+      auto it = raw.find(*nb);
+      if (it == raw.end()) return std::nullopt;
+      return decode_stage(it->second);
+    };
+    Block b = *load(0, 0);
+    const auto east = load(1, 0), south = load(0, 1), south_east = load(1, 1);
+    auto take = [&](const std::optional<Block>& from, int fx, int fy, int x, int y) {
+      const size_t dst = size_t(y) * size_ + x;
+      if (from) {
+        const size_t src = size_t(fy) * size_ + fx;
+        b.q[dst] = from->q[src];
+        b.valid[dst] = from->valid[src];
+      } else {
+        b.q[dst] = 0;
+        b.valid[dst] = 0;
+      }
+    };
+    for (int y = 0; y < n; ++y) take(east, 0, y, n, y);
+    for (int x = 0; x < n; ++x) take(south, x, 0, x, n);
+    take(south_east, 0, 0, n, n);
+    if (std::none_of(b.valid.begin(), b.valid.end(), [](uint8_t v) { return v != 0; })) return {};
+    fill_holes(b.q, b.valid, size_, plan_.fill_q);
+
+    std::array<std::vector<uint32_t>, 4> kids;
+    std::array<const std::vector<uint32_t>*, 4> kid_ptrs{};
+    const auto children = id.children();
+    for (int c = 0; c < 4; ++c)
+      if (auto it = child_err.find(children[c]); it != child_err.end()) {
+        kids[c] = unpack_u32(it->second);
+        kid_ptrs[c] = &kids[c];
+      }
+    const auto errors = node_errors(layouts_[id.diagonal()], b.q, b.valid, kid_ptrs);
+    return FinalOut{encode_stage(b), pack_u32(errors)};
+  }
+
+  // Pass 3: vertex errors and the final MBlock.
+  void pass_encode(StagingStore& stage, tileformat::PackageWriter& writer, int z) {
+    const std::vector<TileId> tiles = stage.list(Stage::kFinal, z);
+    std::map<TileId, std::vector<uint8_t>> finals;
+    std::map<TileId, std::vector<uint32_t>> errs;
+    progress_.begin("z" + std::to_string(z) + " encode", tiles.size());
+    parallel_batches<std::vector<uint8_t>>(
+        tiles.size(), threads_, batch_size(),
+        [&](size_t begin, size_t end) {
+          finals.clear();
+          errs.clear();
+          for (size_t i = begin; i < end; ++i) {
+            if (auto b = stage.get(Stage::kFinal, tiles[i])) finals.emplace(tiles[i], std::move(*b));
+            for (int dy = -1; dy <= 1; ++dy)
+              for (int dx = -1; dx <= 1; ++dx)
+                if (auto nb = neighbour(tiles[i], dx, dy); nb && !errs.count(*nb))
+                  if (auto e = stage.get(Stage::kNodeErrors, *nb)) errs.emplace(*nb, unpack_u32(*e));
+          }
+        },
+        [&](size_t i, int) {
+          const TileId id = tiles[i];
+          Neighbourhood nb{};
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx)
+              if (auto t = neighbour(id, dx, dy))
+                if (auto it = errs.find(*t); it != errs.end()) nb[dy + 1][dx + 1] = &it->second;
+          MBlock m = tileformat::decode_mblock(finals.at(id));
+          m.vertex_error = vertex_errors(layouts_[id.diagonal()], nb);
+          return tileformat::encode_mblock(m, kFinalZstdLevel);
+        },
+        [&](size_t i, std::vector<uint8_t>&& blob) {
+          writer.put_tile(tiles[i], blob);
+          progress_.advance();
+        });
+    progress_.end();
+  }
+
+  void write_metadata(tileformat::PackageWriter& w) const {
+    std::map<std::string, std::string> meta;
+    plan_.tiling.to_metadata(meta);
+    const auto& ll = plan_.lonlat;
+    auto f = [](double v) {
+      std::ostringstream o;
+      o.precision(10);
+      o << v;
+      return o.str();
+    };
+    meta["name"] = std::filesystem::path(s_.output).stem().string();
+    meta["format"] = tileformat::kMBlockFormat;
+    meta["type"] = "baselayer";
+    meta["version"] = "1";
+    meta["description"] = "Terrain (MBlock/KPatch) built by globe-tiler from " +
+                          std::filesystem::path(plan_.sources[0].path).filename().string() +
+                          (plan_.sources.size() > 1 ? " and " + std::to_string(plan_.sources.size() - 1) + " more" : "");
+    meta["bounds"] = f(ll.min_x) + "," + f(ll.min_y) + "," + f(ll.max_x) + "," + f(ll.max_y);
+    meta["center"] = f((ll.min_x + ll.max_x) / 2) + "," + f((ll.min_y + ll.max_y) / 2) + "," + std::to_string(plan_.max_zoom);
+    meta["minzoom"] = std::to_string(plan_.min_zoom);
+    meta["maxzoom"] = std::to_string(plan_.max_zoom);
+    meta["globe:format_version"] = std::to_string(tileformat::kFormatVersion);
+    meta["globe:block_size"] = std::to_string(size_);
+    meta["globe:kpatch_lattice"] = std::to_string(s_.lattice);
+    meta["globe:height_step"] = f(plan_.step_m);
+    meta["globe:fill_height"] = f(plan_.fill_q * plan_.step_m);
+    meta["globe:resampling"] = s_.resampling;
+    meta["globe:generator"] = "globe-tiler " GLOBE_VERSION;
+    meta["globe:command_line"] = s_.command_line;
+    std::string inputs = "[";
+    for (size_t i = 0; i < plan_.sources.size(); ++i)
+      inputs += (i ? "," : "") + std::string("{\"name\":\"") + json_escape(plan_.sources[i].path) +
+                "\",\"bytes\":" + std::to_string(plan_.sources[i].file_bytes) + "}";
+    meta["globe:inputs"] = inputs + "]";
+    for (const auto& [k, v] : meta) w.set_metadata(k, v);
+  }
+
+  size_t batch_size() const { return static_cast<size_t>(8 * threads_); }
+
+  const DemPlan& plan_;
+  const TerrainSettings& s_;
+  Progress& progress_;
+  const int size_;
+  const std::array<KPatchLayout, 2> layouts_;
+  const int threads_;
+  const bool global_;
+  std::vector<std::unique_ptr<TileWarper>> warpers_;
+};
+
+}  // namespace
+
+BuildSummary build_terrain(const DemPlan& plan, const TerrainSettings& settings, Progress& progress) {
+  return Builder(plan, settings, progress).run();
+}
+
+}  // namespace globe

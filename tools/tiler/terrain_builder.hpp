@@ -1,0 +1,31 @@
+// Builds a terrain package from a plan (docs/terrain.md "Pipeline"). For each
+// zoom from the finest up, three passes over the level's tiles:
+//   1. raw:    finest zoom: warp the sources onto the tile's samples;
+//              coarser: take every other sample of the four children (valid
+//              samples only), so coarse samples equal fine ones.
+//   2. final:  a block's last column/row come from its east/south neighbours
+//              (one owner per shared sample), holes are filled, node errors
+//              are computed.
+//   3. encode: vertex errors from the 3 x 3 neighbourhood, MBlock encoding,
+//              written to the package.
+// Intermediate blocks live in a scratch SQLite file; parallel work is done in
+// batches and consumed in tile order, so output is identical for any -j.
+#pragma once
+
+#include <cstdint>
+
+#include "dem_plan.hpp"
+#include "progress.hpp"
+#include "terrain_settings.hpp"
+
+namespace globe {
+
+struct BuildSummary {
+  uint64_t tiles = 0, unique_blobs = 0, blob_bytes = 0, file_bytes = 0;
+  uint64_t samples = 0;  // samples stored (tiles * size^2)
+  double seconds = 0;
+};
+
+BuildSummary build_terrain(const DemPlan& plan, const TerrainSettings& settings, Progress& progress);
+
+}  // namespace globe

@@ -1,0 +1,24 @@
+// Opening an existing terrain package for inspection: the reader plus the
+// metadata every inspection command needs, checked once.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "tileformat/package.hpp"
+#include "tileformat/tiling.hpp"
+
+namespace globe {
+
+struct TerrainPackage {
+  std::unique_ptr<tileformat::PackageReader> reader;
+  tileformat::Tiling tiling;
+  int block_size = 0, lattice = 0, min_zoom = 0, max_zoom = 0;
+  double step_m = 0;
+};
+
+// Throws InputError naming the file if it is missing, not a package, or not
+// a terrain package.
+TerrainPackage open_terrain_package(const std::string& path);
+
+}  // namespace globe

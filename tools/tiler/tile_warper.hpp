@@ -1,0 +1,36 @@
+// Warps the source mosaic onto one tile's sample grid. One TileWarper per
+// worker thread: GDAL handles are not shared between threads. Each source is
+// opened through a VRT that carries its resolved CRS, nodata value and
+// longitude shift (+-360 copies for data past the antimeridian), and GDAL
+// reads only the source window the tile needs.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "dem_plan.hpp"
+#include "gdal_dataset.hpp"
+#include "tileformat/tile_id.hpp"
+
+namespace globe {
+
+class TileWarper {
+ public:
+  TileWarper(const DemPlan& plan, const std::string& resampling);
+  ~TileWarper();
+  TileWarper(const TileWarper&) = delete;
+  TileWarper& operator=(const TileWarper&) = delete;
+
+  // Heights of the (steps+1)^2 samples of `id`, row-major from the north-west
+  // corner; NaN where no input has data. Throws InputError on read failures.
+  void warp(tileformat::TileId id, std::vector<double>& heights);
+
+ private:
+  const DemPlan& plan_;
+  std::vector<GdalDataset> opened_;   // the inputs; must outlive the wrappers below
+  std::vector<GdalDataset> sources_;  // VRT wrappers, one per source and shift
+  GdalDataset dest_;
+  void* options_ = nullptr;  // GDALWarpAppOptions*
+};
+
+}  // namespace globe

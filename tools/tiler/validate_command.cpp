@@ -1,0 +1,159 @@
+// `globe-tiler validate PACKAGE`: decodes every tile and checks the schema and
+// the terrain invariants (docs/tileformat.md §3, §5, §6):
+//   - shared edge samples and edge split-vertex errors equal in both blocks;
+//   - a coarse sample equals the finer sample at the same position;
+//   - vertex errors are saturated (>= their children's) within each block.
+// Report on stdout. Exit 0 valid, 5 warnings only, 1 errors.
+#include <cstdio>
+#include <map>
+#include <optional>
+
+#include "cli_args.hpp"
+#include "commands.hpp"
+#include "errors.hpp"
+#include "terrain_package.hpp"
+#include "tileformat/error.hpp"
+#include "tileformat/kpatch.hpp"
+#include "tileformat/mblock.hpp"
+
+namespace globe {
+namespace {
+
+using tileformat::KPatchLayout;
+using tileformat::MBlock;
+using tileformat::TileId;
+
+struct Report {
+  uint64_t errors = 0, warnings = 0;
+  void error(const std::string& m) {
+    if (errors++ < 50) std::printf("error: %s\n", m.c_str());
+  }
+  void warning(const std::string& m) {
+    if (warnings++ < 50) std::printf("warning: %s\n", m.c_str());
+  }
+};
+
+void check_saturation(const KPatchLayout& l, const MBlock& b, const std::string& where, Report& r) {
+  const auto& e = b.vertex_error;
+  const int levels = l.depth() / 2;
+  for (int m = 0; m < levels; ++m) {
+    const int cells = 1 << m;
+    for (int cy = 0; cy < cells; ++cy)
+      for (int cx = 0; cx < cells; ++cx) {
+        const uint32_t v = e[l.cell_vertex(m, cx, cy)];
+        for (size_t child : {l.hedge_vertex(m, cy, cx), l.hedge_vertex(m, cy + 1, cx), l.vedge_vertex(m, cy, cx),
+                             l.vedge_vertex(m, cy, cx + 1)})
+          if (e[child] > v) return r.error(where + ": vertex error not saturated at level " + std::to_string(m));
+      }
+    for (int row = 0; row <= cells; ++row)
+      for (int cx = 0; cx < cells; ++cx)
+        for (int sy : {2 * row - 1, 2 * row})
+          for (int sx : {2 * cx, 2 * cx + 1})
+            if (sy >= 0 && sy < 2 * cells && e[l.cell_vertex(m + 1, sx, sy)] > e[l.hedge_vertex(m, row, cx)])
+              return r.error(where + ": edge vertex error not saturated at level " + std::to_string(m));
+    for (int cy = 0; cy < cells; ++cy)
+      for (int col = 0; col <= cells; ++col)
+        for (int sx : {2 * col - 1, 2 * col})
+          for (int sy : {2 * cy, 2 * cy + 1})
+            if (sx >= 0 && sx < 2 * cells && e[l.cell_vertex(m + 1, sx, sy)] > e[l.vedge_vertex(m, cy, col)])
+              return r.error(where + ": edge vertex error not saturated at level " + std::to_string(m));
+  }
+}
+
+}  // namespace
+
+int run_validate(const std::vector<std::string>& args) {
+  CliArgs cli("globe-tiler validate",
+              "globe-tiler validate PACKAGE\n\nDecodes every tile and checks schema and invariants.\n"
+              "Exit 0: valid; 5: warnings only; 1: errors.");
+  auto positional = cli.parse(args);
+  if (!positional) {
+    std::fputs(cli.help().c_str(), stdout);
+    return kExitOk;
+  }
+  if (positional->size() != 1) throw UsageError("expected exactly one PACKAGE");
+  const std::string& path = (*positional)[0];
+  TerrainPackage p = open_terrain_package(path);
+  Report r;
+  if (p.reader->application_id() != tileformat::kApplicationId)
+    r.warning("PRAGMA application_id is not 0x4d504258 (tileformat §3.1)");
+  for (const char* key : {"name", "bounds", "center", "minzoom", "maxzoom", "type", "version", "description",
+                          "globe:format_version", "globe:command_line"})
+    if (!p.reader->meta(key)) r.warning(std::string("metadata key '") + key + "' is missing (tileformat §3.2)");
+
+  std::map<TileId, bool> ids;
+  p.reader->for_each_tile([&](TileId id, std::span<const uint8_t>) { ids[id] = true; });
+  const std::array<KPatchLayout, 2> layouts{KPatchLayout(p.block_size - 1, p.lattice, 0),
+                                            KPatchLayout(p.block_size - 1, p.lattice, 1)};
+  auto load = [&](TileId id) -> std::optional<MBlock> {
+    if (!ids.count(id)) return std::nullopt;
+    try {
+      return tileformat::decode_mblock(*p.reader->tile(id));
+    } catch (const tileformat::FormatError&) {
+      return std::nullopt;  // reported once, when the tile itself is checked
+    }
+  };
+  const int n = p.block_size - 1;
+  for (const auto& [id, unused] : ids) {
+    const std::string where = "tile " + id.str();
+    if (!p.tiling.contains(id)) {
+      r.error(where + ": outside the tiling's extent");
+      continue;
+    }
+    if (id.z < p.min_zoom || id.z > p.max_zoom) r.error(where + ": zoom outside minzoom..maxzoom");
+    MBlock b;
+    try {
+      b = tileformat::decode_mblock(*p.reader->tile(id));
+    } catch (const tileformat::FormatError& e) {
+      r.error(where + ": " + e.what());
+      continue;
+    }
+    if (b.size != p.block_size || b.step != p.step_m || b.lattice != p.lattice) {
+      r.error(where + ": block size, height step or lattice differ from the metadata");
+      continue;
+    }
+    const KPatchLayout& l = layouts[id.diagonal()];
+    check_saturation(l, b, where, r);
+    // Shared edges with the east and south neighbours (no wrap-around check).
+    for (auto [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}}) {
+      const auto nb = load({id.z, id.x + dx, id.y + dy});
+      if (!nb) continue;
+      for (int i = 0; i <= n; ++i) {
+        const int ax = dx ? n : i, ay = dx ? i : n, bx = dx ? 0 : i, by = dx ? i : 0;
+        if (b.q[size_t(ay) * b.size + ax] != nb->q[size_t(by) * b.size + bx] || b.is_valid(ax, ay) != nb->is_valid(bx, by)) {
+          r.error(where + ": edge sample differs from neighbour " + TileId{id.z, id.x + dx, id.y + dy}.str());
+          break;
+        }
+      }
+      for (int m = 0; m < l.depth() / 2; ++m)
+        for (int c = 0; c < (1 << m); ++c) {
+          const size_t va = dx ? l.vedge_vertex(m, c, 1 << m) : l.hedge_vertex(m, 1 << m, c);
+          const size_t vb = dx ? l.vedge_vertex(m, c, 0) : l.hedge_vertex(m, 0, c);
+          if (b.vertex_error[va] != nb->vertex_error[vb]) {
+            r.error(where + ": shared edge vertex error differs from neighbour " + TileId{id.z, id.x + dx, id.y + dy}.str());
+            m = l.depth();
+            break;
+          }
+        }
+    }
+    // Nested samples: every valid sample of a child equals this block's sample there.
+    for (const TileId& c : id.children()) {
+      const auto child = load(c);
+      if (!child) continue;
+      const int ox = (c.x & 1) * n / 2, oy = (c.y & 1) * n / 2;
+      bool ok = true;
+      for (int y = 0; y <= n && ok; y += 2)
+        for (int x = 0; x <= n && ok; x += 2)
+          if (child->is_valid(x, y) &&
+              (!b.is_valid(ox + x / 2, oy + y / 2) || b.q[size_t(oy + y / 2) * b.size + ox + x / 2] != child->q[size_t(y) * b.size + x]))
+            ok = false;
+      if (!ok) r.error(where + ": a sample differs from child " + c.str() + " at the same position");
+    }
+  }
+  std::printf("%s: %zu tiles checked, %llu errors, %llu warnings\n", path.c_str(), ids.size(),
+              static_cast<unsigned long long>(r.errors), static_cast<unsigned long long>(r.warnings));
+  if (r.errors) return kExitDataError;
+  return r.warnings ? kExitWarnings : kExitOk;
+}
+
+}  // namespace globe
