@@ -55,6 +55,14 @@ std::optional<std::vector<std::string>> CliArgs::parse(const std::vector<std::st
       value = a.substr(eq + 1);
       has_value = true;
     }
+    // Short options may carry their value attached: -j2.
+    if (!has_value && a[1] != '-' && a.size() > 2 && !find(a)) {
+      if (const Opt* shortopt = find(a.substr(0, 2)); shortopt && shortopt->on_value) {
+        name = a.substr(0, 2);
+        value = a.substr(2);
+        has_value = true;
+      }
+    }
     const Opt* o = find(name);
     if (!o) throw UsageError("unknown option " + name + " (see " + program_ + " --help)");
     if (o->on_flag) {

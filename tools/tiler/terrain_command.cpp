@@ -24,7 +24,7 @@ std::string reproducible_command_line(const std::vector<std::string>& args) {
       continue;
     }
     if (a == "-q" || a == "--quiet" || a == "--force" || a.rfind("--threads=", 0) == 0 ||
-        a.rfind("--progress=", 0) == 0)
+        a.rfind("--progress=", 0) == 0 || (a.size() > 2 && a.rfind("-j", 0) == 0))
       continue;
     out += " " + a;
   }

@@ -42,8 +42,6 @@ TileWarper::TileWarper(const DemPlan& plan, const std::string& resampling) : pla
   CPLStringList args;
   args.AddString("-r");
   args.AddString(resampling.c_str());
-  args.AddString("-wo");
-  args.AddString("INIT_DEST=NO_DATA");
   args.AddString("-dstnodata");
   args.AddString("nan");
   args.AddString("-wm");
@@ -63,6 +61,10 @@ void TileWarper::warp(tileformat::TileId id, std::vector<double>& heights) {
   // Pixel centres on the samples: the first centre is the tile's corner.
   double gt[6] = {b.min_x - sp / 2, sp, 0, b.max_y + sp / 2, 0, -sp};
   GDALSetGeoTransform(dest_.get(), gt);
+  // Initialised once here, not by GDAL per source (INIT_DEST would let a later
+  // source's window wipe what an earlier source wrote: mosaics, +-360 copies).
+  if (GDALFillRaster(dest_.band(1), std::numeric_limits<double>::quiet_NaN(), 0) != CE_None)
+    throw std::runtime_error("cannot initialise the tile buffer: " + gdal_last_error());
   std::vector<GDALDatasetH> srcs;
   for (auto& s : sources_) srcs.push_back(s.get());
   int usage_error = 0;

@@ -38,6 +38,7 @@ MBlock decode_mblock(std::span<const uint8_t> blob);
 MBlockStats mblock_stats(const MBlock& block);
 
 // Largest |q| the format accepts (heights beyond it need a larger step).
-inline constexpr int32_t kMaxQuantum = (int32_t{1} << 30);
+// Bound so that every 2D-predictor residual fits an int32 (|r| <= 4 * kMaxQuantum).
+inline constexpr int32_t kMaxQuantum = (int32_t{1} << 29) - 1;
 
 }  // namespace tileformat

@@ -1,0 +1,65 @@
+// Package writer/reader: MBTiles schema, TMS rows, deduplication, atomic
+// commit (temporary name, rollback), refusal to overwrite.
+#include <gtest/gtest.h>
+
+#include "test_support.hpp"
+#include "tileformat/error.hpp"
+#include "tileformat/package.hpp"
+
+using globe_test::TempDir;
+using tileformat::PackageReader;
+using tileformat::PackageWriter;
+using tileformat::TileId;
+
+TEST(Package, WritesReadsAndDeduplicates) {
+  TempDir dir;
+  const auto path = (dir / "p.mbtiles").string();
+  const std::vector<uint8_t> a{1, 2, 3}, b{4, 5};
+  {
+    PackageWriter w(path, false);
+    w.put_tile({2, 1, 0}, a);
+    w.put_tile({2, 2, 3}, a);
+    w.put_tile({1, 1, 1}, b);
+    w.set_metadata("name", "test");
+    w.set_metadata("format", "application/vnd.globe.mblock");
+    EXPECT_FALSE(std::filesystem::exists(path)) << "final name used before commit";
+    w.commit();
+  }
+  PackageReader r(path);
+  EXPECT_EQ(r.application_id(), tileformat::kApplicationId);
+  EXPECT_EQ(*r.meta("name"), "test");
+  EXPECT_EQ(*r.tile({2, 1, 0}), a);
+  EXPECT_EQ(*r.tile({2, 2, 3}), a);
+  EXPECT_EQ(*r.tile({1, 1, 1}), b);
+  EXPECT_FALSE(r.tile({2, 0, 0}).has_value());
+  EXPECT_EQ(r.unique_blobs(), 2u);
+  // TMS storage: y = 0 at zoom 2 is row 3.
+  EXPECT_EQ(r.db().query_int("SELECT tile_row FROM tiles WHERE zoom_level = 2 AND tile_column = 1"), 3);
+}
+
+TEST(Package, UncommittedWriterLeavesNothing) {
+  TempDir dir;
+  const auto path = (dir / "p.mbtiles").string();
+  {
+    PackageWriter w(path, false);
+    w.put_tile({0, 0, 0}, std::vector<uint8_t>{1});
+  }
+  EXPECT_FALSE(std::filesystem::exists(path));
+  EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
+}
+
+TEST(Package, RefusesExistingOutputWithoutOverwrite) {
+  TempDir dir;
+  const auto path = (dir / "p.mbtiles").string();
+  std::ofstream(path) << "precious";
+  EXPECT_THROW(PackageWriter(path, false), tileformat::PackageError);
+  EXPECT_EQ(globe_test::read_file(path), "precious");
+}
+
+TEST(Package, ReaderRejectsNonPackages) {
+  TempDir dir;
+  const auto path = (dir / "text.mbtiles").string();
+  std::ofstream(path) << "not a database at all, just text\n";
+  EXPECT_THROW(PackageReader r(path), tileformat::PackageError);
+  EXPECT_THROW(PackageReader r((dir / "missing.mbtiles").string()), tileformat::PackageError);
+}

@@ -1,0 +1,75 @@
+// Helpers shared by the tests: temporary folders, running the CLI tools and
+// capturing exit code / stdout / stderr, and where the sample data lives.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace globe_test {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+inline std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs a shell command line; stdout and stderr are captured separately.
+inline RunResult run(const std::string& command, const fs::path& scratch) {
+  const fs::path out = scratch / "run.stdout", err = scratch / "run.stderr";
+  const std::string full = command + " >" + out.string() + " 2>" + err.string();
+  const int status = std::system(full.c_str());
+  RunResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = read_file(out);
+  r.err = read_file(err);
+  return r;
+}
+
+inline std::string tiler() { return GLOBE_TILER_PATH; }
+inline fs::path samples() { return GLOBE_SAMPLES_DIR; }
+
+// A fresh folder per test, removed afterwards.
+class TempDir {
+ public:
+  TempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = fs::temp_directory_path() / ("globe-test-" + std::string(info->test_suite_name()) + "-" + info->name() + "-" +
+                                         std::to_string(::getpid()));
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  const fs::path& path() const { return path_; }
+  fs::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  fs::path path_;
+};
+
+// Requires a sample fetched by samples/fetch.sh; fails (not skips) without it.
+inline fs::path sample(const std::string& name) {
+  const fs::path p = samples() / name;
+  if (!fs::exists(p)) ADD_FAILURE() << p << " is missing: run samples/fetch.sh first";
+  return p;
+}
+
+}  // namespace globe_test
