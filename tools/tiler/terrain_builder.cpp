@@ -170,18 +170,23 @@ class Builder {
     if (!warpers_[worker]) warpers_[worker] = std::make_unique<TileWarper>(plan_, s_.resampling);
     std::vector<double> h;
     warpers_[worker]->warp(id, h);
-    Block b{std::vector<int32_t>(h.size(), 0), std::vector<uint8_t>(h.size(), 0)};
+    // The warp covers the owned steps x steps samples; the last column and
+    // row stay invalid here and come from the neighbours in pass 2.
+    const int n = plan_.steps;
+    Block b{std::vector<int32_t>(size_t(size_) * size_, 0), std::vector<uint8_t>(size_t(size_) * size_, 0)};
     size_t valid = 0;
-    for (size_t i = 0; i < h.size(); ++i) {
-      if (std::isnan(h[i])) continue;
-      const double qv = std::round(h[i] / plan_.step_m);
-      if (!(std::abs(qv) <= tileformat::kMaxQuantum))
-        throw InputError(plan_.sources[0].path + ": height " + std::to_string(h[i]) + " in tile " + id.str() +
-                         " does not fit the quantization grid; use a larger --precision");
-      b.q[i] = static_cast<int32_t>(qv);
-      b.valid[i] = 1;
-      ++valid;
-    }
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const double v = h[size_t(y) * n + x];
+        if (std::isnan(v)) continue;
+        const double qv = std::round(v / plan_.step_m);
+        if (!(std::abs(qv) <= tileformat::kMaxQuantum))
+          throw InputError(plan_.sources[0].path + ": height " + std::to_string(v) + " in tile " + id.str() +
+                           " does not fit the quantization grid; use a larger --precision");
+        b.q[size_t(y) * size_ + x] = static_cast<int32_t>(qv);
+        b.valid[size_t(y) * size_ + x] = 1;
+        ++valid;
+      }
     if (valid == 0) return {};
     return encode_stage(b);
   }

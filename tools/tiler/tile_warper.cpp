@@ -32,7 +32,7 @@ TileWarper::TileWarper(const DemPlan& plan, const std::string& resampling) : pla
       sources_.push_back(std::move(wrapped));
     }
   }
-  const int n = plan.steps + 1;
+  const int n = plan.steps;
   GDALDriverH mem = GDALGetDriverByName("MEM");
   dest_ = GdalDataset(GDALCreate(mem, "", n, n, 1, GDT_Float64, nullptr), "tile");
   SpatialRef target = SpatialRef::from_user_input(plan.tiling.crs, "tiling CRS");
@@ -55,11 +55,24 @@ TileWarper::~TileWarper() {
 }
 
 void TileWarper::warp(tileformat::TileId id, std::vector<double>& heights) {
-  const int n = plan_.steps + 1;
+  const int n = plan_.steps;
   const double sp = plan_.tiling.sample_spacing(id.z, plan_.steps);
   const tileformat::Bounds b = plan_.tiling.tile_bounds(id);
   // Pixel centres on the samples: the first centre is the tile's corner.
   double gt[6] = {b.min_x - sp / 2, sp, 0, b.max_y + sp / 2, 0, -sp};
+  if (plan_.tiling.scheme == "webmercator") {
+    // Warp in a Mercator centred on the tile: identical coordinates up to a
+    // shift in x, but the window never touches the +-180 degree wrap, where
+    // GDAL's source window computation breaks for tiles at the antimeridian.
+    const double centre_x = (b.min_x + b.max_x) / 2;
+    const double centre_lon = centre_x / tileformat::kWebMercatorHalf * 180.0;
+    const SpatialRef centred = SpatialRef::from_user_input(
+        "+proj=merc +a=6378137 +b=6378137 +lat_ts=0 +lon_0=" + std::string(CPLSPrintf("%.17g", centre_lon)) +
+            " +x_0=0 +y_0=0 +k=1 +units=m +nadgrids=@null +over +wktext +no_defs",
+        "tile CRS");
+    gt[0] -= centre_lon / 180.0 * tileformat::kWebMercatorHalf;
+    GDALSetSpatialRef(dest_.get(), centred.get());
+  }
   GDALSetGeoTransform(dest_.get(), gt);
   // Initialised once here, not by GDAL per source (INIT_DEST would let a later
   // source's window wipe what an earlier source wrote: mosaics, +-360 copies).

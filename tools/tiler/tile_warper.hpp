@@ -21,8 +21,11 @@ class TileWarper {
   TileWarper(const TileWarper&) = delete;
   TileWarper& operator=(const TileWarper&) = delete;
 
-  // Heights of the (steps+1)^2 samples of `id`, row-major from the north-west
-  // corner; NaN where no input has data. Throws InputError on read failures.
+  // Heights of the steps^2 samples the tile owns (its last column and row
+  // belong to the east/south neighbours), row-major from the north-west
+  // corner; NaN where no input has data. Not warping the shared samples also
+  // keeps the destination window off the antimeridian, where GDAL's source
+  // window computation wraps. Throws InputError on read failures.
   void warp(tileformat::TileId id, std::vector<double>& heights);
 
  private:
