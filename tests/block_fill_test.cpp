@@ -53,6 +53,7 @@ TEST(BlockFill, SharedEdgeIsFilledIdenticallyFromBothSides) {
     }
     globe::fill_holes(qa, va, kSize, 3);
     globe::fill_holes(qb, vb, kSize, 3);
-    for (int y = 0; y < kSize; ++y) ASSERT_EQ(qa[y * kSize + kSize - 1], qb[y * kSize]) << "row " << y;
+    for (int y = 0; y < kSize; ++y)
+      ASSERT_EQ(qa[y * kSize + kSize - 1], qb[y * kSize]) << "row " << y;
   }
 }

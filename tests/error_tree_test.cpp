@@ -15,7 +15,8 @@ constexpr int kSteps = 64, kSize = kSteps + 1;
 std::vector<int32_t> plane() {
   std::vector<int32_t> q(kSize * kSize);
   for (int y = 0; y < kSize; ++y)
-    for (int x = 0; x < kSize; ++x) q[y * kSize + x] = 3 * x - 5 * y + 100;
+    for (int x = 0; x < kSize; ++x)
+      q[y * kSize + x] = 3 * x - 5 * y + 100;
   return q;
 }
 }  // namespace
@@ -23,7 +24,8 @@ std::vector<int32_t> plane() {
 TEST(ErrorTree, PlaneHasZeroError) {
   const KPatchLayout l(kSteps, 16, 0);
   const auto err = globe::node_errors(l, plane(), {}, {});
-  for (uint32_t e : err) EXPECT_EQ(e, 0u);
+  for (uint32_t e : err)
+    EXPECT_EQ(e, 0u);
 }
 
 TEST(ErrorTree, SpikeErrorIsExactAndSaturatedUpwards) {
@@ -57,9 +59,12 @@ TEST(ErrorTree, EdgeVertexErrorsMatchAcrossNeighbours) {
   std::mt19937 rng(7);
   // Two blocks side by side (A west, B east), random terrain.
   std::vector<int32_t> qa(kSize * kSize), qb(kSize * kSize);
-  for (auto& v : qa) v = static_cast<int32_t>(rng() % 200);
-  for (auto& v : qb) v = static_cast<int32_t>(rng() % 200);
-  for (int y = 0; y < kSize; ++y) qb[y * kSize] = qa[y * kSize + kSteps];
+  for (auto& v : qa)
+    v = static_cast<int32_t>(rng() % 200);
+  for (auto& v : qb)
+    v = static_cast<int32_t>(rng() % 200);
+  for (int y = 0; y < kSize; ++y)
+    qb[y * kSize] = qa[y * kSize + kSteps];
   const KPatchLayout la(kSteps, 16, 0), lb(kSteps, 16, 1);
   const auto ea = globe::node_errors(la, qa, {}, {}), eb = globe::node_errors(lb, qb, {}, {});
   globe::Neighbourhood na{}, nb{};
@@ -70,7 +75,8 @@ TEST(ErrorTree, EdgeVertexErrorsMatchAcrossNeighbours) {
   const auto va = globe::vertex_errors(la, na), vb = globe::vertex_errors(lb, nb);
   for (int m = 0; m < la.depth() / 2; ++m)
     for (int c = 0; c < (1 << m); ++c)
-      EXPECT_EQ(va[la.vedge_vertex(m, c, 1 << m)], vb[lb.vedge_vertex(m, c, 0)]) << "level " << m << " edge " << c;
+      EXPECT_EQ(va[la.vedge_vertex(m, c, 1 << m)], vb[lb.vedge_vertex(m, c, 0)])
+          << "level " << m << " edge " << c;
   // Saturation: a cell centre is >= its four edge midpoints.
   for (int m = 0; m < la.depth() / 2; ++m)
     for (int cy = 0; cy < (1 << m); ++cy)

@@ -6,11 +6,11 @@
 #include <fstream>
 #include <random>
 
+#include "golden_block.hpp"
 #include "tileformat/blob_header.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/kpatch.hpp"
 #include "tileformat/mblock.hpp"
-#include "golden_block.hpp"
 
 using tileformat::decode_mblock;
 using tileformat::encode_mblock;
@@ -28,13 +28,16 @@ MBlock random_block(int size, unsigned seed, bool with_mask, int32_t amplitude) 
   b.q.resize(size_t(size) * size);
   std::uniform_int_distribution<int32_t> noise(-amplitude, amplitude);
   for (int y = 0; y < size; ++y)
-    for (int x = 0; x < size; ++x) b.q[size_t(y) * size + x] = 1000 + 3 * x - 2 * y + noise(rng);
+    for (int x = 0; x < size; ++x)
+      b.q[size_t(y) * size + x] = 1000 + 3 * x - 2 * y + noise(rng);
   if (with_mask) {
     b.valid.resize(b.q.size());
-    for (auto& v : b.valid) v = rng() % 5 != 0;
+    for (auto& v : b.valid)
+      v = rng() % 5 != 0;
   }
   b.vertex_error.resize(tileformat::kpatch_vertex_count(tileformat::kpatch_depth(size - 1, 16)));
-  for (auto& e : b.vertex_error) e = rng() % 1000;
+  for (auto& e : b.vertex_error)
+    e = rng() % 1000;
   return b;
 }
 
@@ -60,7 +63,8 @@ TEST(MBlockCodec, RoundTripsRandomBlocks) {
 
 TEST(MBlockCodec, RoundTripsExtremeHeights) {
   MBlock b = random_block(33, 1, false, 0);
-  for (size_t i = 0; i < b.q.size(); ++i) b.q[i] = (i % 2) ? tileformat::kMaxQuantum : -tileformat::kMaxQuantum;
+  for (size_t i = 0; i < b.q.size(); ++i)
+    b.q[i] = (i % 2) ? tileformat::kMaxQuantum : -tileformat::kMaxQuantum;
   expect_same(decode_mblock(encode_mblock(b)), b);
 }
 
@@ -108,7 +112,9 @@ TEST(MBlockCodec, RejectsCorruptPayloadWithoutCrashing) {
   std::mt19937 rng(6);
   for (int trial = 0; trial < 300; ++trial) {
     auto bad = blob;
-    for (int k = 0; k < 3; ++k) bad[tileformat::kBlobHeaderSize + rng() % (bad.size() - tileformat::kBlobHeaderSize)] ^= static_cast<uint8_t>(1 + rng() % 255);
+    for (int k = 0; k < 3; ++k)
+      bad[tileformat::kBlobHeaderSize + rng() % (bad.size() - tileformat::kBlobHeaderSize)] ^=
+          static_cast<uint8_t>(1 + rng() % 255);
     try {
       decode_mblock(bad);  // may decode (a flipped bit in a height) or throw FormatError
     } catch (const FormatError&) {
@@ -122,4 +128,3 @@ TEST(MBlockCodec, GoldenVersion1BlobStillDecodes) {
   std::vector<uint8_t> blob((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   expect_same(decode_mblock(blob), golden_block());
 }
-

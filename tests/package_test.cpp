@@ -34,7 +34,8 @@ TEST(Package, WritesReadsAndDeduplicates) {
   EXPECT_FALSE(r.tile({2, 0, 0}).has_value());
   EXPECT_EQ(r.unique_blobs(), 2u);
   // TMS storage: y = 0 at zoom 2 is row 3.
-  EXPECT_EQ(r.db().query_int("SELECT tile_row FROM tiles WHERE zoom_level = 2 AND tile_column = 1"), 3);
+  EXPECT_EQ(r.db().query_int("SELECT tile_row FROM tiles WHERE zoom_level = 2 AND tile_column = 1"),
+            3);
 }
 
 TEST(Package, UncommittedWriterLeavesNothing) {

@@ -2,9 +2,9 @@
 // for comparisons. Each fixture says which property it is for.
 #pragma once
 
+#include <cpl_string.h>
 #include <gdal.h>
 #include <gdal_utils.h>
-#include <cpl_string.h>
 #include <ogr_srs_api.h>
 
 #include <cmath>
@@ -32,8 +32,9 @@ inline void gdal_setup() {
 }
 
 // Writes a one-band GeoTIFF; `height_at(x, y)` gives each pixel value.
-inline void write_dem(const std::string& path, int w, int h, const double gt[6], const std::string& srs,
-                      GDALDataType type, const std::function<double(int, int)>& height_at,
+inline void write_dem(const std::string& path, int w, int h, const double gt[6],
+                      const std::string& srs, GDALDataType type,
+                      const std::function<double(int, int)>& height_at,
                       const double* nodata = nullptr) {
   gdal_setup();
   GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), path.c_str(), w, h, 1, type, nullptr);
@@ -48,8 +49,10 @@ inline void write_dem(const std::string& path, int w, int h, const double gt[6],
   if (nodata) GDALSetRasterNoDataValue(b, *nodata);
   std::vector<double> row(w);
   for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) row[x] = height_at(x, y);
-    if (GDALRasterIO(b, GF_Write, 0, y, w, 1, row.data(), w, 1, GDT_Float64, 0, 0) != CE_None) break;
+    for (int x = 0; x < w; ++x)
+      row[x] = height_at(x, y);
+    if (GDALRasterIO(b, GF_Write, 0, y, w, 1, row.data(), w, 1, GDT_Float64, 0, 0) != CE_None)
+      break;
   }
   GDALClose(ds);
 }
@@ -70,7 +73,8 @@ inline Raster read_raster(const std::string& path) {
   }
   GDALRasterBandH b = GDALGetRasterBand(ds, 1);
   r.data.resize(size_t(r.width) * r.height);
-  if (GDALRasterIO(b, GF_Read, 0, 0, r.width, r.height, r.data.data(), r.width, r.height, GDT_Float64, 0, 0) != CE_None)
+  if (GDALRasterIO(b, GF_Read, 0, 0, r.width, r.height, r.data.data(), r.width, r.height,
+                   GDT_Float64, 0, 0) != CE_None)
     r.data.clear();
   int has = 0;
   const double nd = GDALGetRasterNoDataValue(b, &has);
@@ -86,12 +90,14 @@ inline Raster warp_like(const std::string& src, const Raster& like, const std::s
                         const std::string& out_path) {
   gdal_setup();
   CPLStringList args;
-  for (const char* a : {"-of", "GTiff", "-ot", "Float64", "-dstnodata", "nan", "-r"}) args.AddString(a);
+  for (const char* a : {"-of", "GTiff", "-ot", "Float64", "-dstnodata", "nan", "-r"})
+    args.AddString(a);
   args.AddString(resampling.c_str());
   args.AddString("-t_srs");
   args.AddString(like.wkt.c_str());
   args.AddString("-te");
-  for (double v : {like.gt[0], like.gt[3] + like.height * like.gt[5], like.gt[0] + like.width * like.gt[1], like.gt[3]})
+  for (double v : {like.gt[0], like.gt[3] + like.height * like.gt[5],
+                   like.gt[0] + like.width * like.gt[1], like.gt[3]})
     args.AddString(CPLSPrintf("%.17g", v));
   args.AddString("-ts");
   args.AddString(CPLSPrintf("%d", like.width));

@@ -15,7 +15,7 @@ namespace {
 
 struct Case {
   std::string name, file, options;
-  double step;        // the package's height step
+  double step;  // the package's height step
   // Allowed difference on top of step / 2 (metres). Our per-tile warp uses
   // GDAL's warper with the same options as gdalwarp, so this is ~0.
   double tolerance;
@@ -55,13 +55,13 @@ Comparison compare(const Raster& ours, const Raster& ref) {
 class RealDem : public ::testing::TestWithParam<Case> {};
 
 // Test names print the case name, not the struct's bytes.
-[[maybe_unused]] void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
+[[maybe_unused]] void PrintTo(const Case& c, std::ostream* os) {
+  *os << c.name;
+}
 
 }  // namespace
 
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 
 TEST_P(RealDem, FinestZoomMatchesGdalwarp) {
   const Case& c = GetParam();
@@ -69,14 +69,16 @@ TEST_P(RealDem, FinestZoomMatchesGdalwarp) {
   const auto src = sample(c.file);
   ASSERT_TRUE(fs::exists(src));
   const auto pkg = (dir / (c.name + ".mbtiles")).string();
-  auto r = run(tiler() + " terrain -q " + c.options + " " + src.string() + " -o " + pkg, dir.path());
+  auto r =
+      run(tiler() + " terrain -q " + c.options + " " + src.string() + " -o " + pkg, dir.path());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   auto v = run(tiler() + " validate " + pkg, dir.path());
   EXPECT_EQ(v.exit_code, 0) << v.out;
   auto info = run(tiler() + " info " + pkg, dir.path());
   const int z = max_zoom_of(info.out);
   const auto ours_path = (dir / "ours.tif").string();
-  auto e = run(tiler() + " extract " + pkg + " --zoom " + std::to_string(z) + " -o " + ours_path, dir.path());
+  auto e = run(tiler() + " extract " + pkg + " --zoom " + std::to_string(z) + " -o " + ours_path,
+               dir.path());
   ASSERT_EQ(e.exit_code, 0) << e.err;
   const Raster ours = read_raster(ours_path);
   const std::string resampling = c.options.find("near") != std::string::npos ? "near" : "bilinear";
@@ -84,21 +86,27 @@ TEST_P(RealDem, FinestZoomMatchesGdalwarp) {
   ASSERT_EQ(ref.data.size(), ours.data.size());
   const Comparison cmp = compare(ours, ref);
   RecordProperty("max_diff", std::to_string(cmp.max_diff));
-  std::printf("%s: zoom %d, %zu samples compared, max |diff| %.4f m (limit %.4f), only ours %zu, only gdalwarp %zu\n",
-              c.name.c_str(), z, cmp.compared, cmp.max_diff, c.step / 2 + c.tolerance, cmp.only_ours, cmp.only_reference);
+  std::printf(
+      "%s: zoom %d, %zu samples compared, max |diff| %.4f m (limit %.4f), only ours %zu, only "
+      "gdalwarp %zu\n",
+      c.name.c_str(), z, cmp.compared, cmp.max_diff, c.step / 2 + c.tolerance, cmp.only_ours,
+      cmp.only_reference);
   EXPECT_LE(cmp.max_diff, c.step / 2 * (1 + 1e-6) + c.tolerance);
-  EXPECT_GE(static_cast<double>(cmp.compared), c.min_coverage * static_cast<double>(cmp.reference_valid));
+  EXPECT_GE(static_cast<double>(cmp.compared),
+            c.min_coverage * static_cast<double>(cmp.reference_valid));
 }
 
 INSTANTIATE_TEST_SUITE_P(
     Samples, RealDem,
-    ::testing::Values(Case{"lux", "lux.tif", "", 1.0, 0.01, 0.99},
-                      Case{"olinda", "olinda.tif", "", 0.01, 0.01, 0.99},
-                      Case{"jacksboro", "jacksboro.tif", "", 1.0, 0.01, 0.99},
-                      Case{"jacksboro_geodetic", "jacksboro.tif", "--tiling geodetic", 1.0, 0.01, 0.99},
-                      Case{"brasilia_local", "brasilia.tif", "--tiling local", 0.01, 0.0, 0.999},
-                      Case{"etopo20_geodetic", "etopo20.tif", "--tiling geodetic --resampling near", 0.01, 0.0, 0.99},
-                      Case{"etopo20_webmercator", "etopo20.tif", "--resampling near", 0.01, 0.0, 0.99}),
+    ::testing::Values(
+        Case{"lux", "lux.tif", "", 1.0, 0.01, 0.99},
+        Case{"olinda", "olinda.tif", "", 0.01, 0.01, 0.99},
+        Case{"jacksboro", "jacksboro.tif", "", 1.0, 0.01, 0.99},
+        Case{"jacksboro_geodetic", "jacksboro.tif", "--tiling geodetic", 1.0, 0.01, 0.99},
+        Case{"brasilia_local", "brasilia.tif", "--tiling local", 0.01, 0.0, 0.999},
+        Case{"etopo20_geodetic", "etopo20.tif", "--tiling geodetic --resampling near", 0.01, 0.0,
+             0.99},
+        Case{"etopo20_webmercator", "etopo20.tif", "--resampling near", 0.01, 0.0, 0.99}),
     [](const auto& info) { return info.param.name; });
 
 TEST(RealDemDeterminism, OneAndTwoThreadsGiveIdenticalBytes) {
@@ -109,12 +117,13 @@ TEST(RealDemDeterminism, OneAndTwoThreadsGiveIdenticalBytes) {
   for (const std::string file : {"jacksboro.tif", "etopo20.tif"}) {
     const auto src = sample(file).string();
     for (const std::string j : {"j1", "j2"})
-      ASSERT_EQ(run("cd " + (dir / j).string() + " && " + tiler() + " terrain -q -" + j + " --force " + src +
-                        " -o out.mbtiles",
+      ASSERT_EQ(run("cd " + (dir / j).string() + " && " + tiler() + " terrain -q -" + j +
+                        " --force " + src + " -o out.mbtiles",
                     dir.path())
                     .exit_code,
                 0);
-    const bool same = read_file(dir / "j1" / "out.mbtiles") == read_file(dir / "j2" / "out.mbtiles");
+    const bool same =
+        read_file(dir / "j1" / "out.mbtiles") == read_file(dir / "j2" / "out.mbtiles");
     EXPECT_TRUE(same) << file << ": packages differ between -j1 and -j2";
   }
 }
@@ -124,13 +133,23 @@ TEST(RealDemAntimeridian, GlobalDataCoversBothHemispheres) {
   // the antimeridian, so the geodetic package covers every root column.
   TempDir dir;
   const auto pkg = (dir / "e.mbtiles").string();
-  ASSERT_EQ(run(tiler() + " terrain -q --tiling geodetic " + sample("etopo20.tif").string() + " -o " + pkg, dir.path()).exit_code, 0);
+  ASSERT_EQ(run(tiler() + " terrain -q --tiling geodetic " + sample("etopo20.tif").string() +
+                    " -o " + pkg,
+                dir.path())
+                .exit_code,
+            0);
   auto info = run(tiler() + " info " + pkg, dir.path());
-  EXPECT_NE(info.out.find("     0          2"), std::string::npos) << "zoom 0 should hold both roots:\n" << info.out;
+  EXPECT_NE(info.out.find("     0          2"), std::string::npos)
+      << "zoom 0 should hold both roots:\n"
+      << info.out;
   const auto west = (dir / "west.tif").string();
-  ASSERT_EQ(run(tiler() + " extract " + pkg + " --zoom 1 --bbox -179,-10,-170,10 -o " + west, dir.path()).exit_code, 0);
+  ASSERT_EQ(
+      run(tiler() + " extract " + pkg + " --zoom 1 --bbox -179,-10,-170,10 -o " + west, dir.path())
+          .exit_code,
+      0);
   const Raster r = read_raster(west);
   size_t valid = 0;
-  for (double v : r.data) valid += !std::isnan(v);
+  for (double v : r.data)
+    valid += !std::isnan(v);
   EXPECT_GT(valid, r.data.size() / 2);
 }

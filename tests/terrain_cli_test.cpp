@@ -17,7 +17,8 @@ std::string good_dem(const TempDir& dir, const std::string& srs = "EPSG:4326") {
   return path;
 }
 
-void expect_failure(const RunResult& r, int code, const std::string& message, const fs::path& output) {
+void expect_failure(const RunResult& r, int code, const std::string& message,
+                    const fs::path& output) {
   EXPECT_EQ(r.exit_code, code) << r.err;
   EXPECT_NE(r.err.find(message), std::string::npos) << "stderr was: " << r.err;
   EXPECT_FALSE(fs::exists(output)) << "output left behind";
@@ -43,21 +44,26 @@ TEST(TerrainCli, GoodInputBuildsAValidPackage) {
 
 TEST(TerrainCli, MissingFile) {
   TempDir dir;
-  auto r = run(tiler() + " terrain " + (dir / "nope.tif").string() + " -o " + (dir / "o.mbtiles").string(), dir.path());
+  auto r = run(
+      tiler() + " terrain " + (dir / "nope.tif").string() + " -o " + (dir / "o.mbtiles").string(),
+      dir.path());
   expect_failure(r, 1, "nope.tif: no such file", dir / "o.mbtiles");
 }
 
 TEST(TerrainCli, TextFile) {
   TempDir dir;
   std::ofstream(dir / "notes.tif") << "this is a text file, not a raster\n";
-  auto r = run(tiler() + " terrain " + (dir / "notes.tif").string() + " -o " + (dir / "o.mbtiles").string(), dir.path());
+  auto r = run(
+      tiler() + " terrain " + (dir / "notes.tif").string() + " -o " + (dir / "o.mbtiles").string(),
+      dir.path());
   expect_failure(r, 1, "notes.tif: not a raster", dir / "o.mbtiles");
 }
 
 TEST(TerrainCli, TruncatedGeoTiff) {
   TempDir dir;
   const auto path = (dir / "big.tif").string();
-  write_dem(path, 400, 400, kGeoGt, "EPSG:4326", GDT_Float32, [](int x, int y) { return x + y * 0.5; });
+  write_dem(path, 400, 400, kGeoGt, "EPSG:4326", GDT_Float32,
+            [](int x, int y) { return x + y * 0.5; });
   fs::resize_file(path, fs::file_size(path) / 3);
   auto r = run(tiler() + " terrain " + path + " -o " + (dir / "o.mbtiles").string(), dir.path());
   expect_failure(r, 1, "big.tif", dir / "o.mbtiles");
@@ -70,7 +76,8 @@ TEST(TerrainCli, NoCrsNeedsSourceSrs) {
   const auto out = dir / "o.mbtiles";
   auto r = run(tiler() + " terrain " + dem + " -o " + out.string(), dir.path());
   expect_failure(r, 1, "dem.tif: no CRS found; pass --s_srs", out);
-  auto ok = run(tiler() + " terrain -q --s_srs EPSG:4326 " + dem + " -o " + out.string(), dir.path());
+  auto ok =
+      run(tiler() + " terrain -q --s_srs EPSG:4326 " + dem + " -o " + out.string(), dir.path());
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
 }
 
@@ -78,7 +85,8 @@ TEST(TerrainCli, AllNodata) {
   TempDir dir;
   const auto path = (dir / "empty.tif").string();
   const double nodata = -9999;
-  write_dem(path, 32, 32, kGeoGt, "EPSG:4326", GDT_Float32, [](int, int) { return -9999.0; }, &nodata);
+  write_dem(
+      path, 32, 32, kGeoGt, "EPSG:4326", GDT_Float32, [](int, int) { return -9999.0; }, &nodata);
   auto r = run(tiler() + " terrain " + path + " -o " + (dir / "o.mbtiles").string(), dir.path());
   expect_failure(r, 1, "empty.tif: holds no valid data", dir / "o.mbtiles");
 }
@@ -86,18 +94,24 @@ TEST(TerrainCli, AllNodata) {
 TEST(TerrainCli, BboxOutsideTheData) {
   TempDir dir;
   const auto dem = good_dem(dir);
-  auto r = run(tiler() + " terrain " + dem + " --bbox 100,10,101,11 -o " + (dir / "o.mbtiles").string(), dir.path());
+  auto r =
+      run(tiler() + " terrain " + dem + " --bbox 100,10,101,11 -o " + (dir / "o.mbtiles").string(),
+          dir.path());
   expect_failure(r, 1, "--bbox does not intersect the data", dir / "o.mbtiles");
 }
 
 TEST(TerrainCli, ZoomOutOfRange) {
   TempDir dir;
   const auto dem = good_dem(dir);
-  auto r = run(tiler() + " terrain " + dem + " --max-zoom 40 -o " + (dir / "o.mbtiles").string(), dir.path());
+  auto r = run(tiler() + " terrain " + dem + " --max-zoom 40 -o " + (dir / "o.mbtiles").string(),
+               dir.path());
   expect_failure(r, 2, "--max-zoom: 40 is out of range", dir / "o.mbtiles");
-  r = run(tiler() + " terrain " + dem + " --max-zoom 23 -o " + (dir / "o.mbtiles").string(), dir.path());
+  r = run(tiler() + " terrain " + dem + " --max-zoom 23 -o " + (dir / "o.mbtiles").string(),
+          dir.path());
   expect_failure(r, 2, "is out of range: the data's finest zoom is", dir / "o.mbtiles");
-  r = run(tiler() + " terrain " + dem + " --min-zoom 9 --max-zoom 5 -o " + (dir / "o.mbtiles").string(), dir.path());
+  r = run(
+      tiler() + " terrain " + dem + " --min-zoom 9 --max-zoom 5 -o " + (dir / "o.mbtiles").string(),
+      dir.path());
   expect_failure(r, 2, "larger than", dir / "o.mbtiles");
 }
 
@@ -141,14 +155,17 @@ TEST(TerrainCli, UsageErrors) {
 TEST(TerrainCli, JsonProgressIsOneObjectPerLine) {
   TempDir dir;
   const auto dem = good_dem(dir);
-  auto r = run(tiler() + " terrain --progress json " + dem + " -o " + (dir / "o.mbtiles").string(), dir.path());
+  auto r = run(tiler() + " terrain --progress json " + dem + " -o " + (dir / "o.mbtiles").string(),
+               dir.path());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::istringstream lines(r.err);
   int phases = 0;
   for (std::string line; std::getline(lines, line);) {
     EXPECT_EQ(line.front(), '{') << line;
     EXPECT_EQ(line.back(), '}') << line;
-    if (line.find("\"phase\"") != std::string::npos && line.find("\"final\":true") != std::string::npos) ++phases;
+    if (line.find("\"phase\"") != std::string::npos &&
+        line.find("\"final\":true") != std::string::npos)
+      ++phases;
   }
   EXPECT_GT(phases, 3);
 }

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -11,7 +12,6 @@
 #include <random>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 
 namespace globe_test {
 
@@ -41,16 +41,20 @@ inline RunResult run(const std::string& command, const fs::path& scratch) {
   return r;
 }
 
-inline std::string tiler() { return GLOBE_TILER_PATH; }
-inline fs::path samples() { return GLOBE_SAMPLES_DIR; }
+inline std::string tiler() {
+  return GLOBE_TILER_PATH;
+}
+inline fs::path samples() {
+  return GLOBE_SAMPLES_DIR;
+}
 
 // A fresh folder per test, removed afterwards.
 class TempDir {
  public:
   TempDir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() / ("globe-test-" + std::string(info->test_suite_name()) + "-" + info->name() + "-" +
-                                         std::to_string(::getpid()));
+    path_ = fs::temp_directory_path() / ("globe-test-" + std::string(info->test_suite_name()) +
+                                         "-" + info->name() + "-" + std::to_string(::getpid()));
     fs::remove_all(path_);
     fs::create_directories(path_);
   }

@@ -8,21 +8,24 @@
 
 namespace globe {
 
-void CliArgs::option(const std::string& names, const std::string& value_name, const std::string& help,
-                     std::function<void(const std::string&)> on_value) {
+void CliArgs::option(const std::string& names, const std::string& value_name,
+                     const std::string& help, std::function<void(const std::string&)> on_value) {
   Opt o;
   std::istringstream in(names);
-  for (std::string n; std::getline(in, n, ',');) o.names.push_back(n);
+  for (std::string n; std::getline(in, n, ',');)
+    o.names.push_back(n);
   o.value_name = value_name;
   o.help = help;
   o.on_value = std::move(on_value);
   opts_.push_back(std::move(o));
 }
 
-void CliArgs::flag(const std::string& names, const std::string& help, std::function<void()> on_flag) {
+void CliArgs::flag(const std::string& names, const std::string& help,
+                   std::function<void()> on_flag) {
   Opt o;
   std::istringstream in(names);
-  for (std::string n; std::getline(in, n, ',');) o.names.push_back(n);
+  for (std::string n; std::getline(in, n, ',');)
+    o.names.push_back(n);
   o.help = help;
   o.on_flag = std::move(on_flag);
   opts_.push_back(std::move(o));
@@ -84,10 +87,13 @@ std::string CliArgs::help() const {
   out << "usage: " << usage_ << "\n\noptions:\n";
   for (const auto& o : opts_) {
     std::string left = "  ";
-    for (size_t i = 0; i < o.names.size(); ++i) left += (i ? ", " : "") + o.names[i];
+    for (size_t i = 0; i < o.names.size(); ++i)
+      left += (i ? ", " : "") + o.names[i];
     if (!o.value_name.empty()) left += " " + o.value_name;
-    if (left.size() < 30) left.resize(30, ' ');
-    else left += "\n" + std::string(30, ' ');
+    if (left.size() < 30)
+      left.resize(30, ' ');
+    else
+      left += "\n" + std::string(30, ' ');
     out << left << o.help << "\n";
   }
   out << "  -h, --help                  show this help\n";
@@ -125,9 +131,11 @@ double CliArgs::to_double(const std::string& option, const std::string& v) {
 std::vector<double> CliArgs::to_doubles(const std::string& option, const std::string& v, size_t n) {
   std::vector<double> out;
   std::istringstream in(v);
-  for (std::string part; std::getline(in, part, ',');) out.push_back(to_double(option, part));
+  for (std::string part; std::getline(in, part, ',');)
+    out.push_back(to_double(option, part));
   if (out.size() != n)
-    throw UsageError(option + ": expected " + std::to_string(n) + " comma-separated numbers, got '" + v + "'");
+    throw UsageError(option + ": expected " + std::to_string(n) +
+                     " comma-separated numbers, got '" + v + "'");
   return out;
 }
 

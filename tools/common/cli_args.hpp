@@ -13,7 +13,8 @@ namespace globe {
 
 class CliArgs {
  public:
-  CliArgs(std::string program, std::string usage_line) : program_(std::move(program)), usage_(std::move(usage_line)) {}
+  CliArgs(std::string program, std::string usage_line)
+      : program_(std::move(program)), usage_(std::move(usage_line)) {}
 
   // Declares an option taking a value (--name VALUE or --name=VALUE).
   void option(const std::string& names, const std::string& value_name, const std::string& help,

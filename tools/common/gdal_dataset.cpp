@@ -48,7 +48,8 @@ GdalDataset GdalDataset::open_raster(const std::string& path) {
   if (!virtual_path && !fs::exists(path, ec))
     throw InputError(path + ": no such file; check the path");
   CPLErrorReset();
-  GDALDatasetH h = GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
+  GDALDatasetH h =
+      GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
   if (!h) {
     std::string why = gdal_last_error();
     throw InputError(path + ": not a raster GDAL can read" + (why.empty() ? "" : " (" + why + ")") +

@@ -31,14 +31,17 @@ void Progress::begin(const std::string& phase, uint64_t total) {
 void Progress::advance(uint64_t n) {
   done_ += n;
   auto now = std::chrono::steady_clock::now();
-  auto interval = mode_ == ProgressMode::kJson ? std::chrono::milliseconds(1000) : std::chrono::milliseconds(200);
+  auto interval = mode_ == ProgressMode::kJson ? std::chrono::milliseconds(1000)
+                                               : std::chrono::milliseconds(200);
   if (now - last_ >= interval) {
     last_ = now;
     print(false);
   }
 }
 
-void Progress::end() { print(true); }
+void Progress::end() {
+  print(true);
+}
 
 void Progress::note(const std::string& message) {
   if (mode_ == ProgressMode::kQuiet) return;
@@ -50,12 +53,14 @@ void Progress::note(const std::string& message) {
 
 void Progress::print(bool final) {
   if (mode_ == ProgressMode::kQuiet) return;
-  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const double secs =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   const double rate = secs > 0 ? done_ / secs : 0;
   const double eta = rate > 0 && total_ > done_ ? (total_ - done_) / rate : 0;
   if (mode_ == ProgressMode::kJson) {
     std::fprintf(stderr,
-                 "{\"phase\":\"%s\",\"done\":%llu,\"total\":%llu,\"rate\":%.1f,\"eta_s\":%.1f,\"final\":%s}\n",
+                 "{\"phase\":\"%s\",\"done\":%llu,\"total\":%llu,\"rate\":%.1f,\"eta_s\":%.1f,"
+                 "\"final\":%s}\n",
                  json_escape(phase_).c_str(), static_cast<unsigned long long>(done_),
                  static_cast<unsigned long long>(total_), rate, eta, final ? "true" : "false");
     return;
@@ -67,10 +72,13 @@ void Progress::print(bool final) {
   std::string bar(filled, '#');
   bar.resize(width, '.');
   char tail[64];
-  if (final) std::snprintf(tail, sizeof tail, "in %.1f s\n", secs);
-  else std::snprintf(tail, sizeof tail, "ETA %.0f s   ", eta);
-  std::fprintf(stderr, "%s%-22s [%s] %llu/%llu  %.0f/s  %s", tty_ ? "\r" : "", phase_.c_str(), bar.c_str(),
-               static_cast<unsigned long long>(done_), static_cast<unsigned long long>(total_), rate, tail);
+  if (final)
+    std::snprintf(tail, sizeof tail, "in %.1f s\n", secs);
+  else
+    std::snprintf(tail, sizeof tail, "ETA %.0f s   ", eta);
+  std::fprintf(stderr, "%s%-22s [%s] %llu/%llu  %.0f/s  %s", tty_ ? "\r" : "", phase_.c_str(),
+               bar.c_str(), static_cast<unsigned long long>(done_),
+               static_cast<unsigned long long>(total_), rate, tail);
   std::fflush(stderr);
 }
 

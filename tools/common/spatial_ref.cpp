@@ -49,8 +49,8 @@ CoordTransform::CoordTransform(const SpatialRef& from, const SpatialRef& to) {
   CPLErrorReset();
   h_ = OCTNewCoordinateTransformation(from.get(), to.get());
   if (!h_)
-    throw InputError("no coordinate transformation from " + from.name() + " to " + to.name() + " (" +
-                     gdal_last_error() + ")");
+    throw InputError("no coordinate transformation from " + from.name() + " to " + to.name() +
+                     " (" + gdal_last_error() + ")");
 }
 
 CoordTransform::~CoordTransform() {

@@ -27,7 +27,8 @@ class SpatialRef {
 
  private:
   void reset(OGRSpatialReferenceH h) {
-    h_ = std::shared_ptr<std::remove_pointer_t<OGRSpatialReferenceH>>(h, [](OGRSpatialReferenceH p) { OSRRelease(p); });
+    h_ = std::shared_ptr<std::remove_pointer_t<OGRSpatialReferenceH>>(
+        h, [](OGRSpatialReferenceH p) { OSRRelease(p); });
   }
   std::shared_ptr<std::remove_pointer_t<OGRSpatialReferenceH>> h_;  // immutable after construction
 };

@@ -7,7 +7,8 @@ namespace globe {
 namespace {
 
 // Fills unknown entries of one edge (indices idx[0..n-1]) whose two ends are known.
-void fill_edge(std::vector<int32_t>& q, std::vector<uint8_t>& known, const std::vector<size_t>& idx) {
+void fill_edge(std::vector<int32_t>& q, std::vector<uint8_t>& known,
+               const std::vector<size_t>& idx) {
   const int n = static_cast<int>(idx.size());
   int prev = 0;  // the first entry (a corner) is known
   for (int i = 1; i < n; ++i) {
@@ -24,7 +25,8 @@ void fill_edge(std::vector<int32_t>& q, std::vector<uint8_t>& known, const std::
 
 }  // namespace
 
-void fill_holes(std::vector<int32_t>& q, const std::vector<uint8_t>& valid, int size, int32_t fill_q) {
+void fill_holes(std::vector<int32_t>& q, const std::vector<uint8_t>& valid, int size,
+                int32_t fill_q) {
   const size_t n = static_cast<size_t>(size) * size;
   std::vector<uint8_t> known(valid);
   const int last = size - 1;
@@ -42,14 +44,15 @@ void fill_holes(std::vector<int32_t>& q, const std::vector<uint8_t>& valid, int 
     left.push_back(static_cast<size_t>(i) * size);
     right.push_back(static_cast<size_t>(i) * size + last);
   }
-  for (const auto* e : {&top, &bottom, &left, &right}) fill_edge(q, known, *e);
+  for (const auto* e : {&top, &bottom, &left, &right})
+    fill_edge(q, known, *e);
 
   // Interior: synchronous waves from the known samples inwards.
   std::vector<size_t> frontier;
   auto unknown_with_known_neighbour = [&](size_t i) {
     const int x = static_cast<int>(i % size), y = static_cast<int>(i / size);
-    return !known[i] && ((x > 0 && known[i - 1]) || (x < last && known[i + 1]) || (y > 0 && known[i - size]) ||
-                         (y < last && known[i + size]));
+    return !known[i] && ((x > 0 && known[i - 1]) || (x < last && known[i + 1]) ||
+                         (y > 0 && known[i - size]) || (y < last && known[i + size]));
   };
   for (size_t i = 0; i < n; ++i)
     if (unknown_with_known_neighbour(i)) frontier.push_back(i);
@@ -62,8 +65,8 @@ void fill_holes(std::vector<int32_t>& q, const std::vector<uint8_t>& valid, int 
       const int x = static_cast<int>(i % size), y = static_cast<int>(i / size);
       int64_t sum = 0;
       int count = 0;
-      for (auto [ok, j] : {std::pair{x > 0, i - 1}, std::pair{x < last, i + 1}, std::pair{y > 0, i - size},
-                           std::pair{y < last, i + size}})
+      for (auto [ok, j] : {std::pair{x > 0, i - 1}, std::pair{x < last, i + 1},
+                           std::pair{y > 0, i - size}, std::pair{y < last, i + size}})
         if (ok && known[j]) {
           sum += q[j];
           ++count;
@@ -77,8 +80,8 @@ void fill_holes(std::vector<int32_t>& q, const std::vector<uint8_t>& valid, int 
     std::vector<size_t> next;
     for (size_t i : frontier) {
       const int x = static_cast<int>(i % size), y = static_cast<int>(i / size);
-      for (auto [ok, j] : {std::pair{x > 0, i - 1}, std::pair{x < last, i + 1}, std::pair{y > 0, i - size},
-                           std::pair{y < last, i + size}})
+      for (auto [ok, j] : {std::pair{x > 0, i - 1}, std::pair{x < last, i + 1},
+                           std::pair{y > 0, i - size}, std::pair{y < last, i + size}})
         if (ok && !known[j] && !queued[j]) {
           queued[j] = 1;
           next.push_back(j);

@@ -15,6 +15,7 @@
 namespace globe {
 
 // q: size*size heights (quanta); valid: 1 = data. Modifies q at holes only.
-void fill_holes(std::vector<int32_t>& q, const std::vector<uint8_t>& valid, int size, int32_t fill_q);
+void fill_holes(std::vector<int32_t>& q, const std::vector<uint8_t>& valid, int size,
+                int32_t fill_q);
 
 }  // namespace globe

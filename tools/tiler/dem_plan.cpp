@@ -22,14 +22,16 @@ constexpr double kMercatorMaxLat = 85.05112877980659;
 constexpr double kEarthRadius = 6378137.0;
 constexpr double kPi = 3.14159265358979323846;
 
-const std::set<std::string> kResamplings = {"near", "bilinear", "cubic", "cubicspline", "lanczos",
-                                            "average", "min", "max", "med", "mode"};
+const std::set<std::string> kResamplings = {
+    "near", "bilinear", "cubic", "cubicspline", "lanczos", "average", "min", "max", "med", "mode"};
 
 double mercator_y(double lat_deg) {
   const double lat = std::clamp(lat_deg, -kMercatorMaxLat, kMercatorMaxLat) * kPi / 180.0;
   return kEarthRadius * std::log(std::tan(kPi / 4 + lat / 2));
 }
-double mercator_x(double lon_deg) { return kEarthRadius * lon_deg * kPi / 180.0; }
+double mercator_x(double lon_deg) {
+  return kEarthRadius * lon_deg * kPi / 180.0;
+}
 
 // Lon/lat rectangle -> tiling CRS for the global schemes; empty if outside.
 std::optional<Bounds> lonlat_to_global(const std::string& scheme, Bounds ll) {
@@ -40,7 +42,8 @@ std::optional<Bounds> lonlat_to_global(const std::string& scheme, Bounds ll) {
   ll.max_y = std::min(ll.max_y, lat_limit);
   if (!(ll.min_x < ll.max_x && ll.min_y < ll.max_y)) return std::nullopt;
   if (scheme == "geodetic") return ll;
-  return Bounds{mercator_x(ll.min_x), mercator_y(ll.min_y), mercator_x(ll.max_x), mercator_y(ll.max_y)};
+  return Bounds{mercator_x(ll.min_x), mercator_y(ll.min_y), mercator_x(ll.max_x),
+                mercator_y(ll.max_y)};
 }
 
 void check_settings(const TerrainSettings& s) {
@@ -54,7 +57,8 @@ void check_settings(const TerrainSettings& s) {
                      " must be 2^k + 1 between 33 and 4097 (e.g. 65, 129, 257, 513)");
   if (!kResamplings.count(s.resampling))
     throw UsageError("--resampling: '" + s.resampling +
-                     "' is not one of near, bilinear, cubic, cubicspline, lanczos, average, min, max, med, mode");
+                     "' is not one of near, bilinear, cubic, cubicspline, lanczos, average, min, "
+                     "max, med, mode");
   if (s.precision && !(*s.precision > 0)) throw UsageError("--precision must be positive");
   if (s.min_zoom && s.max_zoom && *s.min_zoom > *s.max_zoom)
     throw UsageError("--min-zoom " + std::to_string(*s.min_zoom) + " is larger than --max-zoom " +
@@ -62,7 +66,8 @@ void check_settings(const TerrainSettings& s) {
   if (s.bbox) {
     const auto& b = *s.bbox;
     if (!(b[0] < b[2] && b[1] < b[3]) || b[0] < -540 || b[2] > 540 || b[1] < -90 || b[3] > 90)
-      throw UsageError("--bbox: expected west,south,east,north in degrees with west < east, south < north");
+      throw UsageError(
+          "--bbox: expected west,south,east,north in degrees with west < east, south < north");
   }
 }
 
@@ -88,7 +93,10 @@ DemPlan plan_terrain(const TerrainSettings& s) {
     src.width = ds.width();
     src.height = ds.height();
     auto gt = ds.geotransform();
-    if (!gt) throw InputError(path + ": no georeferencing (geotransform); add a world file or assign one with gdal_translate -a_ullr");
+    if (!gt)
+      throw InputError(path +
+                       ": no georeferencing (geotransform); add a world file or assign one with "
+                       "gdal_translate -a_ullr");
     if ((*gt)[2] != 0 || (*gt)[4] != 0)
       throw InputError(path + ": rotated rasters are not supported; run gdalwarp on it first");
     src.geotransform = *gt;
@@ -99,17 +107,21 @@ DemPlan plan_terrain(const TerrainSettings& s) {
     src.integer_type = !GDALDataTypeIsFloating(type) && !GDALDataTypeIsComplex(type);
     all_integer = all_integer && src.integer_type;
     std::error_code ec;
-    src.file_bytes = std::filesystem::is_regular_file(path, ec) ? std::filesystem::file_size(path, ec) : 0;
+    src.file_bytes =
+        std::filesystem::is_regular_file(path, ec) ? std::filesystem::file_size(path, ec) : 0;
 
     GDALRasterBandH band = ds.band(1);
-    if (s.nodata) GDALSetRasterNoDataValue(band, *s.nodata);  // affects this handle's statistics only
+    if (s.nodata)
+      GDALSetRasterNoDataValue(band, *s.nodata);  // affects this handle's statistics only
     double mm[2] = {0, 0};
     CPLErrorReset();
     CPLErr err = GDALComputeRasterMinMax(band, TRUE, mm);
     if (err != CE_None || !std::isfinite(mm[0]) || !std::isfinite(mm[1])) {
       const std::string why = gdal_last_error();
-      if (!why.empty() && why.find("no valid") == std::string::npos && why.find("nodata") == std::string::npos)
-        throw InputError(path + ": cannot read the raster data (" + why + "); the file may be truncated or corrupt");
+      if (!why.empty() && why.find("no valid") == std::string::npos &&
+          why.find("nodata") == std::string::npos)
+        throw InputError(path + ": cannot read the raster data (" + why +
+                         "); the file may be truncated or corrupt");
       CPLErrorReset();
       err = GDALComputeRasterMinMax(band, FALSE, mm);
       if (err != CE_None || !std::isfinite(mm[0]))
@@ -136,7 +148,8 @@ DemPlan plan_terrain(const TerrainSettings& s) {
   const double max_abs = std::max(std::abs(min_h), std::abs(max_h));
   if (max_abs / plan.step_m >= tileformat::kMaxQuantum)
     throw InputError(plan.sources[0].path + ": heights up to " + std::to_string(max_abs) +
-                     " m do not fit with --precision " + std::to_string(plan.step_m) + "; use a larger --precision");
+                     " m do not fit with --precision " + std::to_string(plan.step_m) +
+                     "; use a larger --precision");
   plan.fill_q = static_cast<int32_t>(std::llround(min_h / plan.step_m));
 
   // 3. Tiling.
@@ -159,20 +172,24 @@ DemPlan plan_terrain(const TerrainSettings& s) {
   for (const auto& src : plan.sources) {
     const SpatialRef crs = SpatialRef::from_wkt(src.crs_wkt, src.path);
     const auto& gt = src.geotransform;
-    const Bounds native{std::min(gt[0], gt[0] + src.width * gt[1]), std::min(gt[3], gt[3] + src.height * gt[5]),
-                        std::max(gt[0], gt[0] + src.width * gt[1]), std::max(gt[3], gt[3] + src.height * gt[5])};
+    const Bounds native{
+        std::min(gt[0], gt[0] + src.width * gt[1]), std::min(gt[3], gt[3] + src.height * gt[5]),
+        std::max(gt[0], gt[0] + src.width * gt[1]), std::max(gt[3], gt[3] + src.height * gt[5])};
     // Resolution: the source pixel at the data centre, measured in the target CRS.
     {
       CoordTransform to_target(crs, *target);
       const double cx = gt[0] + gt[1] * src.width / 2.0, cy = gt[3] + gt[5] * src.height / 2.0;
       std::vector<double> xs = {cx, cx + gt[1], cx}, ys = {cy, cy, cy + gt[5]};
       if (crs.is_geographic()) {
-        for (auto& x : xs) x = std::remainder(x, 360.0);
-        for (auto& y : ys) y = std::clamp(y, -kMercatorMaxLat + 1, kMercatorMaxLat - 1);
+        for (auto& x : xs)
+          x = std::remainder(x, 360.0);
+        for (auto& y : ys)
+          y = std::clamp(y, -kMercatorMaxLat + 1, kMercatorMaxLat - 1);
       }
       if (!to_target.transform(xs, ys))
         throw InputError(src.path + ": its centre cannot be transformed to the tiling CRS");
-      const double dx = std::hypot(xs[1] - xs[0], ys[1] - ys[0]), dy = std::hypot(xs[2] - xs[0], ys[2] - ys[0]);
+      const double dx = std::hypot(xs[1] - xs[0], ys[1] - ys[0]),
+                   dy = std::hypot(xs[2] - xs[0], ys[2] - ys[0]);
       resolution = std::min(resolution, std::sqrt(dx * dy));
     }
     if (s.tiling == "local") {
@@ -192,7 +209,8 @@ DemPlan plan_terrain(const TerrainSettings& s) {
     std::vector<Bounds> ll_parts;
     if (crs.is_geographic()) {
       for (double shift : src.x_shifts)
-        ll_parts.push_back({native.min_x + shift, native.min_y, native.max_x + shift, native.max_y});
+        ll_parts.push_back(
+            {native.min_x + shift, native.min_y, native.max_x + shift, native.max_y});
     } else {
       Bounds ll;
       CoordTransform to_ll(crs, wgs84);
@@ -208,13 +226,16 @@ DemPlan plan_terrain(const TerrainSettings& s) {
     for (Bounds ll : ll_parts) {
       if (s.bbox) {
         const auto& b = *s.bbox;
-        ll = {std::max(ll.min_x, b[0]), std::max(ll.min_y, b[1]), std::min(ll.max_x, b[2]), std::min(ll.max_y, b[3])};
+        ll = {std::max(ll.min_x, b[0]), std::max(ll.min_y, b[1]), std::min(ll.max_x, b[2]),
+              std::min(ll.max_y, b[3])};
       }
       auto area = lonlat_to_global(s.tiling, ll);
       if (!area) continue;
       plan.data_areas.push_back(*area);
-      ll_all = {std::min(ll_all.min_x, std::max(ll.min_x, -180.0)), std::min(ll_all.min_y, std::max(ll.min_y, -90.0)),
-                std::max(ll_all.max_x, std::min(ll.max_x, 180.0)), std::max(ll_all.max_y, std::min(ll.max_y, 90.0))};
+      ll_all = {std::min(ll_all.min_x, std::max(ll.min_x, -180.0)),
+                std::min(ll_all.min_y, std::max(ll.min_y, -90.0)),
+                std::max(ll_all.max_x, std::min(ll.max_x, 180.0)),
+                std::max(ll_all.max_y, std::min(ll.max_y, 90.0))};
     }
   }
   plan.source_resolution = resolution;
@@ -224,19 +245,24 @@ DemPlan plan_terrain(const TerrainSettings& s) {
   if (s.tiling == "local") {
     Bounds u = local_areas[0];
     for (const auto& a : local_areas)
-      u = {std::min(u.min_x, a.min_x), std::min(u.min_y, a.min_y), std::max(u.max_x, a.max_x), std::max(u.max_y, a.max_y)};
+      u = {std::min(u.min_x, a.min_x), std::min(u.min_y, a.min_y), std::max(u.max_x, a.max_x),
+           std::max(u.max_y, a.max_y)};
     // Samples sit on source pixel centres when the tiling CRS is the source's:
     // the finest level then reproduces the source exactly.
     const double origin_x = u.min_x + resolution / 2, origin_y = u.max_y - resolution / 2;
     const double span = std::max(u.max_x - origin_x, origin_y - u.min_y);
-    const int natural = std::max(0, static_cast<int>(std::ceil(std::log2(span / (plan.steps * resolution) - 1e-9))));
-    plan.tiling = Tiling::local(target->wkt2(), origin_x, origin_y, plan.steps * resolution * std::ldexp(1.0, natural));
+    const int natural = std::max(
+        0, static_cast<int>(std::ceil(std::log2(span / (plan.steps * resolution) - 1e-9))));
+    plan.tiling = Tiling::local(target->wkt2(), origin_x, origin_y,
+                                plan.steps * resolution * std::ldexp(1.0, natural));
     Bounds area = u;
     if (s.bbox) {
       Bounds bb_ll{(*s.bbox)[0], (*s.bbox)[1], (*s.bbox)[2], (*s.bbox)[3]}, bb;
       CoordTransform ll_to_target(wgs84, *target);
-      if (!ll_to_target.transform_bounds(bb_ll, bb)) throw UsageError("--bbox cannot be transformed to " + target->name());
-      area = {std::max(u.min_x, bb.min_x), std::max(u.min_y, bb.min_y), std::min(u.max_x, bb.max_x), std::min(u.max_y, bb.max_y)};
+      if (!ll_to_target.transform_bounds(bb_ll, bb))
+        throw UsageError("--bbox cannot be transformed to " + target->name());
+      area = {std::max(u.min_x, bb.min_x), std::max(u.min_y, bb.min_y), std::min(u.max_x, bb.max_x),
+              std::min(u.max_y, bb.max_y)};
     }
     if (area.min_x < area.max_x && area.min_y < area.max_y) plan.data_areas.push_back(area);
   }
@@ -244,22 +270,27 @@ DemPlan plan_terrain(const TerrainSettings& s) {
   if (plan.data_areas.empty()) {
     if (s.bbox)
       throw InputError("--bbox does not intersect the data of " + plan.sources[0].path +
-                       (s.inputs.size() > 1 ? " (and the other inputs)" : "") + "; check the bbox (west,south,east,north in degrees)");
-    throw InputError(plan.sources[0].path + ": the data lies outside the " + s.tiling + " tiling's extent");
+                       (s.inputs.size() > 1 ? " (and the other inputs)" : "") +
+                       "; check the bbox (west,south,east,north in degrees)");
+    throw InputError(plan.sources[0].path + ": the data lies outside the " + s.tiling +
+                     " tiling's extent");
   }
 
   // 5. Zoom range: the finest zoom is the first whose sample spacing reaches
   // the source resolution.
   int natural_max = 0;
-  while (natural_max < 24 && plan.tiling.sample_spacing(natural_max, plan.steps) > resolution * (1 + 1e-9)) ++natural_max;
+  while (natural_max < 24 &&
+         plan.tiling.sample_spacing(natural_max, plan.steps) > resolution * (1 + 1e-9))
+    ++natural_max;
   plan.max_zoom = s.max_zoom.value_or(natural_max);
   plan.min_zoom = s.min_zoom.value_or(0);
   if (plan.max_zoom > natural_max + 6)
-    throw UsageError("--max-zoom " + std::to_string(plan.max_zoom) + " is out of range: the data's finest zoom is " +
-                     std::to_string(natural_max) + " (at most 6 zooms deeper are allowed)");
+    throw UsageError("--max-zoom " + std::to_string(plan.max_zoom) +
+                     " is out of range: the data's finest zoom is " + std::to_string(natural_max) +
+                     " (at most 6 zooms deeper are allowed)");
   if (plan.min_zoom > plan.max_zoom)
-    throw UsageError("--min-zoom " + std::to_string(plan.min_zoom) + " is larger than the maximum zoom " +
-                     std::to_string(plan.max_zoom));
+    throw UsageError("--min-zoom " + std::to_string(plan.min_zoom) +
+                     " is larger than the maximum zoom " + std::to_string(plan.max_zoom));
   return plan;
 }
 

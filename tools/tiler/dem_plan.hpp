@@ -16,12 +16,12 @@ namespace globe {
 
 struct DemSource {
   std::string path;
-  std::string crs_wkt;            // resolved CRS (the file's or --s_srs)
-  std::optional<double> nodata;   // effective nodata value
+  std::string crs_wkt;           // resolved CRS (the file's or --s_srs)
+  std::optional<double> nodata;  // effective nodata value
   std::array<double, 6> geotransform{};
   int width = 0, height = 0;
   bool integer_type = false;
-  std::vector<double> x_shifts;   // 0, and +-360 copies for geographic data past +-180
+  std::vector<double> x_shifts;  // 0, and +-360 copies for geographic data past +-180
   unsigned long long file_bytes = 0;
 };
 
@@ -30,11 +30,11 @@ struct DemPlan {
   std::vector<DemSource> sources;
   std::vector<tileformat::Bounds> data_areas;  // in the tiling CRS, clipped to its extent
   int min_zoom = 0, max_zoom = 0;
-  int steps = 256;                 // block size - 1
-  double step_m = 1.0;             // quantization step
-  int32_t fill_q = 0;              // height (quanta) for holes at block corners
-  double source_resolution = 0;    // source pixel size in tiling CRS units
-  tileformat::Bounds lonlat;       // data bounds in lon/lat (for metadata)
+  int steps = 256;               // block size - 1
+  double step_m = 1.0;           // quantization step
+  int32_t fill_q = 0;            // height (quanta) for holes at block corners
+  double source_resolution = 0;  // source pixel size in tiling CRS units
+  tileformat::Bounds lonlat;     // data bounds in lon/lat (for metadata)
 };
 
 DemPlan plan_terrain(const TerrainSettings& settings);

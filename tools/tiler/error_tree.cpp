@@ -21,8 +21,8 @@ double lattice_deviation(const KPatchLayout& layout, size_t index, const std::ve
   const int x0 = std::min({n.apex.x, n.b.x, n.c.x}), x1 = std::max({n.apex.x, n.b.x, n.c.x});
   const int y0 = std::min({n.apex.y, n.b.y, n.c.y}), y1 = std::max({n.apex.y, n.b.y, n.c.y});
   auto h = [&](int i, int j) {
-    return static_cast<double>(q[static_cast<size_t>(n.apex.y + i * wu.y + j * wv.y) * size + n.apex.x + i * wu.x +
-                                 j * wv.x]);
+    return static_cast<double>(q[static_cast<size_t>(n.apex.y + i * wu.y + j * wv.y) * size +
+                                 n.apex.x + i * wu.x + j * wv.x]);
   };
   double worst = 0;
   for (int y = y0; y <= y1; ++y) {
@@ -35,9 +35,13 @@ double lattice_deviation(const KPatchLayout& layout, size_t index, const std::ve
       const int i = std::min(static_cast<int>(a), L), j = std::min(static_cast<int>(b), L);
       const double fa = a - i, fb = b - j;
       double z;
-      if (i + j >= L) z = h(i, j);  // on the hypotenuse: a lattice vertex
-      else if (fa + fb <= 1) z = h(i, j) + fa * (h(i + 1, j) - h(i, j)) + fb * (h(i, j + 1) - h(i, j));
-      else z = h(i + 1, j + 1) + (1 - fa) * (h(i, j + 1) - h(i + 1, j + 1)) + (1 - fb) * (h(i + 1, j) - h(i + 1, j + 1));
+      if (i + j >= L)
+        z = h(i, j);  // on the hypotenuse: a lattice vertex
+      else if (fa + fb <= 1)
+        z = h(i, j) + fa * (h(i + 1, j) - h(i, j)) + fb * (h(i, j + 1) - h(i, j));
+      else
+        z = h(i + 1, j + 1) + (1 - fa) * (h(i, j + 1) - h(i + 1, j + 1)) +
+            (1 - fb) * (h(i + 1, j) - h(i + 1, j + 1));
       worst = std::max(worst, std::abs(z - q[idx]));
     }
   }
@@ -46,7 +50,9 @@ double lattice_deviation(const KPatchLayout& layout, size_t index, const std::ve
 
 namespace {
 
-uint32_t quanta(double v) { return static_cast<uint32_t>(std::ceil(v - 1e-9)); }
+uint32_t quanta(double v) {
+  return static_cast<uint32_t>(std::ceil(v - 1e-9));
+}
 
 // For node `index` of depth >= 2: the child block (0..3) holding it and the
 // index of the same triangle in that block (two depths shallower).
@@ -55,12 +61,14 @@ std::pair<int, size_t> child_node(const KPatchLayout& layout, size_t index) {
   const int d = n.depth, m = d / 2;
   const size_t local = index - layout.node_offset(d);
   const size_t per_cell = (d % 2 == 0) ? 2 : 4;
-  const int cells = 1 << m, cell = static_cast<int>(local / per_cell), sub = static_cast<int>(local % per_cell);
+  const int cells = 1 << m, cell = static_cast<int>(local / per_cell),
+            sub = static_cast<int>(local % per_cell);
   const int cx = cell % cells, cy = cell / cells;
   const int half = cells / 2;  // level-m cells per child block side, at level m - 1 in the child
   const int qx = cx / half, qy = cy / half;
   const int lx = cx % half, ly = cy % half;
-  const size_t child_index = (d % 2 == 0) ? layout.even_node(m - 1, lx, ly, sub) : layout.odd_node(m - 1, lx, ly, sub);
+  const size_t child_index =
+      (d % 2 == 0) ? layout.even_node(m - 1, lx, ly, sub) : layout.odd_node(m - 1, lx, ly, sub);
   return {qx + 2 * qy, child_index};
 }
 
@@ -71,11 +79,13 @@ std::vector<uint32_t> node_errors(const KPatchLayout& layout, const std::vector<
                                   const std::array<const std::vector<uint32_t>*, 4>& children) {
   const auto& nodes = layout.nodes();
   std::vector<uint32_t> err(nodes.size(), 0);
-  const bool finest = std::none_of(children.begin(), children.end(), [](auto* c) { return c != nullptr; });
+  const bool finest =
+      std::none_of(children.begin(), children.end(), [](auto* c) { return c != nullptr; });
   for (int d = layout.depth(); d >= 0; --d) {
     for (size_t i = layout.node_offset(d); i < layout.node_offset(d + 1); ++i) {
       const KPatchNode& n = nodes[i];
-      const uint32_t below = n.children[0] < 0 ? 0 : std::max(err[n.children[0]], err[n.children[1]]);
+      const uint32_t below =
+          n.children[0] < 0 ? 0 : std::max(err[n.children[0]], err[n.children[1]]);
       if (d >= 2 && !finest) {
         auto [c, ci] = child_node(layout, i);
         if (children[c]) {
@@ -117,21 +127,24 @@ std::vector<uint32_t> vertex_errors(const KPatchLayout& layout, const Neighbourh
   auto n3 = [&](int m, int gx, int gy) {
     uint32_t v = 0;
     for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) v = std::max(v, cell_error(m, gx + dx, gy + dy));
+      for (int dx = -1; dx <= 1; ++dx)
+        v = std::max(v, cell_error(m, gx + dx, gy + dy));
     return v;
   };
   const int levels = layout.depth() / 2;
   for (int m = 0; m <= levels; ++m) {
     const int cells = 1 << m;
     for (int cy = 0; cy < cells; ++cy)
-      for (int cx = 0; cx < cells; ++cx) out[layout.cell_vertex(m, cx, cy)] = n3(m, cx, cy);
+      for (int cx = 0; cx < cells; ++cx)
+        out[layout.cell_vertex(m, cx, cy)] = n3(m, cx, cy);
     if (m == levels) break;
     // Horizontal edges: between cell (cx, row-1) above and (cx, row) below.
     for (int row = 0; row <= cells; ++row)
       for (int cx = 0; cx < cells; ++cx) {
         uint32_t v = std::max(odd_error(m, cx, row - 1, 2), odd_error(m, cx, row, 0));
         for (int sy : {2 * row - 1, 2 * row})
-          for (int sx : {2 * cx, 2 * cx + 1}) v = std::max(v, n3(m + 1, sx, sy));
+          for (int sx : {2 * cx, 2 * cx + 1})
+            v = std::max(v, n3(m + 1, sx, sy));
         out[layout.hedge_vertex(m, row, cx)] = v;
       }
     // Vertical edges: between cell (col-1, cy) on the left and (col, cy) on the right.
@@ -139,7 +152,8 @@ std::vector<uint32_t> vertex_errors(const KPatchLayout& layout, const Neighbourh
       for (int col = 0; col <= cells; ++col) {
         uint32_t v = std::max(odd_error(m, col - 1, cy, 1), odd_error(m, col, cy, 3));
         for (int sx : {2 * col - 1, 2 * col})
-          for (int sy : {2 * cy, 2 * cy + 1}) v = std::max(v, n3(m + 1, sx, sy));
+          for (int sy : {2 * cy, 2 * cy + 1})
+            v = std::max(v, n3(m + 1, sx, sy));
         out[layout.vedge_vertex(m, cy, col)] = v;
       }
   }

@@ -26,18 +26,19 @@ namespace globe {
 
 // children: node errors of the four child blocks in TileId::children() order,
 // nullptr where the child has no block; all nullptr at the finest zoom.
-std::vector<uint32_t> node_errors(const tileformat::KPatchLayout& layout, const std::vector<int32_t>& q,
-                                  const std::vector<uint8_t>& valid,
+std::vector<uint32_t> node_errors(const tileformat::KPatchLayout& layout,
+                                  const std::vector<int32_t>& q, const std::vector<uint8_t>& valid,
                                   const std::array<const std::vector<uint32_t>*, 4>& children);
 
 // nb[dy + 1][dx + 1]: node errors of the block at offset (dx, dy), nullptr if
 // absent; nb[1][1] is the block itself.
 using Neighbourhood = std::array<std::array<const std::vector<uint32_t>*, 3>, 3>;
-std::vector<uint32_t> vertex_errors(const tileformat::KPatchLayout& layout, const Neighbourhood& nb);
+std::vector<uint32_t> vertex_errors(const tileformat::KPatchLayout& layout,
+                                    const Neighbourhood& nb);
 
 // Exact max deviation (quanta) of node `index` drawn as its lattice from the
 // valid samples under it.
-double lattice_deviation(const tileformat::KPatchLayout& layout, size_t index, const std::vector<int32_t>& q,
-                         const std::vector<uint8_t>& valid);
+double lattice_deviation(const tileformat::KPatchLayout& layout, size_t index,
+                         const std::vector<int32_t>& q, const std::vector<uint8_t>& valid);
 
 }  // namespace globe

@@ -30,7 +30,8 @@ int run_extract(const std::vector<std::string>& args) {
               "globe-tiler extract PACKAGE --zoom Z [--bbox W,S,E,N] -o OUT.tif\n\n"
               "Writes the decoded heights of one zoom as a Float64 GeoTIFF in the tiling CRS;\n"
               "samples without data are NaN (nodata).");
-  cli.option("--zoom", "Z", "zoom level to extract", [&](const std::string& v) { zoom = CliArgs::to_int("--zoom", v, 0, 30); });
+  cli.option("--zoom", "Z", "zoom level to extract",
+             [&](const std::string& v) { zoom = CliArgs::to_int("--zoom", v, 0, 30); });
   cli.option("--bbox", "W,S,E,N", "only tiles intersecting this lon/lat box",
              [&](const std::string& v) { bbox = CliArgs::to_doubles("--bbox", v, 4); });
   cli.option("-o,--output", "OUT.tif", "output GeoTIFF", [&](const std::string& v) { output = v; });
@@ -46,10 +47,12 @@ int run_extract(const std::vector<std::string>& args) {
   const std::string& path = (*positional)[0];
   TerrainPackage p = open_terrain_package(path);
   if (*zoom < p.min_zoom || *zoom > p.max_zoom)
-    throw UsageError("--zoom " + std::to_string(*zoom) + " is out of range: " + path + " holds zooms " +
-                     std::to_string(p.min_zoom) + ".." + std::to_string(p.max_zoom));
+    throw UsageError("--zoom " + std::to_string(*zoom) + " is out of range: " + path +
+                     " holds zooms " + std::to_string(p.min_zoom) + ".." +
+                     std::to_string(p.max_zoom));
   std::error_code ec;
-  if (std::filesystem::exists(output, ec) && !force) throw OutputError(output + ": output exists; pass --force to replace it");
+  if (std::filesystem::exists(output, ec) && !force)
+    throw OutputError(output + ": output exists; pass --force to replace it");
 
   gdal_init();
   // Tiles of the zoom, optionally limited to the bbox.
@@ -60,7 +63,8 @@ int run_extract(const std::vector<std::string>& args) {
     const SpatialRef target = SpatialRef::from_user_input(p.tiling.crs, path);
     tileformat::Bounds b{(*bbox)[0], (*bbox)[1], (*bbox)[2], (*bbox)[3]}, out;
     CoordTransform t(ll, target);
-    if (!t.transform_bounds(b, out)) throw UsageError("--bbox cannot be transformed to the tiling CRS");
+    if (!t.transform_bounds(b, out))
+      throw UsageError("--bbox cannot be transformed to the tiling CRS");
     area = out;
   }
   p.reader->for_each_tile(
@@ -68,7 +72,9 @@ int run_extract(const std::vector<std::string>& args) {
         if (!area || p.tiling.tile_bounds(id).intersects(*area)) ids.push_back(id);
       },
       *zoom);
-  if (ids.empty()) throw InputError(path + ": no tiles at zoom " + std::to_string(*zoom) + (bbox ? " inside --bbox" : ""));
+  if (ids.empty())
+    throw InputError(path + ": no tiles at zoom " + std::to_string(*zoom) +
+                     (bbox ? " inside --bbox" : ""));
   uint32_t x0 = ids[0].x, x1 = x0, y0 = ids[0].y, y1 = y0;
   for (const auto& id : ids) {
     x0 = std::min(x0, id.x);
@@ -78,7 +84,9 @@ int run_extract(const std::vector<std::string>& args) {
   }
   const int n = p.block_size - 1;
   const uint64_t w = uint64_t(x1 - x0 + 1) * n + 1, h = uint64_t(y1 - y0 + 1) * n + 1;
-  if (w > 1000000 || h > 1000000) throw UsageError("the extract would be " + std::to_string(w) + " x " + std::to_string(h) + " pixels; limit it with --bbox");
+  if (w > 1000000 || h > 1000000)
+    throw UsageError("the extract would be " + std::to_string(w) + " x " + std::to_string(h) +
+                     " pixels; limit it with --bbox");
   const double sp = p.tiling.sample_spacing(*zoom, n);
   const auto corner = p.tiling.tile_bounds({*zoom, x0, y0});
   double gt[6] = {corner.min_x - sp / 2, sp, 0, corner.max_y + sp / 2, 0, -sp};
@@ -88,8 +96,8 @@ int run_extract(const std::vector<std::string>& args) {
   opts = CSLSetNameValue(opts, "TILED", "YES");
   opts = CSLSetNameValue(opts, "COMPRESS", "DEFLATE");
   opts = CSLSetNameValue(opts, "BIGTIFF", "IF_SAFER");
-  GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), temp.c_str(), static_cast<int>(w), static_cast<int>(h), 1,
-                               GDT_Float64, opts);
+  GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), temp.c_str(), static_cast<int>(w),
+                               static_cast<int>(h), 1, GDT_Float64, opts);
   CSLDestroy(opts);
   if (!ds) throw OutputError(output + ": cannot create the GeoTIFF (" + gdal_last_error() + ")");
   GdalDataset out(ds, temp);
@@ -109,9 +117,10 @@ int run_extract(const std::vector<std::string>& args) {
       throw InputError(path + ": tile " + id.str() + ": " + e.what());
     }
     for (int y = 0; y <= n; ++y)
-      for (int x = 0; x <= n; ++x) buf[size_t(y) * (n + 1) + x] = b.is_valid(x, y) ? b.height(x, y) : nan;
-    if (GDALRasterIO(out.band(1), GF_Write, int(id.x - x0) * n, int(id.y - y0) * n, n + 1, n + 1, buf.data(), n + 1,
-                     n + 1, GDT_Float64, 0, 0) != CE_None) {
+      for (int x = 0; x <= n; ++x)
+        buf[size_t(y) * (n + 1) + x] = b.is_valid(x, y) ? b.height(x, y) : nan;
+    if (GDALRasterIO(out.band(1), GF_Write, int(id.x - x0) * n, int(id.y - y0) * n, n + 1, n + 1,
+                     buf.data(), n + 1, n + 1, GDT_Float64, 0, 0) != CE_None) {
       std::filesystem::remove(temp, ec);
       throw OutputError(output + ": write failed (" + gdal_last_error() + ")");
     }
@@ -119,8 +128,9 @@ int run_extract(const std::vector<std::string>& args) {
   out = GdalDataset();  // close and flush
   std::filesystem::rename(temp, output, ec);
   if (ec) throw OutputError(output + ": cannot rename into place: " + ec.message());
-  std::fprintf(stderr, "globe-tiler: wrote %s: %llu x %llu samples from %zu tiles of zoom %d\n", output.c_str(),
-               static_cast<unsigned long long>(w), static_cast<unsigned long long>(h), ids.size(), *zoom);
+  std::fprintf(stderr, "globe-tiler: wrote %s: %llu x %llu samples from %zu tiles of zoom %d\n",
+               output.c_str(), static_cast<unsigned long long>(w),
+               static_cast<unsigned long long>(h), ids.size(), *zoom);
   return kExitOk;
 }
 

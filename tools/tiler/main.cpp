@@ -35,7 +35,8 @@ int main(int argc, char** argv) {
   const std::string command = args[0];
   args.erase(args.begin());
   std::string command_line = "globe-tiler";
-  for (int i = 1; i < argc; ++i) command_line += std::string(" ") + argv[i];
+  for (int i = 1; i < argc; ++i)
+    command_line += std::string(" ") + argv[i];
   try {
     if (command == "terrain") return globe::run_terrain(args, command_line);
     if (command == "info") return globe::run_info(args);

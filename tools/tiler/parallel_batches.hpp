@@ -35,9 +35,11 @@ void parallel_batches(size_t count, int threads, size_t batch_size,
       }
     };
     std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
+    for (int t = 1; t < threads; ++t)
+      pool.emplace_back(work, t);
     work(0);
-    for (auto& t : pool) t.join();
+    for (auto& t : pool)
+      t.join();
     for (size_t i = begin; i < end; ++i) {
       if (errors[i - begin]) std::rethrow_exception(errors[i - begin]);
       consume(i, std::move(*results[i - begin]));

@@ -13,9 +13,13 @@ StagingStore::StagingStore(std::string path) : path_(std::move(path)) {
   std::filesystem::remove(path_, ec);
   db_ = std::make_unique<SqliteDb>(path_, SqliteDb::Mode::kReadWriteCreate);
   db_->exec("PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF; PRAGMA cache_size = -16384;");
-  db_->exec("CREATE TABLE stage (kind INTEGER, z INTEGER, x INTEGER, y INTEGER, data BLOB, PRIMARY KEY (kind, z, y, x))");
-  put_ = std::make_unique<SqliteStatement>(*db_, "INSERT OR REPLACE INTO stage VALUES (?, ?, ?, ?, ?)");
-  get_ = std::make_unique<SqliteStatement>(*db_, "SELECT data FROM stage WHERE kind = ? AND z = ? AND x = ? AND y = ?");
+  db_->exec(
+      "CREATE TABLE stage (kind INTEGER, z INTEGER, x INTEGER, y INTEGER, data BLOB, PRIMARY KEY "
+      "(kind, z, y, x))");
+  put_ = std::make_unique<SqliteStatement>(*db_,
+                                           "INSERT OR REPLACE INTO stage VALUES (?, ?, ?, ?, ?)");
+  get_ = std::make_unique<SqliteStatement>(
+      *db_, "SELECT data FROM stage WHERE kind = ? AND z = ? AND x = ? AND y = ?");
   db_->exec("BEGIN");
 }
 
@@ -49,7 +53,8 @@ std::vector<tileformat::TileId> StagingStore::list(Stage stage, int z) {
   st.bind(1, static_cast<int>(stage)).bind(2, z);
   std::vector<tileformat::TileId> out;
   while (st.step())
-    out.push_back({z, static_cast<uint32_t>(st.column_int(0)), static_cast<uint32_t>(st.column_int(1))});
+    out.push_back(
+        {z, static_cast<uint32_t>(st.column_int(0)), static_cast<uint32_t>(st.column_int(1))});
   return out;
 }
 
@@ -59,19 +64,23 @@ void StagingStore::drop(Stage stage, int z) {
   st.step();
 }
 
-void StagingStore::commit() { db_->exec("COMMIT; BEGIN"); }
+void StagingStore::commit() {
+  db_->exec("COMMIT; BEGIN");
+}
 
 std::vector<uint8_t> pack_u32(const std::vector<uint32_t>& v) {
   std::vector<uint8_t> out(v.size() * 4);
   for (size_t i = 0; i < v.size(); ++i)
-    for (int b = 0; b < 4; ++b) out[4 * i + b] = static_cast<uint8_t>(v[i] >> (8 * b));
+    for (int b = 0; b < 4; ++b)
+      out[4 * i + b] = static_cast<uint8_t>(v[i] >> (8 * b));
   return out;
 }
 
 std::vector<uint32_t> unpack_u32(const std::vector<uint8_t>& bytes) {
   std::vector<uint32_t> out(bytes.size() / 4);
   for (size_t i = 0; i < out.size(); ++i)
-    for (int b = 0; b < 4; ++b) out[i] |= uint32_t{bytes[4 * i + b]} << (8 * b);
+    for (int b = 0; b < 4; ++b)
+      out[i] |= uint32_t{bytes[4 * i + b]} << (8 * b);
   return out;
 }
 

@@ -48,7 +48,10 @@ std::string json_escape(const std::string& s) {
 class Builder {
  public:
   Builder(const DemPlan& plan, const TerrainSettings& s, Progress& progress)
-      : plan_(plan), s_(s), progress_(progress), size_(plan.steps + 1),
+      : plan_(plan),
+        s_(s),
+        progress_(progress),
+        size_(plan.steps + 1),
         layouts_{KPatchLayout(plan.steps, s.lattice, 0), KPatchLayout(plan.steps, s.lattice, 1)},
         threads_(s.threads > 0 ? s.threads : std::max(1u, std::thread::hardware_concurrency())),
         global_(plan.tiling.scheme != "local") {}
@@ -61,18 +64,24 @@ class Builder {
     } catch (const tileformat::PackageError& e) {
       throw OutputError(e.what());
     }
-    StagingStore stage(s_.output + ".staging");
-    warpers_.resize(threads_);
-    for (int z = plan_.max_zoom; z >= plan_.min_zoom; --z) {
-      pass_raw(stage, z);
-      pass_final(stage, z);
-      stage.drop(Stage::kRaw, z);
-      stage.drop(Stage::kFinal, z + 1);
-      stage.drop(Stage::kNodeErrors, z + 1);
-      pass_encode(stage, *writer, z);
-      stage.commit();
+    try {
+      StagingStore stage(s_.output + ".staging");
+      warpers_.resize(threads_);
+      for (int z = plan_.max_zoom; z >= plan_.min_zoom; --z) {
+        pass_raw(stage, z);
+        pass_final(stage, z);
+        stage.drop(Stage::kRaw, z);
+        stage.drop(Stage::kFinal, z + 1);
+        stage.drop(Stage::kNodeErrors, z + 1);
+        pass_encode(stage, *writer, z);
+        stage.commit();
+      }
+      warpers_.clear();
+    } catch (const tileformat::PackageError& e) {
+      // Only the output and scratch databases are written here: a failure is
+      // an output problem (disk full, folder removed), not bad input.
+      throw OutputError(std::string(e.what()) + "; check free space and permissions");
     }
-    warpers_.clear();
     if (writer->tiles_written() == 0)
       throw InputError(plan_.sources[0].path + ": no tile holds valid data in the requested area" +
                        (s_.bbox ? " (check --bbox)" : "") + "; nothing written");
@@ -100,7 +109,8 @@ class Builder {
     m.lattice = s_.lattice;
     m.step = plan_.step_m;
     m.q = b.q;
-    if (std::any_of(b.valid.begin(), b.valid.end(), [](uint8_t v) { return v == 0; })) m.valid = b.valid;
+    if (std::any_of(b.valid.begin(), b.valid.end(), [](uint8_t v) { return v == 0; }))
+      m.valid = b.valid;
     m.vertex_error.assign(layouts_[0].vertex_count(), 0);
     return tileformat::encode_mblock(m, kStageZstdLevel);
   }
@@ -112,7 +122,8 @@ class Builder {
   }
 
   std::optional<TileId> neighbour(TileId id, int dx, int dy) const {
-    const int64_t nx = static_cast<int64_t>(plan_.tiling.tiles_x(id.z)), ny = static_cast<int64_t>(plan_.tiling.tiles_y(id.z));
+    const int64_t nx = static_cast<int64_t>(plan_.tiling.tiles_x(id.z)),
+                  ny = static_cast<int64_t>(plan_.tiling.tiles_y(id.z));
     int64_t x = int64_t{id.x} + dx, y = int64_t{id.y} + dy;
     if (y < 0 || y >= ny) return std::nullopt;
     if (x < 0 || x >= nx) {
@@ -127,13 +138,15 @@ class Builder {
     for (const auto& area : plan_.data_areas) {
       auto r = plan_.tiling.tiles_covering(area, z);
       for (uint32_t y = r.min_y; !r.empty() && y <= r.max_y; ++y)
-        for (uint32_t x = r.min_x; x <= r.max_x; ++x) out.push_back({z, x, y});
+        for (uint32_t x = r.min_x; x <= r.max_x; ++x)
+          out.push_back({z, x, y});
     }
     sort_unique(out);
     return out;
   }
   static void sort_unique(std::vector<TileId>& v) {
-    std::sort(v.begin(), v.end(), [](TileId a, TileId b) { return std::tie(a.y, a.x) < std::tie(b.y, b.x); });
+    std::sort(v.begin(), v.end(),
+              [](TileId a, TileId b) { return std::tie(a.y, a.x) < std::tie(b.y, b.x); });
     v.erase(std::unique(v.begin(), v.end()), v.end());
   }
 
@@ -144,7 +157,8 @@ class Builder {
     if (finest) {
       tiles = finest_tiles(z);
     } else {
-      for (const TileId& c : stage.list(Stage::kFinal, z + 1)) tiles.push_back(c.parent());
+      for (const TileId& c : stage.list(Stage::kFinal, z + 1))
+        tiles.push_back(c.parent());
       sort_unique(tiles);
     }
     std::map<TileId, std::vector<uint8_t>> cache;
@@ -158,7 +172,9 @@ class Builder {
             for (const TileId& c : tiles[i].children())
               if (auto b = stage.get(Stage::kFinal, c)) cache.emplace(c, std::move(*b));
         },
-        [&](size_t i, int worker) { return finest ? warp_tile(tiles[i], worker) : decimate(tiles[i], cache); },
+        [&](size_t i, int worker) {
+          return finest ? warp_tile(tiles[i], worker) : decimate(tiles[i], cache);
+        },
         [&](size_t i, std::vector<uint8_t>&& blob) {
           if (!blob.empty()) stage.put(Stage::kRaw, tiles[i], blob);
           progress_.advance();
@@ -173,7 +189,8 @@ class Builder {
     // The warp covers the owned steps x steps samples; the last column and
     // row stay invalid here and come from the neighbours in pass 2.
     const int n = plan_.steps;
-    Block b{std::vector<int32_t>(size_t(size_) * size_, 0), std::vector<uint8_t>(size_t(size_) * size_, 0)};
+    Block b{std::vector<int32_t>(size_t(size_) * size_, 0),
+            std::vector<uint8_t>(size_t(size_) * size_, 0)};
     size_t valid = 0;
     for (int y = 0; y < n; ++y)
       for (int x = 0; x < n; ++x) {
@@ -181,7 +198,8 @@ class Builder {
         if (std::isnan(v)) continue;
         const double qv = std::round(v / plan_.step_m);
         if (!(std::abs(qv) <= tileformat::kMaxQuantum))
-          throw InputError(plan_.sources[0].path + ": height " + std::to_string(v) + " in tile " + id.str() +
+          throw InputError(plan_.sources[0].path + ": height " + std::to_string(v) + " in tile " +
+                           id.str() +
                            " does not fit the quantization grid; use a larger --precision");
         b.q[size_t(y) * size_ + x] = static_cast<int32_t>(qv);
         b.valid[size_t(y) * size_ + x] = 1;
@@ -191,13 +209,15 @@ class Builder {
     return encode_stage(b);
   }
 
-  std::vector<uint8_t> decimate(TileId id, const std::map<TileId, std::vector<uint8_t>>& cache) const {
+  std::vector<uint8_t> decimate(TileId id,
+                                const std::map<TileId, std::vector<uint8_t>>& cache) const {
     std::array<std::optional<Block>, 4> kids;
     const auto children = id.children();
     for (int c = 0; c < 4; ++c)
       if (auto it = cache.find(children[c]); it != cache.end()) kids[c] = decode_stage(it->second);
     const int n = plan_.steps;
-    Block b{std::vector<int32_t>(size_t(size_) * size_, 0), std::vector<uint8_t>(size_t(size_) * size_, 0)};
+    Block b{std::vector<int32_t>(size_t(size_) * size_, 0),
+            std::vector<uint8_t>(size_t(size_) * size_, 0)};
     size_t valid = 0;
     for (int y = 0; y <= n; ++y)
       for (int x = 0; x <= n; ++x) {
@@ -210,7 +230,8 @@ class Builder {
             if ((cx == 0 && fx > n) || (cx == 1 && fx < n)) continue;
             const auto& k = kids[cx + 2 * cy];
             if (!k) continue;
-            const size_t src = size_t(fy - cy * n) * size_ + (fx - cx * n), dst = size_t(y) * size_ + x;
+            const size_t src = size_t(fy - cy * n) * size_ + (fx - cx * n),
+                         dst = size_t(y) * size_ + x;
             if (k->valid[src]) {
               b.q[dst] = k->q[src];
               b.valid[dst] = 1;
@@ -237,7 +258,8 @@ class Builder {
           raw.clear();
           child_err.clear();
           for (size_t i = begin; i < end; ++i) {
-            for (auto [dx, dy] : {std::pair{0, 0}, std::pair{1, 0}, std::pair{0, 1}, std::pair{1, 1}})
+            for (auto [dx, dy] :
+                 {std::pair{0, 0}, std::pair{1, 0}, std::pair{0, 1}, std::pair{1, 1}})
               if (auto nb = neighbour(tiles[i], dx, dy); nb && !raw.count(*nb))
                 if (auto b = stage.get(Stage::kRaw, *nb)) raw.emplace(*nb, std::move(*b));
             if (z < plan_.max_zoom)
@@ -282,8 +304,10 @@ class Builder {
         b.valid[dst] = 0;
       }
     };
-    for (int y = 0; y < n; ++y) take(east, 0, y, n, y);
-    for (int x = 0; x < n; ++x) take(south, x, 0, x, n);
+    for (int y = 0; y < n; ++y)
+      take(east, 0, y, n, y);
+    for (int x = 0; x < n; ++x)
+      take(south, x, 0, x, n);
     take(south_east, 0, 0, n, n);
     if (std::none_of(b.valid.begin(), b.valid.end(), [](uint8_t v) { return v != 0; })) return {};
     fill_holes(b.q, b.valid, size_, plan_.fill_q);
@@ -312,11 +336,13 @@ class Builder {
           finals.clear();
           errs.clear();
           for (size_t i = begin; i < end; ++i) {
-            if (auto b = stage.get(Stage::kFinal, tiles[i])) finals.emplace(tiles[i], std::move(*b));
+            if (auto b = stage.get(Stage::kFinal, tiles[i]))
+              finals.emplace(tiles[i], std::move(*b));
             for (int dy = -1; dy <= 1; ++dy)
               for (int dx = -1; dx <= 1; ++dx)
                 if (auto nb = neighbour(tiles[i], dx, dy); nb && !errs.count(*nb))
-                  if (auto e = stage.get(Stage::kNodeErrors, *nb)) errs.emplace(*nb, unpack_u32(*e));
+                  if (auto e = stage.get(Stage::kNodeErrors, *nb))
+                    errs.emplace(*nb, unpack_u32(*e));
           }
         },
         [&](size_t i, int) {
@@ -351,11 +377,14 @@ class Builder {
     meta["format"] = tileformat::kMBlockFormat;
     meta["type"] = "baselayer";
     meta["version"] = "1";
-    meta["description"] = "Terrain (MBlock/KPatch) built by globe-tiler from " +
-                          std::filesystem::path(plan_.sources[0].path).filename().string() +
-                          (plan_.sources.size() > 1 ? " and " + std::to_string(plan_.sources.size() - 1) + " more" : "");
+    meta["description"] =
+        "Terrain (MBlock/KPatch) built by globe-tiler from " +
+        std::filesystem::path(plan_.sources[0].path).filename().string() +
+        (plan_.sources.size() > 1 ? " and " + std::to_string(plan_.sources.size() - 1) + " more"
+                                  : "");
     meta["bounds"] = f(ll.min_x) + "," + f(ll.min_y) + "," + f(ll.max_x) + "," + f(ll.max_y);
-    meta["center"] = f((ll.min_x + ll.max_x) / 2) + "," + f((ll.min_y + ll.max_y) / 2) + "," + std::to_string(plan_.max_zoom);
+    meta["center"] = f((ll.min_x + ll.max_x) / 2) + "," + f((ll.min_y + ll.max_y) / 2) + "," +
+                     std::to_string(plan_.max_zoom);
     meta["minzoom"] = std::to_string(plan_.min_zoom);
     meta["maxzoom"] = std::to_string(plan_.max_zoom);
     meta["globe:format_version"] = std::to_string(tileformat::kFormatVersion);
@@ -371,7 +400,8 @@ class Builder {
       inputs += (i ? "," : "") + std::string("{\"name\":\"") + json_escape(plan_.sources[i].path) +
                 "\",\"bytes\":" + std::to_string(plan_.sources[i].file_bytes) + "}";
     meta["globe:inputs"] = inputs + "]";
-    for (const auto& [k, v] : meta) w.set_metadata(k, v);
+    for (const auto& [k, v] : meta)
+      w.set_metadata(k, v);
   }
 
   size_t batch_size() const { return static_cast<size_t>(8 * threads_); }
@@ -388,7 +418,8 @@ class Builder {
 
 }  // namespace
 
-BuildSummary build_terrain(const DemPlan& plan, const TerrainSettings& settings, Progress& progress) {
+BuildSummary build_terrain(const DemPlan& plan, const TerrainSettings& settings,
+                           Progress& progress) {
   return Builder(plan, settings, progress).run();
 }
 

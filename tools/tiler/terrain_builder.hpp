@@ -26,6 +26,7 @@ struct BuildSummary {
   double seconds = 0;
 };
 
-BuildSummary build_terrain(const DemPlan& plan, const TerrainSettings& settings, Progress& progress);
+BuildSummary build_terrain(const DemPlan& plan, const TerrainSettings& settings,
+                           Progress& progress);
 
 }  // namespace globe

@@ -16,7 +16,8 @@ TerrainPackage open_terrain_package(const std::string& path) {
   const auto fmt = p.reader->meta("format");
   if (!fmt) throw InputError(path + ": metadata has no 'format'; not a globe package");
   if (*fmt != tileformat::kMBlockFormat)
-    throw InputError(path + ": a '" + *fmt + "' package, not a terrain package (" + tileformat::kMBlockFormat + ")");
+    throw InputError(path + ": a '" + *fmt + "' package, not a terrain package (" +
+                     tileformat::kMBlockFormat + ")");
   auto num = [&](const char* key) {
     auto v = p.reader->meta(key);
     if (!v) throw InputError(path + ": metadata key " + key + " is missing (tileformat §3.2)");

@@ -25,8 +25,8 @@ struct TerrainSettings {
   int threads = 0;  // 0 = all cores
   bool force = false;
   ProgressMode progress = ProgressMode::kAuto;
-  int lattice = 16;                 // KPatch lattice (fixed in format v1)
-  std::string command_line;         // recorded in metadata (without -j/-q/--progress)
+  int lattice = 16;          // KPatch lattice (fixed in format v1)
+  std::string command_line;  // recorded in metadata (without -j/-q/--progress)
 };
 
 }  // namespace globe

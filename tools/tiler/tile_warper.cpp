@@ -1,8 +1,8 @@
 // Per-tile warping through GDALWarp (see tile_warper.hpp).
 #include "tile_warper.hpp"
 
-#include <gdal_utils.h>
 #include <cpl_string.h>
+#include <gdal_utils.h>
 
 #include <cmath>
 #include <limits>
@@ -19,7 +19,8 @@ TileWarper::TileWarper(const DemPlan& plan, const std::string& resampling) : pla
     const GdalDataset& in = opened_.back();
     for (double shift : src.x_shifts) {
       GDALDatasetH copy = GDALCreateCopy(vrt, "", in.get(), FALSE, nullptr, nullptr, nullptr);
-      if (!copy) throw InputError(src.path + ": cannot wrap the raster (" + gdal_last_error() + ")");
+      if (!copy)
+        throw InputError(src.path + ": cannot wrap the raster (" + gdal_last_error() + ")");
       GdalDataset wrapped(copy, src.path);
       auto gt = src.geotransform;
       gt[0] += shift;
@@ -67,7 +68,8 @@ void TileWarper::warp(tileformat::TileId id, std::vector<double>& heights) {
     const double centre_x = (b.min_x + b.max_x) / 2;
     const double centre_lon = centre_x / tileformat::kWebMercatorHalf * 180.0;
     const SpatialRef centred = SpatialRef::from_user_input(
-        "+proj=merc +a=6378137 +b=6378137 +lat_ts=0 +lon_0=" + std::string(CPLSPrintf("%.17g", centre_lon)) +
+        "+proj=merc +a=6378137 +b=6378137 +lat_ts=0 +lon_0=" +
+            std::string(CPLSPrintf("%.17g", centre_lon)) +
             " +x_0=0 +y_0=0 +k=1 +units=m +nadgrids=@null +over +wktext +no_defs",
         "tile CRS");
     gt[0] -= centre_lon / 180.0 * tileformat::kWebMercatorHalf;
@@ -79,18 +81,22 @@ void TileWarper::warp(tileformat::TileId id, std::vector<double>& heights) {
   if (GDALFillRaster(dest_.band(1), std::numeric_limits<double>::quiet_NaN(), 0) != CE_None)
     throw std::runtime_error("cannot initialise the tile buffer: " + gdal_last_error());
   std::vector<GDALDatasetH> srcs;
-  for (auto& s : sources_) srcs.push_back(s.get());
+  for (auto& s : sources_)
+    srcs.push_back(s.get());
   int usage_error = 0;
   CPLErrorReset();
   GDALDatasetH out = GDALWarp(nullptr, dest_.get(), static_cast<int>(srcs.size()), srcs.data(),
                               static_cast<GDALWarpAppOptions*>(options_), &usage_error);
   if (!out || CPLGetLastErrorType() == CE_Failure)
-    throw InputError(plan_.sources[0].path + (plan_.sources.size() > 1 ? " (or another input)" : "") +
+    throw InputError(plan_.sources[0].path +
+                     (plan_.sources.size() > 1 ? " (or another input)" : "") +
                      ": reading data for tile " + id.str() + " failed (" + gdal_last_error() +
                      "); the file may be truncated or corrupt");
   heights.resize(static_cast<size_t>(n) * n);
-  if (GDALRasterIO(dest_.band(1), GF_Read, 0, 0, n, n, heights.data(), n, n, GDT_Float64, 0, 0) != CE_None)
-    throw InputError("tile " + id.str() + ": reading the warped samples failed (" + gdal_last_error() + ")");
+  if (GDALRasterIO(dest_.band(1), GF_Read, 0, 0, n, n, heights.data(), n, n, GDT_Float64, 0, 0) !=
+      CE_None)
+    throw InputError("tile " + id.str() + ": reading the warped samples failed (" +
+                     gdal_last_error() + ")");
 }
 
 }  // namespace globe

@@ -41,31 +41,37 @@ void check_saturation(const KPatchLayout& l, const MBlock& b, const std::string&
     for (int cy = 0; cy < cells; ++cy)
       for (int cx = 0; cx < cells; ++cx) {
         const uint32_t v = e[l.cell_vertex(m, cx, cy)];
-        for (size_t child : {l.hedge_vertex(m, cy, cx), l.hedge_vertex(m, cy + 1, cx), l.vedge_vertex(m, cy, cx),
-                             l.vedge_vertex(m, cy, cx + 1)})
-          if (e[child] > v) return r.error(where + ": vertex error not saturated at level " + std::to_string(m));
+        for (size_t child : {l.hedge_vertex(m, cy, cx), l.hedge_vertex(m, cy + 1, cx),
+                             l.vedge_vertex(m, cy, cx), l.vedge_vertex(m, cy, cx + 1)})
+          if (e[child] > v)
+            return r.error(where + ": vertex error not saturated at level " + std::to_string(m));
       }
     for (int row = 0; row <= cells; ++row)
       for (int cx = 0; cx < cells; ++cx)
         for (int sy : {2 * row - 1, 2 * row})
           for (int sx : {2 * cx, 2 * cx + 1})
-            if (sy >= 0 && sy < 2 * cells && e[l.cell_vertex(m + 1, sx, sy)] > e[l.hedge_vertex(m, row, cx)])
-              return r.error(where + ": edge vertex error not saturated at level " + std::to_string(m));
+            if (sy >= 0 && sy < 2 * cells &&
+                e[l.cell_vertex(m + 1, sx, sy)] > e[l.hedge_vertex(m, row, cx)])
+              return r.error(where + ": edge vertex error not saturated at level " +
+                             std::to_string(m));
     for (int cy = 0; cy < cells; ++cy)
       for (int col = 0; col <= cells; ++col)
         for (int sx : {2 * col - 1, 2 * col})
           for (int sy : {2 * cy, 2 * cy + 1})
-            if (sx >= 0 && sx < 2 * cells && e[l.cell_vertex(m + 1, sx, sy)] > e[l.vedge_vertex(m, cy, col)])
-              return r.error(where + ": edge vertex error not saturated at level " + std::to_string(m));
+            if (sx >= 0 && sx < 2 * cells &&
+                e[l.cell_vertex(m + 1, sx, sy)] > e[l.vedge_vertex(m, cy, col)])
+              return r.error(where + ": edge vertex error not saturated at level " +
+                             std::to_string(m));
   }
 }
 
 }  // namespace
 
 int run_validate(const std::vector<std::string>& args) {
-  CliArgs cli("globe-tiler validate",
-              "globe-tiler validate PACKAGE\n\nDecodes every tile and checks schema and invariants.\n"
-              "Exit 0: valid; 5: warnings only; 1: errors.");
+  CliArgs cli(
+      "globe-tiler validate",
+      "globe-tiler validate PACKAGE\n\nDecodes every tile and checks schema and invariants.\n"
+      "Exit 0: valid; 5: warnings only; 1: errors.");
   auto positional = cli.parse(args);
   if (!positional) {
     std::fputs(cli.help().c_str(), stdout);
@@ -77,9 +83,10 @@ int run_validate(const std::vector<std::string>& args) {
   Report r;
   if (p.reader->application_id() != tileformat::kApplicationId)
     r.warning("PRAGMA application_id is not 0x4d504258 (tileformat §3.1)");
-  for (const char* key : {"name", "bounds", "center", "minzoom", "maxzoom", "type", "version", "description",
-                          "globe:format_version", "globe:command_line"})
-    if (!p.reader->meta(key)) r.warning(std::string("metadata key '") + key + "' is missing (tileformat §3.2)");
+  for (const char* key : {"name", "bounds", "center", "minzoom", "maxzoom", "type", "version",
+                          "description", "globe:format_version", "globe:command_line"})
+    if (!p.reader->meta(key))
+      r.warning(std::string("metadata key '") + key + "' is missing (tileformat §3.2)");
 
   std::map<TileId, bool> ids;
   p.reader->for_each_tile([&](TileId id, std::span<const uint8_t>) { ids[id] = true; });
@@ -120,8 +127,10 @@ int run_validate(const std::vector<std::string>& args) {
       if (!nb) continue;
       for (int i = 0; i <= n; ++i) {
         const int ax = dx ? n : i, ay = dx ? i : n, bx = dx ? 0 : i, by = dx ? i : 0;
-        if (b.q[size_t(ay) * b.size + ax] != nb->q[size_t(by) * b.size + bx] || b.is_valid(ax, ay) != nb->is_valid(bx, by)) {
-          r.error(where + ": edge sample differs from neighbour " + TileId{id.z, id.x + dx, id.y + dy}.str());
+        if (b.q[size_t(ay) * b.size + ax] != nb->q[size_t(by) * b.size + bx] ||
+            b.is_valid(ax, ay) != nb->is_valid(bx, by)) {
+          r.error(where + ": edge sample differs from neighbour " +
+                  TileId{id.z, id.x + dx, id.y + dy}.str());
           break;
         }
       }
@@ -130,7 +139,8 @@ int run_validate(const std::vector<std::string>& args) {
           const size_t va = dx ? l.vedge_vertex(m, c, 1 << m) : l.hedge_vertex(m, 1 << m, c);
           const size_t vb = dx ? l.vedge_vertex(m, c, 0) : l.hedge_vertex(m, 0, c);
           if (b.vertex_error[va] != nb->vertex_error[vb]) {
-            r.error(where + ": shared edge vertex error differs from neighbour " + TileId{id.z, id.x + dx, id.y + dy}.str());
+            r.error(where + ": shared edge vertex error differs from neighbour " +
+                    TileId{id.z, id.x + dx, id.y + dy}.str());
             m = l.depth();
             break;
           }
@@ -145,13 +155,16 @@ int run_validate(const std::vector<std::string>& args) {
       for (int y = 0; y <= n && ok; y += 2)
         for (int x = 0; x <= n && ok; x += 2)
           if (child->is_valid(x, y) &&
-              (!b.is_valid(ox + x / 2, oy + y / 2) || b.q[size_t(oy + y / 2) * b.size + ox + x / 2] != child->q[size_t(y) * b.size + x]))
+              (!b.is_valid(ox + x / 2, oy + y / 2) ||
+               b.q[size_t(oy + y / 2) * b.size + ox + x / 2] != child->q[size_t(y) * b.size + x]))
             ok = false;
-      if (!ok) r.error(where + ": a sample differs from child " + c.str() + " at the same position");
+      if (!ok)
+        r.error(where + ": a sample differs from child " + c.str() + " at the same position");
     }
   }
   std::printf("%s: %zu tiles checked, %llu errors, %llu warnings\n", path.c_str(), ids.size(),
-              static_cast<unsigned long long>(r.errors), static_cast<unsigned long long>(r.warnings));
+              static_cast<unsigned long long>(r.errors),
+              static_cast<unsigned long long>(r.warnings));
   if (r.errors) return kExitDataError;
   return r.warnings ? kExitWarnings : kExitOk;
 }

@@ -19,8 +19,9 @@ Header parse(std::span<const uint8_t> blob, detail::ByteReader& r) {
     if (magic[i] != kMagic[i]) r.fail("bad magic (not a GlobeEngine tile blob)");
   Header h{r.u16(), r.u16(), r.u32()};
   if (h.version == 0 || h.version > kFormatVersion)
-    r.fail("format version " + std::to_string(h.version) + " is not supported (this reader knows 1.." +
-           std::to_string(kFormatVersion) + "; upgrade the reader)");
+    r.fail("format version " + std::to_string(h.version) +
+           " is not supported (this reader knows 1.." + std::to_string(kFormatVersion) +
+           "; upgrade the reader)");
   if (h.kind < 1 || h.kind > 3) r.fail("unknown blob kind " + std::to_string(h.kind));
   if (blob.size() - kBlobHeaderSize < h.body_size)
     r.fail("truncated: header declares " + std::to_string(h.body_size) + " body bytes, blob has " +
@@ -33,16 +34,20 @@ Header parse(std::span<const uint8_t> blob, detail::ByteReader& r) {
 
 std::string blob_kind_name(BlobKind kind) {
   switch (kind) {
-    case BlobKind::kMBlock: return "mblock";
-    case BlobKind::kImage: return "image";
-    case BlobKind::kLineClusters: return "lineclusters";
+    case BlobKind::kMBlock:
+      return "mblock";
+    case BlobKind::kImage:
+      return "image";
+    case BlobKind::kLineClusters:
+      return "lineclusters";
   }
   return "unknown(" + std::to_string(static_cast<int>(kind)) + ")";
 }
 
 std::vector<uint8_t> wrap_blob(BlobKind kind, std::span<const uint8_t> body) {
   detail::ByteWriter w;
-  for (uint8_t c : kMagic) w.u8(c);
+  for (uint8_t c : kMagic)
+    w.u8(c);
   w.u16(kFormatVersion);
   w.u16(static_cast<uint16_t>(kind));
   w.u32(static_cast<uint32_t>(body.size()));

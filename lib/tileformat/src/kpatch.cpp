@@ -53,8 +53,10 @@ KPatchLayout::KPatchLayout(int steps, int lattice, int diagonal)
           for (int t = 0; t < 2; ++t) {
             KPatchNode& node = nodes_[even_node(m, cx, cy, t)];
             node.depth = d;
-            if (tl_br) node = {t == 0 ? tr : bl, tl, br, d, {-1, -1}, -1};
-            else node = {t == 0 ? tl : br, tr, bl, d, {-1, -1}, -1};
+            if (tl_br)
+              node = {t == 0 ? tr : bl, tl, br, d, {-1, -1}, -1};
+            else
+              node = {t == 0 ? tl : br, tr, bl, d, {-1, -1}, -1};
             if (d == depth_) continue;
             node.vertex = static_cast<int32_t>(cell_vertex(m, cx, cy));
             // Children: the two odd nodes whose edge touches the apex.

@@ -22,7 +22,9 @@ constexpr int kMaxSize = 4097;
 uint32_t zigzag(int32_t v) {
   return (static_cast<uint32_t>(v) << 1) ^ static_cast<uint32_t>(v >> 31);
 }
-int32_t unzigzag(uint32_t v) { return static_cast<int32_t>(v >> 1) ^ -static_cast<int32_t>(v & 1); }
+int32_t unzigzag(uint32_t v) {
+  return static_cast<int32_t>(v >> 1) ^ -static_cast<int32_t>(v & 1);
+}
 
 // Planar (Lorenzo) prediction from the west, north and north-west neighbours.
 int64_t predict(const int32_t* q, int size, int x, int y) {
@@ -78,7 +80,8 @@ std::vector<uint8_t> encode_mblock(const MBlock& b, int zstd_level) {
   const int planes = std::max(1, static_cast<int>((std::bit_width(max_z) + 7) / 8));
   std::vector<uint8_t> plane_bytes(n * planes);
   for (int p = 0; p < planes; ++p)
-    for (size_t i = 0; i < n; ++i) plane_bytes[p * n + i] = static_cast<uint8_t>(residual[i] >> (8 * p));
+    for (size_t i = 0; i < n; ++i)
+      plane_bytes[p * n + i] = static_cast<uint8_t>(residual[i] >> (8 * p));
 
   const MBlockStats stats = mblock_stats(b);
   detail::ByteWriter w;
@@ -103,7 +106,8 @@ std::vector<uint8_t> encode_mblock(const MBlock& b, int zstd_level) {
   w.u8(static_cast<uint8_t>(depth));
   std::vector<uint8_t> err_bytes;
   detail::ByteWriter ew;
-  for (uint32_t e : b.vertex_error) ew.u32(e);
+  for (uint32_t e : b.vertex_error)
+    ew.u32(e);
   auto errors = detail::zstd_compress(ew.take(), zstd_level);
   w.u32(static_cast<uint32_t>(errors.size()));
   w.bytes(errors);
@@ -137,16 +141,19 @@ MBlock decode_mblock(std::span<const uint8_t> blob) {
     for (int x = 0; x < b.size; ++x) {
       const size_t i = static_cast<size_t>(y) * b.size + x;
       uint32_t z = 0;
-      for (int p = 0; p < planes; ++p) z |= uint32_t{plane_bytes[p * n + i]} << (8 * p);
+      for (int p = 0; p < planes; ++p)
+        z |= uint32_t{plane_bytes[p * n + i]} << (8 * p);
       const int64_t v = predict(b.q.data(), b.size, x, y) + unzigzag(z);
-      if (v > kMaxQuantum || v < -kMaxQuantum) r.fail("height out of range at sample " + std::to_string(i));
+      if (v > kMaxQuantum || v < -kMaxQuantum)
+        r.fail("height out of range at sample " + std::to_string(i));
       b.q[i] = static_cast<int32_t>(v);
     }
   if (flags & kFlagMask) {
     r.set_section("5.3");
     auto bits = detail::zstd_decompress(r.bytes(r.u32()), (n + 7) / 8, "MBlock mask", "5.3");
     b.valid.resize(n);
-    for (size_t i = 0; i < n; ++i) b.valid[i] = (bits[i / 8] >> (i % 8)) & 1;
+    for (size_t i = 0; i < n; ++i)
+      b.valid[i] = (bits[i / 8] >> (i % 8)) & 1;
   }
   r.set_section("5.4");
   const int depth = r.u8();
@@ -156,7 +163,8 @@ MBlock decode_mblock(std::span<const uint8_t> blob) {
   auto err_bytes = detail::zstd_decompress(r.bytes(r.u32()), count * 4, "MBlock error tree", "5.4");
   detail::ByteReader er(err_bytes, "MBlock error tree", "5.4");
   b.vertex_error.resize(count);
-  for (auto& e : b.vertex_error) e = er.u32();
+  for (auto& e : b.vertex_error)
+    e = er.u32();
   r.expect_end();
   const MBlockStats s = mblock_stats(b);
   if (s.qmin != qmin || s.qmax != qmax) r.fail("stored min/max do not match the heights");

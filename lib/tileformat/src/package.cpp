@@ -17,7 +17,8 @@ constexpr uint64_t kBatchTiles = 512;
 
 int64_t fnv1a(std::span<const uint8_t> bytes) {
   uint64_t h = 1469598103934665603ull;
-  for (uint8_t b : bytes) h = (h ^ b) * 1099511628211ull;
+  for (uint8_t b : bytes)
+    h = (h ^ b) * 1099511628211ull;
   return static_cast<int64_t>(h);
 }
 
@@ -50,8 +51,10 @@ PackageWriter::PackageWriter(std::string final_path, bool overwrite)
       "CREATE VIEW tiles AS SELECT map.zoom_level AS zoom_level, map.tile_column AS tile_column, "
       "map.tile_row AS tile_row, blobs.tile_data AS tile_data FROM map JOIN blobs ON "
       "map.blob_id = blobs.blob_id;");
-  find_blob_ = std::make_unique<SqliteStatement>(*db_, "SELECT blob_id, tile_data FROM blobs WHERE hash = ?");
-  insert_blob_ = std::make_unique<SqliteStatement>(*db_, "INSERT INTO blobs (hash, tile_data) VALUES (?, ?)");
+  find_blob_ = std::make_unique<SqliteStatement>(
+      *db_, "SELECT blob_id, tile_data FROM blobs WHERE hash = ?");
+  insert_blob_ =
+      std::make_unique<SqliteStatement>(*db_, "INSERT INTO blobs (hash, tile_data) VALUES (?, ?)");
   insert_map_ = std::make_unique<SqliteStatement>(
       *db_, "INSERT INTO map (zoom_level, tile_column, tile_row, blob_id) VALUES (?, ?, ?, ?)");
   db_->exec("BEGIN");
@@ -126,7 +129,9 @@ void PackageWriter::commit() {
   fsync_path(temp_path_);
   std::error_code ec;
   std::filesystem::rename(temp_path_, final_path_, ec);
-  if (ec) throw PackageError(final_path_ + ": cannot rename the finished package into place: " + ec.message());
+  if (ec)
+    throw PackageError(final_path_ +
+                       ": cannot rename the finished package into place: " + ec.message());
   const auto dir = std::filesystem::absolute(final_path_).parent_path();
   fsync_path(dir.string());
   committed_ = true;
@@ -142,12 +147,14 @@ PackageReader::PackageReader(const std::string& path) {
     db_->exec("PRAGMA mmap_size = 2147418112");
     application_id_ = db_->query_int("PRAGMA application_id").value_or(0);
     SqliteStatement st(*db_, "SELECT name, value FROM metadata");
-    while (st.step()) metadata_[st.column_text(0)] = st.column_text(1);
+    while (st.step())
+      metadata_[st.column_text(0)] = st.column_text(1);
     get_tile_ = std::make_unique<SqliteStatement>(
-        *db_, "SELECT tile_data FROM tiles WHERE zoom_level = ? AND tile_column = ? AND tile_row = ?");
+        *db_,
+        "SELECT tile_data FROM tiles WHERE zoom_level = ? AND tile_column = ? AND tile_row = ?");
   } catch (const PackageError& e) {
-    throw PackageError(path + ": not a tile package (MBTiles tables missing or unreadable): " +
-                       e.what());
+    throw PackageError(path +
+                       ": not a tile package (MBTiles tables missing or unreadable): " + e.what());
   }
 }
 
@@ -161,7 +168,8 @@ std::optional<std::vector<uint8_t>> PackageReader::tile(TileId id) {
   if (id.z < 0 || id.z > kMaxZoom || id.x >= 2 * TileId::tiles_per_axis(id.z) ||
       id.y >= TileId::tiles_per_axis(id.z))
     return std::nullopt;
-  get_tile_->bind(1, id.z).bind(2, id.x).bind(3, TileId::flip_row(id.y, TileId::tiles_per_axis(id.z)));
+  get_tile_->bind(1, id.z).bind(2, id.x).bind(3,
+                                              TileId::flip_row(id.y, TileId::tiles_per_axis(id.z)));
   std::optional<std::vector<uint8_t>> out;
   if (get_tile_->step()) {
     auto b = get_tile_->column_blob(0);
@@ -183,9 +191,11 @@ void PackageReader::for_each_tile(const std::function<void(TileId, std::span<con
         static_cast<uint64_t>(col) >= 2 * TileId::tiles_per_axis(static_cast<int>(z)) ||
         static_cast<uint64_t>(row) >= TileId::tiles_per_axis(static_cast<int>(z)))
       throw FormatError("3", db_->path() + ": tile index out of range: zoom " + std::to_string(z) +
-                                 ", column " + std::to_string(col) + ", row " + std::to_string(row));
-    TileId id{static_cast<int>(z), static_cast<uint32_t>(col),
-              TileId::flip_row(static_cast<uint32_t>(row), TileId::tiles_per_axis(static_cast<int>(z)))};
+                                 ", column " + std::to_string(col) + ", row " +
+                                 std::to_string(row));
+    TileId id{
+        static_cast<int>(z), static_cast<uint32_t>(col),
+        TileId::flip_row(static_cast<uint32_t>(row), TileId::tiles_per_axis(static_cast<int>(z)))};
     fn(id, st.column_blob(3));
   }
 }

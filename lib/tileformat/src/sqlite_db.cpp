@@ -8,8 +8,8 @@
 namespace tileformat {
 
 SqliteDb::SqliteDb(const std::string& path, Mode mode) : path_(path) {
-  const int flags = mode == Mode::kReadOnly ? SQLITE_OPEN_READONLY
-                                            : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
+  const int flags =
+      mode == Mode::kReadOnly ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
   int rc = sqlite3_open_v2(path.c_str(), &db_, flags | SQLITE_OPEN_NOMUTEX, nullptr);
   if (rc != SQLITE_OK) {
     std::string msg = db_ ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
@@ -31,7 +31,9 @@ void SqliteDb::close() {
   db_ = nullptr;
 }
 
-int64_t SqliteDb::last_insert_rowid() const { return sqlite3_last_insert_rowid(db_); }
+int64_t SqliteDb::last_insert_rowid() const {
+  return sqlite3_last_insert_rowid(db_);
+}
 
 void SqliteDb::fail(const std::string& what, const std::string& sql) const {
   std::string msg = path_ + ": " + what + " failed: " + (db_ ? sqlite3_errmsg(db_) : "closed");
@@ -59,7 +61,9 @@ SqliteStatement::SqliteStatement(SqliteDb& db, const std::string& sql) : db_(db)
     db.fail("prepare", sql);
 }
 
-SqliteStatement::~SqliteStatement() { sqlite3_finalize(stmt_); }
+SqliteStatement::~SqliteStatement() {
+  sqlite3_finalize(stmt_);
+}
 
 SqliteStatement& SqliteStatement::bind(int index, int64_t value) {
   if (sqlite3_bind_int64(stmt_, index, value) != SQLITE_OK) db_.fail("bind", sql_);
@@ -90,7 +94,9 @@ void SqliteStatement::reset() {
   sqlite3_clear_bindings(stmt_);
 }
 
-int64_t SqliteStatement::column_int(int col) const { return sqlite3_column_int64(stmt_, col); }
+int64_t SqliteStatement::column_int(int col) const {
+  return sqlite3_column_int64(stmt_, col);
+}
 std::string SqliteStatement::column_text(int col) const {
   auto p = sqlite3_column_text(stmt_, col);
   return p ? std::string(reinterpret_cast<const char*>(p), sqlite3_column_bytes(stmt_, col)) : "";

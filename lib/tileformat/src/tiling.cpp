@@ -18,11 +18,13 @@ std::string fmt(double v) {
 }  // namespace
 
 Tiling Tiling::webmercator() {
-  return {"webmercator", "EPSG:3857", -kWebMercatorHalf, kWebMercatorHalf, 2 * kWebMercatorHalf,
-          1, 1};
+  return {
+      "webmercator", "EPSG:3857", -kWebMercatorHalf, kWebMercatorHalf, 2 * kWebMercatorHalf, 1, 1};
 }
 
-Tiling Tiling::geodetic() { return {"geodetic", "EPSG:4326", -180.0, 90.0, 180.0, 2, 1}; }
+Tiling Tiling::geodetic() {
+  return {"geodetic", "EPSG:4326", -180.0, 90.0, 180.0, 2, 1};
+}
 
 Tiling Tiling::local(std::string crs_wkt, double x, double y, double size) {
   return {"local", std::move(crs_wkt), x, y, size, 1, 1};
@@ -37,8 +39,10 @@ Bounds Tiling::tile_bounds(TileId id) const {
 TileRange Tiling::tiles_covering(const Bounds& b, int z) const {
   const double s = tile_size(z);
   const double nx = static_cast<double>(tiles_x(z)), ny = static_cast<double>(tiles_y(z));
-  const double fx0 = std::floor((b.min_x - origin_x) / s), fx1 = std::ceil((b.max_x - origin_x) / s) - 1;
-  const double fy0 = std::floor((origin_y - b.max_y) / s), fy1 = std::ceil((origin_y - b.min_y) / s) - 1;
+  const double fx0 = std::floor((b.min_x - origin_x) / s),
+               fx1 = std::ceil((b.max_x - origin_x) / s) - 1;
+  const double fy0 = std::floor((origin_y - b.max_y) / s),
+               fy1 = std::ceil((origin_y - b.min_y) / s) - 1;
   TileRange r;
   if (!(fx1 >= 0 && fy1 >= 0 && fx0 < nx && fy0 < ny) || fx0 > fx1 || fy0 > fy1) return r;
   r.min_x = static_cast<uint32_t>(std::max(0.0, fx0));
@@ -59,7 +63,8 @@ void Tiling::to_metadata(std::map<std::string, std::string>& meta) const {
 Tiling Tiling::from_metadata(const std::map<std::string, std::string>& meta) {
   auto get = [&](const char* key) {
     auto it = meta.find(key);
-    if (it == meta.end()) throw FormatError("3.2", std::string("metadata key ") + key + " is missing");
+    if (it == meta.end())
+      throw FormatError("3.2", std::string("metadata key ") + key + " is missing");
     return it->second;
   };
   Tiling t;

@@ -11,11 +11,12 @@
 namespace tileformat {
 
 struct MBlock {
-  int size = 0;              // samples per side: 2^k + 1
-  int lattice = 16;          // KPatch lattice L (§6)
-  double step = 1.0;         // metres per quantum
-  std::vector<int32_t> q;    // size*size quantized heights, row-major, north row first
-  std::vector<uint8_t> valid;  // empty = all valid; else size*size, 1 = data, 0 = hole (filled in q)
+  int size = 0;            // samples per side: 2^k + 1
+  int lattice = 16;        // KPatch lattice L (§6)
+  double step = 1.0;       // metres per quantum
+  std::vector<int32_t> q;  // size*size quantized heights, row-major, north row first
+  std::vector<uint8_t>
+      valid;  // empty = all valid; else size*size, 1 = data, 0 = hole (filled in q)
   std::vector<uint32_t> vertex_error;  // kpatch_vertex_count(D) errors in quanta (rounded up)
 
   int steps() const { return size - 1; }

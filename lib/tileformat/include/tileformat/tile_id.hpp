@@ -23,7 +23,7 @@ struct TileId {
   static uint64_t tiles_per_axis(int z) { return uint64_t{1} << z; }
 
   TileId parent() const { return {z - 1, x >> 1, y >> 1}; }  // precondition: z > 0
-  std::array<TileId, 4> children() const {  // order: (0,0) (1,0) (0,1) (1,1)
+  std::array<TileId, 4> children() const {                   // order: (0,0) (1,0) (0,1) (1,1)
     return {TileId{z + 1, 2 * x, 2 * y}, TileId{z + 1, 2 * x + 1, 2 * y},
             TileId{z + 1, 2 * x, 2 * y + 1}, TileId{z + 1, 2 * x + 1, 2 * y + 1}};
   }

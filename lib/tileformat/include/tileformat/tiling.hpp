@@ -24,17 +24,15 @@ struct Bounds {
 struct TileRange {  // inclusive XYZ ranges; empty if min > max
   uint32_t min_x = 1, max_x = 0, min_y = 1, max_y = 0;
   bool empty() const { return min_x > max_x || min_y > max_y; }
-  uint64_t count() const {
-    return empty() ? 0 : uint64_t{max_x - min_x + 1} * (max_y - min_y + 1);
-  }
+  uint64_t count() const { return empty() ? 0 : uint64_t{max_x - min_x + 1} * (max_y - min_y + 1); }
 };
 
 struct Tiling {
-  std::string scheme;     // "webmercator", "geodetic" or "local"
-  std::string crs;        // CRS as WKT2 (or an authority code such as EPSG:3857)
-  double origin_x = 0;    // top-left corner of root (0, 0) in CRS units
+  std::string scheme;   // "webmercator", "geodetic" or "local"
+  std::string crs;      // CRS as WKT2 (or an authority code such as EPSG:3857)
+  double origin_x = 0;  // top-left corner of root (0, 0) in CRS units
   double origin_y = 0;
-  double root_size = 0;   // edge length of one root tile in CRS units
+  double root_size = 0;  // edge length of one root tile in CRS units
   int roots_x = 1, roots_y = 1;
 
   static Tiling webmercator();

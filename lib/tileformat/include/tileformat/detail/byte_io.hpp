@@ -25,14 +25,16 @@ class ByteWriter {
   size_t size() const { return out_.size(); }
   // Overwrites a u32 written earlier at `offset` (for sizes known later).
   void patch_u32(size_t offset, uint32_t v) {
-    for (int i = 0; i < 4; ++i) out_[offset + i] = static_cast<uint8_t>(v >> (8 * i));
+    for (int i = 0; i < 4; ++i)
+      out_[offset + i] = static_cast<uint8_t>(v >> (8 * i));
   }
   std::vector<uint8_t> take() { return std::move(out_); }
 
  private:
   template <typename T>
   void put(T v) {
-    for (size_t i = 0; i < sizeof(T); ++i) out_.push_back(static_cast<uint8_t>(v >> (8 * i)));
+    for (size_t i = 0; i < sizeof(T); ++i)
+      out_.push_back(static_cast<uint8_t>(v >> (8 * i)));
   }
   std::vector<uint8_t> out_;
 };
@@ -68,14 +70,15 @@ class ByteReader {
  private:
   void need(size_t n) const {
     if (remaining() < n)
-      fail("truncated at byte " + std::to_string(pos_) + " (need " + std::to_string(n) +
-           ", have " + std::to_string(remaining()) + ")");
+      fail("truncated at byte " + std::to_string(pos_) + " (need " + std::to_string(n) + ", have " +
+           std::to_string(remaining()) + ")");
   }
   template <typename T>
   T get() {
     need(sizeof(T));
     T v = 0;
-    for (size_t i = 0; i < sizeof(T); ++i) v |= static_cast<T>(T{in_[pos_ + i]} << (8 * i));
+    for (size_t i = 0; i < sizeof(T); ++i)
+      v |= static_cast<T>(T{in_[pos_ + i]} << (8 * i));
     pos_ += sizeof(T);
     return v;
   }
