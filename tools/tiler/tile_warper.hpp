@@ -1,10 +1,13 @@
 // Warps the source mosaic onto one tile's sample grid. One TileWarper per
 // worker thread: GDAL handles are not shared between threads. Each source is
 // opened through a VRT that carries its resolved CRS, nodata value and
-// longitude shift (+-360 copies for data past the antimeridian), and GDAL
+// longitude shift (+-360 copies for data past the antimeridian). GDAL's warp
+// operation (the engine behind gdalwarp) is created once per source and
+// reused for every tile: only the destination geotransform changes, and GDAL
 // reads only the source window the tile needs.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -28,12 +31,16 @@ class TileWarper {
   // window computation wraps. Throws InputError on read failures.
   void warp(tileformat::TileId id, std::vector<double>& heights);
 
+  struct Operation;  // one source's transformer + warp operation
+
  private:
+  std::vector<std::unique_ptr<Operation>> make_operations();
   const DemPlan& plan_;
+  std::string resampling_;
   std::vector<GdalDataset> opened_;   // the inputs; must outlive the wrappers below
   std::vector<GdalDataset> sources_;  // VRT wrappers, one per source and shift
   GdalDataset dest_;
-  void* options_ = nullptr;  // GDALWarpAppOptions*
+  std::vector<std::unique_ptr<Operation>> operations_;  // for the tiling CRS
 };
 
 }  // namespace globe
