@@ -15,7 +15,8 @@
 namespace {
 
 double lattice(int64_t x, int64_t y) {
-  uint64_t h = static_cast<uint64_t>(x) * 0x9E3779B97F4A7C15ull ^ static_cast<uint64_t>(y) * 0xC2B2AE3D27D4EB4Full;
+  uint64_t h = static_cast<uint64_t>(x) * 0x9E3779B97F4A7C15ull ^
+               static_cast<uint64_t>(y) * 0xC2B2AE3D27D4EB4Full;
   h ^= h >> 31;
   h *= 0xBF58476D1CE4E5B9ull;
   h ^= h >> 29;
@@ -26,7 +27,8 @@ double value_noise(double x, double y) {
   const int64_t x0 = static_cast<int64_t>(std::floor(x)), y0 = static_cast<int64_t>(std::floor(y));
   const double fx = x - x0, fy = y - y0;
   const double sx = fx * fx * (3 - 2 * fx), sy = fy * fy * (3 - 2 * fy);
-  const double a = lattice(x0, y0), b = lattice(x0 + 1, y0), c = lattice(x0, y0 + 1), d = lattice(x0 + 1, y0 + 1);
+  const double a = lattice(x0, y0), b = lattice(x0 + 1, y0), c = lattice(x0, y0 + 1),
+               d = lattice(x0 + 1, y0 + 1);
   return (a + (b - a) * sx) + ((c + (d - c) * sx) - (a + (b - a) * sx)) * sy;
 }
 
@@ -54,7 +56,8 @@ int main(int argc, char** argv) {
   opts = CSLSetNameValue(opts, "COMPRESS", "DEFLATE");
   opts = CSLSetNameValue(opts, "ZLEVEL", "1");
   opts = CSLSetNameValue(opts, "BIGTIFF", "IF_SAFER");
-  GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), argv[2], size, size, 1, GDT_Int16, opts);
+  GDALDatasetH ds =
+      GDALCreate(GDALGetDriverByName("GTiff"), argv[2], size, size, 1, GDT_Int16, opts);
   CSLDestroy(opts);
   if (!ds) {
     std::fprintf(stderr, "cannot create %s\n", argv[2]);
@@ -71,8 +74,10 @@ int main(int argc, char** argv) {
   for (int y0 = 0; y0 < size; y0 += strip) {
     const int rows = std::min(strip, size - y0);
     for (int r = 0; r < rows; ++r)
-      for (int x = 0; x < size; ++x) buf[static_cast<size_t>(r) * size + x] = static_cast<int16_t>(terrain(x, y0 + r));
-    if (GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Write, 0, y0, size, rows, buf.data(), size, rows, GDT_Int16, 0, 0) != CE_None) {
+      for (int x = 0; x < size; ++x)
+        buf[static_cast<size_t>(r) * size + x] = static_cast<int16_t>(terrain(x, y0 + r));
+    if (GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Write, 0, y0, size, rows, buf.data(), size, rows,
+                     GDT_Int16, 0, 0) != CE_None) {
       std::fprintf(stderr, "write failed\n");
       return 1;
     }

@@ -17,34 +17,42 @@ double lattice_deviation(const KPatchLayout& layout, size_t index, const std::ve
   // Lattice step vectors along the two legs (integers for every depth <= D).
   const Point wu{(n.b.x - n.apex.x) / L, (n.b.y - n.apex.y) / L};
   const Point wv{(n.c.x - n.apex.x) / L, (n.c.y - n.apex.y) / L};
-  const double ww = static_cast<double>(wu.x * wu.x + wu.y * wu.y);
-  const int x0 = std::min({n.apex.x, n.b.x, n.c.x}), x1 = std::max({n.apex.x, n.b.x, n.c.x});
-  const int y0 = std::min({n.apex.y, n.b.y, n.c.y}), y1 = std::max({n.apex.y, n.b.y, n.c.y});
-  auto h = [&](int i, int j) {
-    return static_cast<double>(q[static_cast<size_t>(n.apex.y + i * wu.y + j * wv.y) * size +
-                                 n.apex.x + i * wu.x + j * wv.x]);
+  // The samples of one half-open lattice cell {apex + fa*wu + fb*wv, 0 <= fa, fb < 1},
+  // with their lattice coordinates; the same pattern repeats in every cell.
+  struct Sample {
+    ptrdiff_t offset;
+    double fa, fb;
   };
-  double worst = 0;
-  for (int y = y0; y <= y1; ++y) {
-    for (int x = x0; x <= x1; ++x) {
-      const size_t idx = static_cast<size_t>(y) * size + x;
-      if (!valid.empty() && !valid[idx]) continue;
-      const int dx = x - n.apex.x, dy = y - n.apex.y;
-      const double a = (dx * wu.x + dy * wu.y) / ww, b = (dx * wv.x + dy * wv.y) / ww;
-      if (a < 0 || b < 0 || a + b > L) continue;
-      const int i = std::min(static_cast<int>(a), L), j = std::min(static_cast<int>(b), L);
-      const double fa = a - i, fb = b - j;
-      double z;
-      if (i + j >= L)
-        z = h(i, j);  // on the hypotenuse: a lattice vertex
-      else if (fa + fb <= 1)
-        z = h(i, j) + fa * (h(i + 1, j) - h(i, j)) + fb * (h(i, j + 1) - h(i, j));
-      else
-        z = h(i + 1, j + 1) + (1 - fa) * (h(i, j + 1) - h(i + 1, j + 1)) +
-            (1 - fb) * (h(i + 1, j) - h(i + 1, j + 1));
-      worst = std::max(worst, std::abs(z - q[idx]));
+  std::vector<Sample> pattern;
+  const double ww = static_cast<double>(wu.x * wu.x + wu.y * wu.y);
+  const int reach = std::abs(wu.x) + std::abs(wu.y);
+  for (int dy = -reach; dy <= reach; ++dy)
+    for (int dx = -reach; dx <= reach; ++dx) {
+      const double fa = (dx * wu.x + dy * wu.y) / ww, fb = (dx * wv.x + dy * wv.y) / ww;
+      if (fa >= 0 && fa < 1 && fb >= 0 && fb < 1 && (fa > 0 || fb > 0))  // (0, 0) is a vertex
+        pattern.push_back({static_cast<ptrdiff_t>(dy) * size + dx, fa, fb});
     }
-  }
+  const ptrdiff_t du = static_cast<ptrdiff_t>(wu.y) * size + wu.x,
+                  dv = static_cast<ptrdiff_t>(wv.y) * size + wv.x;
+  const ptrdiff_t apex = static_cast<ptrdiff_t>(n.apex.y) * size + n.apex.x;
+  const int32_t* h = q.data();
+  const uint8_t* ok = valid.empty() ? nullptr : valid.data();
+  double worst = 0;
+  for (int i = 0; i < L; ++i)
+    for (int j = 0; i + j < L; ++j) {
+      const ptrdiff_t base = apex + i * du + j * dv;
+      const double h00 = h[base], h10 = h[base + du], h01 = h[base + dv];
+      const bool last_row = i + j == L - 1;  // only the lower half lies inside the node
+      const double h11 = last_row ? 0.0 : h[base + du + dv];
+      for (const Sample& s : pattern) {
+        const ptrdiff_t idx = base + s.offset;
+        const bool upper = s.fa + s.fb > 1;
+        if ((upper && last_row) || (ok && !ok[idx])) continue;
+        const double z = upper ? h11 + (1 - s.fa) * (h01 - h11) + (1 - s.fb) * (h10 - h11)
+                               : h00 + s.fa * (h10 - h00) + s.fb * (h01 - h00);
+        worst = std::max(worst, std::abs(z - h[idx]));
+      }
+    }
   return worst;
 }
 

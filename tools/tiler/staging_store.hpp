@@ -13,7 +13,9 @@
 
 namespace globe {
 
-enum class Stage : int { kRaw = 1, kFinal = 2, kNodeErrors = 3 };
+// kRaw: a block's own samples; kEdges: just its first row and column (what
+// its west/north neighbours take from it); kFinal / kNodeErrors: after pass 2.
+enum class Stage : int { kRaw = 1, kFinal = 2, kNodeErrors = 3, kEdges = 4 };
 
 class StagingStore {
  public:

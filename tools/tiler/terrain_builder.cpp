@@ -36,6 +36,32 @@ struct Block {
   std::vector<uint8_t> valid;  // always size*size here
 };
 
+// First row and first column of a block (x or y = 0 .. steps - 1): heights
+// then validity, packed as 5 bytes per sample.
+std::vector<uint8_t> pack_edges(const Block& b, int size) {
+  const int n = size - 1;
+  std::vector<uint8_t> out;
+  out.reserve(size_t(n) * 10);
+  auto put = [&](size_t i) {
+    for (int k = 0; k < 4; ++k)
+      out.push_back(static_cast<uint8_t>(static_cast<uint32_t>(b.q[i]) >> (8 * k)));
+    out.push_back(b.valid[i]);
+  };
+  for (int x = 0; x < n; ++x)
+    put(size_t(x));
+  for (int y = 0; y < n; ++y)
+    put(size_t(y) * size);
+  return out;
+}
+
+// Sample k of packed edges: k < steps is row 0 at x = k, else column 0 at y = k - steps.
+std::pair<int32_t, uint8_t> edge_sample(const std::vector<uint8_t>& e, size_t k) {
+  const uint8_t* p = e.data() + 5 * k;
+  const uint32_t v =
+      uint32_t{p[0]} | uint32_t{p[1]} << 8 | uint32_t{p[2]} << 16 | uint32_t{p[3]} << 24;
+  return {static_cast<int32_t>(v), p[4]};
+}
+
 std::string json_escape(const std::string& s) {
   std::string out;
   for (char c : s) {
@@ -71,6 +97,7 @@ class Builder {
         pass_raw(stage, z);
         pass_final(stage, z);
         stage.drop(Stage::kRaw, z);
+        stage.drop(Stage::kEdges, z);
         stage.drop(Stage::kFinal, z + 1);
         stage.drop(Stage::kNodeErrors, z + 1);
         pass_encode(stage, *writer, z);
@@ -103,7 +130,9 @@ class Builder {
   }
 
  private:
-  std::vector<uint8_t> encode_stage(const Block& b) const {
+  // Scratch blocks: fast byte planes. Final blocks: the best height coding,
+  // encoded once here (pass 3 only swaps in the error tree).
+  std::vector<uint8_t> encode_stage(const Block& b, bool final = false) const {
     MBlock m;
     m.size = size_;
     m.lattice = s_.lattice;
@@ -112,7 +141,8 @@ class Builder {
     if (std::any_of(b.valid.begin(), b.valid.end(), [](uint8_t v) { return v == 0; }))
       m.valid = b.valid;
     m.vertex_error.assign(layouts_[0].vertex_count(), 0);
-    return tileformat::encode_mblock(m, kStageZstdLevel);
+    return final ? tileformat::encode_mblock(m, kFinalZstdLevel, true)
+                 : tileformat::encode_mblock(m, kStageZstdLevel, false);
   }
   Block decode_stage(const std::vector<uint8_t>& bytes) const {
     MBlock m = tileformat::decode_mblock(bytes);
@@ -163,7 +193,7 @@ class Builder {
     }
     std::map<TileId, std::vector<uint8_t>> cache;
     progress_.begin("z" + std::to_string(z) + (finest ? " warp" : " pyramid"), tiles.size());
-    parallel_batches<std::vector<uint8_t>>(
+    parallel_batches<RawOut>(
         tiles.size(), threads_, batch_size(),
         [&](size_t begin, size_t end) {
           cache.clear();
@@ -175,14 +205,21 @@ class Builder {
         [&](size_t i, int worker) {
           return finest ? warp_tile(tiles[i], worker) : decimate(tiles[i], cache);
         },
-        [&](size_t i, std::vector<uint8_t>&& blob) {
-          if (!blob.empty()) stage.put(Stage::kRaw, tiles[i], blob);
+        [&](size_t i, RawOut&& out) {
+          if (!out.block.empty()) {
+            stage.put(Stage::kRaw, tiles[i], out.block);
+            stage.put(Stage::kEdges, tiles[i], out.edges);
+          }
           progress_.advance();
         });
     progress_.end();
   }
 
-  std::vector<uint8_t> warp_tile(TileId id, int worker) {
+  struct RawOut {
+    std::vector<uint8_t> block, edges;  // both empty: no valid sample
+  };
+
+  RawOut warp_tile(TileId id, int worker) {
     if (!warpers_[worker]) warpers_[worker] = std::make_unique<TileWarper>(plan_, s_.resampling);
     std::vector<double> h;
     warpers_[worker]->warp(id, h);
@@ -206,11 +243,10 @@ class Builder {
         ++valid;
       }
     if (valid == 0) return {};
-    return encode_stage(b);
+    return RawOut{encode_stage(b), pack_edges(b, size_)};
   }
 
-  std::vector<uint8_t> decimate(TileId id,
-                                const std::map<TileId, std::vector<uint8_t>>& cache) const {
+  RawOut decimate(TileId id, const std::map<TileId, std::vector<uint8_t>>& cache) const {
     std::array<std::optional<Block>, 4> kids;
     const auto children = id.children();
     for (int c = 0; c < 4; ++c)
@@ -244,30 +280,31 @@ class Builder {
         }
       }
     if (valid == 0) return {};
-    return encode_stage(b);
+    return RawOut{encode_stage(b), pack_edges(b, size_)};
   }
 
   // Pass 2: shared edges from the owners, hole filling, node errors.
   void pass_final(StagingStore& stage, int z) {
     const std::vector<TileId> tiles = stage.list(Stage::kRaw, z);
-    std::map<TileId, std::vector<uint8_t>> raw, child_err;
+    std::map<TileId, std::vector<uint8_t>> raw, edges, child_err;
     progress_.begin("z" + std::to_string(z) + " errors", tiles.size());
     parallel_batches<FinalOut>(
         tiles.size(), threads_, batch_size(),
         [&](size_t begin, size_t end) {
           raw.clear();
+          edges.clear();
           child_err.clear();
           for (size_t i = begin; i < end; ++i) {
-            for (auto [dx, dy] :
-                 {std::pair{0, 0}, std::pair{1, 0}, std::pair{0, 1}, std::pair{1, 1}})
-              if (auto nb = neighbour(tiles[i], dx, dy); nb && !raw.count(*nb))
-                if (auto b = stage.get(Stage::kRaw, *nb)) raw.emplace(*nb, std::move(*b));
+            if (auto b = stage.get(Stage::kRaw, tiles[i])) raw.emplace(tiles[i], std::move(*b));
+            for (auto [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}, std::pair{1, 1}})
+              if (auto nb = neighbour(tiles[i], dx, dy); nb && !edges.count(*nb))
+                if (auto e = stage.get(Stage::kEdges, *nb)) edges.emplace(*nb, std::move(*e));
             if (z < plan_.max_zoom)
               for (const TileId& c : tiles[i].children())
                 if (auto e = stage.get(Stage::kNodeErrors, c)) child_err.emplace(c, std::move(*e));
           }
         },
-        [&](size_t i, int) { return finalize(tiles[i], raw, child_err); },
+        [&](size_t i, int) { return finalize(tiles[i], raw.at(tiles[i]), edges, child_err); },
         [&](size_t i, FinalOut&& out) {
           if (!out.block.empty()) {
             stage.put(Stage::kFinal, tiles[i], out.block);
@@ -281,34 +318,28 @@ class Builder {
   struct FinalOut {
     std::vector<uint8_t> block, errors;  // both empty: the tile holds no data
   };
-  FinalOut finalize(TileId id, const std::map<TileId, std::vector<uint8_t>>& raw,
+  FinalOut finalize(TileId id, const std::vector<uint8_t>& raw,
+                    const std::map<TileId, std::vector<uint8_t>>& edges,
                     const std::map<TileId, std::vector<uint8_t>>& child_err) const {
     const int n = plan_.steps;
-    auto load = [&](int dx, int dy) -> std::optional<Block> {
-      auto nb = neighbour(id, dx, dy);
-      if (!nb) return std::nullopt;
-      auto it = raw.find(*nb);
-      if (it == raw.end()) return std::nullopt;
-      return decode_stage(it->second);
-    };
-    Block b = *load(0, 0);
-    const auto east = load(1, 0), south = load(0, 1), south_east = load(1, 1);
-    auto take = [&](const std::optional<Block>& from, int fx, int fy, int x, int y) {
+    Block b = decode_stage(raw);
+    // The last column and row belong to the east / south neighbours (first
+    // column / row there), the far corner to the south-east one.
+    auto take = [&](int dx, int dy, size_t k, int x, int y) {
       const size_t dst = size_t(y) * size_ + x;
-      if (from) {
-        const size_t src = size_t(fy) * size_ + fx;
-        b.q[dst] = from->q[src];
-        b.valid[dst] = from->valid[src];
-      } else {
-        b.q[dst] = 0;
-        b.valid[dst] = 0;
-      }
+      b.q[dst] = 0;
+      b.valid[dst] = 0;
+      auto nb = neighbour(id, dx, dy);
+      if (!nb) return;
+      auto it = edges.find(*nb);
+      if (it == edges.end()) return;
+      std::tie(b.q[dst], b.valid[dst]) = edge_sample(it->second, k);
     };
     for (int y = 0; y < n; ++y)
-      take(east, 0, y, n, y);
+      take(1, 0, size_t(n) + y, n, y);
     for (int x = 0; x < n; ++x)
-      take(south, x, 0, x, n);
-    take(south_east, 0, 0, n, n);
+      take(0, 1, size_t(x), x, n);
+    take(1, 1, 0, n, n);
     if (std::none_of(b.valid.begin(), b.valid.end(), [](uint8_t v) { return v != 0; })) return {};
     fill_holes(b.q, b.valid, size_, plan_.fill_q);
 
@@ -321,7 +352,7 @@ class Builder {
         kid_ptrs[c] = &kids[c];
       }
     const auto errors = node_errors(layouts_[id.diagonal()], b.q, b.valid, kid_ptrs);
-    return FinalOut{encode_stage(b), pack_u32(errors)};
+    return FinalOut{encode_stage(b, true), pack_u32(errors)};
   }
 
   // Pass 3: vertex errors and the final MBlock.
@@ -352,9 +383,8 @@ class Builder {
             for (int dx = -1; dx <= 1; ++dx)
               if (auto t = neighbour(id, dx, dy))
                 if (auto it = errs.find(*t); it != errs.end()) nb[dy + 1][dx + 1] = &it->second;
-          MBlock m = tileformat::decode_mblock(finals.at(id));
-          m.vertex_error = vertex_errors(layouts_[id.diagonal()], nb);
-          return tileformat::encode_mblock(m, kFinalZstdLevel);
+          return tileformat::replace_vertex_errors(
+              finals.at(id), vertex_errors(layouts_[id.diagonal()], nb), kFinalZstdLevel);
         },
         [&](size_t i, std::vector<uint8_t>&& blob) {
           writer.put_tile(tiles[i], blob);

@@ -15,10 +15,16 @@ namespace globe {
 namespace {
 
 GDALResampleAlg resample_alg(const std::string& name) {
-  static const std::pair<const char*, GDALResampleAlg> kAlgs[] = {
-      {"near", GRA_NearestNeighbour}, {"bilinear", GRA_Bilinear}, {"cubic", GRA_Cubic},
-      {"cubicspline", GRA_CubicSpline}, {"lanczos", GRA_Lanczos}, {"average", GRA_Average},
-      {"min", GRA_Min},   {"max", GRA_Max}, {"med", GRA_Med}, {"mode", GRA_Mode}};
+  static const std::pair<const char*, GDALResampleAlg> kAlgs[] = {{"near", GRA_NearestNeighbour},
+                                                                  {"bilinear", GRA_Bilinear},
+                                                                  {"cubic", GRA_Cubic},
+                                                                  {"cubicspline", GRA_CubicSpline},
+                                                                  {"lanczos", GRA_Lanczos},
+                                                                  {"average", GRA_Average},
+                                                                  {"min", GRA_Min},
+                                                                  {"max", GRA_Max},
+                                                                  {"med", GRA_Med},
+                                                                  {"mode", GRA_Mode}};
   for (const auto& [n, alg] : kAlgs)
     if (name == n) return alg;
   throw UsageError("--resampling: unknown method '" + name + "'");
@@ -49,7 +55,8 @@ TileWarper::TileWarper(const DemPlan& plan, const std::string& resampling)
     const GdalDataset& in = opened_.back();
     for (double shift : src.x_shifts) {
       GDALDatasetH copy = GDALCreateCopy(vrt, "", in.get(), FALSE, nullptr, nullptr, nullptr);
-      if (!copy) throw InputError(src.path + ": cannot wrap the raster (" + gdal_last_error() + ")");
+      if (!copy)
+        throw InputError(src.path + ": cannot wrap the raster (" + gdal_last_error() + ")");
       GdalDataset wrapped(copy, src.path);
       auto gt = src.geotransform;
       gt[0] += shift;
@@ -70,7 +77,8 @@ TileWarper::TileWarper(const DemPlan& plan, const std::string& resampling)
   // destination extent at creation: give it a real tile of the finest zoom.
   const auto& area = plan.data_areas.front();
   const auto range = plan.tiling.tiles_covering(area, plan.max_zoom);
-  const auto b = plan.tiling.tile_bounds({plan.max_zoom, (range.min_x + range.max_x) / 2, (range.min_y + range.max_y) / 2});
+  const auto b = plan.tiling.tile_bounds(
+      {plan.max_zoom, (range.min_x + range.max_x) / 2, (range.min_y + range.max_y) / 2});
   const double sp = plan.tiling.sample_spacing(plan.max_zoom, plan.steps);
   double gt[6] = {b.min_x - sp / 2, sp, 0, b.max_y + sp / 2, 0, -sp};
   GDALSetGeoTransform(dest_.get(), gt);
@@ -88,7 +96,8 @@ std::vector<std::unique_ptr<TileWarper::Operation>> TileWarper::make_operations(
     CPLErrorReset();
     op->transformer = GDALCreateGenImgProjTransformer2(src.get(), dest_.get(), nullptr);
     if (!op->transformer)
-      throw InputError(src.name() + ": no transformation to the tiling CRS (" + gdal_last_error() + ")");
+      throw InputError(src.name() + ": no transformation to the tiling CRS (" + gdal_last_error() +
+                       ")");
     // The same error threshold as gdalwarp's default (0.125 pixel).
     op->approx = GDALCreateApproxTransformer(GDALGenImgProjTransform, op->transformer, 0.125);
     GDALApproxTransformerOwnsSubtransformer(op->approx, TRUE);
@@ -114,7 +123,8 @@ std::vector<std::unique_ptr<TileWarper::Operation>> TileWarper::make_operations(
     o->padfDstNoDataReal = static_cast<double*>(CPLMalloc(sizeof(double)));
     o->padfDstNoDataReal[0] = std::numeric_limits<double>::quiet_NaN();
     op->operation = GDALCreateWarpOperation(o);
-    if (!op->operation) throw InputError(src.name() + ": cannot set up warping (" + gdal_last_error() + ")");
+    if (!op->operation)
+      throw InputError(src.name() + ": cannot set up warping (" + gdal_last_error() + ")");
     ops.push_back(std::move(op));
   }
   return ops;
@@ -140,7 +150,8 @@ void TileWarper::warp(tileformat::TileId id, std::vector<double>& heights) {
     // stays away from the wrap, where GDAL's source window computation breaks.
     const double centre_lon = (b.min_x + b.max_x) / 2 / tileformat::kWebMercatorHalf * 180.0;
     const SpatialRef crs = SpatialRef::from_user_input(
-        "+proj=merc +a=6378137 +b=6378137 +lat_ts=0 +lon_0=" + std::string(CPLSPrintf("%.17g", centre_lon)) +
+        "+proj=merc +a=6378137 +b=6378137 +lat_ts=0 +lon_0=" +
+            std::string(CPLSPrintf("%.17g", centre_lon)) +
             " +x_0=0 +y_0=0 +k=1 +units=m +nadgrids=@null +over +wktext +no_defs",
         "tile CRS");
     gt[0] -= centre_lon / 180.0 * tileformat::kWebMercatorHalf;
@@ -154,14 +165,18 @@ void TileWarper::warp(tileformat::TileId id, std::vector<double>& heights) {
   CPLErrorReset();
   for (auto& op : ops) {
     GDALSetGenImgProjTransformerDstGeoTransform(op->transformer, gt);
-    if (GDALChunkAndWarpImage(op->operation, 0, 0, n, n) != CE_None || CPLGetLastErrorType() == CE_Failure)
-      throw InputError(plan_.sources[0].path + (plan_.sources.size() > 1 ? " (or another input)" : "") +
+    if (GDALChunkAndWarpImage(op->operation, 0, 0, n, n) != CE_None ||
+        CPLGetLastErrorType() == CE_Failure)
+      throw InputError(plan_.sources[0].path +
+                       (plan_.sources.size() > 1 ? " (or another input)" : "") +
                        ": reading data for tile " + id.str() + " failed (" + gdal_last_error() +
                        "); the file may be truncated or corrupt");
   }
   heights.resize(static_cast<size_t>(n) * n);
-  if (GDALRasterIO(dest_.band(1), GF_Read, 0, 0, n, n, heights.data(), n, n, GDT_Float64, 0, 0) != CE_None)
-    throw InputError("tile " + id.str() + ": reading the warped samples failed (" + gdal_last_error() + ")");
+  if (GDALRasterIO(dest_.band(1), GF_Read, 0, 0, n, n, heights.data(), n, n, GDT_Float64, 0, 0) !=
+      CE_None)
+    throw InputError("tile " + id.str() + ": reading the warped samples failed (" +
+                     gdal_last_error() + ")");
 }
 
 }  // namespace globe

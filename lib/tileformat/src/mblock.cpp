@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <climits>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -26,12 +27,43 @@ int32_t unzigzag(uint32_t v) {
   return static_cast<int32_t>(v >> 1) ^ -static_cast<int32_t>(v & 1);
 }
 
-// Planar (Lorenzo) prediction from the west, north and north-west neighbours.
-int64_t predict(const int32_t* q, int size, int x, int y) {
-  const size_t i = static_cast<size_t>(y) * size + x;
-  if (y == 0) return x == 0 ? 0 : q[i - 1];
-  if (x == 0) return q[i - size];
-  return int64_t{q[i - 1]} + q[i - size] - q[i - size - 1];
+// Planar (Lorenzo) prediction p = W + N - NW (W on the first row, N in the
+// first column, 0 for the first sample); residuals are zigzag-encoded.
+// Preconditions: |q| <= kMaxQuantum, so every residual fits an int32.
+void predict_residuals(const int32_t* q, int size, uint32_t* out) {
+  out[0] = zigzag(q[0]);
+  for (int x = 1; x < size; ++x)
+    out[x] = zigzag(q[x] - q[x - 1]);
+  for (int y = 1; y < size; ++y) {
+    const int32_t* row = q + static_cast<size_t>(y) * size;
+    const int32_t* up = row - size;
+    uint32_t* o = out + static_cast<size_t>(y) * size;
+    o[0] = zigzag(row[0] - up[0]);
+    for (int x = 1; x < size; ++x)
+      o[x] =
+          zigzag(static_cast<int32_t>(int64_t{row[x]} - (int64_t{row[x - 1]} + up[x] - up[x - 1])));
+  }
+}
+
+// Inverse of predict_residuals; false if a height leaves the quantization range.
+bool reconstruct(const uint32_t* residual, int size, int32_t* q) {
+  bool ok = true;
+  auto put = [&](int32_t* dst, int64_t v) {
+    ok &= v <= kMaxQuantum && v >= -kMaxQuantum;
+    *dst = static_cast<int32_t>(v);
+  };
+  put(q, unzigzag(residual[0]));
+  for (int x = 1; x < size; ++x)
+    put(q + x, int64_t{q[x - 1]} + unzigzag(residual[x]));
+  for (int y = 1; y < size && ok; ++y) {
+    int32_t* row = q + static_cast<size_t>(y) * size;
+    const int32_t* up = row - size;
+    const uint32_t* r = residual + static_cast<size_t>(y) * size;
+    put(row, int64_t{up[0]} + unzigzag(r[0]));
+    for (int x = 1; x < size; ++x)
+      put(row + x, int64_t{row[x - 1]} + up[x] - up[x - 1] + unzigzag(r[x]));
+  }
+  return ok;
 }
 
 bool valid_size(int size, int lattice) {
@@ -40,22 +72,149 @@ bool valid_size(int size, int lattice) {
          lattice > 0 && std::has_single_bit(static_cast<unsigned>(lattice)) && steps >= 2 * lattice;
 }
 
+// §5.2: residuals as byte planes (coding 0) or packed in w bits (coding w =
+// 1, 2, 4) with the value 2^w - 1 escaping to an exception stream. Packing
+// helps zstd, whose entropy stage cannot go below one bit per byte: small
+// residuals packed 4 per byte let it model them jointly.
+std::vector<uint8_t> encode_residuals(const std::vector<uint32_t>& residual, int level,
+                                      bool best_packing) {
+  const size_t n = residual.size();
+  std::vector<uint8_t> best;
+  auto consider = [&](std::vector<uint8_t>&& candidate) {
+    if (best.empty() || candidate.size() < best.size()) best = std::move(candidate);
+  };
+  for (int bits : {2, 4}) {
+    if (!best_packing) break;
+    const uint32_t esc = (1u << bits) - 1;
+    const size_t per_byte = 8 / bits;
+    std::vector<uint8_t> packed((n + per_byte - 1) / per_byte, 0);
+    detail::ByteWriter exceptions;
+    uint32_t count = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const uint32_t v = std::min(residual[i], esc);
+      packed[i / per_byte] |= static_cast<uint8_t>(v << (bits * (i % per_byte)));
+      if (v == esc) {
+        exceptions.u32(residual[i] - esc);
+        ++count;
+      }
+    }
+    if (count > n / 8) continue;  // too many escapes: wider codings win
+    detail::ByteWriter w;
+    w.u8(static_cast<uint8_t>(bits));
+    w.u32(count);
+    auto main = detail::zstd_compress(packed, level);
+    w.u32(static_cast<uint32_t>(main.size()));
+    w.bytes(main);
+    auto exc = detail::zstd_compress(exceptions.take(), level);
+    w.u32(static_cast<uint32_t>(exc.size()));
+    w.bytes(exc);
+    consider(w.take());
+  }
+  uint32_t max_z = 0;
+  for (uint32_t r : residual)
+    max_z = std::max(max_z, r);
+  const int planes = std::max(1, static_cast<int>((std::bit_width(max_z) + 7) / 8));
+  std::vector<uint8_t> plane_bytes(n * planes);
+  for (int p = 0; p < planes; ++p)
+    for (size_t i = 0; i < n; ++i)
+      plane_bytes[p * n + i] = static_cast<uint8_t>(residual[i] >> (8 * p));
+  detail::ByteWriter w;
+  w.u8(0);
+  w.u8(static_cast<uint8_t>(planes));
+  auto data = detail::zstd_compress(plane_bytes, level);
+  w.u32(static_cast<uint32_t>(data.size()));
+  w.bytes(data);
+  consider(w.take());
+  return best;
+}
+
+std::vector<uint32_t> decode_residuals(detail::ByteReader& r, size_t n) {
+  r.set_section("5.2");
+  const int coding = r.u8();
+  std::vector<uint32_t> residual(n, 0);
+  if (coding == 0) {
+    const int planes = r.u8();
+    if (planes < 1 || planes > 4) r.fail("invalid byte-plane count " + std::to_string(planes));
+    auto bytes = detail::zstd_decompress(r.bytes(r.u32()), n * planes, "MBlock heights", "5.2");
+    for (int p = 0; p < planes; ++p) {
+      const uint8_t* plane = bytes.data() + p * n;
+      for (size_t i = 0; i < n; ++i)
+        residual[i] |= uint32_t{plane[i]} << (8 * p);
+    }
+    return residual;
+  }
+  if (coding != 1 && coding != 2 && coding != 4)
+    r.fail("unknown height coding " + std::to_string(coding));
+  const uint32_t count = r.u32();
+  if (count > n) r.fail("more exceptions than samples");
+  const size_t per_byte = 8 / coding;
+  auto packed = detail::zstd_decompress(r.bytes(r.u32()), (n + per_byte - 1) / per_byte,
+                                        "MBlock heights", "5.2");
+  auto exc_bytes = detail::zstd_decompress(r.bytes(r.u32()), size_t{count} * 4,
+                                           "MBlock height exceptions", "5.2");
+  detail::ByteReader exc(exc_bytes, "MBlock height exceptions", "5.2");
+  const uint32_t esc = (1u << coding) - 1;
+  for (size_t i = 0; i < n; ++i) {
+    uint32_t v = (packed[i / per_byte] >> (coding * (i % per_byte))) & esc;
+    if (v == esc) {
+      if (exc.remaining() == 0) r.fail("fewer exceptions than escaped samples");
+      const uint32_t extra = exc.u32();
+      if (extra > UINT32_MAX - esc) r.fail("exception value out of range");
+      v += extra;
+    }
+    residual[i] = v;
+  }
+  if (exc.remaining() != 0) r.fail("more exceptions than escaped samples");
+  return residual;
+}
+
+// Skips §5.2 without decompressing it.
+void skip_residuals(detail::ByteReader& r) {
+  r.set_section("5.2");
+  const int coding = r.u8();
+  if (coding == 0) {
+    r.u8();
+    r.bytes(r.u32());
+    return;
+  }
+  r.u32();
+  r.bytes(r.u32());
+  r.bytes(r.u32());
+}
+
+// §5.4
+std::vector<uint8_t> encode_error_tree(int depth, const std::vector<uint32_t>& errors, int level) {
+  detail::ByteWriter raw;
+  for (uint32_t e : errors)
+    raw.u32(e);
+  detail::ByteWriter w;
+  w.u8(static_cast<uint8_t>(depth));
+  auto z = detail::zstd_compress(raw.take(), level);
+  w.u32(static_cast<uint32_t>(z.size()));
+  w.bytes(z);
+  return w.take();
+}
+
 }  // namespace
 
 MBlockStats mblock_stats(const MBlock& block) {
-  MBlockStats s{0, 0};
-  bool any = false;
-  for (size_t i = 0; i < block.q.size(); ++i) {
-    if (!block.valid.empty() && !block.valid[i]) continue;
-    if (!any) s = {block.q[i], block.q[i]};
-    s.qmin = std::min(s.qmin, block.q[i]);
-    s.qmax = std::max(s.qmax, block.q[i]);
-    any = true;
+  int32_t lo = INT32_MAX, hi = INT32_MIN;
+  if (block.valid.empty()) {
+    for (int32_t v : block.q) {
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+  } else {
+    for (size_t i = 0; i < block.q.size(); ++i)
+      if (block.valid[i]) {
+        lo = std::min(lo, block.q[i]);
+        hi = std::max(hi, block.q[i]);
+      }
   }
-  return s;
+  return lo > hi ? MBlockStats{0, 0} : MBlockStats{lo, hi};
 }
 
-std::vector<uint8_t> encode_mblock(const MBlock& b, int zstd_level) {
+std::vector<uint8_t> encode_mblock(const MBlock& b, int zstd_level, bool best_packing) {
   if (!valid_size(b.size, b.lattice))
     throw std::invalid_argument("mblock: size " + std::to_string(b.size) + " / lattice " +
                                 std::to_string(b.lattice) + " is not a valid block shape");
@@ -67,21 +226,11 @@ std::vector<uint8_t> encode_mblock(const MBlock& b, int zstd_level) {
   if (!(b.step > 0) || !std::isfinite(b.step))
     throw std::invalid_argument("mblock: step must be a positive number");
 
-  uint32_t max_z = 0;
+  for (int32_t v : b.q)
+    if (v > kMaxQuantum || v < -kMaxQuantum)
+      throw std::invalid_argument("mblock: quantized height out of range; use a larger step");
   std::vector<uint32_t> residual(n);
-  for (int y = 0; y < b.size; ++y)
-    for (int x = 0; x < b.size; ++x) {
-      const size_t i = static_cast<size_t>(y) * b.size + x;
-      if (b.q[i] > kMaxQuantum || b.q[i] < -kMaxQuantum)
-        throw std::invalid_argument("mblock: quantized height out of range; use a larger step");
-      residual[i] = zigzag(static_cast<int32_t>(b.q[i] - predict(b.q.data(), b.size, x, y)));
-      max_z = std::max(max_z, residual[i]);
-    }
-  const int planes = std::max(1, static_cast<int>((std::bit_width(max_z) + 7) / 8));
-  std::vector<uint8_t> plane_bytes(n * planes);
-  for (int p = 0; p < planes; ++p)
-    for (size_t i = 0; i < n; ++i)
-      plane_bytes[p * n + i] = static_cast<uint8_t>(residual[i] >> (8 * p));
+  predict_residuals(b.q.data(), b.size, residual.data());
 
   const MBlockStats stats = mblock_stats(b);
   detail::ByteWriter w;
@@ -91,10 +240,7 @@ std::vector<uint8_t> encode_mblock(const MBlock& b, int zstd_level) {
   w.f64(b.step);
   w.i32(stats.qmin);
   w.i32(stats.qmax);
-  w.u8(static_cast<uint8_t>(planes));
-  auto heights = detail::zstd_compress(plane_bytes, zstd_level);
-  w.u32(static_cast<uint32_t>(heights.size()));
-  w.bytes(heights);
+  w.bytes(encode_residuals(residual, zstd_level, best_packing));
   if (!b.valid.empty()) {
     std::vector<uint8_t> bits((n + 7) / 8, 0);
     for (size_t i = 0; i < n; ++i)
@@ -103,14 +249,7 @@ std::vector<uint8_t> encode_mblock(const MBlock& b, int zstd_level) {
     w.u32(static_cast<uint32_t>(mask.size()));
     w.bytes(mask);
   }
-  w.u8(static_cast<uint8_t>(depth));
-  std::vector<uint8_t> err_bytes;
-  detail::ByteWriter ew;
-  for (uint32_t e : b.vertex_error)
-    ew.u32(e);
-  auto errors = detail::zstd_compress(ew.take(), zstd_level);
-  w.u32(static_cast<uint32_t>(errors.size()));
-  w.bytes(errors);
+  w.bytes(encode_error_tree(depth, b.vertex_error, zstd_level));
   auto body = w.take();
   return wrap_blob(BlobKind::kMBlock, body);
 }
@@ -124,30 +263,18 @@ MBlock decode_mblock(std::span<const uint8_t> blob) {
   const uint8_t flags = r.u8();
   b.step = r.f64();
   const int32_t qmin = r.i32(), qmax = r.i32();
-  const int planes = r.u8();
   if (!valid_size(b.size, b.lattice))
     r.fail("invalid block shape: size " + std::to_string(b.size) + ", lattice " +
            std::to_string(b.lattice));
   if (flags & ~kFlagMask) r.fail("unknown flags " + std::to_string(flags));
   if (!(b.step > 0) || !std::isfinite(b.step)) r.fail("height step must be positive and finite");
   if (qmin > qmax || qmin < -kMaxQuantum || qmax > kMaxQuantum) r.fail("invalid min/max");
-  if (planes < 1 || planes > 4) r.fail("invalid byte-plane count " + std::to_string(planes));
 
   const size_t n = static_cast<size_t>(b.size) * b.size;
-  r.set_section("5.2");
-  auto plane_bytes = detail::zstd_decompress(r.bytes(r.u32()), n * planes, "MBlock heights", "5.2");
+  const std::vector<uint32_t> residual = decode_residuals(r, n);
   b.q.resize(n);
-  for (int y = 0; y < b.size; ++y)
-    for (int x = 0; x < b.size; ++x) {
-      const size_t i = static_cast<size_t>(y) * b.size + x;
-      uint32_t z = 0;
-      for (int p = 0; p < planes; ++p)
-        z |= uint32_t{plane_bytes[p * n + i]} << (8 * p);
-      const int64_t v = predict(b.q.data(), b.size, x, y) + unzigzag(z);
-      if (v > kMaxQuantum || v < -kMaxQuantum)
-        r.fail("height out of range at sample " + std::to_string(i));
-      b.q[i] = static_cast<int32_t>(v);
-    }
+  if (!reconstruct(residual.data(), b.size, b.q.data()))
+    r.fail("a height is outside the quantization range");
   if (flags & kFlagMask) {
     r.set_section("5.3");
     auto bits = detail::zstd_decompress(r.bytes(r.u32()), (n + 7) / 8, "MBlock mask", "5.3");
@@ -169,6 +296,30 @@ MBlock decode_mblock(std::span<const uint8_t> blob) {
   const MBlockStats s = mblock_stats(b);
   if (s.qmin != qmin || s.qmax != qmax) r.fail("stored min/max do not match the heights");
   return b;
+}
+
+std::vector<uint8_t> replace_vertex_errors(std::span<const uint8_t> blob,
+                                           const std::vector<uint32_t>& errors, int zstd_level) {
+  auto body = read_blob_header(blob, BlobKind::kMBlock);
+  detail::ByteReader r(body, "MBlock header", "5.1");
+  const int size = r.u16();
+  const int lattice = r.u8();
+  const uint8_t flags = r.u8();
+  r.bytes(8 + 4 + 4);  // step, qmin, qmax
+  if (!valid_size(size, lattice)) r.fail("invalid block shape");
+  skip_residuals(r);
+  if (flags & kFlagMask) {
+    r.set_section("5.3");
+    r.bytes(r.u32());
+  }
+  const size_t tree_start = r.position();
+  const int depth = kpatch_depth(size - 1, lattice);
+  if (errors.size() != kpatch_vertex_count(depth))
+    throw std::invalid_argument("mblock: vertex error count does not match the block shape");
+  std::vector<uint8_t> out(body.begin(), body.begin() + static_cast<ptrdiff_t>(tree_start));
+  auto tree = encode_error_tree(depth, errors, zstd_level);
+  out.insert(out.end(), tree.begin(), tree.end());
+  return wrap_blob(BlobKind::kMBlock, out);
 }
 
 }  // namespace tileformat

@@ -32,7 +32,15 @@ struct MBlockStats {
 
 // Preconditions (checked, std::invalid_argument): size = 2^k+1 with
 // 2^k >= 2*lattice, q/valid/vertex_error sized as documented, step > 0.
-std::vector<uint8_t> encode_mblock(const MBlock& block, int zstd_level = 3);
+// best_packing tries every height coding of §5.2 and keeps the smallest;
+// without it byte planes are used (faster, for scratch data).
+std::vector<uint8_t> encode_mblock(const MBlock& block, int zstd_level = 9,
+                                   bool best_packing = true);
+
+// The same blob with another error tree (§5.4); heights and mask are copied,
+// not re-encoded. Throws FormatError for a malformed blob.
+std::vector<uint8_t> replace_vertex_errors(std::span<const uint8_t> blob,
+                                           const std::vector<uint32_t>& errors, int zstd_level = 9);
 
 // Throws FormatError citing §4/§5 for anything malformed.
 MBlock decode_mblock(std::span<const uint8_t> blob);
