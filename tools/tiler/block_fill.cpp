@@ -1,6 +1,7 @@
 // Hole filling (see block_fill.hpp).
 #include "block_fill.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace globe {
@@ -28,6 +29,7 @@ void fill_edge(std::vector<int32_t>& q, std::vector<uint8_t>& known,
 void fill_holes(std::vector<int32_t>& q, const std::vector<uint8_t>& valid, int size,
                 int32_t fill_q) {
   const size_t n = static_cast<size_t>(size) * size;
+  if (std::all_of(valid.begin(), valid.end(), [](uint8_t v) { return v != 0; })) return;
   std::vector<uint8_t> known(valid);
   const int last = size - 1;
   const size_t corners[4] = {0, static_cast<size_t>(last), static_cast<size_t>(last) * size,

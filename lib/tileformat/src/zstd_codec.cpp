@@ -7,9 +7,26 @@
 
 namespace tileformat::detail {
 
+namespace {
+// One context per thread, reused: creating one per call costs more than
+// compressing a block (its tables are allocated and cleared every time).
+struct Contexts {
+  ZSTD_CCtx* c = ZSTD_createCCtx();
+  ZSTD_DCtx* d = ZSTD_createDCtx();
+  ~Contexts() {
+    ZSTD_freeCCtx(c);
+    ZSTD_freeDCtx(d);
+  }
+};
+Contexts& contexts() {
+  thread_local Contexts ctx;
+  return ctx;
+}
+}  // namespace
+
 std::vector<uint8_t> zstd_compress(std::span<const uint8_t> in, int level) {
   std::vector<uint8_t> out(ZSTD_compressBound(in.size()));
-  size_t n = ZSTD_compress(out.data(), out.size(), in.data(), in.size(), level);
+  size_t n = ZSTD_compressCCtx(contexts().c, out.data(), out.size(), in.data(), in.size(), level);
   if (ZSTD_isError(n))
     throw std::runtime_error(std::string("zstd compression failed: ") + ZSTD_getErrorName(n));
   out.resize(n);
@@ -28,7 +45,7 @@ std::vector<uint8_t> zstd_decompress(std::span<const uint8_t> in, size_t expecte
   if (ZSTD_isError(frame) || frame != in.size())
     throw FormatError(section, what + ": zstd frame is truncated or followed by extra bytes");
   std::vector<uint8_t> out(expected_size);
-  size_t n = ZSTD_decompress(out.data(), out.size(), in.data(), in.size());
+  size_t n = ZSTD_decompressDCtx(contexts().d, out.data(), out.size(), in.data(), in.size());
   if (ZSTD_isError(n) || n != expected_size)
     throw FormatError(section, what + ": corrupt zstd data (" +
                                    (ZSTD_isError(n) ? ZSTD_getErrorName(n) : "short output") + ")");
