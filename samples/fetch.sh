@@ -60,8 +60,24 @@ for entry in "${small_sets[@]}"; do
   extract_file "$pkg" "$inner" "$out"
 done
 
-# jacksboro: .npz is a zip holding one .npy (Int16, C order). GDAL reads it
-# through /vsizip/ with a raw VRT; the .npy header length gives the offset.
+# Writes a GDAL VRT describing a headerless raster file.
+# raw_vrt OUT.vrt FILE COLS ROWS TYPE BYTES_PER_PIXEL OFFSET SRS "GEOTRANSFORM"
+raw_vrt() {
+  cat > "$1" <<VRT
+<VRTDataset rasterXSize="$3" rasterYSize="$4">
+  <SRS>$8</SRS>
+  <GeoTransform>$9</GeoTransform>
+  <VRTRasterBand dataType="$5" band="1" subClass="VRTRawRasterBand">
+    <SourceFilename relativeToVRT="0">$2</SourceFilename>
+    <ImageOffset>$7</ImageOffset><PixelOffset>$6</PixelOffset><LineOffset>$(($3 * $6))</LineOffset>
+    <ByteOrder>LSB</ByteOrder>
+  </VRTRasterBand>
+</VRTDataset>
+VRT
+}
+
+# jacksboro: .npz is a zip holding elevation.npy (Int16, C order). GDAL reads the
+# extracted .npy through a raw VRT; the .npy header length gives the offset.
 if [ ! -f "$data/jacksboro.tif" ]; then
   npy=elevation.npy
   unzip -o -q "$data/jacksboro.npz" "$npy" -d "$data/jacksboro.d"
@@ -69,17 +85,8 @@ if [ ! -f "$data/jacksboro.tif" ]; then
   hdr=$(od -An -tu1 -N2 -j8 "$raw" | awk '{print $1 + 256*$2 + 10}')
   shape=$(head -c "$hdr" "$raw" | LC_ALL=C tr -d "\000" | LC_ALL=C sed -n "s/.*'shape': *(\([0-9]*\), *\([0-9]*\)).*/\1 \2/p")
   read -r rows cols <<<"$shape"
-  cat > "$data/jacksboro.vrt" <<VRT
-<VRTDataset rasterXSize="$cols" rasterYSize="$rows">
-  <SRS>EPSG:4269</SRS>
-  <GeoTransform>-84.41375, 0.000833333333333333, 0, 36.73292, 0, -0.000833333333333333</GeoTransform>
-  <VRTRasterBand dataType="Int16" band="1" subClass="VRTRawRasterBand">
-    <SourceFilename relativeToVRT="0">$raw</SourceFilename>
-    <ImageOffset>$hdr</ImageOffset><PixelOffset>2</PixelOffset><LineOffset>$((cols * 2))</LineOffset>
-    <ByteOrder>LSB</ByteOrder>
-  </VRTRasterBand>
-</VRTDataset>
-VRT
+  raw_vrt "$data/jacksboro.vrt" "$raw" "$cols" "$rows" Int16 2 "$hdr" EPSG:4269 \
+    "-84.41375, 0.000833333333333333, 0, 36.73292, 0, -0.000833333333333333"
   gdal_translate -q -co COMPRESS=DEFLATE "$data/jacksboro.vrt" "$data/jacksboro.tif.part.tif"
   mv "$data/jacksboro.tif.part.tif" "$data/jacksboro.tif"
 fi
@@ -88,17 +95,8 @@ fi
 # UTM 23S on SAD69 (EPSG:29193), lower-left corner 183557 E, 8246277 N.
 if [ ! -f "$data/brasilia.tif" ]; then
   cols=382 rows=422
-  cat > "$data/brasilia.vrt" <<VRT
-<VRTDataset rasterXSize="$cols" rasterYSize="$rows">
-  <SRS>EPSG:29193</SRS>
-  <GeoTransform>183557, 30, 0, $((8246277 + rows * 30)), 0, -30</GeoTransform>
-  <VRTRasterBand dataType="Float32" band="1" subClass="VRTRawRasterBand">
-    <SourceFilename relativeToVRT="0">$data/brasilia.raw</SourceFilename>
-    <ImageOffset>0</ImageOffset><PixelOffset>4</PixelOffset><LineOffset>$((cols * 4))</LineOffset>
-    <ByteOrder>LSB</ByteOrder>
-  </VRTRasterBand>
-</VRTDataset>
-VRT
+  raw_vrt "$data/brasilia.vrt" "$data/brasilia.raw" "$cols" "$rows" Float32 4 0 EPSG:29193 \
+    "183557, 30, 0, $((8246277 + rows * 30)), 0, -30"
   gdal_translate -q -co COMPRESS=DEFLATE "$data/brasilia.vrt" "$data/brasilia.tif.part.tif"
   mv "$data/brasilia.tif.part.tif" "$data/brasilia.tif"
 fi

@@ -22,13 +22,14 @@ MBlock flat_block(int32_t height) {
   b.lattice = 16;
   b.step = 1;
   b.q.assign(kSize * kSize, height);
-  b.vertex_error.assign(tileformat::kpatch_vertex_count(tileformat::kpatch_depth(kSize - 1, 16)), 0);
+  b.vertex_error.assign(tileformat::kpatch_vertex_count(tileformat::kpatch_depth(kSize - 1, 16)),
+                        0);
   return b;
 }
 
 // Writes a z=1 package with blocks at (1, 0, 0) and (1, 1, 0) and their parent.
-std::string write_package(const TempDir& dir, const MBlock& west, const MBlock& east, const MBlock& parent,
-                          std::vector<uint8_t> corrupt = {}) {
+std::string write_package(const TempDir& dir, const MBlock& west, const MBlock& east,
+                          const MBlock& parent, std::vector<uint8_t> corrupt = {}) {
   const auto path = (dir / "p.mbtiles").string();
   tileformat::PackageWriter w(path, true);
   std::map<std::string, std::string> meta;
@@ -40,7 +41,8 @@ std::string write_package(const TempDir& dir, const MBlock& west, const MBlock& 
   meta["globe:height_step"] = "1";
   meta["minzoom"] = "0";
   meta["maxzoom"] = "1";
-  for (const auto& [k, v] : meta) w.set_metadata(k, v);
+  for (const auto& [k, v] : meta)
+    w.set_metadata(k, v);
   w.put_tile({1, 0, 0}, corrupt.empty() ? tileformat::encode_mblock(west) : corrupt);
   w.put_tile({1, 1, 0}, tileformat::encode_mblock(east));
   w.put_tile({0, 0, 0}, tileformat::encode_mblock(parent));
@@ -66,7 +68,8 @@ TEST(ValidateCli, DetectsDifferentSharedEdges) {
   const auto path = write_package(dir, flat_block(5), east, flat_block(5));
   auto r = run(tiler() + " validate " + path, dir.path());
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.out.find("tile 1/0/0: edge sample differs from neighbour 1/1/0"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("tile 1/0/0: edge sample differs from neighbour 1/1/0"), std::string::npos)
+      << r.out;
 }
 
 TEST(ValidateCli, DetectsCoarseSamplesThatDifferFromFineOnes) {
@@ -96,7 +99,8 @@ TEST(ValidateCli, ReportsCorruptTilesWithTheirIdAndSpecSection) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.out.find("tile 1/0/0:"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("tileformat §4"), std::string::npos) << r.out;
-  auto e = run(tiler() + " extract " + path + " --zoom 1 -o " + (dir / "x.tif").string(), dir.path());
+  auto e =
+      run(tiler() + " extract " + path + " --zoom 1 -o " + (dir / "x.tif").string(), dir.path());
   EXPECT_EQ(e.exit_code, 1);
   EXPECT_NE(e.err.find("tile 1/0/0"), std::string::npos) << e.err;
   EXPECT_FALSE(fs::exists(dir / "x.tif"));

@@ -2,6 +2,7 @@
 #include "cli_args.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "errors.hpp"
@@ -79,6 +80,22 @@ std::optional<std::vector<std::string>> CliArgs::parse(const std::vector<std::st
     }
     o->on_value(value);
   }
+  return positional;
+}
+
+std::optional<std::vector<std::string>> CliArgs::parse_command(const std::vector<std::string>& args,
+                                                               size_t min, size_t max,
+                                                               const std::string& what) {
+  auto positional = parse(args);
+  if (!positional) {
+    std::fputs(help().c_str(), stdout);
+    return std::nullopt;
+  }
+  if (positional->size() < min)
+    throw UsageError(min == max ? "expected " + std::to_string(min) + " " + what
+                                : "no " + what + " given");
+  if (positional->size() > max)
+    throw UsageError("expected at most " + std::to_string(max) + " " + what);
   return positional;
 }
 

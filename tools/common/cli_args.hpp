@@ -25,6 +25,11 @@ class CliArgs {
   // positional arguments. Throws UsageError. Returns nullopt after --help.
   std::optional<std::vector<std::string>> parse(const std::vector<std::string>& args);
   std::string help() const;
+  // parse(), printing the help on stdout for --help (then nullopt), and
+  // requiring between min and max positional `what` arguments.
+  std::optional<std::vector<std::string>> parse_command(const std::vector<std::string>& args,
+                                                        size_t min, size_t max,
+                                                        const std::string& what);
 
   // Value parsers that throw UsageError naming the option.
   static int to_int(const std::string& option, const std::string& v, int lo, int hi);

@@ -36,12 +36,8 @@ int run_extract(const std::vector<std::string>& args) {
              [&](const std::string& v) { bbox = CliArgs::to_doubles("--bbox", v, 4); });
   cli.option("-o,--output", "OUT.tif", "output GeoTIFF", [&](const std::string& v) { output = v; });
   cli.flag("--force", "replace an existing output", [&] { force = true; });
-  auto positional = cli.parse(args);
-  if (!positional) {
-    std::fputs(cli.help().c_str(), stdout);
-    return kExitOk;
-  }
-  if (positional->size() != 1) throw UsageError("expected exactly one PACKAGE");
+  auto positional = cli.parse_command(args, 1, 1, "PACKAGE");
+  if (!positional) return kExitOk;
   if (!zoom) throw UsageError("--zoom is required");
   if (output.empty()) throw UsageError("no output given; add -o OUT.tif");
   const std::string& path = (*positional)[0];

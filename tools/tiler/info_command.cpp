@@ -13,12 +13,8 @@ int run_info(const std::vector<std::string>& args) {
   CliArgs cli("globe-tiler info",
               "globe-tiler info PACKAGE\n\nPrints a package's metadata, zoom range, tile counts "
               "and sizes.");
-  auto positional = cli.parse(args);
-  if (!positional) {
-    std::fputs(cli.help().c_str(), stdout);
-    return kExitOk;
-  }
-  if (positional->size() != 1) throw UsageError("expected exactly one PACKAGE");
+  auto positional = cli.parse_command(args, 1, 1, "PACKAGE");
+  if (!positional) return kExitOk;
   const std::string& path = (*positional)[0];
   TerrainPackage p = open_terrain_package(path);
   std::printf("package: %s\n", path.c_str());

@@ -79,13 +79,9 @@ int run_terrain(const std::vector<std::string>& args, const std::string&) {
              });
   cli.flag("--force", "replace an existing output", [&] { s.force = true; });
   cli.flag("-q,--quiet", "no progress or summary on stderr", [&] { quiet = true; });
-  auto positional = cli.parse(args);
-  if (!positional) {
-    std::fputs(cli.help().c_str(), stdout);
-    return kExitOk;
-  }
+  auto positional = cli.parse_command(args, 1, SIZE_MAX, "input DEM (see --help)");
+  if (!positional) return kExitOk;
   s.inputs = *positional;
-  if (s.inputs.empty()) throw UsageError("no input DEM given (see --help)");
   if (s.output.empty()) throw UsageError("no output given; add -o OUT.mbtiles");
   if (quiet) s.progress = ProgressMode::kQuiet;
   s.command_line = reproducible_command_line(args);

@@ -72,12 +72,8 @@ int run_validate(const std::vector<std::string>& args) {
       "globe-tiler validate",
       "globe-tiler validate PACKAGE\n\nDecodes every tile and checks schema and invariants.\n"
       "Exit 0: valid; 5: warnings only; 1: errors.");
-  auto positional = cli.parse(args);
-  if (!positional) {
-    std::fputs(cli.help().c_str(), stdout);
-    return kExitOk;
-  }
-  if (positional->size() != 1) throw UsageError("expected exactly one PACKAGE");
+  auto positional = cli.parse_command(args, 1, 1, "PACKAGE");
+  if (!positional) return kExitOk;
   const std::string& path = (*positional)[0];
   TerrainPackage p = open_terrain_package(path);
   Report r;
