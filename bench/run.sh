@@ -3,7 +3,7 @@
 #   1. time: globe-tiler terrain  ÷  one gdalwarp of the same DEM onto the finest
 #      grid (same resampling, all cores) — the floor is one warp pass;
 #   2. size: package (whole pyramid)  ÷  DEFLATE+PREDICTOR GeoTIFF of the finest
-#      level at the same precision (Int16/Int32 quanta, PREDICTOR=2, ZLEVEL=9);
+#      level at the same precision (Int16 quanta if they fit, else Int32; PREDICTOR=2, ZLEVEL=9);
 #   3. memory: peak RSS for a 32768² synthetic DEM  ÷  for a 4096² one.
 # Usage: bench/run.sh [quick]   (quick: skip the 32768² input)
 # Needs: scripts/build.sh done, samples/fetch.sh done. Scratch: bench/scratch/.
@@ -43,7 +43,12 @@ row() { # name dem [tiler options...]
     -te "$x0" "$y0" "$x1" "$y1" -ts "$w" "$h" -ot Float32 "$dem" "$scratch/$name.gdalwarp.tif")"
   # The finest level at the package's precision, as integers of `step`.
   rm -f "$scratch/$name.deflate.tif" "$scratch/$name.q.vrt"
-  gdal_translate -q -of VRT -ot Int32 -scale 0 1 0 "$(awk -v s="$step" 'BEGIN { print 1 / s }')" -a_nodata -2147483648 \
+  # Int16 when the quanta fit (the smaller, fairer peer), else Int32.
+  local range type nodata
+  range=$(gdalinfo -mm "$scratch/$name.finest.tif" | sed -n 's/.*Computed Min\/Max=\([-0-9.e+]*\),\([-0-9.e+]*\).*/\1 \2/p')
+  type=$(awk -v r="$range" -v s="$step" 'BEGIN { split(r, m, " "); print (m[1] / s > -32767 && m[2] / s < 32767) ? "Int16" : "Int32" }')
+  nodata=$([ "$type" = Int16 ] && echo -32768 || echo -2147483648)
+  gdal_translate -q -of VRT -ot "$type" -scale 0 1 0 "$(awk -v s="$step" 'BEGIN { print 1 / s }')" -a_nodata "$nodata" \
     "$scratch/$name.finest.tif" "$scratch/$name.q.vrt"
   gdal_translate -q -co TILED=YES -co COMPRESS=DEFLATE -co PREDICTOR=2 -co ZLEVEL=9 \
     "$scratch/$name.q.vrt" "$scratch/$name.deflate.tif"
