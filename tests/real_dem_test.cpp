@@ -156,6 +156,32 @@ TEST(RealDemAntimeridian, GlobalDataCoversBothHemispheres) {
   EXPECT_GT(valid, r.data.size() / 2);
 }
 
+TEST(RealDemAntimeridian, WebMercatorTilesAtBothEdgesHoldData) {
+  // Zoom 4 warps tiles in groups, including groups at x = 0 and x = 15 whose
+  // windows touch the antimeridian: both edges must hold data, and validate's
+  // invariants (edges, nesting, saturation) must hold.
+  TempDir dir;
+  const auto pkg = (dir / "w.mbtiles").string();
+  ASSERT_EQ(
+      run(tiler() + " terrain -q --max-zoom 4 " + sample("etopo20.tif").string() + " -o " + pkg,
+          dir.path())
+          .exit_code,
+      0);
+  EXPECT_EQ(run(tiler() + " validate " + pkg, dir.path()).exit_code, 0);
+  for (const std::string bbox : {"-180,-5,-178,5", "178,-5,180,5"}) {
+    const auto out = (dir / "edge.tif").string();
+    ASSERT_EQ(run(tiler() + " extract --force " + pkg + " --zoom 4 --bbox " + bbox + " -o " + out,
+                  dir.path())
+                  .exit_code,
+              0);
+    const Raster r = read_raster(out);
+    size_t valid = 0;
+    for (double v : r.data)
+      valid += !std::isnan(v);
+    EXPECT_EQ(valid, r.data.size()) << bbox << ": samples without data at the antimeridian";
+  }
+}
+
 TEST(RealDemCodec, RealBlocksRoundTripToIdenticalBytes) {
   // Every block of a real package decodes and re-encodes to the same bytes.
   TempDir dir;

@@ -180,70 +180,116 @@ class Builder {
     v.erase(std::unique(v.begin(), v.end()), v.end());
   }
 
+  struct RawOut {
+    std::vector<uint8_t> block, edges;  // both empty: no valid sample
+  };
+
   // Pass 1: raw samples of every tile of zoom z.
   void pass_raw(StagingStore& stage, int z) {
+    if (z == plan_.max_zoom) return pass_warp(stage, z);
     std::vector<TileId> tiles;
-    const bool finest = z == plan_.max_zoom;
-    if (finest) {
-      tiles = finest_tiles(z);
-    } else {
-      for (const TileId& c : stage.list(Stage::kFinal, z + 1))
-        tiles.push_back(c.parent());
-      sort_unique(tiles);
-    }
+    for (const TileId& c : stage.list(Stage::kFinal, z + 1))
+      tiles.push_back(c.parent());
+    sort_unique(tiles);
     std::map<TileId, std::vector<uint8_t>> cache;
-    progress_.begin("z" + std::to_string(z) + (finest ? " warp" : " pyramid"), tiles.size());
+    progress_.begin("z" + std::to_string(z) + " pyramid", tiles.size());
     parallel_batches<RawOut>(
         tiles.size(), threads_, batch_size(),
         [&](size_t begin, size_t end) {
           cache.clear();
-          if (finest) return;
           for (size_t i = begin; i < end; ++i)
             for (const TileId& c : tiles[i].children())
               if (auto b = stage.get(Stage::kFinal, c)) cache.emplace(c, std::move(*b));
         },
-        [&](size_t i, int worker) {
-          return finest ? warp_tile(tiles[i], worker) : decimate(tiles[i], cache);
-        },
+        [&](size_t i, int) { return decimate(tiles[i], cache); },
         [&](size_t i, RawOut&& out) {
-          if (!out.block.empty()) {
-            stage.put(Stage::kRaw, tiles[i], out.block);
-            stage.put(Stage::kEdges, tiles[i], out.edges);
-          }
+          store_raw(stage, tiles[i], out);
           progress_.advance();
         });
     progress_.end();
   }
 
-  struct RawOut {
-    std::vector<uint8_t> block, edges;  // both empty: no valid sample
-  };
+  // The finest zoom: tiles are warped in fixed groups of up to 4 x 4 (one
+  // GDAL call each); groups depend only on tile positions, not on -j.
+  void pass_warp(StagingStore& stage, int z) {
+    const std::vector<TileId> tiles = finest_tiles(z);
+    const int g = plan_.tiling.tiles_x(z) >= 16 ? TileWarper::kMaxGroup : 1;
+    struct Group {
+      TileId first;
+      int cols, rows;
+      std::vector<TileId> members;
+    };
+    std::map<std::pair<uint32_t, uint32_t>, Group> by_key;  // (gy, gx): row-major order
+    for (const TileId& t : tiles) {
+      Group& grp = by_key[{t.y / g, t.x / g}];
+      grp.members.push_back(t);
+    }
+    std::vector<Group> groups;
+    for (auto& [key, grp] : by_key) {
+      uint32_t x0 = grp.members[0].x, x1 = x0, y0 = grp.members[0].y, y1 = y0;
+      for (const TileId& t : grp.members) {
+        x0 = std::min(x0, t.x);
+        x1 = std::max(x1, t.x);
+        y0 = std::min(y0, t.y);
+        y1 = std::max(y1, t.y);
+      }
+      grp.first = {z, x0, y0};
+      grp.cols = static_cast<int>(x1 - x0 + 1);
+      grp.rows = static_cast<int>(y1 - y0 + 1);
+      groups.push_back(std::move(grp));
+    }
+    progress_.begin("z" + std::to_string(z) + " warp", tiles.size());
+    parallel_batches<std::vector<RawOut>>(
+        groups.size(), threads_, std::max<size_t>(1, batch_size() / 4), [](size_t, size_t) {},
+        [&](size_t i, int worker) {
+          return warp_group(groups[i].first, groups[i].cols, groups[i].rows, groups[i].members,
+                            worker);
+        },
+        [&](size_t i, std::vector<RawOut>&& outs) {
+          for (size_t k = 0; k < outs.size(); ++k) {
+            store_raw(stage, groups[i].members[k], outs[k]);
+            progress_.advance();
+          }
+        });
+    progress_.end();
+  }
 
-  RawOut warp_tile(TileId id, int worker) {
+  static void store_raw(StagingStore& stage, TileId id, const RawOut& out) {
+    if (out.block.empty()) return;
+    stage.put(Stage::kRaw, id, out.block);
+    stage.put(Stage::kEdges, id, out.edges);
+  }
+
+  std::vector<RawOut> warp_group(TileId first, int cols, int rows,
+                                 const std::vector<TileId>& members, int worker) {
     if (!warpers_[worker]) warpers_[worker] = std::make_unique<TileWarper>(plan_, s_.resampling);
     std::vector<double> h;
-    warpers_[worker]->warp(id, h);
-    // The warp covers the owned steps x steps samples; the last column and
-    // row stay invalid here and come from the neighbours in pass 2.
-    const int n = plan_.steps;
-    Block b{std::vector<int32_t>(size_t(size_) * size_, 0),
-            std::vector<uint8_t>(size_t(size_) * size_, 0)};
-    size_t valid = 0;
-    for (int y = 0; y < n; ++y)
-      for (int x = 0; x < n; ++x) {
-        const double v = h[size_t(y) * n + x];
-        if (std::isnan(v)) continue;
-        const double qv = std::round(v / plan_.step_m);
-        if (!(std::abs(qv) <= tileformat::kMaxQuantum))
-          throw InputError(plan_.sources[0].path + ": height " + std::to_string(v) + " in tile " +
-                           id.str() +
-                           " does not fit the quantization grid; use a larger --precision");
-        b.q[size_t(y) * size_ + x] = static_cast<int32_t>(qv);
-        b.valid[size_t(y) * size_ + x] = 1;
-        ++valid;
-      }
-    if (valid == 0) return {};
-    return RawOut{encode_stage(b), pack_edges(b, size_)};
+    warpers_[worker]->warp(first, cols, rows, h);
+    const int n = plan_.steps, stride = cols * n;
+    std::vector<RawOut> outs;
+    for (const TileId& id : members) {
+      // Each tile owns steps x steps samples; its last column and row stay
+      // invalid here and come from the neighbours in pass 2.
+      const size_t ox = size_t(id.x - first.x) * n, oy = size_t(id.y - first.y) * n;
+      Block b{std::vector<int32_t>(size_t(size_) * size_, 0),
+              std::vector<uint8_t>(size_t(size_) * size_, 0)};
+      size_t valid = 0;
+      for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+          const double v = h[(oy + y) * stride + ox + x];
+          if (std::isnan(v)) continue;
+          const double qv = std::round(v / plan_.step_m);
+          if (!(std::abs(qv) <= tileformat::kMaxQuantum))
+            throw InputError(plan_.sources[0].path + ": height " + std::to_string(v) + " in tile " +
+                             id.str() +
+                             " does not fit the quantization grid; use a larger --precision");
+          b.q[size_t(y) * size_ + x] = static_cast<int32_t>(qv);
+          b.valid[size_t(y) * size_ + x] = 1;
+          ++valid;
+        }
+      outs.push_back(valid == 0 ? RawOut{} : RawOut{encode_stage(b), pack_edges(b, size_)});
+    }
+    return outs;
   }
 
   RawOut decimate(TileId id, const std::map<TileId, std::vector<uint8_t>>& cache) const {

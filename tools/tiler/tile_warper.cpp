@@ -67,7 +67,7 @@ TileWarper::TileWarper(const DemPlan& plan, const std::string& resampling)
       sources_.push_back(std::move(wrapped));
     }
   }
-  const int n = plan.steps;
+  const int n = plan.steps * kMaxGroup;
   GDALDriverH mem = GDALGetDriverByName("MEM");
   dest_ = GdalDataset(GDALCreate(mem, "", n, n, 1, GDT_Float64, nullptr), "tile");
   SpatialRef target = SpatialRef::from_user_input(plan.tiling.crs, "tiling CRS");
@@ -130,20 +130,27 @@ std::vector<std::unique_ptr<TileWarper::Operation>> TileWarper::make_operations(
   return ops;
 }
 
-void TileWarper::warp(tileformat::TileId id, std::vector<double>& heights) {
-  const int n = plan_.steps;
+void TileWarper::warp(tileformat::TileId id, int cols, int rows, std::vector<double>& heights) {
+  if (cols < 1 || rows < 1 || cols > kMaxGroup || rows > kMaxGroup)
+    throw std::invalid_argument("TileWarper: group of " + std::to_string(cols) + " x " +
+                                std::to_string(rows) + " tiles");
+  const int w = plan_.steps * cols, h = plan_.steps * rows;
   const double sp = plan_.tiling.sample_spacing(id.z, plan_.steps);
-  const tileformat::Bounds b = plan_.tiling.tile_bounds(id);
+  const tileformat::Bounds first = plan_.tiling.tile_bounds(id);
+  const tileformat::Bounds b{first.min_x, first.max_y - rows * first.height(),
+                             first.min_x + cols * first.width(), first.max_y};
   // Pixel centres on the samples: the first centre is the tile's corner.
   double gt[6] = {b.min_x - sp / 2, sp, 0, b.max_y + sp / 2, 0, -sp};
   // Initialised once here, not by GDAL per source (INIT_DEST would let a later
   // source's window wipe what an earlier source wrote: mosaics, +-360 copies).
-  if (GDALFillRaster(dest_.band(1), std::numeric_limits<double>::quiet_NaN(), 0) != CE_None)
+  heights.assign(static_cast<size_t>(w) * h, std::numeric_limits<double>::quiet_NaN());
+  if (GDALRasterIO(dest_.band(1), GF_Write, 0, 0, w, h, heights.data(), w, h, GDT_Float64, 0, 0) !=
+      CE_None)
     throw std::runtime_error("cannot initialise the tile buffer: " + gdal_last_error());
 
   std::vector<std::unique_ptr<Operation>> centred;
-  const bool at_antimeridian =
-      plan_.tiling.scheme == "webmercator" && (id.x == 0 || id.x + 1 == plan_.tiling.tiles_x(id.z));
+  const bool at_antimeridian = plan_.tiling.scheme == "webmercator" &&
+                               (id.x == 0 || id.x + cols >= plan_.tiling.tiles_x(id.z));
   if (at_antimeridian) {
     // Warp in a Mercator centred on the tile (with +over, longitudes continue
     // past +-180): the same projection up to a shift in x, but the window
@@ -165,15 +172,15 @@ void TileWarper::warp(tileformat::TileId id, std::vector<double>& heights) {
   CPLErrorReset();
   for (auto& op : ops) {
     GDALSetGenImgProjTransformerDstGeoTransform(op->transformer, gt);
-    if (GDALChunkAndWarpImage(op->operation, 0, 0, n, n) != CE_None ||
+    if (GDALChunkAndWarpImage(op->operation, 0, 0, w, h) != CE_None ||
         CPLGetLastErrorType() == CE_Failure)
       throw InputError(plan_.sources[0].path +
                        (plan_.sources.size() > 1 ? " (or another input)" : "") +
                        ": reading data for tile " + id.str() + " failed (" + gdal_last_error() +
                        "); the file may be truncated or corrupt");
   }
-  heights.resize(static_cast<size_t>(n) * n);
-  if (GDALRasterIO(dest_.band(1), GF_Read, 0, 0, n, n, heights.data(), n, n, GDT_Float64, 0, 0) !=
+  heights.resize(static_cast<size_t>(w) * h);
+  if (GDALRasterIO(dest_.band(1), GF_Read, 0, 0, w, h, heights.data(), w, h, GDT_Float64, 0, 0) !=
       CE_None)
     throw InputError("tile " + id.str() + ": reading the warped samples failed (" +
                      gdal_last_error() + ")");

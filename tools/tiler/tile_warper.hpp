@@ -29,7 +29,12 @@ class TileWarper {
   // corner; NaN where no input has data. Not warping the shared samples also
   // keeps the destination window off the antimeridian, where GDAL's source
   // window computation wraps. Throws InputError on read failures.
-  void warp(tileformat::TileId id, std::vector<double>& heights);
+  // The same for a block of cols x rows tiles whose north-west tile is
+  // `first`, in one warp call (less per-call overhead): the result is
+  // (cols * steps) x (rows * steps) samples. cols, rows <= kMaxGroup.
+  void warp(tileformat::TileId first, int cols, int rows, std::vector<double>& heights);
+  void warp(tileformat::TileId id, std::vector<double>& heights) { warp(id, 1, 1, heights); }
+  static constexpr int kMaxGroup = 4;
 
   struct Operation;  // one source's transformer + warp operation
 
