@@ -1,23 +1,13 @@
 // Progress reporting (see progress.hpp).
 #include "progress.hpp"
 
+#include "json_escape.hpp"
+
 #include <unistd.h>
 
 #include <cstdio>
 
 namespace globe {
-namespace {
-std::string json_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (static_cast<unsigned char>(c) < 0x20) continue;
-    out += c;
-  }
-  return out;
-}
-}  // namespace
-
 Progress::Progress(ProgressMode mode) : mode_(mode), tty_(isatty(STDERR_FILENO) != 0) {}
 
 void Progress::begin(const std::string& phase, uint64_t total) {

@@ -12,6 +12,7 @@
 #include "block_fill.hpp"
 #include "error_tree.hpp"
 #include "errors.hpp"
+#include "json_escape.hpp"
 #include "parallel_batches.hpp"
 #include "staging_store.hpp"
 #include "tile_warper.hpp"
@@ -60,15 +61,6 @@ std::pair<int32_t, uint8_t> edge_sample(const std::vector<uint8_t>& e, size_t k)
   const uint32_t v =
       uint32_t{p[0]} | uint32_t{p[1]} << 8 | uint32_t{p[2]} << 16 | uint32_t{p[3]} << 24;
   return {static_cast<int32_t>(v), p[4]};
-}
-
-std::string json_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out;
 }
 
 class Builder {
