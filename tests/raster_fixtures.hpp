@@ -20,6 +20,12 @@ struct Raster {
   std::vector<double> data;  // NaN where nodata
   std::string wkt;
   double at(int x, int y) const { return data[size_t(y) * width + x]; }
+  size_t valid_count() const {
+    size_t n = 0;
+    for (double v : data)
+      n += !std::isnan(v);
+    return n;
+  }
 };
 
 inline void gdal_setup() {
