@@ -426,6 +426,7 @@ class Builder {
         },
         [&](size_t i, std::vector<uint8_t>&& blob) {
           writer.put_tile(tiles[i], blob);
+          coarsest_written_ = z;
           progress_.advance();
         });
     progress_.end();
@@ -453,7 +454,9 @@ class Builder {
     meta["bounds"] = f(ll.min_x) + "," + f(ll.min_y) + "," + f(ll.max_x) + "," + f(ll.max_y);
     meta["center"] = f((ll.min_x + ll.max_x) / 2) + "," + f((ll.min_y + ll.max_y) / 2) + "," +
                      std::to_string(plan_.max_zoom);
-    meta["minzoom"] = std::to_string(plan_.min_zoom);
+    // A dataset smaller than one sample of the coarsest zooms leaves them
+    // empty (empty tiles are not written): minzoom says what is there.
+    meta["minzoom"] = std::to_string(coarsest_written_);
     meta["maxzoom"] = std::to_string(plan_.max_zoom);
     meta["globe:format_version"] = std::to_string(tileformat::kFormatVersion);
     meta["globe:block_size"] = std::to_string(size_);
@@ -482,6 +485,7 @@ class Builder {
   const int threads_;
   const bool global_;
   std::vector<std::unique_ptr<TileWarper>> warpers_;
+  int coarsest_written_ = 0;
 };
 
 }  // namespace
