@@ -14,11 +14,14 @@ namespace {
 
 // A smooth 0.001-degree DEM near Zurich, 200 x 160 pixels, metres with decimals.
 const double kGt[6] = {8.50, 0.001, 0, 47.40, 0, -0.001};
-double height_at(int x, int y) { return 400.0 + 30.0 * std::sin(x * 0.05) + 0.7 * y + 0.25; }
+double height_at(int x, int y) {
+  return 400.0 + 30.0 * std::sin(x * 0.05) + 0.7 * y + 0.25;
+}
 
 std::string make_dem(const TempDir& dir, const std::string& name = "dem.tif") {
   const auto path = (dir / name).string();
-  write_dem(path, 200, 160, kGt, "EPSG:4326", GDT_Float32, [](int x, int y) { return height_at(x, y); });
+  write_dem(path, 200, 160, kGt, "EPSG:4326", GDT_Float32,
+            [](int x, int y) { return height_at(x, y); });
   return path;
 }
 
@@ -34,7 +37,9 @@ std::vector<tileformat::ZoomSummary> zooms(const std::string& pkg) {
 
 Raster extract(const TempDir& dir, const std::string& pkg, int zoom, const std::string& name) {
   const auto out = (dir / name).string();
-  auto r = run(tiler() + " extract --force " + pkg + " --zoom " + std::to_string(zoom) + " -o " + out, dir.path());
+  auto r =
+      run(tiler() + " extract --force " + pkg + " --zoom " + std::to_string(zoom) + " -o " + out,
+          dir.path());
   EXPECT_EQ(r.exit_code, 0) << r.err;
   return read_raster(out);
 }
@@ -52,14 +57,15 @@ TEST(TerrainOptions, SeveralInputsFormOneMosaic) {
   // cannot reach across files at the seam, in gdalwarp either).
   TempDir dir;
   const auto whole = make_dem(dir);
-  const double west_gt[6] = {8.50, 0.001, 0, 47.40, 0, -0.001}, east_gt[6] = {8.60, 0.001, 0, 47.40, 0, -0.001};
+  const double west_gt[6] = {8.50, 0.001, 0, 47.40, 0, -0.001},
+               east_gt[6] = {8.60, 0.001, 0, 47.40, 0, -0.001};
   write_dem((dir / "west.tif").string(), 100, 160, west_gt, "EPSG:4326", GDT_Float32,
             [](int x, int y) { return height_at(x, y); });
   write_dem((dir / "east.tif").string(), 100, 160, east_gt, "EPSG:4326", GDT_Float32,
             [](int x, int y) { return height_at(x + 100, y); });
   build(dir, "--resampling near " + whole + " -o " + (dir / "whole.mbtiles").string());
-  build(dir, "--resampling near " + (dir / "west.tif").string() + " " + (dir / "east.tif").string() + " -o " +
-                 (dir / "mosaic.mbtiles").string());
+  build(dir, "--resampling near " + (dir / "west.tif").string() + " " +
+                 (dir / "east.tif").string() + " -o " + (dir / "mosaic.mbtiles").string());
   const int z = std::stoi(metadata((dir / "whole.mbtiles").string()).at("maxzoom"));
   const Raster a = extract(dir, (dir / "whole.mbtiles").string(), z, "a.tif");
   const Raster b = extract(dir, (dir / "mosaic.mbtiles").string(), z, "b.tif");
@@ -88,7 +94,8 @@ TEST(TerrainOptions, BboxLimitsTheTiles) {
   const auto dem = make_dem(dir);
   build(dir, dem + " -o " + (dir / "all.mbtiles").string());
   build(dir, dem + " --bbox 8.50,47.30,8.53,47.33 -o " + (dir / "part.mbtiles").string());
-  const auto all = zooms((dir / "all.mbtiles").string()), part = zooms((dir / "part.mbtiles").string());
+  const auto all = zooms((dir / "all.mbtiles").string()),
+             part = zooms((dir / "part.mbtiles").string());
   ASSERT_EQ(all.back().zoom, part.back().zoom);
   EXPECT_LT(part.back().tiles, all.back().tiles);
   const auto b = metadata((dir / "part.mbtiles").string()).at("bounds");
@@ -119,7 +126,8 @@ TEST(TerrainOptions, NodataOverrideMakesHoles) {
   // Heights of exactly 500 (a band of pixels) become holes with --nodata 500.
   TempDir dir;
   const auto path = (dir / "band.tif").string();
-  write_dem(path, 200, 160, kGt, "EPSG:4326", GDT_Int16, [](int x, int y) { return (x >= 90 && x < 110) ? 500 : 100 + y; });
+  write_dem(path, 200, 160, kGt, "EPSG:4326", GDT_Int16,
+            [](int x, int y) { return (x >= 90 && x < 110) ? 500 : 100 + y; });
   build(dir, "--resampling near " + path + " -o " + (dir / "a.mbtiles").string());
   build(dir, "--resampling near --nodata 500 " + path + " -o " + (dir / "b.mbtiles").string());
   const int z = std::stoi(metadata((dir / "a.mbtiles").string()).at("maxzoom"));
@@ -148,7 +156,9 @@ TEST(TerrainOptions, LocalTilingInAnotherCrs) {
   EXPECT_EQ(meta.at("globe:scheme"), "local");
   EXPECT_NE(meta.at("globe:crs").find("UTM zone 32N"), std::string::npos);
   EXPECT_EQ(run(tiler() + " validate " + pkg, dir.path()).exit_code, 0);
-  auto r = run(tiler() + " terrain -q --t_srs EPSG:32632 " + dem + " -o " + (dir / "x.mbtiles").string(), dir.path());
+  auto r =
+      run(tiler() + " terrain -q --t_srs EPSG:32632 " + dem + " -o " + (dir / "x.mbtiles").string(),
+          dir.path());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--t_srs applies to --tiling local only"), std::string::npos);
 }
