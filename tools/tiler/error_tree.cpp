@@ -17,20 +17,27 @@ double lattice_deviation(const KPatchLayout& layout, size_t index, const std::ve
   // Lattice step vectors along the two legs (integers for every depth <= D).
   const Point wu{(n.b.x - n.apex.x) / L, (n.b.y - n.apex.y) / L};
   const Point wv{(n.c.x - n.apex.x) / L, (n.c.y - n.apex.y) / L};
-  // The samples of one half-open lattice cell {apex + fa*wu + fb*wv, 0 <= fa, fb < 1},
-  // with their lattice coordinates; the same pattern repeats in every cell.
+  // The samples of one half-open lattice cell {apex + fa*wu + fb*wv, 0 <= fa, fb < 1}
+  // with their interpolation weights, split into the cell's lower triangle
+  // (fa + fb <= 1, from vertex 00) and upper one (from vertex 11); the same
+  // pattern repeats in every cell.
   struct Sample {
     ptrdiff_t offset;
-    double fa, fb;
+    double fa, fb;  // lower: weights of 10 and 01 (from 00); upper: of 01 and 10 (from 11)
   };
-  std::vector<Sample> pattern;
+  std::vector<Sample> lower, upper;
   const double ww = static_cast<double>(wu.x * wu.x + wu.y * wu.y);
   const int reach = std::abs(wu.x) + std::abs(wu.y);
   for (int dy = -reach; dy <= reach; ++dy)
     for (int dx = -reach; dx <= reach; ++dx) {
       const double fa = (dx * wu.x + dy * wu.y) / ww, fb = (dx * wv.x + dy * wv.y) / ww;
-      if (fa >= 0 && fa < 1 && fb >= 0 && fb < 1 && (fa > 0 || fb > 0))  // (0, 0) is a vertex
-        pattern.push_back({static_cast<ptrdiff_t>(dy) * size + dx, fa, fb});
+      if (!(fa >= 0 && fa < 1 && fb >= 0 && fb < 1) || (fa == 0 && fb == 0))
+        continue;  // (0, 0) is a vertex
+      const ptrdiff_t offset = static_cast<ptrdiff_t>(dy) * size + dx;
+      if (fa + fb > 1)
+        upper.push_back({offset, 1 - fa, 1 - fb});
+      else
+        lower.push_back({offset, fa, fb});
     }
   const ptrdiff_t du = static_cast<ptrdiff_t>(wu.y) * size + wu.x,
                   dv = static_cast<ptrdiff_t>(wv.y) * size + wv.x;
@@ -38,20 +45,23 @@ double lattice_deviation(const KPatchLayout& layout, size_t index, const std::ve
   const int32_t* h = q.data();
   const uint8_t* ok = valid.empty() ? nullptr : valid.data();
   double worst = 0;
+  // z = corner + wa * (a - corner) + wb * (b - corner) over the listed samples.
+  auto scan = [&](const std::vector<Sample>& samples, ptrdiff_t base, double corner, double a,
+                  double b) {
+    for (const Sample& s : samples) {
+      const ptrdiff_t idx = base + s.offset;
+      if (ok && !ok[idx]) continue;
+      const double z = corner + s.fa * (a - corner) + s.fb * (b - corner);
+      worst = std::max(worst, std::abs(z - h[idx]));
+    }
+  };
   for (int i = 0; i < L; ++i)
     for (int j = 0; i + j < L; ++j) {
       const ptrdiff_t base = apex + i * du + j * dv;
-      const double h00 = h[base], h10 = h[base + du], h01 = h[base + dv];
-      const bool last_row = i + j == L - 1;  // only the lower half lies inside the node
-      const double h11 = last_row ? 0.0 : h[base + du + dv];
-      for (const Sample& s : pattern) {
-        const ptrdiff_t idx = base + s.offset;
-        const bool upper = s.fa + s.fb > 1;
-        if ((upper && last_row) || (ok && !ok[idx])) continue;
-        const double z = upper ? h11 + (1 - s.fa) * (h01 - h11) + (1 - s.fb) * (h10 - h11)
-                               : h00 + s.fa * (h10 - h00) + s.fb * (h01 - h00);
-        worst = std::max(worst, std::abs(z - h[idx]));
-      }
+      const double h10 = h[base + du], h01 = h[base + dv];
+      scan(lower, base, h[base], h10, h01);
+      // Cells on the hypotenuse have only their lower half inside the node.
+      if (i + j < L - 1) scan(upper, base, h[base + du + dv], h01, h10);
     }
   return worst;
 }
