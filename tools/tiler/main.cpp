@@ -37,6 +37,10 @@ int main(int argc, char** argv) {
   std::string command_line = "globe-tiler";
   for (int i = 1; i < argc; ++i)
     command_line += std::string(" ") + argv[i];
+  auto report = [](const std::exception& e, int code) {
+    std::fprintf(stderr, "globe-tiler: %s\n", e.what());
+    return code;
+  };
   try {
     if (command == "terrain") return globe::run_terrain(args, command_line);
     if (command == "info") return globe::run_info(args);
@@ -56,17 +60,13 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "globe-tiler %s: %s\n", command.c_str(), e.what());
     return globe::kExitUsage;
   } catch (const globe::OutputError& e) {
-    std::fprintf(stderr, "globe-tiler: %s\n", e.what());
-    return globe::kExitOutputError;
+    return report(e, globe::kExitOutputError);
   } catch (const globe::InputError& e) {
-    std::fprintf(stderr, "globe-tiler: %s\n", e.what());
-    return globe::kExitDataError;
+    return report(e, globe::kExitDataError);
   } catch (const tileformat::FormatError& e) {
-    std::fprintf(stderr, "globe-tiler: %s\n", e.what());
-    return globe::kExitDataError;
+    return report(e, globe::kExitDataError);
   } catch (const tileformat::PackageError& e) {
-    std::fprintf(stderr, "globe-tiler: %s\n", e.what());
-    return globe::kExitDataError;
+    return report(e, globe::kExitDataError);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "globe-tiler: internal error: %s\n", e.what());
     return globe::kExitInternal;

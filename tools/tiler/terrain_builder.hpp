@@ -5,9 +5,9 @@
 //              samples only), so coarse samples equal fine ones.
 //   2. final:  a block's last column/row come from its east/south neighbours
 //              (one owner per shared sample), holes are filled, node errors
-//              are computed.
-//   3. encode: vertex errors from the 3 x 3 neighbourhood, MBlock encoding,
-//              written to the package.
+//              are computed and the MBlock is encoded (heights and mask).
+//   3. encode: vertex errors from the 3 x 3 neighbourhood are spliced into
+//              that MBlock, which is written to the package.
 // Intermediate blocks live in a scratch SQLite file; parallel work is done in
 // batches and consumed in tile order, so output is identical for any -j.
 #pragma once

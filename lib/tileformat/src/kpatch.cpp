@@ -52,7 +52,6 @@ KPatchLayout::KPatchLayout(int steps, int lattice, int diagonal)
           const bool tl_br = cell_diagonal(m, cx, cy) == 0;
           for (int t = 0; t < 2; ++t) {
             KPatchNode& node = nodes_[even_node(m, cx, cy, t)];
-            node.depth = d;
             if (tl_br)
               node = {t == 0 ? tr : bl, tl, br, d, {-1, -1}, -1};
             else

@@ -1,5 +1,6 @@
 // MBlock codec (docs/tileformat.md §5): global-grid quantized heights ->
-// 2D (Lorenzo) predictor residuals -> zigzag -> byte planes -> zstd.
+// 2D (Lorenzo) predictor residuals -> zigzag -> packed 2/4-bit values with
+// escapes, or byte planes -> zstd; mask and error tree in their own frames.
 #include "tileformat/mblock.hpp"
 
 #include <algorithm>

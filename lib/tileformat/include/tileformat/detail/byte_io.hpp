@@ -23,11 +23,6 @@ class ByteWriter {
   void f64(double v) { put(std::bit_cast<uint64_t>(v)); }
   void bytes(std::span<const uint8_t> b) { out_.insert(out_.end(), b.begin(), b.end()); }
   size_t size() const { return out_.size(); }
-  // Overwrites a u32 written earlier at `offset` (for sizes known later).
-  void patch_u32(size_t offset, uint32_t v) {
-    for (int i = 0; i < 4; ++i)
-      out_[offset + i] = static_cast<uint8_t>(v >> (8 * i));
-  }
   std::vector<uint8_t> take() { return std::move(out_); }
 
  private:
