@@ -10,8 +10,12 @@ packages=(
   # libraries (see README "Dependencies")
   libgdal-dev libproj-dev libtiff-dev libzstd-dev libsqlite3-dev
   googletest libgtest-dev
+  # viewer: GLM, GLFW window, OSMesa and EGL (Mesa llvmpipe) headless contexts
+  libglm-dev libglfw3-dev libosmesa6-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   # command-line tools used by samples/fetch.sh, tests and benchmarks
-  gdal-bin sqlite3 unzip ca-certificates time
+  gdal-bin sqlite3 unzip ca-certificates time bc
+  # window tests under a virtual X server
+  xvfb xauth
 )
 
 missing=()
