@@ -1,0 +1,75 @@
+// The viewer's coordinate systems, from the package's tiling:
+//  - key units: int64 sample positions at the package's finest zoom, x east
+//    and y south from the tiling's top-left corner. Every KPatch vertex at
+//    every zoom is an integer point here, so shared vertices are exact.
+//  - CRS coordinates of the tiling (metres for webmercator/local, degrees for
+//    geodetic).
+//  - world metres: a flat, right-handed frame (x east, y north, z up) in
+//    metres near the view latitude: webmercator heights are scaled by the
+//    Mercator scale factor 1/cos(lat); geodetic degrees are scaled to metres.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "tileformat/tiling.hpp"
+
+namespace globe {
+class CoordTransform;
+}
+
+namespace globe::viewer {
+
+struct KeyPoint {
+  int64_t x = 0, y = 0;
+  bool operator==(const KeyPoint&) const = default;
+};
+
+class WorldFrame {
+ public:
+  // steps: samples per block side - 1; key_zoom: the package's finest zoom.
+  WorldFrame(const tileformat::Tiling& tiling, int steps, int key_zoom);
+  ~WorldFrame();
+
+  const tileformat::Tiling& tiling() const { return tiling_; }
+  int key_zoom() const { return key_zoom_; }
+  int steps() const { return steps_; }
+  double crs_per_key() const { return crs_per_key_; }  // CRS units per key unit
+  int64_t tile_size_keys(int z) const { return int64_t{steps_} << (key_zoom_ - z); }
+
+  // Sets the latitude the metric scales are taken at (the view's).
+  void set_view_latitude(double lat_deg);
+  double metres_per_crs_x() const { return mx_; }
+  double metres_per_crs_y() const { return my_; }
+  double height_scale() const { return hz_; }  // world z per metre of height
+
+  glm::dvec2 key_to_crs(double kx, double ky) const;
+  glm::dvec2 crs_to_key(double cx, double cy) const;
+  // lon/lat (degrees) <-> tiling CRS; throw std::runtime_error if PROJ fails.
+  glm::dvec2 lonlat_to_crs(double lon, double lat) const;
+  glm::dvec2 crs_to_lonlat(double x, double y) const;
+
+  // World metres of a key-unit point relative to `origin` (also key units).
+  glm::dvec3 key_to_world(double kx, double ky, double height_m, const KeyPoint& origin) const {
+    return {(kx - double(origin.x)) * crs_per_key_ * mx_,
+            -(ky - double(origin.y)) * crs_per_key_ * my_, height_m * hz_};
+  }
+  glm::dvec2 world_to_key(double wx, double wy, const KeyPoint& origin) const {
+    return {double(origin.x) + wx / (crs_per_key_ * mx_),
+            double(origin.y) - wy / (crs_per_key_ * my_)};
+  }
+
+ private:
+  tileformat::Tiling tiling_;
+  int steps_, key_zoom_;
+  double crs_per_key_;
+  bool geographic_ = false;
+  double mx_ = 1, my_ = 1, hz_ = 1;
+  std::unique_ptr<CoordTransform> to_crs_, to_lonlat_;
+};
+
+}  // namespace globe::viewer

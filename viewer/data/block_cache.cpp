@@ -1,0 +1,214 @@
+// Block cache and loader thread (see block_cache.hpp).
+#include "data/block_cache.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "tileformat/error.hpp"
+#include "tileformat/kpatch.hpp"
+#include "tileformat/mblock.hpp"
+#include "tileformat/package.hpp"
+
+namespace globe::viewer {
+
+using tileformat::TileId;
+
+BlockCache::BlockCache(const std::string& path, TerrainPackage package, uint64_t budget_bytes)
+    : path_(path), package_(std::move(package)) {
+  const uint64_t samples = uint64_t(package_.block_size) * package_.block_size;
+  const size_t errors = tileformat::kpatch_vertex_count(
+      tileformat::kpatch_depth(package_.block_size - 1, package_.lattice));
+  bytes_per_slot_ = samples * (sizeof(float) + 1) + errors * sizeof(uint32_t) + 256;
+  slots_ = std::max<uint64_t>(8, budget_bytes / bytes_per_slot_);
+  stats_.slots = slots_;
+  stats_.budget_bytes = budget_bytes;
+  for (int s = static_cast<int>(slots_) - 1; s >= 0; --s)
+    free_slots_.push_back(s);
+  exists_ = std::make_unique<tileformat::SqliteStatement>(
+      package_.reader->db(),
+      "SELECT 1 FROM map WHERE zoom_level = ? AND tile_column = ? AND tile_row = ?");
+  loader_ = std::thread([this] { loader_main(); });
+}
+
+BlockCache::~BlockCache() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_loader_.notify_all();
+  loader_.join();
+}
+
+BlockState BlockCache::state(TileId id) {
+  if (id.z < package_.min_zoom || id.z > package_.max_zoom || !package_.tiling.contains(id))
+    return BlockState::kAbsent;
+  auto it = entries_.find(id);
+  if (it != entries_.end()) return it->second.state;
+  exists_->reset();
+  exists_->bind(1, id.z).bind(2, id.x).bind(3,
+                                            TileId::flip_row(id.y, package_.tiling.tiles_y(id.z)));
+  Entry e;
+  e.state = exists_->step() ? BlockState::kNotLoaded : BlockState::kAbsent;
+  entries_.emplace(id, e);
+  return e.state;
+}
+
+const ResidentBlock* BlockCache::use(TileId id) {
+  auto it = entries_.find(id);
+  if (it == entries_.end() || it->second.state != BlockState::kResident) return nullptr;
+  it->second.block.last_used_frame = frame_;
+  return &it->second.block;
+}
+
+void BlockCache::request(TileId id, double priority) {
+  if (state(id) != BlockState::kNotLoaded) return;
+  wanted_.emplace_back(priority, id);
+}
+
+int BlockCache::take_slot() {
+  if (!free_slots_.empty()) {
+    const int s = free_slots_.back();
+    free_slots_.pop_back();
+    return s;
+  }
+  // Evict the least recently used block that this frame does not draw.
+  auto victim = entries_.end();
+  for (auto it = entries_.begin(); it != entries_.end(); ++it)
+    if (it->second.state == BlockState::kResident && it->second.block.last_used_frame < frame_ &&
+        (victim == entries_.end() ||
+         it->second.block.last_used_frame < victim->second.block.last_used_frame))
+      victim = it;
+  if (victim == entries_.end()) return -1;
+  const int s = victim->second.block.slot;
+  victim->second = Entry{};  // back to kNotLoaded
+  ++stats_.evictions;
+  --stats_.resident;
+  return s;
+}
+
+void BlockCache::flush_requests() {
+  std::sort(wanted_.begin(), wanted_.end(), [](const auto& a, const auto& b) {
+    return a.first < b.first || (a.first == b.first && a.second < b.second);
+  });
+  std::vector<Job> jobs;
+  for (const auto& [priority, id] : wanted_) {
+    Entry& e = entries_[id];
+    if (e.state != BlockState::kNotLoaded) continue;  // requested twice this frame
+    const int slot = take_slot();
+    if (slot < 0) break;  // the budget is full of blocks this frame draws
+    e.state = BlockState::kLoading;
+    jobs.push_back({id, slot});
+  }
+  wanted_.clear();
+  if (jobs.empty()) return;
+  {
+    std::lock_guard lock(mutex_);
+    for (const Job& j : jobs)
+      jobs_.push_back(j);
+    in_flight_ += static_cast<int>(jobs.size());
+  }
+  wake_loader_.notify_one();
+}
+
+std::vector<LoadedBlock> BlockCache::take_loaded() {
+  std::vector<Done> done;
+  {
+    std::lock_guard lock(mutex_);
+    done.swap(done_);
+  }
+  std::vector<LoadedBlock> out;
+  for (Done& d : done) {
+    Entry& e = entries_[d.block.id];
+    stats_.bytes_read += d.bytes;
+    if (!d.ok) {
+      std::fprintf(stderr, "globe-view: warning: %s: tile %s: %s; drawing a coarser level there\n",
+                   path_.c_str(), d.block.id.str().c_str(), d.error.c_str());
+      e.state = BlockState::kBroken;
+      free_slots_.push_back(d.block.slot);
+      ++stats_.broken;
+      continue;
+    }
+    e.state = BlockState::kResident;
+    e.block = std::move(d.meta);
+    e.block.slot = d.block.slot;
+    e.block.last_used_frame = frame_;
+    ++stats_.blocks_loaded;
+    ++stats_.resident;
+    out.push_back(std::move(d.block));
+  }
+  return out;
+}
+
+void BlockCache::wait_for_loader() {
+  std::unique_lock lock(mutex_);
+  wake_main_.wait(lock, [this] { return !done_.empty() || in_flight_ == 0; });
+}
+
+bool BlockCache::loader_busy() {
+  std::lock_guard lock(mutex_);
+  return in_flight_ > 0 || !done_.empty();
+}
+
+CacheStats BlockCache::stats() const {
+  CacheStats s = stats_;
+  s.resident_bytes = s.resident * bytes_per_slot_;
+  return s;
+}
+
+void BlockCache::loader_main() {
+  // The loader has its own connection: SQLite handles are not shared across threads.
+  std::unique_ptr<tileformat::PackageReader> reader;
+  std::string open_error;
+  try {
+    reader = std::make_unique<tileformat::PackageReader>(path_);
+  } catch (const std::exception& e) {
+    open_error = e.what();
+  }
+  for (;;) {
+    Job job;
+    {
+      std::unique_lock lock(mutex_);
+      wake_loader_.wait(lock, [this] { return stop_ || !jobs_.empty(); });
+      if (stop_) return;
+      job = jobs_.front();
+      jobs_.pop_front();
+    }
+    Done d;
+    d.block.id = job.id;
+    d.block.slot = job.slot;
+    try {
+      if (!reader) throw std::runtime_error(open_error);
+      auto blob = reader->tile(job.id);
+      if (!blob) throw std::runtime_error("tile vanished from the package");
+      d.bytes = blob->size();
+      tileformat::MBlock b = tileformat::decode_mblock(*blob);
+      if (b.size != package_.block_size || b.lattice != package_.lattice)
+        throw tileformat::FormatError("§5", "block size or lattice differs from the metadata");
+      const size_t n = b.q.size();
+      d.block.heights.resize(n);
+      d.block.mask.assign(n, 255);
+      float lo = 0, hi = 0;
+      for (size_t i = 0; i < n; ++i) {
+        const float h = static_cast<float>(b.q[i] * b.step);
+        d.block.heights[i] = h;
+        lo = i == 0 ? h : std::min(lo, h);
+        hi = i == 0 ? h : std::max(hi, h);
+        if (!b.valid.empty() && !b.valid[i]) d.block.mask[i] = 0;
+      }
+      d.meta.min_h = lo;
+      d.meta.max_h = hi;
+      d.meta.vertex_error = std::move(b.vertex_error);
+    } catch (const std::exception& e) {
+      d.ok = false;
+      d.error = e.what();
+    }
+    {
+      std::lock_guard lock(mutex_);
+      done_.push_back(std::move(d));
+      --in_flight_;
+    }
+    wake_main_.notify_all();
+  }
+}
+
+}  // namespace globe::viewer

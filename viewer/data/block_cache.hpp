@@ -1,0 +1,133 @@
+// Terrain blocks on their way from a package to the GPU, within a memory
+// budget. The render thread asks for blocks (request); a loader thread reads
+// and decodes them; the render thread takes the decoded ones (take_loaded),
+// uploads them into the texture slot reserved at request time, and from then
+// on the block is resident with its error tree and height range on the CPU.
+// A frame never waits: callers draw coarser until a block is resident.
+//
+// Budget: every slot costs one block's GPU texels (heights + mask) plus its
+// CPU error tree; a request is only made when a slot is free or can be freed
+// by evicting a block that the current frame did not use (LRU), so the
+// budget holds however far the camera flies.
+//
+// Corrupt tiles are reported once (warning on stderr) and stay non-resident,
+// so the selection keeps drawing their coarser ancestor.
+#pragma once
+
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <unordered_map>
+#include <vector>
+
+#include "terrain_package.hpp"
+#include "tileformat/tile_id.hpp"
+
+namespace globe::viewer {
+
+struct TileKey {
+  size_t operator()(const tileformat::TileId& t) const {
+    return (size_t(t.z) * 0x9E3779B97F4A7C15ULL) ^ (size_t(t.x) * 0xC2B2AE3D27D4EB4FULL) ^
+           (size_t(t.y) * 0x165667B19E3779F9ULL);
+  }
+};
+
+enum class BlockState { kAbsent, kNotLoaded, kLoading, kResident, kBroken };
+
+struct ResidentBlock {
+  int slot = -1;
+  float min_h = 0, max_h = 0;          // metres, over all samples (holes are filled)
+  std::vector<uint32_t> vertex_error;  // quanta, per split vertex (tileformat §6)
+  uint64_t last_used_frame = 0;
+};
+
+// A decoded block waiting for upload into `slot`.
+struct LoadedBlock {
+  tileformat::TileId id;
+  int slot = -1;
+  std::vector<float> heights;  // size*size, metres, row-major from the north row
+  std::vector<uint8_t> mask;   // size*size, 255 = data, 0 = hole
+};
+
+struct CacheStats {
+  uint64_t bytes_read = 0;  // blob bytes read from the package
+  uint64_t blocks_loaded = 0, evictions = 0, broken = 0;
+  size_t resident = 0, slots = 0;
+  uint64_t budget_bytes = 0, resident_bytes = 0;
+};
+
+class BlockCache {
+ public:
+  // budget_bytes: memory for resident blocks; at least 8 blocks are allowed.
+  BlockCache(const std::string& path, TerrainPackage package, uint64_t budget_bytes);
+  const TerrainPackage& package() const { return package_; }
+  ~BlockCache();
+  BlockCache(const BlockCache&) = delete;
+  BlockCache& operator=(const BlockCache&) = delete;
+
+  size_t slot_count() const { return slots_; }
+  uint64_t bytes_per_slot() const { return bytes_per_slot_; }
+
+  // Frame bookkeeping: blocks touched by the current frame are never evicted.
+  void begin_frame() { ++frame_; }
+  uint64_t frame() const { return frame_; }
+
+  BlockState state(tileformat::TileId id);
+  // Marks the block used by this frame; nullptr unless resident.
+  const ResidentBlock* use(tileformat::TileId id);
+  // Queues a load (lower priority value = sooner). No-op unless kNotLoaded
+  // or if no slot can be had this frame.
+  void request(tileformat::TileId id, double priority);
+  // Sends this frame's requests to the loader, most urgent first.
+  void flush_requests();
+  // Decoded blocks to upload now (they are resident from this call on).
+  std::vector<LoadedBlock> take_loaded();
+  // Blocks until the loader has finished something or has nothing to do.
+  void wait_for_loader();
+  bool loader_busy();
+  CacheStats stats() const;
+
+ private:
+  struct Entry {
+    BlockState state = BlockState::kNotLoaded;
+    ResidentBlock block;
+  };
+  struct Job {
+    tileformat::TileId id;
+    int slot;
+  };
+  struct Done {
+    LoadedBlock block;
+    ResidentBlock meta;
+    bool ok = true;
+    std::string error;
+    uint64_t bytes = 0;
+  };
+  int take_slot();
+  void loader_main();
+
+  std::string path_;
+  TerrainPackage package_;
+  std::unique_ptr<tileformat::SqliteStatement> exists_;
+  size_t slots_ = 0;
+  uint64_t bytes_per_slot_ = 0;
+  uint64_t frame_ = 0;
+  std::unordered_map<tileformat::TileId, Entry, TileKey> entries_;
+  std::vector<int> free_slots_;
+  std::vector<std::pair<double, tileformat::TileId>> wanted_;
+  CacheStats stats_;
+
+  std::mutex mutex_;
+  std::condition_variable wake_loader_, wake_main_;
+  std::deque<Job> jobs_;
+  std::vector<Done> done_;
+  int in_flight_ = 0;
+  bool stop_ = false;
+  std::thread loader_;
+};
+
+}  // namespace globe::viewer
