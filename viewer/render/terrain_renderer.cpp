@@ -1,0 +1,250 @@
+// The terrain pass (see terrain_renderer.hpp).
+#include "render/terrain_renderer.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <numbers>
+#include <stdexcept>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "render/terrain_shaders.hpp"
+
+namespace globe::viewer {
+
+namespace {
+
+struct Instance {  // matches the vertex shader's per-instance attributes
+  int32_t origin_x, origin_y, apex_x, apex_y;
+  int32_t ux, uy, vx, vy;
+  int32_t layer, shift;
+};
+
+}  // namespace
+
+TerrainRenderer::TerrainRenderer(int block_size, int lattice, int slots, int width, int height)
+    : size_(block_size), lattice_(lattice), slots_(slots) {
+  draw_program_ = GlProgram("terrain", shaders::kTerrainVertex, shaders::kTerrainFragment);
+  capture_program_ = GlProgram("terrain capture", shaders::kTerrainVertex, "", {"v_world"});
+
+  // The lattice: vertices (i, j) with i + j <= L; each cell split along the
+  // diagonal from (i+1, j) to (i, j+1), as the tiler's error trees assume.
+  const int L = lattice_;
+  std::vector<int32_t> verts;
+  std::vector<int> index_of((L + 1) * (L + 1), -1);
+  for (int j = 0; j <= L; ++j)
+    for (int i = 0; i + j <= L; ++i) {
+      index_of[j * (L + 1) + i] = static_cast<int>(verts.size() / 2);
+      verts.push_back(i);
+      verts.push_back(j);
+    }
+  auto at = [&](int i, int j) { return static_cast<uint32_t>(index_of[j * (L + 1) + i]); };
+  std::vector<uint32_t> indices;
+  for (int j = 0; j < L; ++j)
+    for (int i = 0; i + j < L; ++i) {
+      indices.insert(indices.end(), {at(i, j), at(i + 1, j), at(i, j + 1)});
+      if (i + j < L - 1)
+        indices.insert(indices.end(), {at(i + 1, j + 1), at(i, j + 1), at(i + 1, j)});
+    }
+  index_count_ = static_cast<GLsizei>(indices.size());
+
+  gl::CreateBuffers(1, &lattice_vbo_);
+  gl::NamedBufferStorage(lattice_vbo_, verts.size() * sizeof(int32_t), verts.data(), 0);
+  gl::CreateBuffers(1, &index_buffer_);
+  gl::NamedBufferStorage(index_buffer_, indices.size() * sizeof(uint32_t), indices.data(), 0);
+  gl::CreateBuffers(1, &instance_buffer_);
+  gl::CreateVertexArrays(1, &vao_);
+  gl::VertexArrayElementBuffer(vao_, index_buffer_);
+  gl::VertexArrayVertexBuffer(vao_, 0, lattice_vbo_, 0, 2 * sizeof(int32_t));
+  gl::EnableVertexArrayAttrib(vao_, 0);
+  gl::VertexArrayAttribIFormat(vao_, 0, 2, GL_INT, 0);
+  gl::VertexArrayAttribBinding(vao_, 0, 0);
+  const GLuint offsets[3] = {0, 16, 32}, sizes[3] = {4, 4, 2};
+  for (GLuint a = 1; a <= 3; ++a) {
+    gl::EnableVertexArrayAttrib(vao_, a);
+    gl::VertexArrayAttribIFormat(vao_, a, sizes[a - 1], GL_INT, offsets[a - 1]);
+    gl::VertexArrayAttribBinding(vao_, a, 1);
+  }
+  gl::VertexArrayBindingDivisor(vao_, 1, 1);
+
+  GLint max_layers = 0;
+  gl::GetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
+  if (slots_ > max_layers)
+    throw std::runtime_error("the cache needs " + std::to_string(slots_) +
+                             " texture layers; this GPU has " + std::to_string(max_layers) +
+                             "; lower --cache-mb");
+  gl::CreateTextures(GL_TEXTURE_2D_ARRAY, 1, &heights_);
+  gl::TextureStorage3D(heights_, 1, GL_R32F, size_, size_, slots_);
+  gl::CreateTextures(GL_TEXTURE_2D_ARRAY, 1, &mask_);
+  gl::TextureStorage3D(mask_, 1, GL_R8, size_, size_, slots_);
+  for (GLuint t : {heights_, mask_}) {
+    gl::TextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl::TextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl::TextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl::TextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  }
+  gl::CreateQueries(GL_TIME_ELAPSED, 1, &timer_);
+  resize(width, height);
+  gl::check("creating the terrain renderer");
+}
+
+TerrainRenderer::~TerrainRenderer() {
+  gl::DeleteQueries(1, &timer_);
+  gl::DeleteFramebuffers(1, &fbo_);
+  GLuint textures[4] = {heights_, mask_, color_, depth_};
+  gl::DeleteTextures(4, textures);
+  GLuint buffers[3] = {lattice_vbo_, index_buffer_, instance_buffer_};
+  gl::DeleteBuffers(3, buffers);
+  gl::DeleteVertexArrays(1, &vao_);
+}
+
+void TerrainRenderer::resize(int width, int height) {
+  if (width == width_ && height == height_) return;
+  width_ = width;
+  height_ = height;
+  if (fbo_) {
+    gl::DeleteFramebuffers(1, &fbo_);
+    GLuint t[2] = {color_, depth_};
+    gl::DeleteTextures(2, t);
+  }
+  gl::CreateTextures(GL_TEXTURE_2D, 1, &color_);
+  gl::TextureStorage2D(color_, 1, GL_RGBA8, width, height);
+  gl::CreateTextures(GL_TEXTURE_2D, 1, &depth_);
+  gl::TextureStorage2D(depth_, 1, GL_DEPTH_COMPONENT24, width, height);
+  gl::CreateFramebuffers(1, &fbo_);
+  gl::NamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0, color_, 0);
+  gl::NamedFramebufferTexture(fbo_, GL_DEPTH_ATTACHMENT, depth_, 0);
+  if (gl::CheckNamedFramebufferStatus(fbo_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw std::runtime_error("the offscreen framebuffer is incomplete");
+}
+
+void TerrainRenderer::upload(const LoadedBlock& b) {
+  gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  gl::TextureSubImage3D(heights_, 0, 0, 0, b.slot, size_, size_, 1, GL_RED, GL_FLOAT,
+                        b.heights.data());
+  gl::TextureSubImage3D(mask_, 0, 0, 0, b.slot, size_, size_, 1, GL_RED, GL_UNSIGNED_BYTE,
+                        b.mask.data());
+}
+
+void TerrainRenderer::upload_instances(const std::vector<Patch>& patches, const View& view,
+                                       const WorldFrame& frame) {
+  std::vector<Instance> inst(patches.size());
+  for (size_t i = 0; i < patches.size(); ++i) {
+    const Patch& p = patches[i];
+    const int shift = frame.key_zoom() - p.tile.z;
+    const int64_t t = frame.tile_size_keys(p.tile.z);
+    inst[i] = {static_cast<int32_t>(int64_t{p.tile.x} * t - view.origin.x),
+               static_cast<int32_t>(int64_t{p.tile.y} * t - view.origin.y),
+               p.apex.x,
+               p.apex.y,
+               p.u.x,
+               p.u.y,
+               p.v.x,
+               p.v.y,
+               p.slot,
+               shift};
+  }
+  // A fresh store every frame: the driver orphans the old one if still in use.
+  const Instance empty{};
+  gl::NamedBufferData(instance_buffer_, std::max<size_t>(inst.size(), 1) * sizeof(Instance),
+                      inst.empty() ? &empty : inst.data(), GL_STREAM_DRAW);
+  gl::VertexArrayVertexBuffer(vao_, 1, instance_buffer_, 0, sizeof(Instance));
+}
+
+void TerrainRenderer::set_common_uniforms(const GlProgram& p, const View& view,
+                                          const WorldFrame& frame, double exaggeration) const {
+  gl::UseProgram(p.id());
+  gl::UniformMatrix4fv(p.uniform("u_view_proj"), 1, GL_FALSE, glm::value_ptr(view.view_proj));
+  gl::Uniform3f(p.uniform("u_scale"),
+                static_cast<float>(frame.crs_per_key() * frame.metres_per_crs_x()),
+                static_cast<float>(frame.crs_per_key() * frame.metres_per_crs_y()),
+                static_cast<float>(frame.height_scale() * exaggeration));
+  gl::Uniform1i(p.uniform("u_heights"), 0);
+  gl::BindTextureUnit(0, heights_);
+}
+
+RenderTimes TerrainRenderer::draw(const std::vector<Patch>& patches, const View& view,
+                                  const WorldFrame& frame, const ShadingSettings& s) {
+  upload_instances(patches, view, frame);
+  gl::BindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  gl::Viewport(0, 0, width_, height_);
+  gl::ClearColor(0.62f, 0.72f, 0.82f, 1.0f);
+  gl::Enable(GL_DEPTH_TEST);
+  gl::DepthFunc(GL_LESS);
+  gl::Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  set_common_uniforms(draw_program_, view, frame, s.exaggeration);
+  const GlProgram& p = draw_program_;
+  gl::Uniform1i(p.uniform("u_mask"), 1);
+  gl::BindTextureUnit(1, mask_);
+  gl::Uniform1f(p.uniform("u_size"), static_cast<float>(size_));
+  gl::Uniform1f(p.uniform("u_zscale"), static_cast<float>(frame.height_scale() * s.exaggeration));
+  const double az = s.sun_azimuth_deg * std::numbers::pi / 180,
+               alt = s.sun_altitude_deg * std::numbers::pi / 180;
+  gl::Uniform3f(p.uniform("u_sun"), static_cast<float>(std::sin(az) * std::cos(alt)),
+                static_cast<float>(std::cos(az) * std::cos(alt)),
+                static_cast<float>(std::sin(alt)));
+  gl::Uniform1i(p.uniform("u_mode"), static_cast<int>(s.mode));
+  gl::Uniform2f(p.uniform("u_range"), static_cast<float>(s.range_min_m),
+                static_cast<float>(s.range_max_m));
+  gl::BindVertexArray(vao_);
+  gl::BeginQuery(GL_TIME_ELAPSED, timer_);
+  if (!patches.empty())
+    gl::DrawElementsInstanced(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr,
+                              static_cast<GLsizei>(patches.size()));
+  gl::EndQuery(GL_TIME_ELAPSED);
+  GLuint64 ns = 0;
+  gl::GetQueryObjectui64v(timer_, GL_QUERY_RESULT, &ns);
+  gl::BindVertexArray(0);
+  gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
+  gl::check("drawing the terrain");
+  return {static_cast<double>(ns) / 1e6};
+}
+
+std::vector<uint8_t> TerrainRenderer::read_pixels() const {
+  std::vector<uint8_t> rgba(size_t(width_) * height_ * 4);
+  gl::BindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
+  gl::ReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
+  gl::check("reading the image back");
+  // GL rows are bottom-up.
+  const size_t row = size_t(width_) * 4;
+  std::vector<uint8_t> flipped(rgba.size());
+  for (int y = 0; y < height_; ++y)
+    std::memcpy(&flipped[size_t(y) * row], &rgba[size_t(height_ - 1 - y) * row], row);
+  return flipped;
+}
+
+std::vector<float> TerrainRenderer::capture_triangles(const std::vector<Patch>& patches,
+                                                      const View& view, const WorldFrame& frame,
+                                                      double exaggeration) {
+  const size_t floats = patches.size() * triangles_per_patch() * 9;
+  std::vector<float> out(floats);
+  if (patches.empty()) return out;
+  upload_instances(patches, view, frame);
+  GLuint buffer = 0;
+  gl::CreateBuffers(1, &buffer);
+  gl::NamedBufferStorage(buffer, floats * sizeof(float), nullptr, 0);
+  set_common_uniforms(capture_program_, view, frame, exaggeration);
+  gl::Enable(GL_RASTERIZER_DISCARD);
+  gl::BindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, buffer);
+  gl::BindVertexArray(vao_);
+  gl::BeginTransformFeedback(GL_TRIANGLES);
+  gl::DrawElementsInstanced(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr,
+                            static_cast<GLsizei>(patches.size()));
+  gl::EndTransformFeedback();
+  gl::BindVertexArray(0);
+  gl::Disable(GL_RASTERIZER_DISCARD);
+  gl::GetNamedBufferSubData(buffer, 0, floats * sizeof(float), out.data());
+  gl::BindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+  gl::DeleteBuffers(1, &buffer);
+  gl::check("capturing the mesh");
+  return out;
+}
+
+void TerrainRenderer::blit_to_default(int width, int height) const {
+  gl::BlitNamedFramebuffer(fbo_, 0, 0, 0, width_, height_, 0, 0, width, height, GL_COLOR_BUFFER_BIT,
+                           GL_LINEAR);
+}
+
+}  // namespace globe::viewer

@@ -1,0 +1,90 @@
+// GLSL sources of the terrain pass. The vertex shader is shared by drawing
+// and by mesh export (transform feedback), so exported triangles are exactly
+// the drawn ones.
+#pragma once
+
+namespace globe::viewer::shaders {
+
+// Lattice point (i, j) of an instanced patch -> block sample -> world metres
+// relative to the frame origin. Integer arithmetic up to the last step keeps
+// vertices shared by two blocks bit-identical.
+inline constexpr const char* kTerrainVertex = R"(#version 450 core
+layout(location = 0) in ivec2 a_lattice;
+layout(location = 1) in ivec4 i_origin_apex;  // block origin (key units, frame-relative), apex
+layout(location = 2) in ivec4 i_uv;           // lattice steps along the two legs (samples)
+layout(location = 3) in ivec2 i_layer_shift;  // texture layer, log2(key units per sample)
+uniform mat4 u_view_proj;
+uniform vec3 u_scale;  // metres per key unit (x, y), world z per metre of height
+uniform sampler2DArray u_heights;
+out vec3 v_world;
+out vec2 v_sample;
+flat out int v_layer;
+flat out vec2 v_spacing;  // metres per block sample (x, y)
+void main() {
+  ivec2 local = i_origin_apex.zw + a_lattice.x * i_uv.xy + a_lattice.y * i_uv.zw;
+  float h = texelFetch(u_heights, ivec3(local, i_layer_shift.x), 0).r;
+  ivec2 key = i_origin_apex.xy + (local << i_layer_shift.y);
+  v_world = vec3(float(key.x) * u_scale.x, -float(key.y) * u_scale.y, h * u_scale.z);
+  v_sample = vec2(local);
+  v_layer = i_layer_shift.x;
+  v_spacing = u_scale.xy * float(1 << i_layer_shift.y);
+  gl_Position = u_view_proj * vec4(v_world, 1.0);
+}
+)";
+
+// Shading modes: 0 hillshade, 1 elevation ramp, 2 slope, 3 aspect.
+inline constexpr const char* kTerrainFragment = R"(#version 450 core
+in vec3 v_world;
+in vec2 v_sample;
+flat in int v_layer;
+flat in vec2 v_spacing;
+uniform sampler2DArray u_heights;
+uniform sampler2DArray u_mask;
+uniform float u_size;      // samples per block side
+uniform float u_zscale;    // world z per metre of height (with exaggeration)
+uniform vec3 u_sun;        // unit vector towards the sun
+uniform int u_mode;
+uniform vec2 u_range;      // height range for the ramp (metres)
+out vec4 o_color;
+
+float height_at(vec2 s) {
+  return texture(u_heights, vec3((s + 0.5) / u_size, float(v_layer))).r;
+}
+vec3 ramp(float t) {  // hypsometric: green lowlands, tan hills, brown, white peaks
+  const vec3 c0 = vec3(0.16, 0.42, 0.23), c1 = vec3(0.62, 0.71, 0.38), c2 = vec3(0.85, 0.76, 0.52),
+             c3 = vec3(0.58, 0.42, 0.30), c4 = vec3(0.97, 0.97, 0.97);
+  t = clamp(t, 0.0, 1.0) * 4.0;
+  if (t < 1.0) return mix(c0, c1, t);
+  if (t < 2.0) return mix(c1, c2, t - 1.0);
+  if (t < 3.0) return mix(c2, c3, t - 2.0);
+  return mix(c3, c4, t - 3.0);
+}
+vec3 hue(float h) {
+  return clamp(abs(mod(h * 6.0 + vec3(0.0, 4.0, 2.0), 6.0) - 3.0) - 1.0, 0.0, 1.0);
+}
+void main() {
+  if (texture(u_mask, vec3((v_sample + 0.5) / u_size, float(v_layer))).r < 0.5) discard;
+  float hx = height_at(v_sample + vec2(1, 0)) - height_at(v_sample - vec2(1, 0));
+  float hy = height_at(v_sample + vec2(0, 1)) - height_at(v_sample - vec2(0, 1));
+  // Sample y grows southwards, world y northwards.
+  vec3 n = normalize(vec3(-hx * u_zscale / (2.0 * v_spacing.x), hy * u_zscale / (2.0 * v_spacing.y), 1.0));
+  float shade = max(dot(n, u_sun), 0.0);
+  vec3 color;
+  if (u_mode == 0) {
+    color = vec3(0.12 + 0.88 * shade);
+  } else if (u_mode == 1) {
+    float h = height_at(v_sample);
+    color = ramp((h - u_range.x) / max(u_range.y - u_range.x, 1e-6)) * (0.55 + 0.45 * shade / max(u_sun.z, 0.2));
+  } else if (u_mode == 2) {
+    float slope = degrees(acos(clamp(n.z, 0.0, 1.0)));
+    color = mix(vec3(1.0, 1.0, 0.85), vec3(0.75, 0.1, 0.05), clamp(slope / 45.0, 0.0, 1.0));
+  } else {
+    float aspect = atan(n.x, n.y) / 6.2831853 + 0.5;
+    float steep = clamp(length(n.xy) * 4.0, 0.0, 1.0);
+    color = mix(vec3(0.85), hue(aspect), steep);
+  }
+  o_color = vec4(color, 1.0);
+}
+)";
+
+}  // namespace globe::viewer::shaders
