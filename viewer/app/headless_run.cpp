@@ -1,0 +1,102 @@
+// Headless session (see headless_run.hpp).
+#include "app/headless_run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "app/image_file.hpp"
+#include "app/mesh_file.hpp"
+#include "app/terrain_scene.hpp"
+#include "errors.hpp"
+#include "platform/gl.hpp"
+#include "platform/headless_context.hpp"
+
+namespace globe::viewer {
+
+namespace {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : (v[v.size() / 2 - 1] + v[v.size() / 2]) / 2;
+}
+
+}  // namespace
+
+int run_headless(const ViewerSettings& settings) {
+  const auto t_start = std::chrono::steady_clock::now();
+  std::unique_ptr<HeadlessContext> context;
+  try {
+    context = create_headless_context(settings.platform == "auto" ? "auto" : settings.platform);
+  } catch (const std::exception& e) {
+    throw OutputError(std::string("cannot render headless: ") + e.what());
+  }
+  TerrainScene scene(settings);
+  const CameraPose start = scene.initial_pose();
+  std::vector<CameraPose> poses = settings.camera_path;
+  if (poses.empty()) poses.push_back(start);
+
+  // Time to first frame: opening, the first complete selection, one draw.
+  FrameResult f = scene.frame(poses.front(), true, true);
+  gl::Finish();
+  const double first_frame_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_start).count();
+
+  std::vector<double> frame_ms, terrain_ms, select_ms;
+  uint64_t max_resident = scene.cache().stats().resident_bytes;
+  for (size_t i = 0; i < poses.size(); ++i) {
+    const int frames = settings.stats ? settings.frames : 1;
+    for (int k = 0; k < frames; ++k) {
+      const auto t0 = std::chrono::steady_clock::now();
+      f = scene.frame(poses[i], true, true);
+      gl::Finish();
+      frame_ms.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      terrain_ms.push_back(f.terrain_ms);
+      select_ms.push_back(f.select_ms);
+      max_resident = std::max(max_resident, scene.cache().stats().resident_bytes);
+    }
+  }
+  if (settings.snapshot)
+    write_png(*settings.snapshot, scene.renderer().read_pixels(), scene.renderer().width(),
+              scene.renderer().height());
+  if (settings.export_mesh)
+    write_mesh_ply(*settings.export_mesh, scene.capture(f), f.view, scene.world(),
+                   settings.shading.exaggeration, settings.max_error_px);
+  if (settings.stats) {
+    const CacheStats cs = scene.cache().stats();
+    const size_t triangles = f.patches.size() * scene.renderer().triangles_per_patch();
+    // Triangles of the full-resolution grid over the same area: two per
+    // finest-zoom cell (a patch's legs span L lattice steps of |u| samples).
+    double full_res = 0;
+    const double L = scene.package().lattice;
+    for (const Patch& p : f.patches) {
+      const double scale = std::ldexp(1.0, 2 * (scene.package().max_zoom - p.tile.z));
+      full_res += L * L * double(p.u.x * p.u.x + p.u.y * p.u.y) * scale;
+    }
+    std::printf(
+        "{\"platform\": \"%s\", \"width\": %d, \"height\": %d, \"frames\": %zu, "
+        "\"frame_ms\": %.3f, \"terrain_ms\": %.3f, \"select_ms\": %.3f, "
+        "\"first_frame_ms\": %.1f, \"patches\": %zu, \"triangles\": %zu, "
+        "\"full_res_triangles\": %.0f, "
+        "\"max_error_px\": %g, \"vertices_evaluated\": %zu, \"waiting\": %zu, "
+        "\"resident_blocks\": %zu, \"resident_bytes\": %llu, \"max_resident_bytes\": %llu, "
+        "\"budget_bytes\": %llu, \"blocks_loaded\": %llu, \"evictions\": %llu, "
+        "\"broken_tiles\": %llu, \"bytes_read\": %llu, \"camera\": \"%s\"}\n",
+        context->platform().c_str(), scene.renderer().width(), scene.renderer().height(),
+        frame_ms.size(), median(frame_ms), median(terrain_ms), median(select_ms), first_frame_ms,
+        f.patches.size(), triangles, full_res, settings.max_error_px,
+        f.selection.vertices_evaluated, f.selection.waiting, cs.resident,
+        static_cast<unsigned long long>(cs.resident_bytes),
+        static_cast<unsigned long long>(max_resident),
+        static_cast<unsigned long long>(cs.budget_bytes),
+        static_cast<unsigned long long>(cs.blocks_loaded),
+        static_cast<unsigned long long>(cs.evictions), static_cast<unsigned long long>(cs.broken),
+        static_cast<unsigned long long>(cs.bytes_read), poses.back().str().c_str());
+  }
+  return kExitOk;
+}
+
+}  // namespace globe::viewer

@@ -1,0 +1,121 @@
+// One viewer session's frame sequence (see terrain_scene.hpp).
+#include "app/terrain_scene.hpp"
+
+#include <chrono>
+#include <sstream>
+
+#include "errors.hpp"
+#include "terrain_package.hpp"
+#include "tileformat/package.hpp"
+
+namespace globe::viewer {
+
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+tileformat::Bounds data_bounds_crs(const TerrainPackage& p, const WorldFrame& world) {
+  // MBTiles "bounds" is lon/lat; project its corners and edge midpoints.
+  const auto text = p.reader->meta("bounds");
+  std::vector<double> v;
+  if (text) {
+    std::stringstream ss(*text);
+    std::string item;
+    while (std::getline(ss, item, ','))
+      v.push_back(std::stod(item));
+  }
+  if (v.size() != 4) return p.tiling.extent();
+  tileformat::Bounds b{1e300, 1e300, -1e300, -1e300};
+  for (double fx : {0.0, 0.5, 1.0})
+    for (double fy : {0.0, 0.5, 1.0}) {
+      const glm::dvec2 c =
+          world.lonlat_to_crs(v[0] + fx * (v[2] - v[0]), v[1] + fy * (v[3] - v[1]));
+      b.min_x = std::min(b.min_x, c.x), b.max_x = std::max(b.max_x, c.x);
+      b.min_y = std::min(b.min_y, c.y), b.max_y = std::max(b.max_y, c.y);
+    }
+  return b;
+}
+
+}  // namespace
+
+TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings) {
+  if (settings_.packages.size() > 1)
+    throw UsageError(
+        "one terrain package per view for now; imagery and line packages come "
+        "with their tools (docs/viewer.md)");
+  const std::string& path = settings_.packages.front();
+  TerrainPackage package = open_terrain_package(path);
+  if (package.max_zoom > 21)
+    throw InputError(path + ": maxzoom " + std::to_string(package.max_zoom) +
+                     " is deeper than the viewer's integer vertex frame supports (21)");
+  world_ = std::make_unique<WorldFrame>(package.tiling, package.block_size - 1, package.max_zoom);
+  cache_ = std::make_unique<BlockCache>(path, std::move(package), settings_.cache_mb << 20);
+  selector_ = std::make_unique<PatchSelector>(cache_->package());
+  if (selector_->root_tiles().empty())
+    throw InputError(path + ": no tiles at minzoom " + std::to_string(cache_->package().min_zoom) +
+                     "; the package is empty or its metadata is wrong");
+  renderer_ = std::make_unique<TerrainRenderer>(
+      cache_->package().block_size, cache_->package().lattice,
+      static_cast<int>(cache_->slot_count()), settings_.width, settings_.height);
+}
+
+TerrainScene::~TerrainScene() = default;
+
+void TerrainScene::upload_loaded() {
+  for (const LoadedBlock& b : cache_->take_loaded())
+    renderer_->upload(b);
+}
+
+CameraPose TerrainScene::initial_pose() {
+  cache_->begin_frame();
+  for (const tileformat::TileId& id : selector_->root_tiles())
+    cache_->request(id, 0);
+  cache_->flush_requests();
+  while (cache_->loader_busy()) {
+    cache_->wait_for_loader();
+    upload_loaded();
+  }
+  const double top = selector_->top_height_m(*cache_);
+  const double bottom = selector_->bottom_height_m(*cache_);
+  if (settings_.shading.range_max_m <= settings_.shading.range_min_m ||
+      (settings_.shading.range_min_m == 0 && settings_.shading.range_max_m == 1000)) {
+    settings_.shading.range_min_m = bottom;
+    settings_.shading.range_max_m = top;
+  }
+  if (settings_.camera) return *settings_.camera;
+  if (!settings_.camera_path.empty()) return settings_.camera_path.front();
+  CameraPose pose = fit_pose(data_bounds_crs(package(), *world_), *world_, settings_.width,
+                             settings_.height, top);
+  pose.fov_y_deg = settings_.fov_y_deg;
+  return pose;
+}
+
+View TerrainScene::make(const CameraPose& pose) {
+  const double zs = world_->height_scale() * settings_.shading.exaggeration;
+  world_->set_view_latitude(pose.lat);
+  return make_view(pose, *world_, renderer_->width(), renderer_->height(),
+                   selector_->top_height_m(*cache_) * zs, selector_->bottom_height_m(*cache_) * zs);
+}
+
+FrameResult TerrainScene::frame(const CameraPose& pose, bool settle, bool draw) {
+  FrameResult f;
+  SelectionSettings sel{settings_.max_error_px, settings_.shading.exaggeration, settings_.cull};
+  for (int round = 0;; ++round) {
+    cache_->begin_frame();
+    upload_loaded();
+    const auto t0 = std::chrono::steady_clock::now();
+    f.view = make(pose);
+    f.patches = selector_->select(f.view, *world_, *cache_, sel, &f.selection);
+    f.select_ms = ms_since(t0);
+    cache_->flush_requests();
+    if (!settle || !cache_->loader_busy() || round > 1000) break;
+    cache_->wait_for_loader();
+  }
+  if (draw)
+    f.terrain_ms = renderer_->draw(f.patches, f.view, *world_, settings_.shading).terrain_ms;
+  return f;
+}
+
+}  // namespace globe::viewer

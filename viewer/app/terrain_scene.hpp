@@ -1,0 +1,64 @@
+// What one viewer session shows: the opened terrain package, its block cache,
+// the patch selector, the world frame and the renderer, and the per-frame
+// sequence (select -> request -> upload -> draw) that both the window and the
+// headless runs use.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/viewer_settings.hpp"
+#include "camera/camera.hpp"
+#include "camera/world_frame.hpp"
+#include "data/block_cache.hpp"
+#include "render/patch_selection.hpp"
+#include "render/terrain_renderer.hpp"
+
+namespace globe::viewer {
+
+struct FrameResult {
+  View view;
+  std::vector<Patch> patches;
+  SelectionStats selection;
+  double select_ms = 0, terrain_ms = 0;
+};
+
+class TerrainScene {
+ public:
+  // Opens and checks the packages (throws InputError naming the file). An
+  // OpenGL context must be current (the renderer is created here).
+  explicit TerrainScene(const ViewerSettings& settings);
+  ~TerrainScene();
+
+  // Loads the root blocks (needed for heights and --fit) and returns the pose
+  // to start from: --camera, else a view of the whole package.
+  CameraPose initial_pose();
+  void resize(int width, int height) { renderer_->resize(width, height); }
+
+  // One frame. `settle`: keep selecting and loading until nothing the view
+  // needs is missing (headless); otherwise never wait for I/O.
+  FrameResult frame(const CameraPose& pose, bool settle, bool draw);
+  std::vector<float> capture(const FrameResult& f) {
+    return renderer_->capture_triangles(f.patches, f.view, *world_, settings_.shading.exaggeration);
+  }
+
+  TerrainRenderer& renderer() { return *renderer_; }
+  BlockCache& cache() { return *cache_; }
+  WorldFrame& world() { return *world_; }
+  const TerrainPackage& package() const { return cache_->package(); }
+  ViewerSettings& settings() { return settings_; }
+  double top_height_m() { return selector_->top_height_m(*cache_); }
+
+ private:
+  void upload_loaded();
+  View make(const CameraPose& pose);
+
+  ViewerSettings settings_;
+  std::unique_ptr<BlockCache> cache_;
+  std::unique_ptr<PatchSelector> selector_;
+  std::unique_ptr<WorldFrame> world_;
+  std::unique_ptr<TerrainRenderer> renderer_;
+};
+
+}  // namespace globe::viewer

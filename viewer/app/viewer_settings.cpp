@@ -1,0 +1,127 @@
+// globe-view command-line parsing (see viewer_settings.hpp).
+#include "app/viewer_settings.hpp"
+
+#include <fstream>
+
+#include "cli_args.hpp"
+#include "errors.hpp"
+
+namespace globe::viewer {
+
+std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::string>& args) {
+  ViewerSettings s;
+  CliArgs cli("globe-view",
+              "globe-view TERRAIN.mbtiles [options]\n"
+              "Renders a terrain package: in a window, or headless with --snapshot, --stats or\n"
+              "--export-mesh (OSMesa or EGL; no display needed).");
+  cli.option("--snapshot", "OUT.png", "render headless, write the image, exit",
+             [&](const std::string& v) { s.snapshot = v; });
+  cli.option("--size", "WxH", "image / window size in pixels (default 1280x720)",
+             [&](const std::string& v) {
+               const auto x = v.find('x');
+               if (x == std::string::npos)
+                 throw UsageError("--size: expected WxH, got '" + v + "'");
+               s.width = CliArgs::to_int("--size", v.substr(0, x), 16, 16384);
+               s.height = CliArgs::to_int("--size", v.substr(x + 1), 16, 16384);
+             });
+  cli.option("--camera", "LON,LAT,H,HEADING,PITCH",
+             "eye at lon/lat (degrees) and height H (metres); heading 0 = north; pitch 0 looks "
+             "straight down, 90 horizontal",
+             [&](const std::string& v) {
+               try {
+                 s.camera = CameraPose::parse(v);
+               } catch (const std::exception& e) {
+                 throw UsageError(std::string("--camera: ") + e.what());
+               }
+             });
+  cli.flag("--fit", "frame the whole package, looking straight down (the default without --camera)",
+           [&] { s.camera.reset(); });
+  cli.option(
+      "--camera-path", "FILE",
+      "fly through the poses of FILE (one LON,LAT,H,HEADING,PITCH per line); stats cover "
+      "the whole flight, the snapshot shows the last pose",
+      [&](const std::string& v) {
+        std::ifstream in(v);
+        if (!in) throw UsageError("--camera-path: cannot read " + v);
+        std::string line;
+        int n = 0;
+        while (std::getline(in, line)) {
+          ++n;
+          if (line.empty() || line[0] == '#') continue;
+          try {
+            s.camera_path.push_back(CameraPose::parse(line));
+          } catch (const std::exception& e) {
+            throw UsageError("--camera-path: " + v + ":" + std::to_string(n) + ": " + e.what());
+          }
+        }
+        if (s.camera_path.empty()) throw UsageError("--camera-path: " + v + " has no pose");
+      });
+  cli.option("--fov", "DEG", "vertical field of view (default 45)", [&](const std::string& v) {
+    s.fov_y_deg = CliArgs::to_double("--fov", v);
+    if (s.fov_y_deg < 5 || s.fov_y_deg > 120) throw UsageError("--fov: must be within 5..120");
+  });
+  cli.option("--max-error-px", "TAU", "screen-space error bound of the terrain LOD (default 1.5)",
+             [&](const std::string& v) {
+               s.max_error_px = CliArgs::to_double("--max-error-px", v);
+               if (s.max_error_px <= 0) throw UsageError("--max-error-px: must be > 0");
+             });
+  cli.option(
+      "--cache-mb", "MB", "memory budget for resident terrain blocks (default 512)",
+      [&](const std::string& v) { s.cache_mb = CliArgs::to_int("--cache-mb", v, 4, 1 << 20); });
+  cli.option("--shading", "MODE", "hillshade (default), elevation, slope or aspect",
+             [&](const std::string& v) {
+               if (v == "hillshade")
+                 s.shading.mode = Shading::kHillshade;
+               else if (v == "elevation")
+                 s.shading.mode = Shading::kElevation;
+               else if (v == "slope")
+                 s.shading.mode = Shading::kSlope;
+               else if (v == "aspect")
+                 s.shading.mode = Shading::kAspect;
+               else if (v == "imagery")
+                 throw UsageError(
+                     "--shading imagery: needs an image package, which this version "
+                     "cannot read yet (see docs/viewer.md)");
+               else
+                 throw UsageError("--shading: unknown mode '" + v + "'");
+             });
+  cli.option("--sun", "AZ,ALT", "sun azimuth and altitude in degrees (default 315,45)",
+             [&](const std::string& v) {
+               const auto d = CliArgs::to_doubles("--sun", v, 2);
+               s.shading.sun_azimuth_deg = d[0];
+               s.shading.sun_altitude_deg = d[1];
+             });
+  cli.option("--exaggeration", "K", "vertical exaggeration (default 1)", [&](const std::string& v) {
+    s.shading.exaggeration = CliArgs::to_double("--exaggeration", v);
+    if (s.shading.exaggeration <= 0 || s.shading.exaggeration > 100)
+      throw UsageError("--exaggeration: must be within (0, 100]");
+  });
+  cli.flag("--stats", "print frame statistics as JSON on stdout (headless)",
+           [&] { s.stats = true; });
+  cli.option("--frames", "N", "frames measured for --stats (default 5)",
+             [&](const std::string& v) { s.frames = CliArgs::to_int("--frames", v, 1, 10000); });
+  cli.option("--export-mesh", "FILE.ply",
+             "write the triangles drawn for the view (tiling CRS x/y, height in metres)",
+             [&](const std::string& v) { s.export_mesh = v; });
+  cli.flag("--no-cull", "select without frustum culling (whole-package meshes)",
+           [&] { s.cull = false; });
+  cli.option("--platform", "NAME",
+             "auto (default: window, or OSMesa then EGL when headless), glfw, osmesa, egl",
+             [&](const std::string& v) {
+               if (v != "auto" && v != "glfw" && v != "osmesa" && v != "egl")
+                 throw UsageError("--platform: unknown '" + v + "' (auto, glfw, osmesa, egl)");
+               s.platform = v;
+             });
+  auto positional = cli.parse_command(args, 1, 8, "package");
+  if (!positional) return std::nullopt;
+  s.packages = *positional;
+  if (s.platform == "glfw" && (s.snapshot || s.export_mesh || s.stats))
+    throw UsageError(
+        "--platform glfw opens a window; --snapshot/--stats/--export-mesh are headless");
+  for (CameraPose& p : s.camera_path)
+    p.fov_y_deg = s.fov_y_deg;
+  if (s.camera) s.camera->fov_y_deg = s.fov_y_deg;
+  return s;
+}
+
+}  // namespace globe::viewer

@@ -1,0 +1,38 @@
+// globe-view's command line, parsed into one Settings struct (no work here).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "camera/camera.hpp"
+#include "render/terrain_renderer.hpp"
+
+namespace globe::viewer {
+
+struct ViewerSettings {
+  std::vector<std::string> packages;
+  std::optional<std::string> snapshot;     // PNG path: render headless and exit
+  std::optional<std::string> export_mesh;  // PLY path
+  bool stats = false;
+  int width = 1280, height = 720;
+  std::optional<CameraPose> camera;
+  std::vector<CameraPose> camera_path;  // --camera-path: one pose per line
+  double fov_y_deg = 45;
+  double max_error_px = 1.5;
+  uint64_t cache_mb = 512;
+  ShadingSettings shading;
+  std::string platform = "auto";  // auto | osmesa | egl | glfw
+  int frames = 5;                 // frames measured for --stats
+  bool cull = true;
+
+  bool headless() const {
+    return snapshot || export_mesh || stats || platform == "osmesa" || platform == "egl";
+  }
+};
+
+// Returns nullopt after printing --help. Throws UsageError.
+std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::string>& args);
+
+}  // namespace globe::viewer

@@ -1,0 +1,207 @@
+// Interactive session (see window_run.hpp).
+//   left drag: orbit   right drag / arrows: pan   wheel / W,S: zoom
+//   1-4: hillshade, elevation, slope, aspect   +/-: exaggeration
+//   R: reset view   P: screenshot (globe-view-N.png)   Esc: quit
+#define GLFW_INCLUDE_NONE
+#include "app/window_run.hpp"
+
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "app/image_file.hpp"
+#include "app/terrain_scene.hpp"
+#include "errors.hpp"
+#include "platform/glfw_window.hpp"
+
+namespace globe::viewer {
+
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180;
+
+// A camera orbiting a target point on the terrain.
+struct Orbit {
+  glm::dvec2 target_key{0, 0};
+  double target_h_m = 0, distance_m = 1000, heading_deg = 0, pitch_deg = 0;
+
+  static Orbit from_pose(const CameraPose& p, WorldFrame& w, double ground_m) {
+    Orbit o;
+    w.set_view_latitude(p.lat);
+    const glm::dvec2 crs = w.lonlat_to_crs(p.lon, p.lat);
+    const glm::dvec2 eye = w.crs_to_key(crs.x, crs.y);
+    o.heading_deg = p.heading_deg;
+    o.pitch_deg = std::min(p.pitch_deg, 85.0);
+    o.target_h_m = ground_m;
+    const double dz = std::max((p.height_m - ground_m) * w.height_scale(), 1.0);
+    o.distance_m = dz / std::cos(o.pitch_deg * kDeg);
+    const double ground = dz * std::tan(o.pitch_deg * kDeg);  // horizontal eye-target distance
+    const double h = o.heading_deg * kDeg;
+    o.target_key =
+        eye + glm::dvec2(ground * std::sin(h) / (w.crs_per_key() * w.metres_per_crs_x()),
+                         -ground * std::cos(h) / (w.crs_per_key() * w.metres_per_crs_y()));
+    return o;
+  }
+  CameraPose pose(WorldFrame& w, double fov) const {
+    const glm::dvec2 tc = w.key_to_crs(target_key.x, target_key.y);
+    w.set_view_latitude(w.crs_to_lonlat(tc.x, tc.y).y);
+    const double h = heading_deg * kDeg, p = pitch_deg * kDeg;
+    const double ground = distance_m * std::sin(p), dz = distance_m * std::cos(p);
+    const glm::dvec2 eye =
+        target_key - glm::dvec2(ground * std::sin(h) / (w.crs_per_key() * w.metres_per_crs_x()),
+                                -ground * std::cos(h) / (w.crs_per_key() * w.metres_per_crs_y()));
+    const glm::dvec2 crs = w.key_to_crs(eye.x, eye.y);
+    const glm::dvec2 ll = w.crs_to_lonlat(crs.x, crs.y);
+    CameraPose c;
+    c.lon = ll.x, c.lat = ll.y;
+    c.height_m = target_h_m + dz / w.height_scale();
+    c.heading_deg = heading_deg, c.pitch_deg = pitch_deg, c.fov_y_deg = fov;
+    return c;
+  }
+  void pan(double dx_px, double dy_px, double px_per_rad, WorldFrame& w) {
+    const double m = distance_m / px_per_rad;  // metres per pixel at the target
+    const double h = heading_deg * kDeg;
+    const double east = -dx_px * m * std::cos(h) - dy_px * m * std::sin(h);
+    const double north = dx_px * m * std::sin(h) - dy_px * m * std::cos(h);
+    target_key += glm::dvec2(east / (w.crs_per_key() * w.metres_per_crs_x()),
+                             -north / (w.crs_per_key() * w.metres_per_crs_y()));
+  }
+};
+
+}  // namespace
+
+int run_window(const ViewerSettings& settings) {
+  bool drag_orbit = false, drag_pan = false;
+  double last_x = 0, last_y = 0;
+  Orbit orbit, home;
+  TerrainScene* scene = nullptr;
+  int screenshot = 0;
+  bool screenshot_pending = false;
+  GlfwWindow* window_ptr = nullptr;
+
+  WindowCallbacks cb;
+  cb.on_button = [&](int button, bool down, double x, double y) {
+    if (button == GLFW_MOUSE_BUTTON_LEFT) drag_orbit = down;
+    if (button == GLFW_MOUSE_BUTTON_RIGHT) drag_pan = down;
+    last_x = x, last_y = y;
+  };
+  cb.on_cursor = [&](double x, double y) {
+    const double dx = x - last_x, dy = y - last_y;
+    last_x = x, last_y = y;
+    if (drag_orbit) {
+      orbit.heading_deg = std::fmod(orbit.heading_deg - dx * 0.3 + 360, 360);
+      orbit.pitch_deg = std::clamp(orbit.pitch_deg + dy * 0.3, 0.0, 85.0);
+    } else if (drag_pan && scene) {
+      orbit.pan(dx, dy, scene->renderer().height() / (2 * std::tan(settings.fov_y_deg * kDeg / 2)),
+                scene->world());
+    }
+  };
+  cb.on_scroll = [&](double dy) { orbit.distance_m *= std::pow(0.85, dy); };
+  cb.on_key = [&](int key, int) {
+    if (!scene) return;
+    ShadingSettings& s = scene->settings().shading;
+    const double px = scene->renderer().height() / (2 * std::tan(settings.fov_y_deg * kDeg / 2));
+    switch (key) {
+      case GLFW_KEY_ESCAPE:
+        window_ptr->close();
+        break;
+      case GLFW_KEY_R:
+        orbit = home;
+        break;
+      case GLFW_KEY_P:
+        screenshot_pending = true;
+        break;
+      case GLFW_KEY_1:
+        s.mode = Shading::kHillshade;
+        break;
+      case GLFW_KEY_2:
+        s.mode = Shading::kElevation;
+        break;
+      case GLFW_KEY_3:
+        s.mode = Shading::kSlope;
+        break;
+      case GLFW_KEY_4:
+        s.mode = Shading::kAspect;
+        break;
+      case GLFW_KEY_EQUAL:
+      case GLFW_KEY_KP_ADD:
+        s.exaggeration = std::min(s.exaggeration * 1.25, 100.0);
+        break;
+      case GLFW_KEY_MINUS:
+      case GLFW_KEY_KP_SUBTRACT:
+        s.exaggeration = std::max(s.exaggeration / 1.25, 0.1);
+        break;
+      case GLFW_KEY_W:
+        orbit.distance_m *= 0.85;
+        break;
+      case GLFW_KEY_S:
+        orbit.distance_m /= 0.85;
+        break;
+      case GLFW_KEY_LEFT:
+        orbit.pan(-40, 0, px, scene->world());
+        break;
+      case GLFW_KEY_RIGHT:
+        orbit.pan(40, 0, px, scene->world());
+        break;
+      case GLFW_KEY_UP:
+        orbit.pan(0, -40, px, scene->world());
+        break;
+      case GLFW_KEY_DOWN:
+        orbit.pan(0, 40, px, scene->world());
+        break;
+      default:
+        break;
+    }
+  };
+
+  std::unique_ptr<GlfwWindow> window;
+  try {
+    window = std::make_unique<GlfwWindow>(settings.width, settings.height, "globe-view", cb);
+  } catch (const std::exception& e) {
+    throw OutputError(std::string(e.what()) + "; for headless use pass --snapshot OUT.png");
+  }
+  window_ptr = window.get();
+  TerrainScene s(settings);
+  scene = &s;
+  const CameraPose start = s.initial_pose();
+  const double ground = (s.settings().shading.range_min_m + s.settings().shading.range_max_m) / 2;
+  home = orbit = Orbit::from_pose(start, s.world(), ground);
+
+  auto last_title = std::chrono::steady_clock::now();
+  while (!window->should_close()) {
+    window->poll();
+    int w = 0, h = 0;
+    window->framebuffer_size(w, h);
+    if (w <= 0 || h <= 0) continue;
+    s.resize(w, h);
+    const auto t0 = std::chrono::steady_clock::now();
+    const FrameResult f = s.frame(orbit.pose(s.world(), settings.fov_y_deg), false, true);
+    if (screenshot_pending) {
+      const std::string name = "globe-view-" + std::to_string(++screenshot) + ".png";
+      write_png(name, s.renderer().read_pixels(), w, h);
+      std::fprintf(stderr, "globe-view: wrote %s\n", name.c_str());
+      screenshot_pending = false;
+    }
+    s.renderer().blit_to_default(w, h);
+    window->swap();
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_title > std::chrono::milliseconds(500)) {
+      const double ms = std::chrono::duration<double, std::milli>(now - t0).count();
+      char title[256];
+      std::snprintf(title, sizeof title,
+                    "globe-view  %.1f ms  %zu patches  %zu k triangles  %zu blocks  waiting %zu",
+                    ms, f.patches.size(),
+                    f.patches.size() * s.renderer().triangles_per_patch() / 1000,
+                    s.cache().stats().resident, f.selection.waiting);
+      window->set_title(title);
+      last_title = now;
+    }
+  }
+  return kExitOk;
+}
+
+}  // namespace globe::viewer
