@@ -1,0 +1,225 @@
+// globe-view as a user runs it: headless snapshots against expected PNGs
+// (tolerance; the diff image is kept on failure), OSMesa and EGL agreement,
+// the memory budget on a flight, and bad input.
+#include <gtest/gtest.h>
+
+#include <gdal.h>
+
+#include <cmath>
+#include <fstream>
+
+#include "raster_fixtures.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using namespace globe_test;
+
+std::string viewer() {
+  return GLOBE_VIEW_PATH;
+}
+
+const char* kCamera = "--camera=-84.30,36.55,2500,30,65";
+
+// Tiles jacksboro once per test binary run.
+const std::string& jacksboro_package() {
+  static const std::string pkg = [] {
+    const fs::path dir =
+        fs::temp_directory_path() / ("globe-view-test-" + std::to_string(getpid()));
+    fs::create_directories(dir);
+    const std::string p = (dir / "jacksboro.mbtiles").string();
+    const RunResult r =
+        run(tiler() + " terrain -q --force " + sample("jacksboro.tif").string() + " -o " + p, dir);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return p;
+  }();
+  return pkg;
+}
+
+std::vector<uint8_t> read_rgb(const std::string& path, int& w, int& h) {
+  gdal_setup();
+  GDALDatasetH ds = GDALOpen(path.c_str(), GA_ReadOnly);
+  if (!ds) return {};
+  w = GDALGetRasterXSize(ds), h = GDALGetRasterYSize(ds);
+  std::vector<uint8_t> rgb(size_t(w) * h * 3);
+  for (int b = 0; b < 3; ++b)
+    EXPECT_EQ(GDALRasterIO(GDALGetRasterBand(ds, b + 1), GF_Read, 0, 0, w, h, rgb.data() + b, w, h,
+                           GDT_Byte, 3, w * 3),
+              CE_None);
+  GDALClose(ds);
+  return rgb;
+}
+
+// Compares with the expected image; on failure writes <name>.actual.png and
+// <name>.diff.png (|difference| x 8) under the build's render-diffs folder.
+void expect_image(const std::string& actual, const std::string& name) {
+  const std::string expected = std::string(GLOBE_TEST_DATA_DIR) + "/render/" + name + ".png";
+  int w = 0, h = 0, ew = 0, eh = 0;
+  const auto a = read_rgb(actual, w, h);
+  const auto e = read_rgb(expected, ew, eh);
+  ASSERT_FALSE(e.empty()) << expected << " missing: run tests/data/render/make_expected.sh";
+  ASSERT_EQ(w, ew);
+  ASSERT_EQ(h, eh);
+  size_t bad = 0;
+  double sum = 0;
+  std::vector<uint8_t> diff(a.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    const int d = std::abs(int(a[i]) - int(e[i]));
+    sum += d;
+    if (d > 24) ++bad;
+    diff[i] = static_cast<uint8_t>(std::min(255, d * 8));
+  }
+  const double mean = sum / a.size();
+  const bool ok = mean <= 1.5 && bad <= a.size() / 200;
+  EXPECT_TRUE(ok) << name << ": mean |diff| " << mean << ", " << bad
+                  << " channel values off by > 24";
+  if (!ok) {
+    const fs::path out = fs::path(GLOBE_RENDER_DIFF_DIR);
+    fs::create_directories(out);
+    fs::copy_file(actual, out / (name + ".actual.png"), fs::copy_options::overwrite_existing);
+    GDALDatasetH mem = GDALCreate(GDALGetDriverByName("MEM"), "", w, h, 3, GDT_Byte, nullptr);
+    for (int b = 0; b < 3; ++b)
+      EXPECT_EQ(GDALRasterIO(GDALGetRasterBand(mem, b + 1), GF_Write, 0, 0, w, h, diff.data() + b,
+                             w, h, GDT_Byte, 3, w * 3),
+                CE_None);
+    GDALClose(GDALCreateCopy(GDALGetDriverByName("PNG"), (out / (name + ".diff.png")).c_str(), mem,
+                             FALSE, nullptr, nullptr, nullptr));
+    GDALClose(mem);
+    ADD_FAILURE() << "images kept in " << out;
+  }
+}
+
+TEST(ViewerRender, HillshadeSnapshotMatchesExpected) {
+  TempDir dir;
+  const RunResult r = run(viewer() + " " + jacksboro_package() + " --snapshot " +
+                              (dir / "a.png").string() + " --size 320x180 " + kCamera,
+                          dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_image((dir / "a.png").string(), "jacksboro_hillshade");
+}
+
+TEST(ViewerRender, ShadingModesMatchExpected) {
+  for (const std::string mode : {"elevation", "slope", "aspect"}) {
+    TempDir dir;
+    const RunResult r =
+        run(viewer() + " " + jacksboro_package() + " --snapshot " + (dir / "a.png").string() +
+                " --size 320x180 --fit --shading " + mode,
+            dir.path());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    expect_image((dir / "a.png").string(), "jacksboro_fit_" + mode);
+  }
+}
+
+TEST(ViewerRender, OsMesaAndEglGiveTheSameImage) {
+  TempDir dir;
+  for (const std::string platform : {"osmesa", "egl"}) {
+    const RunResult r =
+        run(viewer() + " " + jacksboro_package() + " --platform " + platform + " --snapshot " +
+                (dir / (platform + ".png")).string() + " --size 320x180 " + kCamera,
+            dir.path());
+    ASSERT_EQ(r.exit_code, 0) << platform << ": " << r.err;
+  }
+  EXPECT_EQ(read_file(dir / "osmesa.png"), read_file(dir / "egl.png"));
+}
+
+TEST(ViewerCli, StatsAreJsonOnStdout) {
+  TempDir dir;
+  const RunResult r =
+      run(viewer() + " " + jacksboro_package() + " --stats --frames 3 --size 160x90 " + kCamera,
+          dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* key : {"\"frame_ms\"", "\"terrain_ms\"", "\"triangles\"", "\"patches\"",
+                          "\"resident_blocks\"", "\"bytes_read\""})
+    EXPECT_NE(r.out.find(key), std::string::npos) << key << " missing in " << r.out;
+  EXPECT_EQ(r.out.front(), '{');
+}
+
+TEST(ViewerCli, MemoryBudgetHoldsDuringAFlight) {
+  TempDir dir;
+  std::ofstream path(dir / "flight.txt");
+  for (int i = 0; i <= 12; ++i)
+    path << -84.42 + i * 0.03 << "," << 36.45 + i * 0.02 << ",900,45,60\n";
+  path.close();
+  const RunResult r = run(viewer() + " " + jacksboro_package() +
+                              " --stats --frames 1 --size 320x180 --cache-mb 4 --camera-path " +
+                              (dir / "flight.txt").string(),
+                          dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto number = [&](const std::string& key) {
+    const size_t at = r.out.find("\"" + key + "\": ");
+    EXPECT_NE(at, std::string::npos) << key;
+    return std::stod(r.out.substr(at + key.size() + 4));
+  };
+  EXPECT_LE(number("max_resident_bytes"), number("budget_bytes"));
+  EXPECT_GT(number("evictions"), 0) << "the flight should need more blocks than fit: " << r.out;
+}
+
+TEST(ViewerCli, MeshExportIsAPly) {
+  TempDir dir;
+  const RunResult r = run(viewer() + " " + jacksboro_package() + " --export-mesh " +
+                              (dir / "m.ply").string() + " --size 160x90 " + kCamera,
+                          dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string ply = read_file(dir / "m.ply");
+  EXPECT_EQ(ply.rfind("ply\nformat binary_little_endian 1.0\n", 0), 0u);
+  EXPECT_NE(ply.find("element face "), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir / "m.ply.tmp"));
+}
+
+TEST(ViewerCli, BadInputGetsAClearError) {
+  TempDir dir;
+  struct Case {
+    std::string args, message;
+    int code;
+  };
+  std::ofstream(dir / "text.mbtiles") << "not a database";
+  {
+    // A valid SQLite package of another kind.
+    const RunResult r =
+        run("sqlite3 " + (dir / "png.mbtiles").string() +
+                " \"CREATE TABLE metadata (name TEXT, value TEXT); INSERT INTO "
+                "metadata VALUES ('format', 'png'); CREATE TABLE tiles (zoom_level INTEGER, "
+                "tile_column INTEGER, tile_row INTEGER, tile_data BLOB);\"",
+            dir.path());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  const std::string snap = " --snapshot " + (dir / "out.png").string();
+  const Case cases[] = {
+      {(dir / "missing.mbtiles").string() + snap, "missing.mbtiles", 1},
+      {(dir / "text.mbtiles").string() + snap, "text.mbtiles", 1},
+      {(dir / "png.mbtiles").string() + snap, "not a terrain package", 1},
+      {jacksboro_package() + snap + " --camera 1,2,3", "--camera", 2},
+      {jacksboro_package() + snap + " --shading sepia", "--shading", 2},
+      {jacksboro_package() + " --snapshot " + (dir / "no/such/dir/x.png").string(), "x.png", 3},
+  };
+  for (const Case& c : cases) {
+    const RunResult r = run(viewer() + " " + c.args, dir.path());
+    EXPECT_EQ(r.exit_code, c.code) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << "\n" << r.err;
+    EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir / "out.png"));
+}
+
+TEST(ViewerCli, CorruptTileWarnsAndDrawsCoarser) {
+  TempDir dir;
+  const std::string pkg = (dir / "broken.mbtiles").string();
+  fs::copy_file(jacksboro_package(), pkg);
+  // Corrupt every tile of the finest zoom (each has its own blob).
+  const RunResult s = run("sqlite3 " + pkg +
+                              " \"UPDATE blobs SET tile_data = randomblob(100) WHERE blob_id IN "
+                              "(SELECT blob_id FROM map WHERE zoom_level = (SELECT MAX(zoom_level) "
+                              "FROM map));\"",
+                          dir.path());
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  const RunResult r = run(viewer() + " " + pkg + " --stats --frames 1 --size 320x180 " + kCamera +
+                              " --snapshot " + (dir / "a.png").string(),
+                          dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out.find("\"broken_tiles\": 0,"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("\"patches\": 0,"), std::string::npos) << "nothing drawn: " << r.out;
+  EXPECT_TRUE(fs::exists(dir / "a.png"));
+}
+
+}  // namespace

@@ -1,0 +1,220 @@
+// The viewer's mesh contract (docs/viewer.md, design §4) on real sample
+// packages and random cameras, checked on the triangles the GPU draws
+// (captured by transform feedback):
+//  1. conforming: no edge is used by more than two triangles, and no vertex
+//     lies inside an edge used by only one (a T-junction or a crack);
+//  2. the projected vertical error against the finest data is <= tau pixels.
+#include <gtest/gtest.h>
+
+#include <climits>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <random>
+#include <set>
+#include <sstream>
+#include <unordered_map>
+
+#include "app/terrain_scene.hpp"
+#include "platform/headless_context.hpp"
+#include "test_support.hpp"
+#include "tileformat/mblock.hpp"
+#include "tileformat/package.hpp"
+
+namespace {
+
+using namespace globe_test;
+using namespace globe::viewer;
+
+struct Mesh {
+  std::vector<glm::dvec3> verts;  // key units (x, y), metres (z)
+  std::vector<uint32_t> tris;
+};
+
+Mesh weld(const std::vector<float>& f, const FrameResult& fr, const WorldFrame& world, double zs) {
+  Mesh m;
+  std::map<std::array<float, 3>, uint32_t> index;
+  for (size_t i = 0; i + 2 < f.size(); i += 3) {
+    const std::array<float, 3> v{f[i], f[i + 1], f[i + 2]};
+    auto [it, added] = index.emplace(v, static_cast<uint32_t>(m.verts.size()));
+    if (added) {
+      const glm::dvec2 k = world.world_to_key(v[0], v[1], fr.view.origin);
+      m.verts.push_back({std::round(k.x), std::round(k.y), v[2] / zs});
+    }
+    m.tris.push_back(it->second);
+  }
+  return m;
+}
+
+// Counts edges used more than twice and T-junctions (vertices strictly
+// inside an edge that only one triangle uses).
+std::pair<size_t, size_t> conformity_errors(const Mesh& m) {
+  std::map<std::pair<uint32_t, uint32_t>, int> use;
+  for (size_t t = 0; t < m.tris.size(); t += 3)
+    for (int e = 0; e < 3; ++e) {
+      uint32_t a = m.tris[t + e], b = m.tris[t + (e + 1) % 3];
+      if (a > b) std::swap(a, b);
+      ++use[{a, b}];
+    }
+  // Vertices are integer key points, so a vertex inside an edge is one of the
+  // lattice points strictly between its ends.
+  std::set<std::pair<int64_t, int64_t>> at;
+  for (const glm::dvec3& v : m.verts)
+    at.insert({int64_t(v.x), int64_t(v.y)});
+  size_t overused = 0, tjunctions = 0;
+  for (const auto& [e, n] : use) {
+    if (n > 2) ++overused;
+    if (n != 1) continue;
+    const int64_t ax = int64_t(m.verts[e.first].x), ay = int64_t(m.verts[e.first].y);
+    const int64_t dx = int64_t(m.verts[e.second].x) - ax, dy = int64_t(m.verts[e.second].y) - ay;
+    const int64_t g = std::gcd(std::abs(dx), std::abs(dy));
+    for (int64_t t = 1; t < g; ++t)
+      if (at.count({ax + t * dx / g, ay + t * dy / g})) ++tjunctions;
+  }
+  return {overused, tjunctions};
+}
+
+// The finest zoom's samples by key position.
+class FinestData {
+ public:
+  explicit FinestData(const std::string& path) {
+    tileformat::PackageReader r(path);
+    zoom_ = std::stoi(*r.meta("maxzoom"));
+    r.for_each_tile(
+        [&](tileformat::TileId id, std::span<const uint8_t> blob) {
+          blocks_.emplace(std::pair{id.x, id.y}, tileformat::decode_mblock(blob));
+        },
+        zoom_);
+    steps_ = blocks_.begin()->second.steps();
+    for (const auto& [xy, b] : blocks_) {
+      lo_x_ = std::min<int64_t>(lo_x_, int64_t{xy.first} * steps_);
+      lo_y_ = std::min<int64_t>(lo_y_, int64_t{xy.second} * steps_);
+      hi_x_ = std::max<int64_t>(hi_x_, int64_t{xy.first + 1} * steps_);
+      hi_y_ = std::max<int64_t>(hi_y_, int64_t{xy.second + 1} * steps_);
+    }
+  }
+  // Key-unit box holding every finest sample.
+  int64_t lo_x_ = INT64_MAX, lo_y_ = INT64_MAX, hi_x_ = INT64_MIN, hi_y_ = INT64_MIN;
+  // Height in metres of the finest sample at key (x, y), if valid.
+  std::optional<double> at(int64_t x, int64_t y) const {
+    auto it = blocks_.find({static_cast<uint32_t>(x / steps_), static_cast<uint32_t>(y / steps_)});
+    if (it == blocks_.end()) {
+      if (x % steps_ == 0 && x > 0) return at_tile(x, y, x / steps_ - 1, y / steps_);
+      if (y % steps_ == 0 && y > 0) return at_tile(x, y, x / steps_, y / steps_ - 1);
+      return std::nullopt;
+    }
+    return at_tile(x, y, x / steps_, y / steps_);
+  }
+
+ private:
+  std::optional<double> at_tile(int64_t x, int64_t y, int64_t tx, int64_t ty) const {
+    auto it = blocks_.find({static_cast<uint32_t>(tx), static_cast<uint32_t>(ty)});
+    if (it == blocks_.end()) return std::nullopt;
+    const int lx = static_cast<int>(x - tx * steps_), ly = static_cast<int>(y - ty * steps_);
+    if (!it->second.is_valid(lx, ly)) return std::nullopt;
+    return it->second.height(lx, ly);
+  }
+  int zoom_ = 0, steps_ = 256;
+  std::map<std::pair<uint32_t, uint32_t>, tileformat::MBlock> blocks_;
+};
+
+// Largest projected error (pixels) of the mesh against every valid finest sample.
+double max_projected_error(const Mesh& m, const FinestData& data, const FrameResult& fr,
+                           const WorldFrame& world, double zs) {
+  double worst = 0;
+  for (size_t t = 0; t < m.tris.size(); t += 3) {
+    const glm::dvec3 a = m.verts[m.tris[t]], b = m.verts[m.tris[t + 1]], c = m.verts[m.tris[t + 2]];
+    const double det = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+    if (det == 0) continue;
+    const int64_t x0 = std::max(data.lo_x_, static_cast<int64_t>(std::min({a.x, b.x, c.x}))),
+                  x1 = std::min(data.hi_x_, static_cast<int64_t>(std::max({a.x, b.x, c.x}))),
+                  y0 = std::max(data.lo_y_, static_cast<int64_t>(std::min({a.y, b.y, c.y}))),
+                  y1 = std::min(data.hi_y_, static_cast<int64_t>(std::max({a.y, b.y, c.y})));
+    for (int64_t y = y0; y <= y1; ++y)
+      for (int64_t x = x0; x <= x1; ++x) {
+        const double l1 = ((x - a.x) * (c.y - a.y) - (c.x - a.x) * (y - a.y)) / det;
+        const double l2 = ((b.x - a.x) * (y - a.y) - (x - a.x) * (b.y - a.y)) / det;
+        if (l1 < -1e-9 || l2 < -1e-9 || l1 + l2 > 1 + 1e-9) continue;
+        const auto h = data.at(x, y);
+        if (!h) continue;
+        const double drawn = a.z + l1 * (b.z - a.z) + l2 * (c.z - a.z);
+        const glm::dvec3 p = world.key_to_world(double(x), double(y), *h, fr.view.origin);
+        const double dist =
+            glm::length(p * glm::dvec3(1, 1, zs / world.height_scale()) - fr.view.eye);
+        worst = std::max(worst, std::abs(drawn - *h) * zs * fr.view.pixels_per_radian / dist);
+      }
+  }
+  return worst;
+}
+
+void check_package(const std::string& pkg, int cameras, uint32_t seed) {
+  ViewerSettings s;
+  s.packages = {pkg};
+  s.width = 400;
+  s.height = 300;
+  s.shading.exaggeration = 1.0;
+  TerrainScene scene(s);
+  const CameraPose fit = scene.initial_pose();
+  const double top = scene.top_height_m();
+  const FinestData finest(pkg);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  const double span = (fit.height_m - top) / 110000.0;  // degrees the fit view covers, roughly
+  size_t total_triangles = 0;
+  for (int i = 0; i < cameras; ++i) {
+    CameraPose p = fit;
+    p.lon += (u(rng) - 0.5) * span;
+    p.lat += (u(rng) - 0.5) * span * 0.8;
+    p.height_m = top + 100 + u(rng) * u(rng) * (fit.height_m - top) * 1.5;
+    p.heading_deg = u(rng) * 360;
+    p.pitch_deg = u(rng) * 80;
+    scene.settings().cull = (i % 4 != 0);  // some whole-package meshes too
+    const FrameResult f = scene.frame(p, true, false);
+    ASSERT_EQ(f.selection.waiting, 0u) << "camera " << p.str();
+    const double zs = scene.world().height_scale();
+    const Mesh m = weld(scene.capture(f), f, scene.world(), zs);
+    total_triangles += m.tris.size() / 3;
+    if (std::getenv("GLOBE_TEST_VERBOSE"))
+      std::fprintf(stderr, "camera %d %s: %zu patches, %zu triangles\n", i, p.str().c_str(),
+                   f.patches.size(), m.tris.size() / 3);
+    const auto [overused, tjunctions] = conformity_errors(m);
+    EXPECT_EQ(overused, 0u) << pkg << " camera " << p.str();
+    EXPECT_EQ(tjunctions, 0u) << pkg << " camera " << p.str();
+    if (i % 3 == 0) {
+      const double err = max_projected_error(m, finest, f, scene.world(), zs);
+      EXPECT_LE(err, s.max_error_px + 1e-3) << pkg << " camera " << p.str();
+    }
+  }
+  EXPECT_GT(total_triangles, size_t(cameras) * 1000) << "the cameras saw almost nothing";
+}
+
+class ViewerMesh : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { context_ = create_headless_context("osmesa").release(); }
+  static void TearDownTestSuite() { delete context_; }
+  static HeadlessContext* context_;
+};
+HeadlessContext* ViewerMesh::context_ = nullptr;
+
+TEST_F(ViewerMesh, ConformingAndWithinTauOnJacksboroWebMercator) {
+  TempDir dir;
+  const std::string pkg = (dir / "j.mbtiles").string();
+  ASSERT_EQ(
+      run(tiler() + " terrain -q " + sample("jacksboro.tif").string() + " -o " + pkg, dir.path())
+          .exit_code,
+      0);
+  check_package(pkg, 60, 1);
+}
+
+TEST_F(ViewerMesh, ConformingAndWithinTauOnBrasiliaLocal) {
+  TempDir dir;
+  const std::string pkg = (dir / "b.mbtiles").string();
+  ASSERT_EQ(
+      run(tiler() + " terrain -q --tiling local " + sample("brasilia.tif").string() + " -o " + pkg,
+          dir.path())
+          .exit_code,
+      0);
+  check_package(pkg, 50, 2);
+}
+
+}  // namespace
