@@ -217,21 +217,8 @@ void PatchSelector::visit(const Node& n) {
   out_.push_back(p);
 }
 
-double PatchSelector::top_height_m(BlockCache& cache) const {
-  double top = -1e30;
-  for (const TileId& id : roots_)
-    if (cache.state(id) == BlockState::kResident)
-      if (const ResidentBlock* b = cache.use(id)) {
-        const uint32_t e = b->vertex_error.empty()
-                               ? 0
-                               : *std::max_element(b->vertex_error.begin(), b->vertex_error.end());
-        top = std::max(top, b->max_h + e * step_m_);
-      }
-  return top > -1e29 ? top : 0;
-}
-
-double PatchSelector::bottom_height_m(BlockCache& cache) const {
-  double bottom = 1e30;
+std::pair<double, double> PatchSelector::height_bounds_m(BlockCache& cache) const {
+  double bottom = 1e30, top = -1e30;
   for (const TileId& id : roots_)
     if (cache.state(id) == BlockState::kResident)
       if (const ResidentBlock* b = cache.use(id)) {
@@ -239,8 +226,9 @@ double PatchSelector::bottom_height_m(BlockCache& cache) const {
                                ? 0
                                : *std::max_element(b->vertex_error.begin(), b->vertex_error.end());
         bottom = std::min(bottom, b->min_h - e * step_m_);
+        top = std::max(top, b->max_h + e * step_m_);
       }
-  return bottom < 1e29 ? bottom : 0;
+  return top >= bottom ? std::pair{bottom, top} : std::pair{0.0, 0.0};
 }
 
 std::vector<Patch> PatchSelector::select(const View& view, const WorldFrame& frame,

@@ -19,6 +19,7 @@
 
 #include <cstdint>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "camera/camera.hpp"
@@ -58,10 +59,11 @@ class PatchSelector {
   std::vector<Patch> select(const View& view, const WorldFrame& frame, BlockCache& cache,
                             const SelectionSettings& settings, SelectionStats* stats = nullptr);
 
-  // The highest terrain point (metres) over the resident root blocks plus
-  // their largest error: an upper bound of the finest data.
-  double top_height_m(BlockCache& cache) const;
-  double bottom_height_m(BlockCache& cache) const;
+  // Lowest and highest terrain (metres) over the resident root blocks, widened
+  // by their largest error: bounds of the finest data.
+  std::pair<double, double> height_bounds_m(BlockCache& cache) const;
+  double top_height_m(BlockCache& cache) const { return height_bounds_m(cache).second; }
+  double bottom_height_m(BlockCache& cache) const { return height_bounds_m(cache).first; }
   std::vector<tileformat::TileId> root_tiles() const { return roots_; }
 
  private:
