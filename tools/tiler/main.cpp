@@ -1,13 +1,12 @@
 // globe-tiler: DEMs -> terrain packages, and tools to inspect them.
 // The only place that turns errors into messages and exit codes (docs/cli.md).
 #include <cstdio>
-#include <exception>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
+#include "error_report.hpp"
 #include "errors.hpp"
-#include "tileformat/error.hpp"
 
 namespace {
 
@@ -37,11 +36,7 @@ int main(int argc, char** argv) {
   std::string command_line = "globe-tiler";
   for (int i = 1; i < argc; ++i)
     command_line += std::string(" ") + argv[i];
-  auto report = [](const std::exception& e, int code) {
-    std::fprintf(stderr, "globe-tiler: %s\n", e.what());
-    return code;
-  };
-  try {
+  return globe::run_reporting_errors("globe-tiler", "globe-tiler " + command, "", [&]() -> int {
     if (command == "terrain") return globe::run_terrain(args, command_line);
     if (command == "info") return globe::run_info(args);
     if (command == "validate") return globe::run_validate(args);
@@ -56,19 +51,5 @@ int main(int argc, char** argv) {
     }
     std::fprintf(stderr, "globe-tiler: unknown command '%s'\n\n%s", command.c_str(), kUsage);
     return globe::kExitUsage;
-  } catch (const globe::UsageError& e) {
-    std::fprintf(stderr, "globe-tiler %s: %s\n", command.c_str(), e.what());
-    return globe::kExitUsage;
-  } catch (const globe::OutputError& e) {
-    return report(e, globe::kExitOutputError);
-  } catch (const globe::InputError& e) {
-    return report(e, globe::kExitDataError);
-  } catch (const tileformat::FormatError& e) {
-    return report(e, globe::kExitDataError);
-  } catch (const tileformat::PackageError& e) {
-    return report(e, globe::kExitDataError);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "globe-tiler: internal error: %s\n", e.what());
-    return globe::kExitInternal;
-  }
+  });
 }
