@@ -41,6 +41,9 @@ class PackageWriter {
   // Writes metadata, builds indexes, syncs, and renames to the final path.
   void commit();
 
+  // The database being built, for tables beyond the tiles (e.g. a line
+  // package's features table). Writes join the writer's open transaction.
+  SqliteDb& db() { return *db_; }
   const std::string& temp_path() const { return temp_path_; }
   uint64_t tiles_written() const { return tiles_; }
   uint64_t unique_blobs() const { return unique_; }

@@ -21,6 +21,17 @@ class ByteWriter {
   void u32(uint32_t v) { put(v); }
   void i32(int32_t v) { put(static_cast<uint32_t>(v)); }
   void f64(double v) { put(std::bit_cast<uint64_t>(v)); }
+  // LEB128: 7 bits per byte, low bits first.
+  void varint(uint64_t v) {
+    while (v >= 0x80) {
+      out_.push_back(static_cast<uint8_t>(v | 0x80));
+      v >>= 7;
+    }
+    out_.push_back(static_cast<uint8_t>(v));
+  }
+  void svarint(int64_t v) {
+    varint((static_cast<uint64_t>(v) << 1) ^ static_cast<uint64_t>(v >> 63));
+  }
   void bytes(std::span<const uint8_t> b) { out_.insert(out_.end(), b.begin(), b.end()); }
   size_t size() const { return out_.size(); }
   std::vector<uint8_t> take() { return std::move(out_); }
@@ -45,6 +56,19 @@ class ByteReader {
   uint32_t u32() { return get<uint32_t>(); }
   int32_t i32() { return static_cast<int32_t>(get<uint32_t>()); }
   double f64() { return std::bit_cast<double>(get<uint64_t>()); }
+  uint64_t varint() {
+    uint64_t v = 0;
+    for (int shift = 0; shift < 64; shift += 7) {
+      const uint8_t b = u8();
+      v |= uint64_t{b & 0x7fu} << shift;
+      if (!(b & 0x80)) return v;
+    }
+    fail("varint longer than 10 bytes");
+  }
+  int64_t svarint() {
+    const uint64_t u = varint();
+    return static_cast<int64_t>(u >> 1) ^ -static_cast<int64_t>(u & 1);
+  }
   std::span<const uint8_t> bytes(size_t n) {
     need(n);
     auto s = in_.subspan(pos_, n);
