@@ -157,3 +157,25 @@ std::vector<double> CliArgs::to_doubles(const std::string& option, const std::st
 }
 
 }  // namespace globe
+
+namespace globe {
+
+std::string CliArgs::reproducible_command_line(const std::string& prefix,
+                                               const std::vector<std::string>& args) {
+  std::string out = prefix;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "-j" || a == "--threads" || a == "--progress" || a == "--memory-mb") {
+      ++i;
+      continue;
+    }
+    if (a == "-q" || a == "--quiet" || a == "--force" || a.rfind("--threads=", 0) == 0 ||
+        a.rfind("--progress=", 0) == 0 || a.rfind("--memory-mb=", 0) == 0 ||
+        (a.size() > 2 && a.rfind("-j", 0) == 0))
+      continue;
+    out += " " + a;
+  }
+  return out;
+}
+
+}  // namespace globe

@@ -35,6 +35,12 @@ class CliArgs {
   static int to_int(const std::string& option, const std::string& v, int lo, int hi);
   static double to_double(const std::string& option, const std::string& v);
   static std::vector<double> to_doubles(const std::string& option, const std::string& v, size_t n);
+  // The command line recorded in package metadata: `prefix` and the
+  // arguments without options that cannot change the output (-j/--threads,
+  // -q/--quiet, --progress, --force, --memory-mb), so packages built with any
+  // -j or memory budget match.
+  static std::string reproducible_command_line(const std::string& prefix,
+                                               const std::vector<std::string>& args);
 
  private:
   struct Opt {

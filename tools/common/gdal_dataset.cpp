@@ -5,6 +5,7 @@
 #include <cpl_error.h>
 #include <ogr_srs_api.h>
 
+#include <cctype>
 #include <filesystem>
 #include <mutex>
 
@@ -86,6 +87,76 @@ std::optional<double> GdalDataset::nodata(int band_index) const {
   double v = GDALGetRasterNoDataValue(band(band_index), &has);
   if (!has) return std::nullopt;
   return v;
+}
+
+}  // namespace globe
+
+namespace globe {
+namespace {
+
+bool sibling_exists(const std::filesystem::path& shp, const char* lower, const char* upper) {
+  std::error_code ec;
+  auto p = shp;
+  if (std::filesystem::exists(p.replace_extension(lower), ec)) return true;
+  return std::filesystem::exists(p.replace_extension(upper), ec);
+}
+
+}  // namespace
+
+GdalDataset GdalDataset::open_vector(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const bool virtual_path = path.rfind("/vsi", 0) == 0;
+  if (!virtual_path && !fs::exists(path, ec))
+    throw InputError(path + ": no such file; check the path");
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (!virtual_path && ext == ".shp") {
+    if (!sibling_exists(path, ".shx", ".SHX"))
+      throw InputError(path +
+                       ": the shapefile's index (.shx) is missing; copy it next to the .shp");
+    if (!sibling_exists(path, ".dbf", ".DBF"))
+      throw InputError(path +
+                       ": the shapefile's attribute table (.dbf) is missing; copy it next to the "
+                       ".shp");
+  }
+  CPLErrorReset();
+  GDALDatasetH h =
+      GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
+  if (!h) {
+    std::string why = gdal_last_error();
+    throw InputError(path + ": not vector data GDAL/OGR can read" +
+                     (why.empty() ? "" : " (" + why + ")") +
+                     "; pass a Shapefile, GeoPackage, GeoJSON or another OGR format");
+  }
+  GdalDataset ds(h, path);
+  if (GDALDatasetGetLayerCount(h) < 1) throw InputError(path + ": no vector layers");
+  return ds;
+}
+
+GdalDataset GdalDataset::create_vector(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const char* name = "GPKG";
+  if (ext == ".shp")
+    name = "ESRI Shapefile";
+  else if (ext == ".geojson" || ext == ".json")
+    name = "GeoJSON";
+  else if (ext == ".fgb")
+    name = "FlatGeobuf";
+  else if (ext == ".csv")
+    name = "CSV";
+  GDALDriverH driver = GDALGetDriverByName(name);
+  if (!driver) throw OutputError(std::string("GDAL has no ") + name + " driver");
+  CPLErrorReset();
+  GDALDatasetH h = GDALCreate(driver, path.c_str(), 0, 0, 0, GDT_Unknown, nullptr);
+  if (!h)
+    throw OutputError(path + ": cannot create (" + gdal_last_error() +
+                      "); check the folder exists and is writable");
+  return GdalDataset(h, path);
 }
 
 }  // namespace globe

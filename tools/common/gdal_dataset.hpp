@@ -27,6 +27,12 @@ class GdalDataset {
 
   // Opens a raster read-only; throws InputError naming the file.
   static GdalDataset open_raster(const std::string& path);
+  // Opens vector data (any OGR source) read-only; throws InputError naming the
+  // file. A shapefile must come with its .shx and .dbf.
+  static GdalDataset open_vector(const std::string& path);
+  // Creates a vector dataset with the driver GDAL guesses from the extension
+  // (GPKG if none); throws OutputError.
+  static GdalDataset create_vector(const std::string& path);
 
   GDALDatasetH get() const { return h_; }
   const std::string& name() const { return name_; }

@@ -11,27 +11,6 @@
 #include "terrain_builder.hpp"
 
 namespace globe {
-namespace {
-
-// The command line recorded in metadata, without options that cannot change
-// the output (threads, verbosity, --force), so -j1 and -j2 packages are identical.
-std::string reproducible_command_line(const std::vector<std::string>& args) {
-  std::string out = "globe-tiler terrain";
-  for (size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    if (a == "-j" || a == "--threads" || a == "--progress") {
-      ++i;
-      continue;
-    }
-    if (a == "-q" || a == "--quiet" || a == "--force" || a.rfind("--threads=", 0) == 0 ||
-        a.rfind("--progress=", 0) == 0 || (a.size() > 2 && a.rfind("-j", 0) == 0))
-      continue;
-    out += " " + a;
-  }
-  return out;
-}
-
-}  // namespace
 
 int run_terrain(const std::vector<std::string>& args, const std::string&) {
   TerrainSettings s;
@@ -84,7 +63,7 @@ int run_terrain(const std::vector<std::string>& args, const std::string&) {
   s.inputs = *positional;
   if (s.output.empty()) throw UsageError("no output given; add -o OUT.mbtiles");
   if (quiet) s.progress = ProgressMode::kQuiet;
-  s.command_line = reproducible_command_line(args);
+  s.command_line = CliArgs::reproducible_command_line("globe-tiler terrain", args);
 
   Progress progress(s.progress);
   DemPlan plan = plan_terrain(s);

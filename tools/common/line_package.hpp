@@ -1,0 +1,25 @@
+// Opening an existing line-cluster package for inspection: the reader plus
+// the metadata every inspection command needs, checked once.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tileformat/package.hpp"
+#include "tileformat/tiling.hpp"
+
+namespace globe {
+
+struct LinePackage {
+  std::unique_ptr<tileformat::PackageReader> reader;
+  tileformat::Tiling tiling;
+  int extent = 0, cluster_grid = 0, min_zoom = 0, max_zoom = 0;
+  std::vector<std::string> class_names;  // by class id (metadata globe:classes)
+};
+
+// Throws InputError naming the file if it is missing, not a package, or not
+// a line-cluster package.
+LinePackage open_line_package(const std::string& path);
+
+}  // namespace globe
