@@ -1,0 +1,50 @@
+// `globe-vectorize info PACKAGE`: metadata, zoom table, and per zoom the
+// segments, points and cluster-grid entries (from tile headers only).
+#include <cstdio>
+#include <map>
+
+#include "cli_args.hpp"
+#include "commands.hpp"
+#include "errors.hpp"
+#include "line_package.hpp"
+#include "package_info.hpp"
+#include "tileformat/line_tile.hpp"
+
+namespace globe {
+
+int run_lines_info(const std::vector<std::string>& args) {
+  CliArgs cli("globe-vectorize info",
+              "globe-vectorize info PACKAGE\n\nPrints a line package's metadata, classes, zoom "
+              "range, tiles, segments and points.");
+  auto positional = cli.parse_command(args, 1, 1, "PACKAGE");
+  if (!positional) return kExitOk;
+  const std::string& path = (*positional)[0];
+  LinePackage p = open_line_package(path);
+  print_package_info(*p.reader, path);
+  std::printf("classes:\n");
+  for (size_t i = 0; i < p.class_names.size(); ++i)
+    std::printf("  %4zu %s\n", i, p.class_names[i].c_str());
+  const auto features = p.reader->db().query_int("SELECT count(*) FROM features");
+  std::printf("features: %lld\n", static_cast<long long>(features.value_or(0)));
+  std::map<int, tileformat::LineTileCounts> per_zoom;
+  p.reader->for_each_tile([&](tileformat::TileId id, std::span<const uint8_t> blob) {
+    const auto c = tileformat::peek_line_tile_counts(blob);
+    auto& z = per_zoom[id.z];
+    z.runs += c.runs;
+    z.segments += c.segments;
+    z.points += c.points;
+    z.cell_entries += c.cell_entries;
+  });
+  std::printf("lines per zoom:\n  %4s %12s %12s %10s %14s %10s\n", "zoom", "segments", "runs",
+              "points", "cell entries", "per cell");
+  const double cells = double(p.cluster_grid) * p.cluster_grid;
+  for (const auto& [z, c] : per_zoom) {
+    const auto tiles = p.reader->db().query_int("SELECT count(*) FROM map WHERE zoom_level = " +
+                                                std::to_string(z));
+    std::printf("  %4d %12u %12u %10u %14u %10.2f\n", z, c.segments, c.runs, c.points,
+                c.cell_entries, c.cell_entries / (cells * double(tiles.value_or(1))));
+  }
+  return kExitOk;
+}
+
+}  // namespace globe

@@ -1,0 +1,108 @@
+// `globe-vectorize lines`: parses options into LinesSettings, builds, and
+// prints the summary.
+#include <sstream>
+
+#include "cli_args.hpp"
+#include "commands.hpp"
+#include "errors.hpp"
+#include "lines_builder.hpp"
+
+namespace globe {
+
+int run_lines(const std::vector<std::string>& args) {
+  LinesSettings s;
+  bool quiet = false;
+  CliArgs cli("globe-vectorize lines",
+              "globe-vectorize lines INPUT... -o OUT.mbtiles [options]\n\n"
+              "Turns lines, polygon outlines and points from any OGR source (Shapefile,\n"
+              "GeoPackage, GeoJSON, TopoJSON, OSM, ...; several inputs and layers form one\n"
+              "package) into line-cluster tiles: per tile, simplified segments and a cluster\n"
+              "grid the viewer shades lines from (docs/lines.md).");
+  cli.option("-o,--output", "OUT.mbtiles",
+             "output package (written as OUT.mbtiles.tmp, renamed when complete)",
+             [&](const std::string& v) { s.output = v; });
+  cli.option("--tiling", "SCHEME",
+             "webmercator (default, EPSG:3857), geodetic (EPSG:4326, 2x1 roots) or local",
+             [&](const std::string& v) { s.tiling = v; });
+  cli.option("--like", "PACKAGE",
+             "use the tiling of this package (e.g. a local terrain), so tile ids match",
+             [&](const std::string& v) { s.like = v; });
+  cli.option("--t_srs", "CRS", "CRS of the local tiling (default: the first input's CRS)",
+             [&](const std::string& v) { s.t_srs = v; });
+  cli.option("--s_srs", "CRS", "CRS of the inputs, for files without one (shapefile without .prj)",
+             [&](const std::string& v) { s.s_srs = v; });
+  cli.option("--layer", "NAME", "only this layer (repeatable; default: every layer)",
+             [&](const std::string& v) { s.layers.push_back(v); });
+  cli.option("--where", "SQL", "OGR attribute filter, e.g. \"CLASS <= 2\"",
+             [&](const std::string& v) { s.where = v; });
+  cli.option("--min-zoom", "Z", "coarsest zoom written (default 0)",
+             [&](const std::string& v) { s.min_zoom = CliArgs::to_int("--min-zoom", v, 0, 24); });
+  cli.option("--max-zoom", "Z",
+             "finest zoom (default: where the median segment spans 4 px, at most 18)",
+             [&](const std::string& v) { s.max_zoom = CliArgs::to_int("--max-zoom", v, 0, 24); });
+  cli.option("--bbox", "W,S,E,N", "only this area, in degrees of longitude/latitude",
+             [&](const std::string& v) { s.bbox = CliArgs::to_doubles("--bbox", v, 4); });
+  cli.option("--class-field", "FIELD", "attribute whose value is the style class (default: layer)",
+             [&](const std::string& v) { s.class_field = v; });
+  cli.option("--class-map", "V=NAME,...", "rename class values, e.g. 1=highway,2=primary",
+             [&](const std::string& v) { s.class_map = v; });
+  cli.option("--style", "CLASS:K=V,...",
+             "style of a class (repeatable): color=#rrggbb, width=2px|12m, casing=#rrggbb@1px,\n"
+             "      dash=6+3 (default: palette colour, 1.5 px, no casing, solid)",
+             [&](const std::string& v) { s.styles.push_back(v); });
+  cli.option("--cluster-grid", "C", "cluster cells per tile side (default 32)",
+             [&](const std::string& v) {
+               s.cluster_grid = CliArgs::to_int("--cluster-grid", v, 1, 256);
+               if (4096 % s.cluster_grid != 0)
+                 throw UsageError("--cluster-grid must divide 4096 (1, 2, 4, ... 256)");
+             });
+  cli.option("--simplify", "PX",
+             "Douglas-Peucker tolerance in pixels of each zoom (default 0.25; 0 = off)",
+             [&](const std::string& v) {
+               s.simplify_px = CliArgs::to_double("--simplify", v);
+               if (s.simplify_px < 0 || s.simplify_px > 16)
+                 throw UsageError("--simplify must be within 0..16 pixels");
+             });
+  cli.option("--memory-mb", "MB",
+             "memory for sorting tile pieces before spilling to disk (default 1024)",
+             [&](const std::string& v) {
+               s.memory_mb = static_cast<size_t>(CliArgs::to_int("--memory-mb", v, 1, 1 << 20));
+             });
+  cli.option("-j,--threads", "N",
+             "worker threads (default: all cores); output is identical for any N",
+             [&](const std::string& v) { s.threads = CliArgs::to_int("--threads", v, 1, 1024); });
+  cli.option("--progress", "MODE", "'json': one JSON object per line on stderr, for scripts",
+             [&](const std::string& v) {
+               if (v != "json") throw UsageError("--progress: only 'json' is supported");
+               s.progress = ProgressMode::kJson;
+             });
+  cli.flag("--force", "replace an existing output", [&] { s.force = true; });
+  cli.flag("-q,--quiet", "no progress or summary on stderr", [&] { quiet = true; });
+  auto positional = cli.parse_command(args, 1, SIZE_MAX, "input vector file (see --help)");
+  if (!positional) return kExitOk;
+  s.inputs = *positional;
+  if (s.output.empty()) throw UsageError("no output given; add -o OUT.mbtiles");
+  if (!s.like.empty() && (s.tiling != "webmercator" || !s.t_srs.empty()))
+    throw UsageError("--like takes the tiling from the package; drop --tiling/--t_srs");
+  if (quiet) s.progress = ProgressMode::kQuiet;
+  s.command_line = CliArgs::reproducible_command_line("globe-vectorize lines", args);
+
+  Progress progress(s.progress);
+  const LinesSummary sum = build_lines(s, progress);
+  std::ostringstream o;
+  o.precision(3);
+  o << std::fixed << "globe-vectorize: wrote " << s.output << ": " << sum.features_kept
+    << " features (" << sum.features_skipped << " skipped, " << sum.bad_parts
+    << " invalid or degenerate parts";
+  if (sum.antimeridian_cuts) o << ", " << sum.antimeridian_cuts << " antimeridian cuts";
+  o << "), zoom " << sum.min_zoom << ".." << sum.max_zoom << ", " << sum.tiles << " tiles ("
+    << sum.unique_blobs << " unique), " << sum.segments << " segments (" << sum.max_zoom_segments
+    << " at zoom " << sum.max_zoom << "), " << sum.points << " points, " << sum.file_bytes
+    << " bytes, " << sum.seconds << " s";
+  if (sum.spilled_runs)
+    o << "; sorted on disk in " << sum.spilled_runs << " runs (" << sum.spilled_bytes << " bytes)";
+  progress.note(o.str());
+  return kExitOk;
+}
+
+}  // namespace globe

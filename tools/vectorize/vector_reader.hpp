@@ -1,0 +1,62 @@
+// Reads features from OGR sources (the one place that walks OGR layers,
+// features and geometries): selected layers, an attribute filter, the class
+// field, properties as JSON, and geometry flattened into line parts (lines,
+// polygon rings, curves linearized) and points, in the layer's CRS.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gdal_dataset.hpp"
+#include "line_geometry.hpp"
+#include "spatial_ref.hpp"
+
+namespace globe {
+
+struct VectorFeature {
+  int layer = 0;                // index into VectorReader::layers()
+  std::string properties_json;  // {"field": value, ...}
+  std::string class_value;      // the class field as text ("" without --class-field)
+  std::vector<std::vector<XY>> lines;
+  std::vector<XY> points;
+};
+
+struct VectorLayerInfo {
+  std::string name;
+  std::string source;  // file it comes from
+  std::optional<SpatialRef> crs;
+  int64_t feature_count = -1;  // -1 if unknown without a scan
+};
+
+struct VectorReaderOptions {
+  std::vector<std::string> layers;           // empty: every layer
+  std::string where;                         // OGR SQL attribute filter
+  std::string class_field;                   // "" for none
+  std::optional<tileformat::Bounds> filter;  // lon/lat area (a fast pre-filter)
+  std::string s_srs;                         // assigned CRS ("" keeps the files')
+};
+
+class VectorReader {
+ public:
+  // Opens every input and checks layers, filter fields, class field and CRS
+  // up front, so bad input fails before anything is written. Throws
+  // InputError / UsageError naming the file and layer.
+  VectorReader(const std::vector<std::string>& inputs, const VectorReaderOptions& options);
+  ~VectorReader();
+
+  const std::vector<VectorLayerInfo>& layers() const { return layers_; }
+  // Next feature of the current layer, then of the next layers, in file
+  // order. False at the end.
+  bool next(VectorFeature& out);
+
+ private:
+  struct LayerHandle;
+  std::vector<GdalDataset> datasets_;
+  std::vector<VectorLayerInfo> layers_;
+  std::vector<std::unique_ptr<LayerHandle>> handles_;
+  size_t current_ = 0;
+};
+
+}  // namespace globe

@@ -1,0 +1,99 @@
+// OGR vector output (see vector_writer.hpp).
+#include "vector_writer.hpp"
+
+#include <ogr_api.h>
+#include <ogr_srs_api.h>
+
+#include <filesystem>
+
+#include "errors.hpp"
+
+namespace globe {
+
+VectorWriter::VectorWriter(std::string path, bool overwrite, const std::string& crs_wkt)
+    : path_(std::move(path)), crs_wkt_(crs_wkt) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(path_, ec) && !overwrite)
+    throw OutputError(path_ + ": output exists; pass --force to replace it");
+  const fs::path p(path_);
+  temp_ = (p.parent_path() / (p.stem().string() + ".tmp" + p.extension().string())).string();
+  fs::remove(temp_, ec);
+  gdal_init();
+  ds_ = GdalDataset::create_vector(temp_);
+  in_transaction_ = GDALDatasetStartTransaction(ds_.get(), FALSE) == OGRERR_NONE;
+}
+
+VectorWriter::~VectorWriter() {
+  if (committed_) return;
+  ds_ = GdalDataset();
+  std::error_code ec;
+  std::filesystem::remove(temp_, ec);
+}
+
+void* VectorWriter::layer(bool points) {
+  void*& l = points ? points_layer_ : lines_layer_;
+  if (l) return l;
+  OGRSpatialReferenceH srs = OSRNewSpatialReference(nullptr);
+  OSRSetFromUserInput(srs, crs_wkt_.c_str());
+  OGRLayerH layer = GDALDatasetCreateLayer(ds_.get(), points ? "points" : "lines", srs,
+                                           points ? wkbPoint : wkbLineString, nullptr);
+  OSRRelease(srs);
+  if (!layer) throw OutputError(temp_ + ": cannot create a layer (" + gdal_last_error() + ")");
+  const std::pair<const char*, OGRFieldType> fields[] = {{"feature_id", OFTInteger64},
+                                                         {"class", OFTString},
+                                                         {"layer", OFTString},
+                                                         {"tile", OFTString},
+                                                         {"properties", OFTString}};
+  for (const auto& [name, type] : fields) {
+    OGRFieldDefnH fd = OGR_Fld_Create(name, type);
+    const OGRErr err = OGR_L_CreateField(layer, fd, TRUE);
+    OGR_Fld_Destroy(fd);
+    if (err != OGRERR_NONE) throw OutputError(temp_ + ": cannot create field " + name);
+  }
+  l = layer;
+  return l;
+}
+
+void VectorWriter::add(void* geometry, bool points, const VectorAttributes& a) {
+  OGRLayerH l = static_cast<OGRLayerH>(layer(points));
+  OGRFeatureH f = OGR_F_Create(OGR_L_GetLayerDefn(l));
+  OGR_F_SetFieldInteger64(f, 0, a.feature_id);
+  OGR_F_SetFieldString(f, 1, a.class_name.c_str());
+  OGR_F_SetFieldString(f, 2, a.layer.c_str());
+  OGR_F_SetFieldString(f, 3, a.tile.c_str());
+  OGR_F_SetFieldString(f, 4, a.properties.c_str());
+  OGR_F_SetGeometryDirectly(f, static_cast<OGRGeometryH>(geometry));
+  const OGRErr err = OGR_L_CreateFeature(l, f);
+  OGR_F_Destroy(f);
+  if (err != OGRERR_NONE)
+    throw OutputError(temp_ + ": cannot write a feature (" + gdal_last_error() +
+                      "); check free space");
+}
+
+void VectorWriter::add_line(const std::vector<XY>& pts, const VectorAttributes& a) {
+  OGRGeometryH g = OGR_G_CreateGeometry(wkbLineString);
+  for (const XY& p : pts)
+    OGR_G_AddPoint_2D(g, p.x, p.y);
+  add(g, false, a);
+  ++lines_;
+}
+
+void VectorWriter::add_point(XY p, const VectorAttributes& a) {
+  OGRGeometryH g = OGR_G_CreateGeometry(wkbPoint);
+  OGR_G_SetPoint_2D(g, 0, p.x, p.y);
+  add(g, true, a);
+  ++points_;
+}
+
+void VectorWriter::commit() {
+  if (in_transaction_ && GDALDatasetCommitTransaction(ds_.get()) != OGRERR_NONE)
+    throw OutputError(temp_ + ": cannot commit (" + gdal_last_error() + "); check free space");
+  ds_ = GdalDataset();  // closes and flushes
+  std::error_code ec;
+  std::filesystem::rename(temp_, path_, ec);
+  if (ec) throw OutputError(path_ + ": cannot rename the finished file (" + ec.message() + ")");
+  committed_ = true;
+}
+
+}  // namespace globe
