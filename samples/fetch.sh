@@ -6,7 +6,8 @@
 # GeoTIFF (jacksboro .npz, brasilia raw Float32).
 #
 # Usage: samples/fetch.sh [small|all]    (default: small, used by the tests)
-#   small: lux, olinda, jacksboro, brasilia, etopo20        (~3 MB of packages)
+#   small: lux, olinda, jacksboro, brasilia, etopo20 (DEMs, ~3 MB of packages) and
+#          ne_admin1, canada_roads, os_wales, efas_rivers (lines, ~35 MB of packages)
 #   all:   small + nothing else yet (the benchmarks synthesize larger DEMs)
 # Exit codes: 0 ok, 1 a download/checksum/conversion failed, 2 usage error.
 set -euo pipefail
@@ -27,6 +28,22 @@ small_sets=(
   "brasilia|libterralib-doc|usr/share/doc/libterralib-dev/examples/data/elevation.raw|brasilia.raw"
   "etopo20|ferret-datasets|usr/share/ferret-vis/data/etopo20.cdf|etopo20.cdf"
 )
+
+# Line data (shapefiles: every part is its own entry).
+ne=usr/share/magics/10m/ne_10m_admin_1_states_provinces_lines
+roads=usr/share/doc/mapnik-doc/examples/data/roads
+contours=usr/share/plplot5.15.0/ss/ss64ne_Height_Contours
+efas=usr/share/magics/efas/ExtendedDomain/lines
+line_sets=()
+for ext in shp shx dbf; do
+  line_sets+=("canada_roads|mapnik-doc|$roads.$ext|canada_roads.$ext")
+done
+for ext in shp shx dbf prj; do
+  line_sets+=("ne_admin1|libmagics++-data|$ne.$ext|ne_admin1.$ext")
+  line_sets+=("os_wales|libplplot-data|$contours.$ext|os_wales_contours.$ext"
+              "efas_rivers|libmagics++-data|$efas.$ext|efas_rivers.$ext")
+done
+small_sets+=("${line_sets[@]}")
 
 apt_updated=0
 fetch_package() { # package -> path of the .deb in $debs
