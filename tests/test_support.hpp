@@ -44,6 +44,9 @@ inline RunResult run(const std::string& command, const fs::path& scratch) {
 inline std::string tiler() {
   return GLOBE_TILER_PATH;
 }
+inline std::string vectorize() {
+  return GLOBE_VECTORIZE_PATH;
+}
 inline fs::path samples() {
   return GLOBE_SAMPLES_DIR;
 }
