@@ -27,7 +27,8 @@ inline void write_text(const std::string& path, const std::string& text) {
 inline std::map<int64_t, std::vector<Polyline>> read_lines(const std::string& path,
                                                            const std::string& layer_name,
                                                            const std::string& id_field,
-                                                           const std::string& to_crs = "") {
+                                                           const std::string& to_crs = "",
+                                                           const std::string& from_crs = "") {
   GDALAllRegister();
   std::map<int64_t, std::vector<Polyline>> out;
   GDALDatasetH ds = GDALOpenEx(path.c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr);
@@ -39,7 +40,13 @@ inline std::map<int64_t, std::vector<Polyline>> read_lines(const std::string& pa
     OGRSpatialReferenceH dst = OSRNewSpatialReference(nullptr);
     OSRSetFromUserInput(dst, to_crs.c_str());
     OSRSetAxisMappingStrategy(dst, OAMS_TRADITIONAL_GIS_ORDER);
-    OGRSpatialReferenceH src = OSRClone(OGR_L_GetSpatialRef(layer));
+    OGRSpatialReferenceH src = nullptr;
+    if (from_crs.empty()) {
+      src = OSRClone(OGR_L_GetSpatialRef(layer));
+    } else {
+      src = OSRNewSpatialReference(nullptr);
+      OSRSetFromUserInput(src, from_crs.c_str());
+    }
     OSRSetAxisMappingStrategy(src, OAMS_TRADITIONAL_GIS_ORDER);
     ct = OCTNewCoordinateTransformation(src, dst);
     OSRRelease(src);

@@ -87,7 +87,7 @@ TEST(TileCutter, LinesContinueAcrossTileBordersAndStayInOneRunPerTile) {
   std::vector<globe::Emission> out;
   globe::CutStats stats;
   uint32_t sub = 0;
-  cutter.cut(f, 1, 32, sub, out, stats);
+  cutter.cut(f, 1, 32, false, sub, out, stats);
   std::map<std::string, std::vector<tileformat::LineVertex>> by_tile;
   for (const auto& e : out)
     by_tile[globe::key_tile(e.key).str()] = e.piece.vertices;
@@ -103,6 +103,24 @@ TEST(TileCutter, LinesContinueAcrossTileBordersAndStayInOneRunPerTile) {
   // In tile 1/1/0 the same line starts inside the west margin.
   EXPECT_EQ(by_tile.at("1/1/0").front().x, -34);
   EXPECT_EQ(stats.runs, 3u);
+}
+
+TEST(TileCutter, FeaturesBelowOneGridStepBecomeDotsOnlyAtTheFinestZoom) {
+  const auto tiling = tileformat::Tiling::local("EPSG:3857", 0, 1024, 1024);
+  const globe::TileCutter cutter(tiling, 4096, 0, tiling.extent());
+  globe::ProjectedFeature f;
+  f.id = 1;
+  f.lines = {{{100.01, 700.01}, {100.02, 700.02}}};  // far below 1/8 unit at zoom 0
+  std::vector<globe::Emission> out;
+  globe::CutStats stats;
+  uint32_t sub = 0;
+  cutter.cut(f, 0, 16, false, sub, out, stats);
+  EXPECT_TRUE(out.empty());
+  EXPECT_EQ(stats.collapsed_runs, 1u);
+  cutter.cut(f, 0, 16, true, sub, out, stats);
+  ASSERT_EQ(out.size(), 1u);
+  ASSERT_EQ(out[0].piece.vertices.size(), 2u);
+  EXPECT_EQ(out[0].piece.vertices[0], out[0].piece.vertices[1]);
 }
 
 TEST(TileCutter, PiecesSurviveTheScratchRoundTrip) {

@@ -393,7 +393,7 @@ class Builder {
             Result r;
             uint32_t sub = 0;
             for (int z = min_zoom_; z <= max_zoom_; ++z)
-              cutter.cut(batch[i], z, reach_[z], sub, r.emissions, r.stats);
+              cutter.cut(batch[i], z, reach_[z], z == max_zoom_, sub, r.emissions, r.stats);
             return r;
           },
           [&](size_t i, Result&& r) {

@@ -54,13 +54,17 @@ class TileCutter {
              const tileformat::Bounds& area);
 
   // Appends f's pieces at zoom z; `reach_units` widens each tile's box.
-  // `sub` numbers the pieces across calls for one feature.
-  void cut(const ProjectedFeature& f, int z, double reach_units, uint32_t& sub,
+  // `sub` numbers the pieces across calls for one feature. A run that
+  // snaps to a single grid point is dropped (it is below the zoom's
+  // resolution) unless `keep_collapsed`: then it stays as a zero-length
+  // segment, drawn as a dot, so the finest zoom loses no feature.
+  void cut(const ProjectedFeature& f, int z, double reach_units, bool keep_collapsed, uint32_t& sub,
            std::vector<Emission>& out, CutStats& stats) const;
 
  private:
   void cut_part(std::span<const XY> part, uint32_t class_id, int z, double reach_units,
-                uint32_t& sub, std::vector<Emission>& out, CutStats& stats) const;
+                bool keep_collapsed, uint32_t& sub, std::vector<Emission>& out,
+                CutStats& stats) const;
   const tileformat::Tiling& tiling_;
   int extent_;
   double simplify_px_;
