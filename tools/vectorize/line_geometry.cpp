@@ -5,6 +5,8 @@
 #include <cmath>
 #include <utility>
 
+#include "tileformat/line_clusters.hpp"
+
 namespace globe {
 namespace {
 
@@ -62,23 +64,12 @@ std::vector<XY> douglas_peucker(std::span<const XY> in, double tolerance) {
 }
 
 bool clip_segment(XY& a, XY& b, const tileformat::Bounds& box, double* t0_out, double* t1_out) {
-  double t0 = 0, t1 = 1;
-  const double dx = b.x - a.x, dy = b.y - a.y;
-  const double p[4] = {-dx, dx, -dy, dy};
-  const double q[4] = {a.x - box.min_x, box.max_x - a.x, a.y - box.min_y, box.max_y - a.y};
-  for (int i = 0; i < 4; ++i) {
-    if (p[i] == 0) {
-      if (q[i] < 0) return false;
-      continue;
-    }
-    const double t = q[i] / p[i];
-    if (p[i] < 0)
-      t0 = std::max(t0, t);
-    else
-      t1 = std::min(t1, t);
-    if (t0 > t1) return false;
-  }
+  double t0, t1;
+  if (!tileformat::clip_parameters(a.x, a.y, b.x, b.y, box.min_x, box.min_y, box.max_x, box.max_y,
+                                   t0, t1))
+    return false;
   const XY start = a;
+  const double dx = b.x - a.x, dy = b.y - a.y;
   if (t0 > 0) a = {start.x + t0 * dx, start.y + t0 * dy};
   if (t1 < 1) b = {start.x + t1 * dx, start.y + t1 * dy};
   if (t0_out) *t0_out = t0;

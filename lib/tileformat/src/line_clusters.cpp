@@ -13,12 +13,15 @@ double point_rect_distance(double px, double py, double x0, double y0, double x1
   return std::hypot(dx, dy);
 }
 
-// Liang-Barsky: does segment ab meet the closed rectangle?
-bool segment_meets_rect(LineVertex a, LineVertex b, double x0, double y0, double x1, double y1) {
-  double t0 = 0, t1 = 1;
-  const double dx = double(b.x) - a.x, dy = double(b.y) - a.y;
+}  // namespace
+
+bool clip_parameters(double ax, double ay, double bx, double by, double x0, double y0, double x1,
+                     double y1, double& t0, double& t1) {
+  t0 = 0;
+  t1 = 1;
+  const double dx = bx - ax, dy = by - ay;
   const double p[4] = {-dx, dx, -dy, dy};
-  const double q[4] = {a.x - x0, x1 - a.x, a.y - y0, y1 - a.y};
+  const double q[4] = {ax - x0, x1 - ax, ay - y0, y1 - ay};
   for (int i = 0; i < 4; ++i) {
     if (p[i] == 0) {
       if (q[i] < 0) return false;
@@ -34,8 +37,6 @@ bool segment_meets_rect(LineVertex a, LineVertex b, double x0, double y0, double
   return true;
 }
 
-}  // namespace
-
 double point_segment_distance(double px, double py, LineVertex a, LineVertex b) {
   const double dx = double(b.x) - a.x, dy = double(b.y) - a.y;
   const double len2 = dx * dx + dy * dy;
@@ -46,7 +47,8 @@ double point_segment_distance(double px, double py, LineVertex a, LineVertex b) 
 
 double segment_rect_distance(LineVertex a, LineVertex b, double x0, double y0, double x1,
                              double y1) {
-  if (segment_meets_rect(a, b, x0, y0, x1, y1)) return 0;
+  double t0, t1;
+  if (clip_parameters(a.x, a.y, b.x, b.y, x0, y0, x1, y1, t0, t1)) return 0;
   return std::min({point_rect_distance(a.x, a.y, x0, y0, x1, y1),
                    point_rect_distance(b.x, b.y, x0, y0, x1, y1),
                    point_segment_distance(x0, y0, a, b), point_segment_distance(x1, y0, a, b),

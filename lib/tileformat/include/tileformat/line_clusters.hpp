@@ -11,6 +11,12 @@
 
 namespace tileformat {
 
+// Liang-Barsky: the part of segment (ax, ay)-(bx, by) inside the closed
+// rectangle [x0, x1] x [y0, y1] is t0..t1 (0 <= t0 <= t1 <= 1) along it;
+// false if the segment misses the rectangle.
+bool clip_parameters(double ax, double ay, double bx, double by, double x0, double y0, double x1,
+                     double y1, double& t0, double& t1);
+
 // Euclidean distance between segment ab and the closed rectangle
 // [x0, x1] x [y0, y1] (0 if they intersect).
 double segment_rect_distance(LineVertex a, LineVertex b, double x0, double y0, double x1,
