@@ -139,7 +139,8 @@ TEST(TileSorter, SpilledAndInMemorySortsAgree) {
     std::mt19937 rng(2);
     for (int i = 0; i < 20000; ++i) {
       std::vector<uint8_t> payload(rng() % 40, static_cast<uint8_t>(i));
-      s.add(rng() % 300, rng() % 1000, rng() % 5, payload);
+      s.add(rng() % 300, rng() % 1000, static_cast<uint32_t>(i),
+            payload);  // (key, seq, sub) unique, as in a build
     }
     s.finish();
   };
@@ -148,24 +149,26 @@ TEST(TileSorter, SpilledAndInMemorySortsAgree) {
   fill(disk);
   EXPECT_EQ(mem.spilled_runs(), 0u);
   EXPECT_GT(disk.spilled_runs(), 3u);
-  uint64_t k1, k2, last = 0, groups = 0;
-  std::vector<globe::TileRecord> r1, r2;
-  while (mem.next_group(k1, r1)) {
-    ASSERT_TRUE(disk.next_group(k2, r2));
-    ASSERT_EQ(k1, k2);
-    EXPECT_GE(k1, last);
-    last = k1;
-    ASSERT_EQ(r1.size(), r2.size());
-    for (size_t i = 0; i < r1.size(); ++i) {
-      EXPECT_EQ(r1[i].seq, r2[i].seq);
-      EXPECT_EQ(r1[i].sub, r2[i].sub);
+  uint64_t last = 0, groups = 0;
+  globe::TileGroup g1, g2;
+  while (mem.next_group(g1)) {
+    ASSERT_TRUE(disk.next_group(g2));
+    ASSERT_EQ(g1.key, g2.key);
+    EXPECT_GE(g1.key, last);
+    last = g1.key;
+    ASSERT_EQ(g1.records.size(), g2.records.size());
+    for (size_t i = 0; i < g1.records.size(); ++i) {
+      const auto &a = g1.records[i], &b = g2.records[i];
+      EXPECT_EQ(a.seq, b.seq);
+      EXPECT_EQ(a.sub, b.sub);
+      EXPECT_TRUE(std::ranges::equal(g1.payload(a), g2.payload(b)));
       if (i) {
-        EXPECT_LE(std::tie(r1[i - 1].seq, r1[i - 1].sub), std::tie(r1[i].seq, r1[i].sub));
+        EXPECT_LE(std::tie(g1.records[i - 1].seq, g1.records[i - 1].sub), std::tie(a.seq, a.sub));
       }
     }
     ++groups;
   }
-  EXPECT_FALSE(disk.next_group(k2, r2));
+  EXPECT_FALSE(disk.next_group(g2));
   EXPECT_EQ(groups, 300u);
 }
 

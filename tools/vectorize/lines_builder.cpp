@@ -19,6 +19,7 @@
 #include "json_escape.hpp"
 #include "line_classes.hpp"
 #include "line_projector.hpp"
+#include "package_output.hpp"
 #include "parallel_batches.hpp"
 #include "tile_cutter.hpp"
 #include "tile_sorter.hpp"
@@ -161,12 +162,7 @@ class Builder {
     VectorReader reader(s_.inputs, ro);
     if (frame_ == TargetFrame::kProjected && !target_)
       target_ = *reader.layers().front().crs;  // local tiling in the first input's CRS
-    std::unique_ptr<tileformat::PackageWriter> writer;
-    try {
-      writer = std::make_unique<tileformat::PackageWriter>(s_.output, s_.force);
-    } catch (const tileformat::PackageError& e) {
-      throw OutputError(e.what());
-    }
+    std::unique_ptr<tileformat::PackageWriter> writer = create_package(s_.output, s_.force);
     try {
       writer->db().exec(
           "CREATE TABLE features (id INTEGER PRIMARY KEY, layer TEXT NOT NULL, properties TEXT "
@@ -188,13 +184,7 @@ class Builder {
     write_metadata(*writer);
     sum_.tiles = writer->tiles_written();
     sum_.unique_blobs = writer->unique_blobs();
-    try {
-      writer->commit();
-    } catch (const tileformat::PackageError& e) {
-      throw OutputError(e.what());
-    }
-    std::error_code ec;
-    sum_.file_bytes = std::filesystem::file_size(s_.output, ec);
+    sum_.file_bytes = commit_package(*writer, s_.output);
     sum_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return sum_;
   }
@@ -408,18 +398,18 @@ class Builder {
     sorter.finish();
   }
 
-  std::vector<uint8_t> encode_tile(uint64_t key, const std::vector<TileRecord>& records,
-                                   uint64_t& segments, uint64_t& points) const {
-    const TileId id = key_tile(key);
+  std::vector<uint8_t> encode_tile(const TileGroup& group, uint64_t& segments,
+                                   uint64_t& points) const {
+    const TileId id = key_tile(group.key);
     tileformat::LineTile t;
     t.extent = static_cast<uint32_t>(s_.extent);
     t.grid = static_cast<uint32_t>(s_.cluster_grid);
     t.reach = reach_[id.z];
-    for (const TileRecord& rec : records) {
+    for (const TileRecord& rec : group.records) {
       if (t.feature_ids.empty() || t.feature_ids.back() != rec.seq)
         t.feature_ids.push_back(rec.seq);
       const uint32_t feature = static_cast<uint32_t>(t.feature_ids.size() - 1);
-      TilePiece piece = TilePiece::from_bytes(rec.payload);
+      TilePiece piece = TilePiece::from_bytes(group.payload(rec));
       if (piece.point) {
         t.points.push_back({feature, piece.class_id, piece.vertices.at(0)});
         continue;
@@ -435,34 +425,29 @@ class Builder {
   }
 
   void pass_encode(TileSorter& sorter, tileformat::PackageWriter& writer) {
-    struct Group {
-      uint64_t key;
-      std::vector<TileRecord> records;
-    };
     struct Encoded {
       std::vector<uint8_t> blob;
       uint64_t segments = 0, points = 0;
     };
     progress_.begin("encode tiles", sorter.records());
-    std::vector<Group> groups;
+    std::vector<TileGroup> groups;
     for (bool more = true; more;) {
       groups.clear();
       size_t bytes = 0;
-      while (groups.size() < size_t(64 * threads_) && bytes < (64u << 20)) {
-        Group g;
-        if (!sorter.next_group(g.key, g.records)) {
+      while (groups.size() < size_t(64 * threads_) && bytes < (16u << 20)) {
+        TileGroup g;
+        if (!sorter.next_group(g)) {
           more = false;
           break;
         }
-        for (const TileRecord& r : g.records)
-          bytes += r.payload.size();
+        bytes += g.bytes.size() + g.records.size() * sizeof(TileRecord);
         groups.push_back(std::move(g));
       }
       parallel_batches<Encoded>(
           groups.size(), threads_, groups.size(), [](size_t, size_t) {},
           [&](size_t i, int) {
             Encoded e;
-            e.blob = encode_tile(groups[i].key, groups[i].records, e.segments, e.points);
+            e.blob = encode_tile(groups[i], e.segments, e.points);
             return e;
           },
           [&](size_t i, Encoded&& e) {

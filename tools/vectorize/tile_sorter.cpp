@@ -58,7 +58,8 @@ void TileSorter::add(uint64_t key, uint64_t seq, uint32_t sub, std::span<const u
   entries_.push_back({key, seq, sub, static_cast<uint32_t>(payload.size()), arena_.size()});
   arena_.insert(arena_.end(), payload.begin(), payload.end());
   ++records_;
-  if (arena_.size() + entries_.size() * sizeof(Entry) > budget_) spill();
+  // Allocated (not used) bytes, so vector growth cannot overshoot the budget.
+  if (arena_.capacity() + entries_.capacity() * sizeof(Entry) > budget_) spill();
 }
 
 void TileSorter::sort_memory() {
@@ -97,6 +98,7 @@ void TileSorter::spill() {
   if (std::fclose(f) != 0)
     throw OutputError(path + ": cannot write scratch data; check free space");
   entries_.clear();
+  entries_.shrink_to_fit();
   arena_.clear();
   arena_.shrink_to_fit();
 }
@@ -129,9 +131,17 @@ bool TileSorter::peek(uint64_t& key) {
   return any;
 }
 
-bool TileSorter::next_group(uint64_t& key, std::vector<TileRecord>& records) {
-  records.clear();
+bool TileSorter::next_group(TileGroup& group) {
+  group.records.clear();
+  group.bytes.clear();
+  uint64_t key = 0;
   if (!finished_ || !peek(key)) return false;
+  group.key = key;
+  auto append = [&](uint64_t seq, uint32_t sub, const uint8_t* data, size_t size) {
+    group.records.push_back(
+        {seq, sub, static_cast<uint32_t>(group.bytes.size()), static_cast<uint32_t>(size)});
+    group.bytes.insert(group.bytes.end(), data, data + size);
+  };
   for (;;) {
     // The smallest (seq, sub) among the heads holding `key`.
     Run* best_run = nullptr;
@@ -152,13 +162,11 @@ bool TileSorter::next_group(uint64_t& key, std::vector<TileRecord>& records) {
         bsub = r->sub;
       }
     if (best_run) {
-      records.push_back({bseq, bsub, std::move(best_run->payload)});
+      append(bseq, bsub, best_run->payload.data(), best_run->payload.size());
       best_run->advance();
     } else if (best_mem) {
       const Entry& e = entries_[mem_pos_++];
-      records.push_back(
-          {bseq, bsub,
-           std::vector<uint8_t>(arena_.begin() + e.offset, arena_.begin() + e.offset + e.len)});
+      append(bseq, bsub, arena_.data() + e.offset, e.len);
     } else {
       return true;
     }

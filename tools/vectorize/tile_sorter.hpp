@@ -15,9 +15,19 @@
 namespace globe {
 
 struct TileRecord {
-  uint64_t seq = 0;  // feature id
-  uint32_t sub = 0;  // order within the feature
-  std::vector<uint8_t> payload;
+  uint64_t seq = 0;               // feature id
+  uint32_t sub = 0;               // order within the feature
+  uint32_t offset = 0, size = 0;  // payload bytes in TileGroup::bytes
+};
+
+// The records of one tile; payloads share one buffer.
+struct TileGroup {
+  uint64_t key = 0;
+  std::vector<TileRecord> records;
+  std::vector<uint8_t> bytes;
+  std::span<const uint8_t> payload(const TileRecord& r) const {
+    return {bytes.data() + r.offset, r.size};
+  }
 };
 
 class TileSorter {
@@ -32,7 +42,7 @@ class TileSorter {
   // Ends adding; then next_group() walks the tiles in key order.
   void finish();
   // The records of the next tile key; false when done.
-  bool next_group(uint64_t& key, std::vector<TileRecord>& records);
+  bool next_group(TileGroup& group);
 
   uint64_t records() const { return records_; }
   size_t spilled_runs() const { return run_paths_.size(); }
