@@ -22,7 +22,7 @@ LinePackage open_line_package(const std::string& path) {
   if (!classes || !doc.LoadMemory(*classes) ||
       doc.GetRoot().GetType() != CPLJSONObject::Type::Array)
     throw InputError(path +
-                     ": metadata globe:classes is missing or not a JSON array (tileformat §3.3)");
+                     ": metadata globe:classes is missing or not a JSON array (tileformat §7.4)");
   const CPLJSONArray arr = doc.GetRoot().ToArray();
   for (int i = 0; i < arr.Size(); ++i)
     p.class_names.push_back(arr[i].GetString("name"));

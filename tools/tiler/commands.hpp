@@ -8,7 +8,7 @@
 
 namespace globe {
 
-int run_terrain(const std::vector<std::string>& args, const std::string& command_line);
+int run_terrain(const std::vector<std::string>& args);
 int run_info(const std::vector<std::string>& args);
 int run_validate(const std::vector<std::string>& args);
 int run_extract(const std::vector<std::string>& args);

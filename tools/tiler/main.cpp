@@ -1,12 +1,7 @@
 // globe-tiler: DEMs -> terrain packages, and tools to inspect them.
-// The only place that turns errors into messages and exit codes (docs/cli.md).
-#include <cstdio>
-#include <string>
-#include <vector>
-
+// Dispatch and error reporting: tools/common/command_tool.
+#include "command_tool.hpp"
 #include "commands.hpp"
-#include "error_report.hpp"
-#include "errors.hpp"
 
 namespace {
 
@@ -26,30 +21,10 @@ const char* kUsage =
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<std::string> args(argv + 1, argv + argc);
-  if (args.empty()) {
-    std::fputs(kUsage, stderr);
-    return globe::kExitUsage;
-  }
-  const std::string command = args[0];
-  args.erase(args.begin());
-  std::string command_line = "globe-tiler";
-  for (int i = 1; i < argc; ++i)
-    command_line += std::string(" ") + argv[i];
-  return globe::run_reporting_errors("globe-tiler", "globe-tiler " + command, "", [&]() -> int {
-    if (command == "terrain") return globe::run_terrain(args, command_line);
-    if (command == "info") return globe::run_info(args);
-    if (command == "validate") return globe::run_validate(args);
-    if (command == "extract") return globe::run_extract(args);
-    if (command == "-h" || command == "--help" || command == "help") {
-      std::fputs(kUsage, stdout);
-      return globe::kExitOk;
-    }
-    if (command == "--version") {
-      std::puts("globe-tiler " GLOBE_VERSION);
-      return globe::kExitOk;
-    }
-    std::fprintf(stderr, "globe-tiler: unknown command '%s'\n\n%s", command.c_str(), kUsage);
-    return globe::kExitUsage;
-  });
+  return globe::run_command_tool("globe-tiler", GLOBE_VERSION, kUsage,
+                                 {{"terrain", globe::run_terrain},
+                                  {"info", globe::run_info},
+                                  {"validate", globe::run_validate},
+                                  {"extract", globe::run_extract}},
+                                 argc, argv);
 }

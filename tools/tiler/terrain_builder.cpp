@@ -13,6 +13,7 @@
 #include "error_tree.hpp"
 #include "errors.hpp"
 #include "json_escape.hpp"
+#include "package_output.hpp"
 #include "parallel_batches.hpp"
 #include "staging_store.hpp"
 #include "tile_warper.hpp"
@@ -76,12 +77,7 @@ class Builder {
 
   BuildSummary run() {
     const auto start = std::chrono::steady_clock::now();
-    std::unique_ptr<tileformat::PackageWriter> writer;
-    try {
-      writer = std::make_unique<tileformat::PackageWriter>(s_.output, s_.force);
-    } catch (const tileformat::PackageError& e) {
-      throw OutputError(e.what());
-    }
+    std::unique_ptr<tileformat::PackageWriter> writer = create_package(s_.output, s_.force);
     try {
       StagingStore stage(s_.output + ".staging");
       warpers_.resize(threads_);
@@ -110,13 +106,7 @@ class Builder {
     sum.unique_blobs = writer->unique_blobs();
     sum.blob_bytes = writer->blob_bytes();
     sum.samples = sum.tiles * static_cast<uint64_t>(size_) * size_;
-    try {
-      writer->commit();
-    } catch (const tileformat::PackageError& e) {
-      throw OutputError(e.what());
-    }
-    std::error_code ec;
-    sum.file_bytes = std::filesystem::file_size(s_.output, ec);
+    sum.file_bytes = commit_package(*writer, s_.output);
     sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return sum;
   }

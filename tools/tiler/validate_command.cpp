@@ -15,6 +15,7 @@
 #include "tileformat/error.hpp"
 #include "tileformat/kpatch.hpp"
 #include "tileformat/mblock.hpp"
+#include "validation_report.hpp"
 
 namespace globe {
 namespace {
@@ -23,17 +24,8 @@ using tileformat::KPatchLayout;
 using tileformat::MBlock;
 using tileformat::TileId;
 
-struct Report {
-  uint64_t errors = 0, warnings = 0;
-  void error(const std::string& m) {
-    if (errors++ < 50) std::printf("error: %s\n", m.c_str());
-  }
-  void warning(const std::string& m) {
-    if (warnings++ < 50) std::printf("warning: %s\n", m.c_str());
-  }
-};
-
-void check_saturation(const KPatchLayout& l, const MBlock& b, const std::string& where, Report& r) {
+void check_saturation(const KPatchLayout& l, const MBlock& b, const std::string& where,
+                      ValidationReport& r) {
   const auto& e = b.vertex_error;
   const int levels = l.depth() / 2;
   for (int m = 0; m < levels; ++m) {
@@ -76,7 +68,7 @@ int run_validate(const std::vector<std::string>& args) {
   if (!positional) return kExitOk;
   const std::string& path = (*positional)[0];
   TerrainPackage p = open_terrain_package(path);
-  Report r;
+  ValidationReport r;
   if (p.reader->application_id() != tileformat::kApplicationId)
     r.warning("PRAGMA application_id is not 0x4d504258 (tileformat §3.1)");
   for (const char* key : {"name", "bounds", "center", "minzoom", "maxzoom", "type", "version",
@@ -161,8 +153,7 @@ int run_validate(const std::vector<std::string>& args) {
   std::printf("%s: %zu tiles checked, %llu errors, %llu warnings\n", path.c_str(), ids.size(),
               static_cast<unsigned long long>(r.errors),
               static_cast<unsigned long long>(r.warnings));
-  if (r.errors) return kExitDataError;
-  return r.warnings ? kExitWarnings : kExitOk;
+  return r.exit_code();
 }
 
 }  // namespace globe

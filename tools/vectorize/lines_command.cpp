@@ -11,37 +11,21 @@ namespace globe {
 
 int run_lines(const std::vector<std::string>& args) {
   LinesSettings s;
-  bool quiet = false;
   CliArgs cli("globe-vectorize lines",
               "globe-vectorize lines INPUT... -o OUT.mbtiles [options]\n\n"
               "Turns lines, polygon outlines and points from any OGR source (Shapefile,\n"
               "GeoPackage, GeoJSON, TopoJSON, OSM, ...; several inputs and layers form one\n"
               "package) into line-cluster tiles: per tile, simplified segments and a cluster\n"
               "grid the viewer shades lines from (docs/lines.md).");
-  cli.option("-o,--output", "OUT.mbtiles",
-             "output package (written as OUT.mbtiles.tmp, renamed when complete)",
-             [&](const std::string& v) { s.output = v; });
-  cli.option("--tiling", "SCHEME",
-             "webmercator (default, EPSG:3857), geodetic (EPSG:4326, 2x1 roots) or local",
-             [&](const std::string& v) { s.tiling = v; });
+  declare_area_options(cli, s, "CRS of the inputs, for files without one (shapefile without .prj)",
+                       "finest zoom (default: where the median segment spans 4 px, at most 18)");
   cli.option("--like", "PACKAGE",
              "use the tiling of this package (e.g. a local terrain), so tile ids match",
              [&](const std::string& v) { s.like = v; });
-  cli.option("--t_srs", "CRS", "CRS of the local tiling (default: the first input's CRS)",
-             [&](const std::string& v) { s.t_srs = v; });
-  cli.option("--s_srs", "CRS", "CRS of the inputs, for files without one (shapefile without .prj)",
-             [&](const std::string& v) { s.s_srs = v; });
   cli.option("--layer", "NAME", "only this layer (repeatable; default: every layer)",
              [&](const std::string& v) { s.layers.push_back(v); });
   cli.option("--where", "SQL", "OGR attribute filter, e.g. \"CLASS <= 2\"",
              [&](const std::string& v) { s.where = v; });
-  cli.option("--min-zoom", "Z", "coarsest zoom written (default 0)",
-             [&](const std::string& v) { s.min_zoom = CliArgs::to_int("--min-zoom", v, 0, 24); });
-  cli.option("--max-zoom", "Z",
-             "finest zoom (default: where the median segment spans 4 px, at most 18)",
-             [&](const std::string& v) { s.max_zoom = CliArgs::to_int("--max-zoom", v, 0, 24); });
-  cli.option("--bbox", "W,S,E,N", "only this area, in degrees of longitude/latitude",
-             [&](const std::string& v) { s.bbox = CliArgs::to_doubles("--bbox", v, 4); });
   cli.option("--class-field", "FIELD", "attribute whose value is the style class (default: layer)",
              [&](const std::string& v) { s.class_field = v; });
   cli.option("--class-map", "V=NAME,...", "rename class values, e.g. 1=highway,2=primary",
@@ -64,28 +48,15 @@ int run_lines(const std::vector<std::string>& args) {
                  throw UsageError("--simplify must be within 0..16 pixels");
              });
   cli.option("--memory-mb", "MB",
-             "memory for sorting tile pieces before spilling to disk (default 1024)",
+             "memory for sorting tile pieces before spilling to disk (default 256)",
              [&](const std::string& v) {
                s.memory_mb = static_cast<size_t>(CliArgs::to_int("--memory-mb", v, 1, 1 << 20));
              });
-  cli.option("-j,--threads", "N",
-             "worker threads (default: all cores); output is identical for any N",
-             [&](const std::string& v) { s.threads = CliArgs::to_int("--threads", v, 1, 1024); });
-  cli.option("--progress", "MODE", "'json': one JSON object per line on stderr, for scripts",
-             [&](const std::string& v) {
-               if (v != "json") throw UsageError("--progress: only 'json' is supported");
-               s.progress = ProgressMode::kJson;
-             });
-  cli.flag("--force", "replace an existing output", [&] { s.force = true; });
-  cli.flag("-q,--quiet", "no progress or summary on stderr", [&] { quiet = true; });
-  auto positional = cli.parse_command(args, 1, SIZE_MAX, "input vector file (see --help)");
-  if (!positional) return kExitOk;
-  s.inputs = *positional;
-  if (s.output.empty()) throw UsageError("no output given; add -o OUT.mbtiles");
+  declare_run_options(cli, s);
+  if (!parse_build_command(cli, s, args, "globe-vectorize lines", "input vector file (see --help)"))
+    return kExitOk;
   if (!s.like.empty() && (s.tiling != "webmercator" || !s.t_srs.empty()))
     throw UsageError("--like takes the tiling from the package; drop --tiling/--t_srs");
-  if (quiet) s.progress = ProgressMode::kQuiet;
-  s.command_line = CliArgs::reproducible_command_line("globe-vectorize lines", args);
 
   Progress progress(s.progress);
   const LinesSummary sum = build_lines(s, progress);

@@ -1,13 +1,7 @@
 // globe-vectorize: vector data (any OGR source) -> line-cluster packages, and
-// tools to inspect them. Errors become messages and exit codes in one place
-// (tools/common/error_report, docs/cli.md).
-#include <cstdio>
-#include <string>
-#include <vector>
-
+// tools to inspect them. Dispatch and error reporting: tools/common/command_tool.
+#include "command_tool.hpp"
 #include "commands.hpp"
-#include "error_report.hpp"
-#include "errors.hpp"
 
 namespace {
 
@@ -28,29 +22,10 @@ const char* kUsage =
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<std::string> args(argv + 1, argv + argc);
-  if (args.empty()) {
-    std::fputs(kUsage, stderr);
-    return globe::kExitUsage;
-  }
-  const std::string command = args[0];
-  args.erase(args.begin());
-  return globe::run_reporting_errors(
-      "globe-vectorize", "globe-vectorize " + command, "", [&]() -> int {
-        if (command == "lines") return globe::run_lines(args);
-        if (command == "info") return globe::run_lines_info(args);
-        if (command == "validate") return globe::run_lines_validate(args);
-        if (command == "extract") return globe::run_lines_extract(args);
-        if (command == "-h" || command == "--help" || command == "help") {
-          std::fputs(kUsage, stdout);
-          return globe::kExitOk;
-        }
-        if (command == "--version") {
-          std::puts("globe-vectorize " GLOBE_VERSION);
-          return globe::kExitOk;
-        }
-        std::fprintf(stderr, "globe-vectorize: unknown command '%s'\n\n%s", command.c_str(),
-                     kUsage);
-        return globe::kExitUsage;
-      });
+  return globe::run_command_tool("globe-vectorize", GLOBE_VERSION, kUsage,
+                                 {{"lines", globe::run_lines},
+                                  {"info", globe::run_lines_info},
+                                  {"validate", globe::run_lines_validate},
+                                  {"extract", globe::run_lines_extract}},
+                                 argc, argv);
 }

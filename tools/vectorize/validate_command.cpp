@@ -17,22 +17,9 @@
 #include "tileformat/error.hpp"
 #include "tileformat/line_clusters.hpp"
 #include "tileformat/line_tile.hpp"
+#include "validation_report.hpp"
 
 namespace globe {
-namespace {
-
-struct Report {
-  uint64_t errors = 0, warnings = 0;
-  void error(const std::string& m) {
-    if (errors++ < 50) std::printf("error: %s\n", m.c_str());
-  }
-  void warning(const std::string& m) {
-    if (warnings++ < 50) std::printf("warning: %s\n", m.c_str());
-  }
-};
-
-}  // namespace
-
 int run_lines_validate(const std::vector<std::string>& args) {
   CliArgs cli("globe-vectorize validate",
               "globe-vectorize validate PACKAGE\n\nDecodes every tile, recomputes every cluster "
@@ -41,7 +28,7 @@ int run_lines_validate(const std::vector<std::string>& args) {
   if (!positional) return kExitOk;
   const std::string& path = (*positional)[0];
   LinePackage p = open_line_package(path);
-  Report r;
+  ValidationReport r;
   const int64_t max_id = p.reader->db().query_int("SELECT max(id) FROM features").value_or(0);
   const int64_t count = p.reader->db().query_int("SELECT count(*) FROM features").value_or(0);
   if (count != max_id)
@@ -101,8 +88,7 @@ int run_lines_validate(const std::vector<std::string>& args) {
               static_cast<unsigned long long>(segments), static_cast<long long>(count),
               static_cast<unsigned long long>(r.errors),
               static_cast<unsigned long long>(r.warnings));
-  if (r.errors) return kExitDataError;
-  return r.warnings ? kExitWarnings : kExitOk;
+  return r.exit_code();
 }
 
 }  // namespace globe

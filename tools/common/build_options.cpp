@@ -1,0 +1,51 @@
+// Shared build options (see build_options.hpp).
+#include "build_options.hpp"
+
+#include "errors.hpp"
+
+namespace globe {
+
+void declare_area_options(CliArgs& cli, BuildOptions& o, const std::string& s_srs_help,
+                          const std::string& max_zoom_help) {
+  cli.option("-o,--output", "OUT.mbtiles",
+             "output package (written as OUT.mbtiles.tmp, renamed when complete)",
+             [&o](const std::string& v) { o.output = v; });
+  cli.option("--tiling", "SCHEME",
+             "webmercator (default, EPSG:3857), geodetic (EPSG:4326, 2x1 roots) or local",
+             [&o](const std::string& v) { o.tiling = v; });
+  cli.option("--t_srs", "CRS", "CRS of the local tiling (default: the first input's CRS)",
+             [&o](const std::string& v) { o.t_srs = v; });
+  cli.option("--s_srs", "CRS", s_srs_help, [&o](const std::string& v) { o.s_srs = v; });
+  cli.option("--min-zoom", "Z", "coarsest zoom written (default 0)",
+             [&o](const std::string& v) { o.min_zoom = CliArgs::to_int("--min-zoom", v, 0, 24); });
+  cli.option("--max-zoom", "Z", max_zoom_help,
+             [&o](const std::string& v) { o.max_zoom = CliArgs::to_int("--max-zoom", v, 0, 24); });
+  cli.option("--bbox", "W,S,E,N", "only this area, in degrees of longitude/latitude",
+             [&o](const std::string& v) { o.bbox = CliArgs::to_doubles("--bbox", v, 4); });
+}
+
+void declare_run_options(CliArgs& cli, BuildOptions& o) {
+  cli.option("-j,--threads", "N",
+             "worker threads (default: all cores); output is identical for any N",
+             [&o](const std::string& v) { o.threads = CliArgs::to_int("--threads", v, 1, 1024); });
+  cli.option("--progress", "MODE", "'json': one JSON object per line on stderr, for scripts",
+             [&o](const std::string& v) {
+               if (v != "json") throw UsageError("--progress: only 'json' is supported");
+               o.progress = ProgressMode::kJson;
+             });
+  cli.flag("--force", "replace an existing output", [&o] { o.force = true; });
+  cli.flag("-q,--quiet", "no progress or summary on stderr", [&o] { o.quiet = true; });
+}
+
+bool parse_build_command(CliArgs& cli, BuildOptions& o, const std::vector<std::string>& args,
+                         const std::string& program, const std::string& input_what) {
+  auto positional = cli.parse_command(args, 1, SIZE_MAX, input_what);
+  if (!positional) return false;
+  o.inputs = *positional;
+  if (o.output.empty()) throw UsageError("no output given; add -o OUT.mbtiles");
+  if (o.quiet) o.progress = ProgressMode::kQuiet;
+  o.command_line = CliArgs::reproducible_command_line(program, args);
+  return true;
+}
+
+}  // namespace globe

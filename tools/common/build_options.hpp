@@ -1,0 +1,40 @@
+// The options every package-building command shares (inputs, output, tiling,
+// zoom range, area, threads, progress), their declaration on the command
+// line, and the checks after parsing. Command settings derive from it.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli_args.hpp"
+#include "progress.hpp"
+
+namespace globe {
+
+struct BuildOptions {
+  std::vector<std::string> inputs;
+  std::string output;
+  std::string tiling = "webmercator";  // webmercator | geodetic | local
+  std::string t_srs;                   // local tiling only
+  std::string s_srs;                   // overrides/assigns the inputs' CRS
+  std::optional<int> min_zoom, max_zoom;
+  std::optional<std::vector<double>> bbox;  // lon/lat: west,south,east,north
+  int threads = 0;                          // 0 = all cores
+  bool force = false;
+  bool quiet = false;
+  ProgressMode progress = ProgressMode::kAuto;
+  std::string command_line;  // recorded in metadata (see reproducible_command_line)
+};
+
+// -o, --tiling, --t_srs, --s_srs, --min-zoom, --max-zoom, --bbox.
+void declare_area_options(CliArgs& cli, BuildOptions& o, const std::string& s_srs_help,
+                          const std::string& max_zoom_help);
+// -j, --progress, --force, -q.
+void declare_run_options(CliArgs& cli, BuildOptions& o);
+// Parses; false after --help. Requires inputs and -o; applies -q; records the
+// command line under `program`.
+bool parse_build_command(CliArgs& cli, BuildOptions& o, const std::vector<std::string>& args,
+                         const std::string& program, const std::string& input_what);
+
+}  // namespace globe
