@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The main job on real data, from a fresh Debian 12 machine: installs what is
 # missing, builds, fetches the sample DEMs, tiles one into a terrain package
-# prints its summary and renders a headless snapshot (OSMesa, no display needed).
-# Output: demo/jacksboro.mbtiles and demo/jacksboro.png (git-ignored).
+# prints its summary and renders a headless snapshot (OSMesa, no display needed),
+# then turns a real road network into a line-cluster package with styled classes.
+# Output: demo/jacksboro.mbtiles, demo/jacksboro.png, demo/canada_roads.mbtiles (git-ignored).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -14,4 +15,11 @@ build/tools/tiler/globe-tiler validate demo/jacksboro.mbtiles
 build/tools/tiler/globe-tiler info demo/jacksboro.mbtiles
 build/viewer/globe-view demo/jacksboro.mbtiles --snapshot demo/jacksboro.png --size 1280x720 \
   --camera=-84.30,36.55,2500,30,65 --shading elevation --stats
-echo "demo: wrote demo/jacksboro.png" >&2
+# Lines: NRCan roads (a shapefile without .prj: its CRS is given), one style class per CLASS.
+build/tools/vectorize/globe-vectorize lines samples/data/canada_roads.shp --s_srs EPSG:3978 \
+  --class-field CLASS --class-map 1=highway,2=primary,3=secondary,4=minor,200=ferry \
+  --style highway:color=#d7301f,width=4px,casing=#3d0c02@1px --style primary:color=#fc8d59,width=3px \
+  --style ferry:color=#2b8cbe,width=2px,dash=6+4 -o demo/canada_roads.mbtiles --force
+build/tools/vectorize/globe-vectorize validate demo/canada_roads.mbtiles
+build/tools/vectorize/globe-vectorize info demo/canada_roads.mbtiles | tail -n 20
+echo "demo: wrote demo/jacksboro.png and demo/canada_roads.mbtiles" >&2
