@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "line_fixtures.hpp"
+#include "raster_fixtures.hpp"
 #include "test_support.hpp"
 #include "tileformat/line_tile.hpp"
 #include "tileformat/package.hpp"
@@ -206,6 +207,41 @@ TEST_F(LinesCli, BboxKeepsOnlyItsArea) {
   tileformat::PackageReader all(pkg("all.mbtiles")), part(pkg("part.mbtiles"));
   EXPECT_LT(part.zoom_summaries().back().tiles, all.zoom_summaries().back().tiles);
   EXPECT_LE(part.zoom_summaries().back().max_x, all.zoom_summaries().back().max_x);
+}
+
+// --like: lines take a local terrain's tiling (CRS, origin, root), so both
+// packages share tile ids and the lines land where they are in that CRS.
+TEST_F(LinesCli, LikeAdoptsTheTilingOfALocalTerrainPackage) {
+  const double gt[6] = {2600000, 10, 0, 1200640, 0, -10};
+  write_dem(pkg("dem.tif"), 64, 64, gt, "EPSG:2056", GDT_Float32,
+            [](int x, int y) { return 500.0 + x + y; });
+  auto r = run(tiler() + " terrain " + pkg("dem.tif") + " --tiling local -o " + pkg("t.mbtiles"),
+               dir_.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<globe::XY> line{{2600050, 1200600}, {2600300, 1200300}, {2600610, 1200020}};
+  write_text(pkg("l.geojson"),
+             "{\"type\":\"FeatureCollection\",\"crs\":{\"type\":\"name\",\"properties\":"
+             "{\"name\":\"urn:ogc:def:crs:EPSG::2056\"}},\"features\":[" +
+                 feature(1, "a", "{\"type\":\"LineString\",\"coordinates\":" + coords(line) + "}") +
+                 "]}");
+  r = vectorize("lines " + pkg("l.geojson") + " --like " + pkg("t.mbtiles") + " --max-zoom 3 -o " +
+                pkg("l.mbtiles"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  tileformat::PackageReader terrain(pkg("t.mbtiles")), lines(pkg("l.mbtiles"));
+  for (const char* key :
+       {"globe:scheme", "globe:crs", "globe:origin", "globe:root_size", "globe:roots"})
+    EXPECT_EQ(terrain.meta(key), lines.meta(key)) << key;
+  ASSERT_EQ(vectorize("extract " + pkg("l.mbtiles") + " --zoom 3 -o " + pkg("l3.gpkg")).exit_code,
+            0);
+  const auto back = read_lines(pkg("l3.gpkg"), "lines", "feature_id");
+  ASSERT_TRUE(back.count(1));
+  const double tile = std::stod(*terrain.meta("globe:root_size")) / 8;
+  EXPECT_LE(directed_hausdorff(back.at(1), {line}), 0.25 * tile / 256 + tile / 4096 + 1e-6);
+  EXPECT_LE(directed_hausdorff({line}, back.at(1)), 0.25 * tile / 256 + tile / 4096 + 1e-6);
+  // --like and --tiling together are refused.
+  r = vectorize("lines " + pkg("l.geojson") + " --like " + pkg("t.mbtiles") +
+                " --tiling geodetic -o " + pkg("x.mbtiles"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
 }
 
 struct BadCase {
