@@ -5,6 +5,7 @@
 #include <random>
 
 #include "line_geometry.hpp"
+#include "line_projector.hpp"
 #include "test_support.hpp"
 #include "tile_cutter.hpp"
 #include "tile_sorter.hpp"
@@ -76,6 +77,25 @@ TEST(LineGeometry, AntimeridianCrossingIsCutAtTheCrossingLatitude) {
   const auto wrapped = globe::split_antimeridian(std::vector<XY>{{170, 0}, {185, 0}});
   ASSERT_EQ(wrapped.size(), 2u);
   EXPECT_EQ(wrapped[1].back(), (XY{-175, 0}));
+}
+
+TEST(LineProjector, PointsWrapLongitudeAndLinesAreCutAtTheAntimeridian) {
+  const auto wgs84 = globe::SpatialRef::from_user_input("EPSG:4326", "test");
+  const globe::LineProjector geodetic(globe::TargetFrame::kGeodetic, wgs84, nullptr);
+  XY p;
+  ASSERT_TRUE(geodetic.project_point({190, 10}, p));
+  EXPECT_NEAR(p.x, -170, 1e-9);
+  EXPECT_NEAR(p.y, 10, 1e-9);
+  std::vector<std::vector<XY>> out;
+  globe::ProjectionCounts counts;
+  geodetic.project_lines({{{170, 0}, {-170, 0}}, {{1, 1}, {1, 1}}}, out, counts);
+  EXPECT_EQ(out.size(), 2u);
+  EXPECT_EQ(counts.antimeridian_cuts, 1u);
+  EXPECT_EQ(counts.degenerate_parts, 1u);
+  const globe::LineProjector mercator(globe::TargetFrame::kWebMercator, wgs84, nullptr);
+  ASSERT_TRUE(mercator.project_point({180, 89}, p));  // latitude clamped to 85.0511
+  EXPECT_NEAR(p.x, 20037508.342789244, 1e-6);
+  EXPECT_NEAR(p.y, 20037508.342789244, 1e-3);
 }
 
 TEST(TileCutter, LinesContinueAcrossTileBordersAndStayInOneRunPerTile) {

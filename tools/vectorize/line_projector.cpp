@@ -83,10 +83,8 @@ bool LineProjector::project_point(XY in, XY& out) const {
   std::vector<XY> p{in};
   if (!std::isfinite(in.x) || !std::isfinite(in.y) || !transform(p)) return false;
   if (!std::isfinite(p[0].x) || !std::isfinite(p[0].y)) return false;
-  if (frame_ != TargetFrame::kProjected) {
-    p[0].x = std::clamp(p[0].x, -180.0, 180.0);
-    p[0] = lonlat_to_frame(frame_, p[0]);
-  }
+  if (frame_ != TargetFrame::kProjected)
+    p[0] = lonlat_to_frame(frame_, split_antimeridian(p).front().front());  // wraps longitude
   out = p[0];
   return true;
 }
