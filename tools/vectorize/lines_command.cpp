@@ -30,10 +30,11 @@ int run_lines(const std::vector<std::string>& args) {
              [&](const std::string& v) { s.class_field = v; });
   cli.option("--class-map", "V=NAME,...", "rename class values, e.g. 1=highway,2=primary",
              [&](const std::string& v) { s.class_map = v; });
-  cli.option("--style", "CLASS:K=V,...",
-             "style of a class (repeatable): color=#rrggbb, width=2px|12m, casing=#rrggbb@1px,\n"
-             "      dash=6+3 (default: palette colour, 1.5 px, no casing, solid)",
-             [&](const std::string& v) { s.styles.push_back(v); });
+  cli.option(
+      "--style", "CLASS:K=V,...",
+      "a class's style (repeatable); keys color=#rrggbb, width=2px|12m,\n"
+      "                              casing=#rrggbb@1px, dash=6+3 (default: palette, 1.5px, solid)",
+      [&](const std::string& v) { s.styles.push_back(v); });
   cli.option("--cluster-grid", "C", "cluster cells per tile side (default 32)",
              [&](const std::string& v) {
                s.cluster_grid = CliArgs::to_int("--cluster-grid", v, 1, 256);
