@@ -7,7 +7,8 @@
 #
 # Usage: samples/fetch.sh [small|all]    (default: small, used by the tests)
 #   small: lux, olinda, jacksboro, brasilia, etopo20 (DEMs, ~3 MB of packages) and
-#          ne_admin1, canada_roads, os_wales, efas_rivers (lines, ~35 MB of packages)
+#          ne_admin1, canada_roads, os_wales, efas_rivers (lines, ~35 MB of packages) and
+#          landsat, cbers20, bluemarble (imagery, +15 MB)
 #   all:   small + nothing else yet (the benchmarks synthesize larger DEMs)
 # Exit codes: 0 ok, 1 a download/checksum/conversion failed, 2 usage error.
 set -euo pipefail
@@ -44,6 +45,12 @@ for ext in shp shx dbf prj; do
               "efas_rivers|libmagics++-data|$efas.$ext|efas_rivers.$ext")
 done
 small_sets+=("${line_sets[@]}")
+# Imagery.
+small_sets+=(
+  "landsat|r-cran-stars|usr/lib/R/site-library/stars/tif/L7_ETMs.tif|landsat.tif"
+  "cbers20|libterralib-doc|usr/share/doc/libterralib-dev/examples/image_processing/resources/cbers_rgb342_crop1.tif|cbers20.tif"
+  "bluemarble|marble-qt-data|usr/share/marble/data/maps/earth/bluemarble/bluemarble.jpg|bluemarble.jpg"
+)
 
 apt_updated=0
 fetch_package() { # package -> path of the .deb in $debs
@@ -122,6 +129,13 @@ fi
 if [ ! -f "$data/etopo20.tif" ]; then
   gdal_translate -q -a_srs EPSG:4326 -co COMPRESS=DEFLATE "$data/etopo20.cdf" "$data/etopo20.tif.part.tif"
   mv "$data/etopo20.tif.part.tif" "$data/etopo20.tif"
+fi
+
+# bluemarble: a plate carree JPEG without georeference; it spans the globe.
+if [ ! -f "$data/bluemarble.tif" ]; then
+  gdal_translate -q -a_srs EPSG:4326 -a_ullr -180 90 180 -90 -co COMPRESS=DEFLATE -co TILED=YES \
+    "$data/bluemarble.jpg" "$data/bluemarble.tif.part.tif"
+  mv "$data/bluemarble.tif.part.tif" "$data/bluemarble.tif"
 fi
 
 # Checksums of the fetched originals (the converted files are derived).
