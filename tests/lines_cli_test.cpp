@@ -276,6 +276,8 @@ TEST_F(LinesCli, BadInputGetsAClearErrorAndLeavesNothing) {
       {"unknown where field", input_ + " --where \"speed > 3\"", 2, "--where"},
       {"unknown class field", input_ + " --class-field colour", 2, "no such field"},
       {"bad tiling", input_ + " --tiling mars", 2, "--tiling"},
+      {"bad bbox", input_ + " --bbox 8,47,7,48", 2, "--bbox"},
+      {"bad zoom range", input_ + " --min-zoom 9 --max-zoom 3", 2, "--min-zoom"},
   };
   for (const BadCase& c : cases) {
     auto r = vectorize("lines " + c.args + " -o " + pkg("out.mbtiles"));

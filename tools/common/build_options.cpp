@@ -43,6 +43,15 @@ bool parse_build_command(CliArgs& cli, BuildOptions& o, const std::vector<std::s
   if (!positional) return false;
   o.inputs = *positional;
   if (o.output.empty()) throw UsageError("no output given; add -o OUT.mbtiles");
+  if (o.bbox) {
+    const auto& b = *o.bbox;
+    if (!(b[0] < b[2] && b[1] < b[3]) || b[0] < -540 || b[2] > 540 || b[1] < -90 || b[3] > 90)
+      throw UsageError(
+          "--bbox: expected west,south,east,north in degrees with west < east, south < north");
+  }
+  if (o.min_zoom && o.max_zoom && *o.min_zoom > *o.max_zoom)
+    throw UsageError("--min-zoom " + std::to_string(*o.min_zoom) + " is larger than --max-zoom " +
+                     std::to_string(*o.max_zoom));
   if (o.quiet) o.progress = ProgressMode::kQuiet;
   o.command_line = CliArgs::reproducible_command_line(program, args);
   return true;

@@ -32,8 +32,8 @@ void declare_area_options(CliArgs& cli, BuildOptions& o, const std::string& s_sr
                           const std::string& max_zoom_help);
 // -j, --progress, --force, -q.
 void declare_run_options(CliArgs& cli, BuildOptions& o);
-// Parses; false after --help. Requires inputs and -o; applies -q; records the
-// command line under `program`.
+// Parses; false after --help. Requires inputs and -o, checks --bbox and the
+// zoom range; applies -q; records the command line under `program`.
 bool parse_build_command(CliArgs& cli, BuildOptions& o, const std::vector<std::string>& args,
                          const std::string& program, const std::string& input_what);
 

@@ -63,12 +63,6 @@ void check_settings(const TerrainSettings& s) {
   if (s.min_zoom && s.max_zoom && *s.min_zoom > *s.max_zoom)
     throw UsageError("--min-zoom " + std::to_string(*s.min_zoom) + " is larger than --max-zoom " +
                      std::to_string(*s.max_zoom));
-  if (s.bbox) {
-    const auto& b = *s.bbox;
-    if (!(b[0] < b[2] && b[1] < b[3]) || b[0] < -540 || b[2] > 540 || b[1] < -90 || b[3] > 90)
-      throw UsageError(
-          "--bbox: expected west,south,east,north in degrees with west < east, south < north");
-  }
 }
 
 }  // namespace
