@@ -9,20 +9,15 @@
 #include <string>
 #include <vector>
 
+#include "raster_footprint.hpp"
 #include "terrain_settings.hpp"
 #include "tileformat/tiling.hpp"
 
 namespace globe {
 
-struct DemSource {
-  std::string path;
-  std::string crs_wkt;           // resolved CRS (the file's or --s_srs)
+struct DemSource : RasterSource {
   std::optional<double> nodata;  // effective nodata value
-  std::array<double, 6> geotransform{};
-  int width = 0, height = 0;
   bool integer_type = false;
-  std::vector<double> x_shifts;  // 0, and +-360 copies for geographic data past +-180
-  unsigned long long file_bytes = 0;
 };
 
 struct DemPlan {

@@ -1,10 +1,7 @@
-// Warps the source mosaic onto one tile's sample grid. One TileWarper per
-// worker thread: GDAL handles are not shared between threads. Each source is
-// opened through a VRT that carries its resolved CRS, nodata value and
-// longitude shift (+-360 copies for data past the antimeridian). GDAL's warp
-// operation (the engine behind gdalwarp) is created once per source and
-// reused for every tile: only the destination geotransform changes, and GDAL
-// reads only the source window the tile needs.
+// Warps the DEM mosaic onto terrain tiles' sample grids (one TileWarper per
+// worker thread). Each source is opened through a VRT that carries its
+// resolved CRS, nodata value and longitude shift (+-360 copies for data past
+// the antimeridian); the warping itself is RasterWarper's.
 #pragma once
 
 #include <memory>
@@ -12,7 +9,7 @@
 #include <vector>
 
 #include "dem_plan.hpp"
-#include "gdal_dataset.hpp"
+#include "raster_warper.hpp"
 #include "tileformat/tile_id.hpp"
 
 namespace globe {
@@ -20,9 +17,6 @@ namespace globe {
 class TileWarper {
  public:
   TileWarper(const DemPlan& plan, const std::string& resampling);
-  ~TileWarper();
-  TileWarper(const TileWarper&) = delete;
-  TileWarper& operator=(const TileWarper&) = delete;
 
   // Heights of the steps^2 samples the tile owns (its last column and row
   // belong to the east/south neighbours), row-major from the north-west
@@ -36,16 +30,10 @@ class TileWarper {
   void warp(tileformat::TileId id, std::vector<double>& heights) { warp(id, 1, 1, heights); }
   static constexpr int kMaxGroup = 4;
 
-  struct Operation;  // one source's transformer + warp operation
-
  private:
-  std::vector<std::unique_ptr<Operation>> make_operations();
   const DemPlan& plan_;
-  std::string resampling_;
-  std::vector<GdalDataset> opened_;   // the inputs; must outlive the wrappers below
-  std::vector<GdalDataset> sources_;  // VRT wrappers, one per source and shift
-  GdalDataset dest_;
-  std::vector<std::unique_ptr<Operation>> operations_;  // for the tiling CRS
+  std::vector<GdalDataset> opened_;  // the inputs; must outlive the wrappers
+  std::unique_ptr<RasterWarper> warper_;
 };
 
 }  // namespace globe

@@ -1,0 +1,65 @@
+// Where raster inputs lie in a tiling, shared by the terrain and imagery
+// plans: each source's georeferencing (checked, with errors naming the file),
+// copies shifted by +-360 degrees for geographic data past the antimeridian,
+// the tiling itself (fixed, derived for `local`, or adopted with --like), the
+// areas in the tiling CRS that hold data, their lon/lat bounds, the finest
+// source pixel size in tiling units, and the zoom range that follows.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "build_options.hpp"
+#include "gdal_dataset.hpp"
+#include "spatial_ref.hpp"
+#include "tileformat/tiling.hpp"
+
+namespace globe {
+
+struct RasterSource {
+  std::string path;
+  std::string crs_wkt;  // resolved CRS (the file's or --s_srs)
+  std::array<double, 6> geotransform{};
+  int width = 0, height = 0;
+  std::vector<double> x_shifts;  // 0, and +-360 copies for geographic data past +-180
+  unsigned long long file_bytes = 0;
+};
+
+// --tiling, --t_srs and --like together; throws UsageError. (plan_footprint
+// checks again; commands call this before opening any input.)
+void check_tiling_options(const BuildOptions& s, const std::string& like);
+
+// The georeferencing of an opened raster; `s_srs` replaces the file's CRS.
+// Throws InputError (no geotransform, rotated, no CRS).
+RasterSource describe_raster(const GdalDataset& ds, const std::string& path,
+                             const std::optional<SpatialRef>& s_srs);
+
+// How a tile's pixels sit on it: terrain samples put the first pixel centre on
+// the tile's corner (neighbours share edge samples); image pixels are areas
+// that fill the tile exactly.
+struct TileGrid {
+  int pixels = 256;  // pixel spacing = tile edge / pixels
+  bool centres_on_corners = false;
+};
+
+struct Footprint {
+  tileformat::Tiling tiling;
+  std::vector<tileformat::Bounds> data_areas;  // tiling CRS, clipped to its extent
+  tileformat::Bounds lonlat;                   // data bounds in degrees (metadata)
+  double resolution = 0;                       // finest source pixel, tiling units
+  int natural_max_zoom = 0;                    // first zoom whose pixels reach it
+};
+
+// Checks --tiling/--t_srs, fills each source's x_shifts, and places the data.
+// `like`: a package whose tiling is adopted ("" for none). Throws InputError
+// or UsageError.
+Footprint plan_footprint(std::vector<RasterSource>& sources, const BuildOptions& s,
+                         const std::string& like, TileGrid grid);
+
+// --min-zoom/--max-zoom against the data's natural finest zoom (at most 6
+// deeper). Throws UsageError.
+void choose_zooms(const Footprint& f, const BuildOptions& s, int& min_zoom, int& max_zoom);
+
+}  // namespace globe
