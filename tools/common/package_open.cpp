@@ -6,19 +6,27 @@
 
 namespace globe {
 
-std::unique_ptr<tileformat::PackageReader> open_package_of_format(const std::string& path,
-                                                                  const std::string& format,
-                                                                  const std::string& kind) {
-  std::unique_ptr<tileformat::PackageReader> reader;
+std::unique_ptr<tileformat::PackageReader> open_package(const std::string& path) {
   try {
-    reader = std::make_unique<tileformat::PackageReader>(path);
+    return std::make_unique<tileformat::PackageReader>(path);
   } catch (const tileformat::PackageError& e) {
     throw InputError(e.what());
   }
-  const auto fmt = reader->meta("format");
+}
+
+std::string package_format(const tileformat::PackageReader& reader, const std::string& path) {
+  const auto fmt = reader.meta("format");
   if (!fmt) throw InputError(path + ": metadata has no 'format'; not a globe package");
-  if (*fmt != format)
-    throw InputError(path + ": a '" + *fmt + "' package, not a " + kind + " package (" + format +
+  return *fmt;
+}
+
+std::unique_ptr<tileformat::PackageReader> open_package_of_format(const std::string& path,
+                                                                  const std::string& format,
+                                                                  const std::string& kind) {
+  std::unique_ptr<tileformat::PackageReader> reader = open_package(path);
+  const std::string fmt = package_format(*reader, path);
+  if (fmt != format)
+    throw InputError(path + ": a '" + fmt + "' package, not a " + kind + " package (" + format +
                      ")");
   return reader;
 }

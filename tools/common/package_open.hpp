@@ -10,6 +10,10 @@
 
 namespace globe {
 
+// Throws InputError if `path` is missing or not a package.
+std::unique_ptr<tileformat::PackageReader> open_package(const std::string& path);
+// The package's `format` metadata value; throws InputError if it has none.
+std::string package_format(const tileformat::PackageReader& reader, const std::string& path);
 // Throws InputError if `path` is missing, not a package, or its `format` is
 // not `format`.
 std::unique_ptr<tileformat::PackageReader> open_package_of_format(const std::string& path,

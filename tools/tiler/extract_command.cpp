@@ -1,6 +1,7 @@
-// `globe-tiler extract PACKAGE --zoom Z [--bbox W,S,E,N] -o OUT.tif`: the
-// decoded heights of one zoom as a GeoTIFF in the tiling CRS (pixel centres on
-// the block samples), so GDAL can check the package against its sources.
+// `globe-tiler extract PACKAGE --zoom Z [--bbox W,S,E,N] -o OUT.tif`: one zoom
+// of a package as a GeoTIFF in the tiling CRS, so GDAL can check the package
+// against its sources. Terrain: the decoded heights (pixel centres on the
+// block samples); imagery: the tile pixels, colour + alpha.
 #include <cpl_conv.h>
 #include <cpl_string.h>
 #include <gdal.h>
@@ -14,63 +15,25 @@
 #include "commands.hpp"
 #include "errors.hpp"
 #include "gdal_dataset.hpp"
+#include "image_package.hpp"
+#include "inspect_commands.hpp"
+#include "package_open.hpp"
 #include "spatial_ref.hpp"
 #include "terrain_package.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/mblock.hpp"
 
 namespace globe {
+namespace {
 
-int run_extract(const std::vector<std::string>& args) {
-  std::optional<int> zoom;
-  std::optional<std::vector<double>> bbox;
-  std::string output;
-  bool force = false;
-  CliArgs cli("globe-tiler extract",
-              "globe-tiler extract PACKAGE --zoom Z [--bbox W,S,E,N] -o OUT.tif\n\n"
-              "Writes the decoded heights of one zoom as a Float64 GeoTIFF in the tiling CRS;\n"
-              "samples without data are NaN (nodata).");
-  cli.option("--zoom", "Z", "zoom level to extract",
-             [&](const std::string& v) { zoom = CliArgs::to_int("--zoom", v, 0, 30); });
-  cli.option("--bbox", "W,S,E,N", "only tiles intersecting this lon/lat box",
-             [&](const std::string& v) { bbox = CliArgs::to_doubles("--bbox", v, 4); });
-  cli.option("-o,--output", "OUT.tif", "output GeoTIFF", [&](const std::string& v) { output = v; });
-  cli.flag("--force", "replace an existing output", [&] { force = true; });
-  auto positional = cli.parse_command(args, 1, 1, "PACKAGE");
-  if (!positional) return kExitOk;
-  if (!zoom) throw UsageError("--zoom is required");
-  if (output.empty()) throw UsageError("no output given; add -o OUT.tif");
-  const std::string& path = (*positional)[0];
+int extract_terrain(const ExtractRequest& rq) {
+  const std::string& path = rq.package;
   TerrainPackage p = open_terrain_package(path);
-  if (*zoom < p.min_zoom || *zoom > p.max_zoom)
-    throw UsageError("--zoom " + std::to_string(*zoom) + " is out of range: " + path +
+  if (rq.zoom < p.min_zoom || rq.zoom > p.max_zoom)
+    throw UsageError("--zoom " + std::to_string(rq.zoom) + " is out of range: " + path +
                      " holds zooms " + std::to_string(p.min_zoom) + ".." +
                      std::to_string(p.max_zoom));
-  std::error_code ec;
-  if (std::filesystem::exists(output, ec) && !force)
-    throw OutputError(output + ": output exists; pass --force to replace it");
-
-  gdal_init();
-  // Tiles of the zoom, optionally limited to the bbox.
-  std::vector<tileformat::TileId> ids;
-  std::optional<tileformat::Bounds> area;
-  if (bbox) {
-    const SpatialRef ll = SpatialRef::from_user_input("EPSG:4326", "internal");
-    const SpatialRef target = SpatialRef::from_user_input(p.tiling.crs, path);
-    tileformat::Bounds b{(*bbox)[0], (*bbox)[1], (*bbox)[2], (*bbox)[3]}, out;
-    CoordTransform t(ll, target);
-    if (!t.transform_bounds(b, out))
-      throw UsageError("--bbox cannot be transformed to the tiling CRS");
-    area = out;
-  }
-  p.reader->for_each_tile(
-      [&](tileformat::TileId id, std::span<const uint8_t>) {
-        if (!area || p.tiling.tile_bounds(id).intersects(*area)) ids.push_back(id);
-      },
-      *zoom);
-  if (ids.empty())
-    throw InputError(path + ": no tiles at zoom " + std::to_string(*zoom) +
-                     (bbox ? " inside --bbox" : ""));
+  const std::vector<tileformat::TileId> ids = tiles_to_extract(*p.reader, p.tiling, rq);
   uint32_t x0 = ids[0].x, x1 = x0, y0 = ids[0].y, y1 = y0;
   for (const auto& id : ids) {
     x0 = std::min(x0, id.x);
@@ -83,51 +46,127 @@ int run_extract(const std::vector<std::string>& args) {
   if (w > 1000000 || h > 1000000)
     throw UsageError("the extract would be " + std::to_string(w) + " x " + std::to_string(h) +
                      " pixels; limit it with --bbox");
-  const double sp = p.tiling.sample_spacing(*zoom, n);
-  const auto corner = p.tiling.tile_bounds({*zoom, x0, y0});
+  const double sp = p.tiling.sample_spacing(rq.zoom, n);
+  const auto corner = p.tiling.tile_bounds({rq.zoom, x0, y0});
   double gt[6] = {corner.min_x - sp / 2, sp, 0, corner.max_y + sp / 2, 0, -sp};
-
-  const std::string temp = output + ".tmp.tif";
-  char** opts = nullptr;
-  opts = CSLSetNameValue(opts, "TILED", "YES");
-  opts = CSLSetNameValue(opts, "COMPRESS", "DEFLATE");
-  opts = CSLSetNameValue(opts, "BIGTIFF", "IF_SAFER");
-  GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), temp.c_str(), static_cast<int>(w),
-                               static_cast<int>(h), 1, GDT_Float64, opts);
-  CSLDestroy(opts);
-  if (!ds) throw OutputError(output + ": cannot create the GeoTIFF (" + gdal_last_error() + ")");
-  GdalDataset out(ds, temp);
-  GDALSetGeoTransform(ds, gt);
-  const SpatialRef crs = SpatialRef::from_user_input(p.tiling.crs, path);
-  GDALSetSpatialRef(ds, crs.get());
+  ExtractTiff out(rq, static_cast<int>(w), static_cast<int>(h), 1, GDT_Float64, gt, p.tiling.crs);
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  GDALSetRasterNoDataValue(out.band(1), nan);
-  GDALFillRaster(out.band(1), nan, 0);
+  GDALRasterBandH band = GDALGetRasterBand(out.handle(), 1);
+  GDALSetRasterNoDataValue(band, nan);
+  GDALFillRaster(band, nan, 0);
   std::vector<double> buf(size_t(n + 1) * (n + 1));
   for (const auto& id : ids) {
     tileformat::MBlock b;
     try {
       b = tileformat::decode_mblock(*p.reader->tile(id));
     } catch (const tileformat::FormatError& e) {
-      std::filesystem::remove(temp, ec);
       throw InputError(path + ": tile " + id.str() + ": " + e.what());
     }
     for (int y = 0; y <= n; ++y)
       for (int x = 0; x <= n; ++x)
         buf[size_t(y) * (n + 1) + x] = b.is_valid(x, y) ? b.height(x, y) : nan;
-    if (GDALRasterIO(out.band(1), GF_Write, int(id.x - x0) * n, int(id.y - y0) * n, n + 1, n + 1,
-                     buf.data(), n + 1, n + 1, GDT_Float64, 0, 0) != CE_None) {
-      std::filesystem::remove(temp, ec);
-      throw OutputError(output + ": write failed (" + gdal_last_error() + ")");
-    }
+    out.write(1, int(id.x - x0) * n, int(id.y - y0) * n, n + 1, n + 1, buf.data(), GDT_Float64);
   }
-  out = GdalDataset();  // close and flush
-  std::filesystem::rename(temp, output, ec);
-  if (ec) throw OutputError(output + ": cannot rename into place: " + ec.message());
+  out.commit();
   std::fprintf(stderr, "globe-tiler: wrote %s: %llu x %llu samples from %zu tiles of zoom %d\n",
-               output.c_str(), static_cast<unsigned long long>(w),
-               static_cast<unsigned long long>(h), ids.size(), *zoom);
+               rq.output.c_str(), static_cast<unsigned long long>(w),
+               static_cast<unsigned long long>(h), ids.size(), rq.zoom);
   return kExitOk;
+}
+
+}  // namespace
+
+std::vector<tileformat::TileId> tiles_to_extract(tileformat::PackageReader& reader,
+                                                 const tileformat::Tiling& tiling,
+                                                 const ExtractRequest& rq) {
+  std::optional<tileformat::Bounds> area;
+  if (rq.bbox) {
+    const SpatialRef ll = SpatialRef::from_user_input("EPSG:4326", "internal");
+    const SpatialRef target = SpatialRef::from_user_input(tiling.crs, rq.package);
+    tileformat::Bounds b{(*rq.bbox)[0], (*rq.bbox)[1], (*rq.bbox)[2], (*rq.bbox)[3]}, out;
+    CoordTransform t(ll, target);
+    if (!t.transform_bounds(b, out))
+      throw UsageError("--bbox cannot be transformed to the tiling CRS");
+    area = out;
+  }
+  std::vector<tileformat::TileId> ids;
+  reader.for_each_tile(
+      [&](tileformat::TileId id, std::span<const uint8_t>) {
+        if (!area || tiling.tile_bounds(id).intersects(*area)) ids.push_back(id);
+      },
+      rq.zoom);
+  if (ids.empty())
+    throw InputError(rq.package + ": no tiles at zoom " + std::to_string(rq.zoom) +
+                     (rq.bbox ? " inside --bbox" : ""));
+  return ids;
+}
+
+ExtractTiff::ExtractTiff(const ExtractRequest& rq, int width, int height, int bands, int gdal_type,
+                         const double gt[6], const std::string& crs_text)
+    : output_(rq.output), temp_(rq.output + ".tmp.tif") {
+  char** opts = nullptr;
+  opts = CSLSetNameValue(opts, "TILED", "YES");
+  opts = CSLSetNameValue(opts, "COMPRESS", "DEFLATE");
+  opts = CSLSetNameValue(opts, "BIGTIFF", "IF_SAFER");
+  GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), temp_.c_str(), width, height, bands,
+                               static_cast<GDALDataType>(gdal_type), opts);
+  CSLDestroy(opts);
+  if (!ds) throw OutputError(output_ + ": cannot create the GeoTIFF (" + gdal_last_error() + ")");
+  ds_ = ds;
+  GDALSetGeoTransform(ds, const_cast<double*>(gt));
+  const SpatialRef crs = SpatialRef::from_user_input(crs_text, rq.package);
+  GDALSetSpatialRef(ds, crs.get());
+}
+
+ExtractTiff::~ExtractTiff() {
+  if (ds_) GDALClose(static_cast<GDALDatasetH>(ds_));
+  std::error_code ec;
+  if (!committed_) std::filesystem::remove(temp_, ec);
+}
+
+void ExtractTiff::write(int band, int x, int y, int w, int h, const void* data, int gdal_type) {
+  if (GDALRasterIO(GDALGetRasterBand(static_cast<GDALDatasetH>(ds_), band), GF_Write, x, y, w, h,
+                   const_cast<void*>(data), w, h, static_cast<GDALDataType>(gdal_type), 0,
+                   0) != CE_None)
+    throw OutputError(output_ + ": write failed (" + gdal_last_error() + ")");
+}
+
+void ExtractTiff::commit() {
+  GDALClose(static_cast<GDALDatasetH>(ds_));  // flush
+  ds_ = nullptr;
+  std::error_code ec;
+  std::filesystem::rename(temp_, output_, ec);
+  if (ec) throw OutputError(output_ + ": cannot rename into place: " + ec.message());
+  committed_ = true;
+}
+
+int run_extract(const std::vector<std::string>& args) {
+  ExtractRequest rq;
+  std::optional<int> zoom;
+  CliArgs cli("globe-tiler extract",
+              "globe-tiler extract PACKAGE --zoom Z [--bbox W,S,E,N] -o OUT.tif\n\n"
+              "Writes one zoom of a package as a GeoTIFF in the tiling CRS. Terrain: the decoded\n"
+              "heights as Float64, NaN (nodata) where there is no data. Imagery: the tile pixels,\n"
+              "gray or RGB plus an alpha band.");
+  cli.option("--zoom", "Z", "zoom level to extract",
+             [&](const std::string& v) { zoom = CliArgs::to_int("--zoom", v, 0, 30); });
+  cli.option("--bbox", "W,S,E,N", "only tiles intersecting this lon/lat box",
+             [&](const std::string& v) { rq.bbox = CliArgs::to_doubles("--bbox", v, 4); });
+  cli.option("-o,--output", "OUT.tif", "output GeoTIFF",
+             [&](const std::string& v) { rq.output = v; });
+  cli.flag("--force", "replace an existing output", [&] { rq.force = true; });
+  auto positional = cli.parse_command(args, 1, 1, "PACKAGE");
+  if (!positional) return kExitOk;
+  if (!zoom) throw UsageError("--zoom is required");
+  if (rq.output.empty()) throw UsageError("no output given; add -o OUT.tif");
+  rq.package = (*positional)[0];
+  rq.zoom = *zoom;
+  std::error_code ec;
+  if (std::filesystem::exists(rq.output, ec) && !rq.force)
+    throw OutputError(rq.output + ": output exists; pass --force to replace it");
+  gdal_init();
+  const std::string format = package_format(*open_package(rq.package), rq.package);
+  return is_image_format(format) ? extract_image(rq) : extract_terrain(rq);
 }
 
 }  // namespace globe

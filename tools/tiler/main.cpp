@@ -1,4 +1,5 @@
-// globe-tiler: DEMs -> terrain packages, and tools to inspect them.
+// globe-tiler: DEMs -> terrain packages, imagery -> image packages, and tools
+// to inspect them.
 // Dispatch and error reporting: tools/common/command_tool.
 #include "command_tool.hpp"
 #include "commands.hpp"
@@ -10,9 +11,10 @@ const char* kUsage =
     "\n"
     "commands:\n"
     "  terrain INPUT... -o OUT.mbtiles   DEMs (any GDAL raster, any CRS) -> terrain package\n"
+    "  imagery INPUT... -o OUT.mbtiles   images (any GDAL raster, any CRS) -> image package\n"
     "  info PACKAGE                      metadata, zoom range, tile counts and sizes\n"
     "  validate PACKAGE                  decode every tile, check schema and invariants\n"
-    "  extract PACKAGE --zoom Z -o OUT.tif   decoded heights of one zoom as a GeoTIFF\n"
+    "  extract PACKAGE --zoom Z -o OUT.tif   one zoom as a GeoTIFF (heights or pixels)\n"
     "\n"
     "Run 'globe-tiler COMMAND --help' for the options of a command.\n"
     "Exit codes: 0 ok, 1 bad input data, 2 bad usage, 3 output cannot be written,\n"
@@ -23,6 +25,7 @@ const char* kUsage =
 int main(int argc, char** argv) {
   return globe::run_command_tool("globe-tiler", GLOBE_VERSION, kUsage,
                                  {{"terrain", globe::run_terrain},
+                                  {"imagery", globe::run_imagery},
                                   {"info", globe::run_info},
                                   {"validate", globe::run_validate},
                                   {"extract", globe::run_extract}},

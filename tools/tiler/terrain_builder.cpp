@@ -16,6 +16,7 @@
 #include "package_output.hpp"
 #include "parallel_batches.hpp"
 #include "staging_store.hpp"
+#include "tile_groups.hpp"
 #include "tile_warper.hpp"
 #include "tileformat/blob_header.hpp"
 #include "tileformat/error.hpp"
@@ -145,23 +146,6 @@ class Builder {
     return TileId{id.z, static_cast<uint32_t>(x), static_cast<uint32_t>(y)};
   }
 
-  std::vector<TileId> finest_tiles(int z) const {
-    std::vector<TileId> out;
-    for (const auto& area : plan_.data_areas) {
-      auto r = plan_.tiling.tiles_covering(area, z);
-      for (uint32_t y = r.min_y; !r.empty() && y <= r.max_y; ++y)
-        for (uint32_t x = r.min_x; x <= r.max_x; ++x)
-          out.push_back({z, x, y});
-    }
-    sort_unique(out);
-    return out;
-  }
-  static void sort_unique(std::vector<TileId>& v) {
-    std::sort(v.begin(), v.end(),
-              [](TileId a, TileId b) { return std::tie(a.y, a.x) < std::tie(b.y, b.x); });
-    v.erase(std::unique(v.begin(), v.end()), v.end());
-  }
-
   struct RawOut {
     std::vector<uint8_t> block, edges;  // both empty: no valid sample
   };
@@ -172,7 +156,7 @@ class Builder {
     std::vector<TileId> tiles;
     for (const TileId& c : stage.list(Stage::kFinal, z + 1))
       tiles.push_back(c.parent());
-    sort_unique(tiles);
+    sort_tiles(tiles);
     std::map<TileId, std::vector<uint8_t>> cache;
     progress_.begin("z" + std::to_string(z) + " pyramid", tiles.size());
     parallel_batches<RawOut>(
@@ -194,32 +178,9 @@ class Builder {
   // The finest zoom: tiles are warped in fixed groups of up to 4 x 4 (one
   // GDAL call each); groups depend only on tile positions, not on -j.
   void pass_warp(StagingStore& stage, int z) {
-    const std::vector<TileId> tiles = finest_tiles(z);
+    const std::vector<TileId> tiles = tiles_in_areas(plan_.tiling, plan_.data_areas, z);
     const int g = plan_.tiling.tiles_x(z) >= 16 ? TileWarper::kMaxGroup : 1;
-    struct Group {
-      TileId first;
-      int cols, rows;
-      std::vector<TileId> members;
-    };
-    std::map<std::pair<uint32_t, uint32_t>, Group> by_key;  // (gy, gx): row-major order
-    for (const TileId& t : tiles) {
-      Group& grp = by_key[{t.y / g, t.x / g}];
-      grp.members.push_back(t);
-    }
-    std::vector<Group> groups;
-    for (auto& [key, grp] : by_key) {
-      uint32_t x0 = grp.members[0].x, x1 = x0, y0 = grp.members[0].y, y1 = y0;
-      for (const TileId& t : grp.members) {
-        x0 = std::min(x0, t.x);
-        x1 = std::max(x1, t.x);
-        y0 = std::min(y0, t.y);
-        y1 = std::max(y1, t.y);
-      }
-      grp.first = {z, x0, y0};
-      grp.cols = static_cast<int>(x1 - x0 + 1);
-      grp.rows = static_cast<int>(y1 - y0 + 1);
-      groups.push_back(std::move(grp));
-    }
+    const std::vector<TileGroup> groups = group_tiles(tiles, g);
     progress_.begin("z" + std::to_string(z) + " warp", tiles.size());
     parallel_batches<std::vector<RawOut>>(
         groups.size(), threads_, std::max<size_t>(1, batch_size() / 4), [](size_t, size_t) {},

@@ -1,5 +1,5 @@
 // `globe-tiler validate PACKAGE`: decodes every tile and checks the schema and
-// the terrain invariants (docs/tileformat.md §3, §5, §6):
+// the invariants; image packages: image_validate.cpp. Terrain (docs/tileformat.md §3, §5, §6):
 //   - shared edge samples and edge split-vertex errors equal in both blocks;
 //   - a coarse sample equals the finer sample at the same position;
 //   - vertex errors are saturated (>= their children's) within each block.
@@ -11,6 +11,9 @@
 #include "cli_args.hpp"
 #include "commands.hpp"
 #include "errors.hpp"
+#include "image_package.hpp"
+#include "inspect_commands.hpp"
+#include "package_open.hpp"
 #include "terrain_package.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/kpatch.hpp"
@@ -62,11 +65,14 @@ void check_saturation(const KPatchLayout& l, const MBlock& b, const std::string&
 int run_validate(const std::vector<std::string>& args) {
   CliArgs cli(
       "globe-tiler validate",
-      "globe-tiler validate PACKAGE\n\nDecodes every tile and checks schema and invariants.\n"
+      "globe-tiler validate PACKAGE\n\nDecodes every tile of a terrain or image package and "
+      "checks schema and invariants.\n"
       "Exit 0: valid; 5: warnings only; 1: errors.");
   auto positional = cli.parse_command(args, 1, 1, "PACKAGE");
   if (!positional) return kExitOk;
   const std::string& path = (*positional)[0];
+  if (is_image_format(package_format(*open_package(path), path)))
+    return validate_image_package(path);
   TerrainPackage p = open_terrain_package(path);
   ValidationReport r;
   if (p.reader->application_id() != tileformat::kApplicationId)

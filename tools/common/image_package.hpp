@@ -1,0 +1,29 @@
+// Opening an existing image package for inspection (tileformat §8): the
+// reader plus the metadata every inspection command needs, checked once.
+// MBTiles from other tools (no globe: keys) are read as webmercator, with the
+// tile size and colour taken from their first tile.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "tileformat/image_tile.hpp"
+#include "tileformat/package.hpp"
+#include "tileformat/tiling.hpp"
+
+namespace globe {
+
+struct ImagePackage {
+  std::unique_ptr<tileformat::PackageReader> reader;
+  tileformat::Tiling tiling;
+  tileformat::ImageFormat format = tileformat::ImageFormat::kPng;
+  int tile_size = 256, colour = 3, min_zoom = 0, max_zoom = 0;
+};
+
+// True if the package's `format` is png, jpg or webp.
+bool is_image_format(const std::string& format);
+// Throws InputError naming the file if it is missing, not a package, or not
+// an image package.
+ImagePackage open_image_package(const std::string& path);
+
+}  // namespace globe

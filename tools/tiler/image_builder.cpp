@@ -1,0 +1,262 @@
+// Image package builder (see image_builder.hpp).
+#include "image_builder.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+#include "errors.hpp"
+#include "image_codec.hpp"
+#include "image_pyramid.hpp"
+#include "image_warper.hpp"
+#include "json_escape.hpp"
+#include "package_output.hpp"
+#include "parallel_batches.hpp"
+#include "staging_store.hpp"
+#include "tile_groups.hpp"
+#include "tileformat/blob_header.hpp"
+#include "tileformat/detail/zstd_codec.hpp"
+#include "tileformat/error.hpp"
+#include "tileformat/package.hpp"
+
+namespace globe {
+namespace {
+
+using tileformat::TileId;
+
+constexpr int kStageZstdLevel = 1;
+
+struct TileOut {
+  TileId id;
+  std::vector<uint8_t> stage;  // zstd pixels for the next coarser zoom (empty: not needed)
+  std::vector<uint8_t> blob;   // encoded tile
+};
+
+class Builder {
+ public:
+  Builder(const ImagePlan& plan, const ImageSettings& s, Progress& progress)
+      : plan_(plan),
+        s_(s),
+        progress_(progress),
+        threads_(s.threads > 0 ? s.threads : std::max(1u, std::thread::hardware_concurrency())) {}
+
+  ImageSummary run() {
+    const auto start = std::chrono::steady_clock::now();
+    std::unique_ptr<tileformat::PackageWriter> writer = create_package(s_.output, s_.force);
+    try {
+      StagingStore stage(s_.output + ".staging");
+      warpers_.resize(threads_);
+      for (int z = plan_.max_zoom; z >= plan_.min_zoom; --z) {
+        if (z == plan_.max_zoom)
+          pass_warp(stage, *writer, z);
+        else
+          pass_pyramid(stage, *writer, z);
+        stage.drop(Stage::kRaw, z + 1);
+        stage.commit();
+      }
+      warpers_.clear();
+    } catch (const tileformat::PackageError& e) {
+      throw OutputError(std::string(e.what()) + "; check free space and permissions");
+    }
+    if (writer->tiles_written() == 0)
+      throw InputError(plan_.sources[0].path +
+                       ": every pixel in the requested area is transparent (nodata, mask or "
+                       "alpha)" +
+                       (s_.bbox ? "; check --bbox" : "") + "; nothing written");
+    write_metadata(*writer);
+    sum_.tiles = writer->tiles_written();
+    sum_.unique_blobs = writer->unique_blobs();
+    sum_.blob_bytes = writer->blob_bytes();
+    sum_.file_bytes = commit_package(*writer, s_.output);
+    sum_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return sum_;
+  }
+
+ private:
+  // Encodes a tile and, unless it is the coarsest zoom, keeps its pixels.
+  std::optional<TileOut> finish(TileId id, const TilePixels& px) const {
+    if (px.empty()) return std::nullopt;
+    TileOut out{id, {}, encode_image_tile(px, {s_.format, s_.quality})};
+    if (id.z > plan_.min_zoom)
+      out.stage = tileformat::detail::zstd_compress(px.planes, kStageZstdLevel);
+    return out;
+  }
+
+  void store(StagingStore& stage, tileformat::PackageWriter& writer, const TileOut& out) {
+    if (!out.stage.empty()) stage.put(Stage::kRaw, out.id, out.stage);
+    writer.put_tile(out.id, out.blob);
+    coarsest_written_ = out.id.z;
+    switch (tileformat::inspect_image_tile(out.blob).format) {
+      case tileformat::ImageFormat::kPng:
+        ++sum_.png;
+        break;
+      case tileformat::ImageFormat::kJpeg:
+        ++sum_.jpeg;
+        break;
+      case tileformat::ImageFormat::kWebp:
+        ++sum_.webp;
+        break;
+    }
+  }
+
+  void pass_warp(StagingStore& stage, tileformat::PackageWriter& writer, int z) {
+    const std::vector<TileId> tiles = tiles_in_areas(plan_.tiling, plan_.data_areas, z);
+    const int g = plan_.tiling.tiles_x(z) >= 16 ? ImageWarper::kMaxGroup : 1;
+    const std::vector<TileGroup> groups = group_tiles(tiles, g);
+    progress_.begin("z" + std::to_string(z) + " warp", tiles.size());
+    parallel_batches<std::vector<TileOut>>(
+        groups.size(), threads_, std::max<size_t>(2, size_t(2 * threads_)), [](size_t, size_t) {},
+        [&](size_t i, int worker) { return warp_group(groups[i], worker); },
+        [&](size_t i, std::vector<TileOut>&& outs) {
+          for (const TileOut& out : outs)
+            store(stage, writer, out);
+          progress_.advance(groups[i].members.size());
+        });
+    progress_.end();
+  }
+
+  std::vector<TileOut> warp_group(const TileGroup& grp, int worker) {
+    if (!warpers_[worker]) warpers_[worker] = std::make_unique<ImageWarper>(plan_, s_);
+    std::vector<uint8_t> planes;
+    warpers_[worker]->warp(grp.first, grp.cols, grp.rows, planes);
+    const int n = s_.tile_size, w = grp.cols * n, h = grp.rows * n;
+    std::vector<TileOut> outs;
+    TilePixels px(n, plan_.colour);
+    for (const TileId& id : grp.members) {
+      const size_t ox = size_t(id.x - grp.first.x) * n, oy = size_t(id.y - grp.first.y) * n;
+      for (int b = 0; b <= plan_.colour; ++b)
+        for (int y = 0; y < n; ++y)
+          std::copy_n(planes.data() + size_t(b) * w * h + (oy + y) * w + ox, n,
+                      px.plane(b) + size_t(y) * n);
+      if (auto out = finish(id, px)) outs.push_back(std::move(*out));
+    }
+    return outs;
+  }
+
+  void pass_pyramid(StagingStore& stage, tileformat::PackageWriter& writer, int z) {
+    std::vector<TileId> tiles;
+    for (const TileId& c : stage.list(Stage::kRaw, z + 1))
+      tiles.push_back(c.parent());
+    sort_tiles(tiles);
+    std::map<TileId, std::vector<uint8_t>> cache;
+    const size_t planes_bytes = size_t(plan_.colour + 1) * s_.tile_size * s_.tile_size;
+    progress_.begin("z" + std::to_string(z) + " pyramid", tiles.size());
+    parallel_batches<std::optional<TileOut>>(
+        tiles.size(), threads_, size_t(8 * threads_),
+        [&](size_t begin, size_t end) {
+          cache.clear();
+          for (size_t i = begin; i < end; ++i)
+            for (const TileId& c : tiles[i].children())
+              if (auto b = stage.get(Stage::kRaw, c)) cache.emplace(c, std::move(*b));
+        },
+        [&](size_t i, int) {
+          std::array<std::optional<TilePixels>, 4> kids;
+          std::array<const TilePixels*, 4> ptrs{};
+          const auto children = tiles[i].children();
+          for (int c = 0; c < 4; ++c) {
+            auto it = cache.find(children[c]);
+            if (it == cache.end()) continue;
+            kids[c].emplace(s_.tile_size, plan_.colour);
+            kids[c]->planes = tileformat::detail::zstd_decompress(it->second, planes_bytes,
+                                                                  "staged pixels", "3.1");
+            ptrs[c] = &*kids[c];
+          }
+          return finish(tiles[i], downsample_children(ptrs, s_.tile_size, plan_.colour));
+        },
+        [&](size_t, std::optional<TileOut>&& out) {
+          if (out) store(stage, writer, *out);
+          progress_.advance();
+        });
+    progress_.end();
+  }
+
+  // The data's lon/lat bounds. In the global schemes they are snapped
+  // outward to the finest zoom's pixel edges: GDAL's MBTiles driver takes
+  // `bounds` as its raster origin but reads pixels at the rounded offset, so
+  // unsnapped bounds would shift its georeferencing by up to half a pixel.
+  tileformat::Bounds metadata_bounds() const {
+    const auto& t = plan_.tiling;
+    if (t.scheme == "local") return plan_.lonlat;
+    tileformat::Bounds u = plan_.data_areas[0];
+    for (const auto& a : plan_.data_areas)
+      u = {std::min(u.min_x, a.min_x), std::min(u.min_y, a.min_y), std::max(u.max_x, a.max_x),
+           std::max(u.max_y, a.max_y)};
+    const double px = t.sample_spacing(plan_.max_zoom, s_.tile_size);
+    const tileformat::Bounds ext = t.extent();
+    auto down = [&](double v, double o) { return o + std::floor((v - o) / px + 1e-6) * px; };
+    auto up = [&](double v, double o) { return o + std::ceil((v - o) / px - 1e-6) * px; };
+    u = {std::max(ext.min_x, down(u.min_x, ext.min_x)),
+         std::max(ext.min_y, down(u.min_y, ext.min_y)), std::min(ext.max_x, up(u.max_x, ext.min_x)),
+         std::min(ext.max_y, up(u.max_y, ext.min_y))};
+    if (t.scheme == "geodetic") return u;
+    constexpr double kPi = 3.14159265358979323846, kR = 6378137.0;
+    auto lon = [&](double x) { return x / kR * 180.0 / kPi; };
+    auto lat = [&](double y) { return std::atan(std::sinh(y / kR)) * 180.0 / kPi; };
+    return {lon(u.min_x), lat(u.min_y), lon(u.max_x), lat(u.max_y)};
+  }
+
+  void write_metadata(tileformat::PackageWriter& w) const {
+    std::map<std::string, std::string> meta;
+    plan_.tiling.to_metadata(meta);
+    const tileformat::Bounds ll = metadata_bounds();
+    auto f = [](double v) {
+      std::ostringstream o;
+      o.precision(17);
+      o << v;
+      return o.str();
+    };
+    meta["name"] = std::filesystem::path(s_.output).stem().string();
+    meta["format"] = tileformat::image_format_name(s_.format);
+    meta["type"] = "baselayer";
+    meta["version"] = "1";
+    meta["description"] =
+        "Imagery built by globe-tiler from " +
+        std::filesystem::path(plan_.sources[0].path).filename().string() +
+        (plan_.sources.size() > 1 ? " and " + std::to_string(plan_.sources.size() - 1) + " more"
+                                  : "");
+    meta["bounds"] = f(ll.min_x) + "," + f(ll.min_y) + "," + f(ll.max_x) + "," + f(ll.max_y);
+    meta["center"] = f((ll.min_x + ll.max_x) / 2) + "," + f((ll.min_y + ll.max_y) / 2) + "," +
+                     std::to_string(plan_.max_zoom);
+    meta["minzoom"] = std::to_string(coarsest_written_);
+    meta["maxzoom"] = std::to_string(plan_.max_zoom);
+    meta["globe:format_version"] = std::to_string(tileformat::kFormatVersion);
+    meta["globe:tile_size"] = std::to_string(s_.tile_size);
+    meta["globe:colour_bands"] = std::to_string(plan_.colour);
+    meta["globe:resampling"] = s_.resampling;
+    if (s_.format != tileformat::ImageFormat::kPng)
+      meta["globe:quality"] = std::to_string(s_.quality);
+    if (plan_.scale) meta["globe:scale"] = f(plan_.scale->first) + "," + f(plan_.scale->second);
+    meta["globe:generator"] = "globe-tiler " GLOBE_VERSION;
+    meta["globe:command_line"] = s_.command_line;
+    std::string inputs = "[";
+    for (size_t i = 0; i < plan_.sources.size(); ++i)
+      inputs += (i ? "," : "") + std::string("{\"name\":\"") + json_escape(plan_.sources[i].path) +
+                "\",\"bytes\":" + std::to_string(plan_.sources[i].file_bytes) + "}";
+    meta["globe:inputs"] = inputs + "]";
+    for (const auto& [k, v] : meta)
+      w.set_metadata(k, v);
+  }
+
+  const ImagePlan& plan_;
+  const ImageSettings& s_;
+  Progress& progress_;
+  const int threads_;
+  std::vector<std::unique_ptr<ImageWarper>> warpers_;
+  int coarsest_written_ = 0;
+  ImageSummary sum_;
+};
+
+}  // namespace
+
+ImageSummary build_imagery(const ImagePlan& plan, const ImageSettings& settings,
+                           Progress& progress) {
+  return Builder(plan, settings, progress).run();
+}
+
+}  // namespace globe

@@ -1,0 +1,118 @@
+// Image tiles from the imagery mosaic (see image_warper.hpp).
+#include "image_warper.hpp"
+
+#include <cpl_string.h>
+#include <gdal_utils.h>
+
+#include "errors.hpp"
+#include "spatial_ref.hpp"
+
+namespace globe {
+namespace {
+
+// Band selection, palette expansion and 8-bit scaling, as gdal_translate -of VRT.
+GdalDataset select_bands(const GdalDataset& in, const ImageSource& src, const ImagePlan& plan) {
+  CPLStringList argv;
+  argv.AddString("-of");
+  argv.AddString("VRT");
+  for (int b : src.colour_bands) {
+    argv.AddString("-b");
+    argv.AddString(std::to_string(b).c_str());
+  }
+  if (src.expand_palette) {
+    argv.AddString("-expand");
+    argv.AddString(src.has_alpha_palette ? "rgba" : "rgb");
+  }
+  if (src.alpha_band) {
+    argv.AddString("-b");
+    argv.AddString(std::to_string(src.alpha_band).c_str());
+  }
+  if (plan.scale) {
+    argv.AddString("-ot");
+    argv.AddString("Byte");
+    for (size_t i = 1; i <= src.colour_bands.size(); ++i) {
+      argv.AddString(("-scale_" + std::to_string(i)).c_str());
+      argv.AddString(CPLSPrintf("%.17g", plan.scale->first));
+      argv.AddString(CPLSPrintf("%.17g", plan.scale->second));
+      argv.AddString("0");
+      argv.AddString("255");
+    }
+  }
+  GDALTranslateOptions* options = GDALTranslateOptionsNew(argv.List(), nullptr);
+  if (!options) throw std::runtime_error("gdal_translate options: " + gdal_last_error());
+  int usage_error = 0;
+  CPLErrorReset();
+  GDALDatasetH out = GDALTranslate("", in.get(), options, &usage_error);
+  GDALTranslateOptionsFree(options);
+  if (!out) throw InputError(src.path + ": cannot select its bands (" + gdal_last_error() + ")");
+  GdalDataset wrapped(out, src.path);
+  const int n = wrapped.bands();
+  if (src.alpha_band || src.has_alpha_palette)
+    GDALSetRasterColorInterpretation(wrapped.band(n), GCI_AlphaBand);
+  return wrapped;
+}
+
+}  // namespace
+
+ImageWarper::ImageWarper(const ImagePlan& plan, const ImageSettings& s)
+    : plan_(plan), size_(s.tile_size) {
+  GDALDriverH vrt = GDALGetDriverByName("VRT");
+  std::vector<GdalDataset> sources;
+  for (const auto& src : plan.sources) {
+    opened_.push_back(GdalDataset::open_raster(src.path));
+    const GDALDatasetH in = opened_.back().get();
+    for (double shift : src.x_shifts) {
+      // Inner wrapper: georeferencing and nodata (never written back to the file).
+      GDALDatasetH copy = GDALCreateCopy(vrt, "", in, FALSE, nullptr, nullptr, nullptr);
+      if (!copy)
+        throw InputError(src.path + ": cannot wrap the raster (" + gdal_last_error() + ")");
+      GdalDataset inner(copy, src.path);
+      auto gt = src.geotransform;
+      gt[0] += shift;
+      GDALSetGeoTransform(copy, gt.data());
+      const SpatialRef crs = SpatialRef::from_wkt(src.crs_wkt, src.path);
+      GDALSetSpatialRef(copy, crs.get());
+      if (s.nodata)
+        for (int b : src.colour_bands)
+          GDALSetRasterNoDataValue(inner.band(b), *s.nodata);
+      sources.push_back(select_bands(inner, src, plan));
+      opened_.push_back(std::move(inner));
+    }
+  }
+  WarpSpec spec;
+  spec.tiling = plan.tiling;
+  spec.resampling = s.resampling;
+  spec.bands = plan.colour + 1;
+  spec.alpha = true;
+  spec.type = GDT_Byte;
+  spec.max_width = spec.max_height = size_ * kMaxGroup;
+  spec.error_threshold = s.transform_error;
+  const auto range = plan.tiling.tiles_covering(plan.data_areas.front(), plan.max_zoom);
+  const auto b = plan.tiling.tile_bounds(
+      {plan.max_zoom, (range.min_x + range.max_x) / 2, (range.min_y + range.max_y) / 2});
+  const double px = plan.tiling.sample_spacing(plan.max_zoom, size_);
+  spec.initial_gt = {b.min_x, px, 0, b.max_y, 0, -px};
+  warper_ = std::make_unique<RasterWarper>(
+      std::move(sources), std::move(spec),
+      plan.sources[0].path + (plan.sources.size() > 1 ? " (or another input)" : ""));
+}
+
+ImageWarper::~ImageWarper() {
+  warper_.reset();
+  while (!opened_.empty())
+    opened_.pop_back();
+}
+
+void ImageWarper::warp(tileformat::TileId first, int cols, int rows, std::vector<uint8_t>& planes) {
+  if (cols < 1 || rows < 1 || cols > kMaxGroup || rows > kMaxGroup)
+    throw std::invalid_argument("ImageWarper: group of " + std::to_string(cols) + " x " +
+                                std::to_string(rows) + " tiles");
+  const int w = size_ * cols, h = size_ * rows;
+  const double px = plan_.tiling.sample_spacing(first.z, size_);
+  const tileformat::Bounds b = plan_.tiling.tile_bounds(first);
+  const std::array<double, 6> gt = {b.min_x, px, 0, b.max_y, 0, -px};
+  planes.assign(size_t(plan_.colour + 1) * w * h, 0);  // transparent background
+  warper_->warp(gt, w, h, "tile " + first.str(), planes.data());
+}
+
+}  // namespace globe

@@ -1,0 +1,47 @@
+// The package-kind-specific halves of `info`, `validate` and `extract`: the
+// commands parse their arguments, open the package, and dispatch on its
+// `format` (terrain or image) to these.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tileformat/package.hpp"
+#include "tileformat/tiling.hpp"
+
+namespace globe {
+
+struct ExtractRequest {
+  std::string package, output;
+  int zoom = 0;
+  std::optional<std::vector<double>> bbox;
+  bool force = false;
+};
+
+int validate_image_package(const std::string& path);
+void print_image_info(const std::string& path);
+int extract_image(const ExtractRequest& request);
+
+// Shared by both extracts: the tiles of the zoom (inside --bbox), XYZ order;
+// throws InputError if there are none.
+std::vector<tileformat::TileId> tiles_to_extract(tileformat::PackageReader& reader,
+                                                 const tileformat::Tiling& tiling,
+                                                 const ExtractRequest& request);
+// The GeoTIFF an extract writes under a temporary name, renamed by commit().
+class ExtractTiff {
+ public:
+  ExtractTiff(const ExtractRequest& request, int width, int height, int bands, int gdal_type,
+              const double gt[6], const std::string& crs);
+  ~ExtractTiff();  // removes the temporary file unless committed
+  void* handle() const { return ds_; }
+  void write(int band, int x, int y, int w, int h, const void* data, int gdal_type);
+  void commit();
+
+ private:
+  std::string output_, temp_;
+  void* ds_ = nullptr;
+  bool committed_ = false;
+};
+
+}  // namespace globe
