@@ -119,7 +119,8 @@ TilePixels decode_image_tile(std::span<const uint8_t> blob, int size, int colour
   const int native_colour = n - (has_alpha ? 1 : 0);
   if (native_colour != 1 && native_colour != 3)
     throw tileformat::FormatError("8", "image tile has " + std::to_string(n) + " bands");
-  if (native_colour == 3 && colour == 1)
+  // Gray WebP tiles are stored as RGB (WebP has no gray): take the first band.
+  if (native_colour == 3 && colour == 1 && header.format != tileformat::ImageFormat::kWebp)
     throw tileformat::FormatError("8", "image tile is in colour but the package is gray");
   TilePixels px(size, colour);
   auto read = [&](int band, uint8_t* dst) {
