@@ -14,6 +14,8 @@ packages=(
   libglm-dev libglfw3-dev libosmesa6-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   # command-line tools used by samples/fetch.sh, tests and benchmarks
   gdal-bin sqlite3 unzip ca-certificates time bc
+  # gdal2tiles.py (imagery benchmark peer)
+  python3-gdal
   # window tests under a virtual X server
   xvfb xauth
 )

@@ -79,6 +79,8 @@ std::vector<uint8_t> encode_image_tile(const TilePixels& px, const EncodeOptions
       opts = CSLSetNameValue(opts, "QUALITY", quality.c_str());
   }
   opts = CSLSetNameValue(opts, "WRITE_METADATA_AS_TEXT", "NO");
+  if (format == ImageFormat::kPng)
+    opts = CSLSetNameValue(opts, "ZLEVEL", std::to_string(options.png_level).c_str());
   MemoryFile file{memory_file_name(tileformat::image_format_name(format))};
   CPLErrorReset();
   GDALDatasetH out = GDALCreateCopy(GDALGetDriverByName(driver), file.name.c_str(), ds.get(), FALSE,

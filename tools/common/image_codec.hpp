@@ -31,7 +31,8 @@ struct TilePixels {
 
 struct EncodeOptions {
   tileformat::ImageFormat format = tileformat::ImageFormat::kPng;
-  int quality = 85;  // JPEG / WebP; WebP 100 = lossless
+  int quality = 85;   // JPEG / WebP; WebP 100 = lossless
+  int png_level = 3;  // deflate level of PNG tiles (docs/imagery.md "Encoding")
 };
 
 // Encodes a non-empty tile. Opaque tiles drop the alpha channel. JPEG has no

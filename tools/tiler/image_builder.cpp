@@ -82,7 +82,7 @@ class Builder {
   // Encodes a tile and, unless it is the coarsest zoom, keeps its pixels.
   std::optional<TileOut> finish(TileId id, const TilePixels& px) const {
     if (px.empty()) return std::nullopt;
-    TileOut out{id, {}, encode_image_tile(px, {s_.format, s_.quality})};
+    TileOut out{id, {}, encode_image_tile(px, {s_.format, s_.quality, s_.png_level})};
     if (id.z > plan_.min_zoom)
       out.stage = tileformat::detail::zstd_compress(px.planes, kStageZstdLevel);
     return out;
@@ -231,6 +231,7 @@ class Builder {
     meta["globe:resampling"] = s_.resampling;
     if (s_.format != tileformat::ImageFormat::kPng)
       meta["globe:quality"] = std::to_string(s_.quality);
+    if (sum_.png) meta["globe:png_level"] = std::to_string(s_.png_level);
     if (plan_.scale) meta["globe:scale"] = f(plan_.scale->first) + "," + f(plan_.scale->second);
     meta["globe:generator"] = "globe-tiler " GLOBE_VERSION;
     meta["globe:command_line"] = s_.command_line;
