@@ -29,20 +29,11 @@ namespace {
 int extract_terrain(const ExtractRequest& rq) {
   const std::string& path = rq.package;
   TerrainPackage p = open_terrain_package(path);
-  if (rq.zoom < p.min_zoom || rq.zoom > p.max_zoom)
-    throw UsageError("--zoom " + std::to_string(rq.zoom) + " is out of range: " + path +
-                     " holds zooms " + std::to_string(p.min_zoom) + ".." +
-                     std::to_string(p.max_zoom));
-  const std::vector<tileformat::TileId> ids = tiles_to_extract(*p.reader, p.tiling, rq);
-  uint32_t x0 = ids[0].x, x1 = x0, y0 = ids[0].y, y1 = y0;
-  for (const auto& id : ids) {
-    x0 = std::min(x0, id.x);
-    x1 = std::max(x1, id.x);
-    y0 = std::min(y0, id.y);
-    y1 = std::max(y1, id.y);
-  }
+  const ExtractTiles t = tiles_to_extract(*p.reader, p.tiling, rq, p.min_zoom, p.max_zoom);
+  const auto& ids = t.ids;
+  const uint32_t x0 = t.x0, y0 = t.y0;
   const int n = p.block_size - 1;
-  const uint64_t w = uint64_t(x1 - x0 + 1) * n + 1, h = uint64_t(y1 - y0 + 1) * n + 1;
+  const uint64_t w = uint64_t(t.cols) * n + 1, h = uint64_t(t.rows) * n + 1;
   if (w > 1000000 || h > 1000000)
     throw UsageError("the extract would be " + std::to_string(w) + " x " + std::to_string(h) +
                      " pixels; limit it with --bbox");
@@ -76,9 +67,11 @@ int extract_terrain(const ExtractRequest& rq) {
 
 }  // namespace
 
-std::vector<tileformat::TileId> tiles_to_extract(tileformat::PackageReader& reader,
-                                                 const tileformat::Tiling& tiling,
-                                                 const ExtractRequest& rq) {
+ExtractTiles tiles_to_extract(tileformat::PackageReader& reader, const tileformat::Tiling& tiling,
+                              const ExtractRequest& rq, int min_zoom, int max_zoom) {
+  if (rq.zoom < min_zoom || rq.zoom > max_zoom)
+    throw UsageError("--zoom " + std::to_string(rq.zoom) + " is out of range: " + rq.package +
+                     " holds zooms " + std::to_string(min_zoom) + ".." + std::to_string(max_zoom));
   std::optional<tileformat::Bounds> area;
   if (rq.bbox) {
     const SpatialRef ll = SpatialRef::from_user_input("EPSG:4326", "internal");
@@ -98,7 +91,20 @@ std::vector<tileformat::TileId> tiles_to_extract(tileformat::PackageReader& read
   if (ids.empty())
     throw InputError(rq.package + ": no tiles at zoom " + std::to_string(rq.zoom) +
                      (rq.bbox ? " inside --bbox" : ""));
-  return ids;
+  ExtractTiles t;
+  uint32_t x1 = ids[0].x, y1 = ids[0].y;
+  t.x0 = x1;
+  t.y0 = y1;
+  for (const auto& id : ids) {
+    t.x0 = std::min(t.x0, id.x);
+    x1 = std::max(x1, id.x);
+    t.y0 = std::min(t.y0, id.y);
+    y1 = std::max(y1, id.y);
+  }
+  t.cols = x1 - t.x0 + 1;
+  t.rows = y1 - t.y0 + 1;
+  t.ids = std::move(ids);
+  return t;
 }
 
 ExtractTiff::ExtractTiff(const ExtractRequest& rq, int width, int height, int bands, int gdal_type,

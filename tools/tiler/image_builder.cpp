@@ -15,12 +15,11 @@
 #include "image_codec.hpp"
 #include "image_pyramid.hpp"
 #include "image_warper.hpp"
-#include "json_escape.hpp"
 #include "package_output.hpp"
 #include "parallel_batches.hpp"
+#include "raster_metadata.hpp"
 #include "staging_store.hpp"
 #include "tile_groups.hpp"
-#include "tileformat/blob_header.hpp"
 #include "tileformat/detail/zstd_codec.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/package.hpp"
@@ -202,44 +201,28 @@ class Builder {
   }
 
   void write_metadata(tileformat::PackageWriter& w) const {
-    std::map<std::string, std::string> meta;
-    plan_.tiling.to_metadata(meta);
-    const tileformat::Bounds ll = metadata_bounds();
-    auto f = [](double v) {
-      std::ostringstream o;
-      o.precision(17);
-      o << v;
-      return o.str();
-    };
-    meta["name"] = std::filesystem::path(s_.output).stem().string();
-    meta["format"] = tileformat::image_format_name(s_.format);
-    meta["type"] = "baselayer";
-    meta["version"] = "1";
-    meta["description"] =
-        "Imagery built by globe-tiler from " +
-        std::filesystem::path(plan_.sources[0].path).filename().string() +
-        (plan_.sources.size() > 1 ? " and " + std::to_string(plan_.sources.size() - 1) + " more"
-                                  : "");
-    meta["bounds"] = f(ll.min_x) + "," + f(ll.min_y) + "," + f(ll.max_x) + "," + f(ll.max_y);
-    meta["center"] = f((ll.min_x + ll.max_x) / 2) + "," + f((ll.min_y + ll.max_y) / 2) + "," +
-                     std::to_string(plan_.max_zoom);
-    meta["minzoom"] = std::to_string(coarsest_written_);
-    meta["maxzoom"] = std::to_string(plan_.max_zoom);
-    meta["globe:format_version"] = std::to_string(tileformat::kFormatVersion);
+    RasterMetadata m;
+    m.output = s_.output;
+    m.format = tileformat::image_format_name(s_.format);
+    m.description = "Imagery";
+    for (const auto& src : plan_.sources)
+      m.inputs.emplace_back(src.path, src.file_bytes);
+    m.tiling = plan_.tiling;
+    m.lonlat = metadata_bounds();
+    m.min_zoom = coarsest_written_;
+    m.max_zoom = plan_.max_zoom;
+    m.resampling = s_.resampling;
+    m.command_line = s_.command_line;
+    m.bounds_digits = 17;  // snapped bounds must survive the round trip
+    std::map<std::string, std::string> meta = raster_metadata(m);
     meta["globe:tile_size"] = std::to_string(s_.tile_size);
     meta["globe:colour_bands"] = std::to_string(plan_.colour);
-    meta["globe:resampling"] = s_.resampling;
     if (s_.format != tileformat::ImageFormat::kPng)
       meta["globe:quality"] = std::to_string(s_.quality);
     if (sum_.png) meta["globe:png_level"] = std::to_string(s_.png_level);
-    if (plan_.scale) meta["globe:scale"] = f(plan_.scale->first) + "," + f(plan_.scale->second);
-    meta["globe:generator"] = "globe-tiler " GLOBE_VERSION;
-    meta["globe:command_line"] = s_.command_line;
-    std::string inputs = "[";
-    for (size_t i = 0; i < plan_.sources.size(); ++i)
-      inputs += (i ? "," : "") + std::string("{\"name\":\"") + json_escape(plan_.sources[i].path) +
-                "\",\"bytes\":" + std::to_string(plan_.sources[i].file_bytes) + "}";
-    meta["globe:inputs"] = inputs + "]";
+    if (plan_.scale)
+      meta["globe:scale"] =
+          metadata_number(plan_.scale->first) + "," + metadata_number(plan_.scale->second);
     for (const auto& [k, v] : meta)
       w.set_metadata(k, v);
   }

@@ -15,20 +15,11 @@ namespace globe {
 int extract_image(const ExtractRequest& rq) {
   const std::string& path = rq.package;
   ImagePackage p = open_image_package(path);
-  if (rq.zoom < p.min_zoom || rq.zoom > p.max_zoom)
-    throw UsageError("--zoom " + std::to_string(rq.zoom) + " is out of range: " + path +
-                     " holds zooms " + std::to_string(p.min_zoom) + ".." +
-                     std::to_string(p.max_zoom));
-  const std::vector<tileformat::TileId> ids = tiles_to_extract(*p.reader, p.tiling, rq);
-  uint32_t x0 = ids[0].x, x1 = x0, y0 = ids[0].y, y1 = y0;
-  for (const auto& id : ids) {
-    x0 = std::min(x0, id.x);
-    x1 = std::max(x1, id.x);
-    y0 = std::min(y0, id.y);
-    y1 = std::max(y1, id.y);
-  }
+  const ExtractTiles t = tiles_to_extract(*p.reader, p.tiling, rq, p.min_zoom, p.max_zoom);
+  const auto& ids = t.ids;
+  const uint32_t x0 = t.x0, y0 = t.y0;
   const int n = p.tile_size;
-  const uint64_t w = uint64_t(x1 - x0 + 1) * n, h = uint64_t(y1 - y0 + 1) * n;
+  const uint64_t w = uint64_t(t.cols) * n, h = uint64_t(t.rows) * n;
   if (w > 200000 || h > 200000)
     throw UsageError("the extract would be " + std::to_string(w) + " x " + std::to_string(h) +
                      " pixels; limit it with --bbox");

@@ -23,11 +23,15 @@ int validate_image_package(const std::string& path);
 void print_image_info(const std::string& path);
 int extract_image(const ExtractRequest& request);
 
-// Shared by both extracts: the tiles of the zoom (inside --bbox), XYZ order;
-// throws InputError if there are none.
-std::vector<tileformat::TileId> tiles_to_extract(tileformat::PackageReader& reader,
-                                                 const tileformat::Tiling& tiling,
-                                                 const ExtractRequest& request);
+// Shared by both extracts: the tiles of the zoom (inside --bbox) and the
+// range they span; throws InputError if there are none, UsageError if the
+// zoom is outside min_zoom..max_zoom.
+struct ExtractTiles {
+  std::vector<tileformat::TileId> ids;
+  uint32_t x0 = 0, y0 = 0, cols = 0, rows = 0;  // north-west tile, tiles across and down
+};
+ExtractTiles tiles_to_extract(tileformat::PackageReader& reader, const tileformat::Tiling& tiling,
+                              const ExtractRequest& request, int min_zoom, int max_zoom);
 // The GeoTIFF an extract writes under a temporary name, renamed by commit().
 class ExtractTiff {
  public:

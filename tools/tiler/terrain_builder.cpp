@@ -12,9 +12,9 @@
 #include "block_fill.hpp"
 #include "error_tree.hpp"
 #include "errors.hpp"
-#include "json_escape.hpp"
 #include "package_output.hpp"
 #include "parallel_batches.hpp"
+#include "raster_metadata.hpp"
 #include "staging_store.hpp"
 #include "tile_groups.hpp"
 #include "tile_warper.hpp"
@@ -384,44 +384,23 @@ class Builder {
   }
 
   void write_metadata(tileformat::PackageWriter& w) const {
-    std::map<std::string, std::string> meta;
-    plan_.tiling.to_metadata(meta);
-    const auto& ll = plan_.lonlat;
-    auto f = [](double v) {
-      std::ostringstream o;
-      o.precision(10);
-      o << v;
-      return o.str();
-    };
-    meta["name"] = std::filesystem::path(s_.output).stem().string();
-    meta["format"] = tileformat::kMBlockFormat;
-    meta["type"] = "baselayer";
-    meta["version"] = "1";
-    meta["description"] =
-        "Terrain (MBlock/KPatch) built by globe-tiler from " +
-        std::filesystem::path(plan_.sources[0].path).filename().string() +
-        (plan_.sources.size() > 1 ? " and " + std::to_string(plan_.sources.size() - 1) + " more"
-                                  : "");
-    meta["bounds"] = f(ll.min_x) + "," + f(ll.min_y) + "," + f(ll.max_x) + "," + f(ll.max_y);
-    meta["center"] = f((ll.min_x + ll.max_x) / 2) + "," + f((ll.min_y + ll.max_y) / 2) + "," +
-                     std::to_string(plan_.max_zoom);
-    // A dataset smaller than one sample of the coarsest zooms leaves them
-    // empty (empty tiles are not written): minzoom says what is there.
-    meta["minzoom"] = std::to_string(coarsest_written_);
-    meta["maxzoom"] = std::to_string(plan_.max_zoom);
-    meta["globe:format_version"] = std::to_string(tileformat::kFormatVersion);
+    RasterMetadata m;
+    m.output = s_.output;
+    m.format = tileformat::kMBlockFormat;
+    m.description = "Terrain (MBlock/KPatch)";
+    for (const auto& src : plan_.sources)
+      m.inputs.emplace_back(src.path, src.file_bytes);
+    m.tiling = plan_.tiling;
+    m.lonlat = plan_.lonlat;
+    m.min_zoom = coarsest_written_;
+    m.max_zoom = plan_.max_zoom;
+    m.resampling = s_.resampling;
+    m.command_line = s_.command_line;
+    std::map<std::string, std::string> meta = raster_metadata(m);
     meta["globe:block_size"] = std::to_string(size_);
     meta["globe:kpatch_lattice"] = std::to_string(s_.lattice);
-    meta["globe:height_step"] = f(plan_.step_m);
-    meta["globe:fill_height"] = f(plan_.fill_q * plan_.step_m);
-    meta["globe:resampling"] = s_.resampling;
-    meta["globe:generator"] = "globe-tiler " GLOBE_VERSION;
-    meta["globe:command_line"] = s_.command_line;
-    std::string inputs = "[";
-    for (size_t i = 0; i < plan_.sources.size(); ++i)
-      inputs += (i ? "," : "") + std::string("{\"name\":\"") + json_escape(plan_.sources[i].path) +
-                "\",\"bytes\":" + std::to_string(plan_.sources[i].file_bytes) + "}";
-    meta["globe:inputs"] = inputs + "]";
+    meta["globe:height_step"] = metadata_number(plan_.step_m);
+    meta["globe:fill_height"] = metadata_number(plan_.fill_q * plan_.step_m);
     for (const auto& [k, v] : meta)
       w.set_metadata(k, v);
   }
