@@ -3,7 +3,8 @@
 # missing, builds, fetches the sample DEMs, tiles one into a terrain package
 # prints its summary and renders a headless snapshot (OSMesa, no display needed),
 # then turns a real road network into a line-cluster package with styled classes.
-# Output: demo/jacksboro.mbtiles, demo/jacksboro.png, demo/canada_roads.mbtiles (git-ignored).
+# Output: demo/jacksboro.mbtiles, demo/jacksboro.png, demo/canada_roads.mbtiles,
+# demo/cbers20.mbtiles (git-ignored).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -22,4 +23,8 @@ build/tools/vectorize/globe-vectorize lines samples/data/canada_roads.shp --s_sr
   --style ferry:color=#2b8cbe,width=2px,dash=6+4 -o demo/canada_roads.mbtiles --force
 build/tools/vectorize/globe-vectorize validate demo/canada_roads.mbtiles
 build/tools/vectorize/globe-vectorize info demo/canada_roads.mbtiles | tail -n 20
-echo "demo: wrote demo/jacksboro.png and demo/canada_roads.mbtiles" >&2
+build/tools/tiler/globe-tiler imagery samples/data/cbers20.tif --format jpg \
+  -o demo/cbers20.mbtiles --force
+build/tools/tiler/globe-tiler validate demo/cbers20.mbtiles
+gdalinfo demo/cbers20.mbtiles | head -n 3  # a plain MBTiles: GDAL reads it
+echo "demo: wrote demo/jacksboro.png, demo/canada_roads.mbtiles and demo/cbers20.mbtiles" >&2
