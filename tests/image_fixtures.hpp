@@ -33,12 +33,7 @@ inline Image read_image(const std::string& path) {
   im.height = GDALGetRasterYSize(ds);
   im.bands = GDALGetRasterCount(ds);
   GDALGetGeoTransform(ds, im.gt);
-  if (auto s = GDALGetSpatialRef(ds)) {
-    char* wkt = nullptr;
-    OSRExportToWkt(s, &wkt);
-    im.wkt = wkt ? wkt : "";
-    CPLFree(wkt);
-  }
+  im.wkt = crs_wkt(ds);
   im.px.resize(size_t(im.bands) * im.width * im.height);
   if (GDALDatasetRasterIO(ds, GF_Read, 0, 0, im.width, im.height, im.px.data(), im.width, im.height,
                           GDT_Byte, im.bands, nullptr, 0, 0, 0) != CE_None)

@@ -63,6 +63,18 @@ inline void write_dem(const std::string& path, int w, int h, const double gt[6],
   GDALClose(ds);
 }
 
+// The dataset's CRS as WKT ("" if none).
+inline std::string crs_wkt(GDALDatasetH ds) {
+  std::string out;
+  if (auto s = GDALGetSpatialRef(ds)) {
+    char* wkt = nullptr;
+    OSRExportToWkt(s, &wkt);
+    out = wkt ? wkt : "";
+    CPLFree(wkt);
+  }
+  return out;
+}
+
 inline Raster read_raster(const std::string& path) {
   gdal_setup();
   Raster r;
@@ -71,12 +83,7 @@ inline Raster read_raster(const std::string& path) {
   r.width = GDALGetRasterXSize(ds);
   r.height = GDALGetRasterYSize(ds);
   GDALGetGeoTransform(ds, r.gt);
-  if (auto s = GDALGetSpatialRef(ds)) {
-    char* wkt = nullptr;
-    OSRExportToWkt(s, &wkt);
-    r.wkt = wkt ? wkt : "";
-    CPLFree(wkt);
-  }
+  r.wkt = crs_wkt(ds);
   GDALRasterBandH b = GDALGetRasterBand(ds, 1);
   r.data.resize(size_t(r.width) * r.height);
   if (GDALRasterIO(b, GF_Read, 0, 0, r.width, r.height, r.data.data(), r.width, r.height,

@@ -3,8 +3,10 @@
 // line, and the checks after parsing. Command settings derive from it.
 #pragma once
 
+#include <algorithm>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cli_args.hpp"
@@ -25,6 +27,12 @@ struct BuildOptions {
   bool quiet = false;
   ProgressMode progress = ProgressMode::kAuto;
   std::string command_line;  // recorded in metadata (see reproducible_command_line)
+
+  // -j, or all cores when not given.
+  int worker_threads() const {
+    return threads > 0 ? threads
+                       : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  }
 };
 
 // -o, --tiling, --t_srs, --s_srs, --min-zoom, --max-zoom, --bbox.

@@ -115,9 +115,7 @@ TilePixels decode_image_tile(std::span<const uint8_t> blob, int size, int colour
   if (!ds.get())
     throw tileformat::FormatError("8", "image tile cannot be decoded (" + gdal_last_error() + ")");
   const int n = ds.bands();
-  const bool has_alpha =
-      n == 2 || n == 4 ||
-      (n > 0 && GDALGetRasterColorInterpretation(ds.band(n)) == GCI_AlphaBand && n > 1);
+  const bool has_alpha = n == 2 || n == 4;  // gray + alpha, RGBA
   const int native_colour = n - (has_alpha ? 1 : 0);
   if (native_colour != 1 && native_colour != 3)
     throw tileformat::FormatError("8", "image tile has " + std::to_string(n) + " bands");

@@ -85,14 +85,9 @@ DemPlan plan_terrain(const TerrainSettings& s) {
   plan.fill_q = static_cast<int32_t>(std::llround(min_h / plan.step_m));
 
   // 3. Tiling, data areas, resolution and zooms.
-  const Footprint f = plan_footprint(rasters, s, "", TileGrid{plan.steps, true});
+  static_cast<Footprint&>(plan) = plan_footprint(rasters, s, "", TileGrid{plan.steps, true});
   for (size_t i = 0; i < rasters.size(); ++i)
     static_cast<RasterSource&>(plan.sources[i]) = rasters[i];
-  plan.tiling = f.tiling;
-  plan.data_areas = f.data_areas;
-  plan.lonlat = f.lonlat;
-  plan.source_resolution = f.resolution;
-  choose_zooms(f, s, plan.min_zoom, plan.max_zoom);
   return plan;
 }
 

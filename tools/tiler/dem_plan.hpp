@@ -20,16 +20,11 @@ struct DemSource : RasterSource {
   bool integer_type = false;
 };
 
-struct DemPlan {
-  tileformat::Tiling tiling;
+struct DemPlan : Footprint {  // tiling, data areas, resolution, zooms
   std::vector<DemSource> sources;
-  std::vector<tileformat::Bounds> data_areas;  // in the tiling CRS, clipped to its extent
-  int min_zoom = 0, max_zoom = 0;
-  int steps = 256;               // block size - 1
-  double step_m = 1.0;           // quantization step
-  int32_t fill_q = 0;            // height (quanta) for holes at block corners
-  double source_resolution = 0;  // source pixel size in tiling CRS units
-  tileformat::Bounds lonlat;     // data bounds in lon/lat (for metadata)
+  int steps = 256;      // block size - 1
+  double step_m = 1.0;  // quantization step
+  int32_t fill_q = 0;   // height (quanta) for holes at block corners
 };
 
 DemPlan plan_terrain(const TerrainSettings& settings);

@@ -40,10 +40,7 @@ struct TileOut {
 class Builder {
  public:
   Builder(const ImagePlan& plan, const ImageSettings& s, Progress& progress)
-      : plan_(plan),
-        s_(s),
-        progress_(progress),
-        threads_(s.threads > 0 ? s.threads : std::max(1u, std::thread::hardware_concurrency())) {}
+      : plan_(plan), s_(s), progress_(progress), threads_(s.worker_threads()) {}
 
   ImageSummary run() {
     const auto start = std::chrono::steady_clock::now();

@@ -120,14 +120,9 @@ ImagePlan plan_imagery(const ImageSettings& s) {
     plan.scale_derived = true;
   }
 
-  const Footprint f = plan_footprint(rasters, s, s.like, TileGrid{s.tile_size, false});
+  static_cast<Footprint&>(plan) = plan_footprint(rasters, s, s.like, TileGrid{s.tile_size, false});
   for (size_t i = 0; i < rasters.size(); ++i)
     static_cast<RasterSource&>(plan.sources[i]) = rasters[i];
-  plan.tiling = f.tiling;
-  plan.data_areas = f.data_areas;
-  plan.lonlat = f.lonlat;
-  plan.source_resolution = f.resolution;
-  choose_zooms(f, s, plan.min_zoom, plan.max_zoom);
   return plan;
 }
 

@@ -21,13 +21,8 @@ struct ImageSource : RasterSource {
   bool has_alpha_palette = false;  // the palette has transparent entries
 };
 
-struct ImagePlan {
-  tileformat::Tiling tiling;
+struct ImagePlan : Footprint {  // tiling, data areas, resolution, zooms
   std::vector<ImageSource> sources;
-  std::vector<tileformat::Bounds> data_areas;
-  tileformat::Bounds lonlat;
-  double source_resolution = 0;
-  int min_zoom = 0, max_zoom = 0;
   int colour = 3;                                  // 1 gray or 3 RGB
   std::optional<std::pair<double, double>> scale;  // non-Byte inputs: range mapped to 0..255
   bool scale_derived = false;                      // from the data, not --scale

@@ -190,7 +190,7 @@ Footprint plan_footprint(std::vector<RasterSource>& sources, const BuildOptions&
                               std::min(ll.max_x, 180.0), std::min(ll.max_y, 90.0)});
     }
   }
-  f.resolution = resolution;
+  f.source_resolution = resolution;
   if (!(resolution > 0) || !std::isfinite(resolution))
     throw InputError(sources[0].path + ": cannot determine the pixel size in the tiling CRS");
 
@@ -238,19 +238,16 @@ Footprint plan_footprint(std::vector<RasterSource>& sources, const BuildOptions&
   while (f.natural_max_zoom < 24 &&
          f.tiling.sample_spacing(f.natural_max_zoom, grid.pixels) > resolution * (1 + 1e-9))
     ++f.natural_max_zoom;
-  return f;
-}
-
-void choose_zooms(const Footprint& f, const BuildOptions& s, int& min_zoom, int& max_zoom) {
-  max_zoom = s.max_zoom.value_or(f.natural_max_zoom);
-  min_zoom = s.min_zoom.value_or(0);
-  if (max_zoom > f.natural_max_zoom + 6)
-    throw UsageError("--max-zoom " + std::to_string(max_zoom) +
+  f.max_zoom = s.max_zoom.value_or(f.natural_max_zoom);
+  f.min_zoom = s.min_zoom.value_or(0);
+  if (f.max_zoom > f.natural_max_zoom + 6)
+    throw UsageError("--max-zoom " + std::to_string(f.max_zoom) +
                      " is out of range: the data's finest zoom is " +
                      std::to_string(f.natural_max_zoom) + " (at most 6 zooms deeper are allowed)");
-  if (min_zoom > max_zoom)
-    throw UsageError("--min-zoom " + std::to_string(min_zoom) +
-                     " is larger than the maximum zoom " + std::to_string(max_zoom));
+  if (f.min_zoom > f.max_zoom)
+    throw UsageError("--min-zoom " + std::to_string(f.min_zoom) +
+                     " is larger than the maximum zoom " + std::to_string(f.max_zoom));
+  return f;
 }
 
 }  // namespace globe

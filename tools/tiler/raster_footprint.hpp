@@ -44,22 +44,22 @@ struct TileGrid {
   bool centres_on_corners = false;
 };
 
+// The part of a terrain or imagery plan that says where the data lies; both
+// plans derive from it.
 struct Footprint {
   tileformat::Tiling tiling;
   std::vector<tileformat::Bounds> data_areas;  // tiling CRS, clipped to its extent
   tileformat::Bounds lonlat;                   // data bounds in degrees (metadata)
-  double resolution = 0;                       // finest source pixel, tiling units
+  double source_resolution = 0;                // finest source pixel, tiling units
   int natural_max_zoom = 0;                    // first zoom whose pixels reach it
+  int min_zoom = 0, max_zoom = 0;              // --min-zoom/--max-zoom or the defaults
 };
 
-// Checks --tiling/--t_srs, fills each source's x_shifts, and places the data.
-// `like`: a package whose tiling is adopted ("" for none). Throws InputError
-// or UsageError.
+// Checks --tiling/--t_srs, fills each source's x_shifts, places the data and
+// picks the zoom range (--max-zoom at most 6 deeper than the natural finest
+// zoom). `like`: a package whose tiling is adopted ("" for none). Throws
+// InputError or UsageError.
 Footprint plan_footprint(std::vector<RasterSource>& sources, const BuildOptions& s,
                          const std::string& like, TileGrid grid);
-
-// --min-zoom/--max-zoom against the data's natural finest zoom (at most 6
-// deeper). Throws UsageError.
-void choose_zooms(const Footprint& f, const BuildOptions& s, int& min_zoom, int& max_zoom);
 
 }  // namespace globe

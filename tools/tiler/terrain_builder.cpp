@@ -73,7 +73,7 @@ class Builder {
         progress_(progress),
         size_(plan.steps + 1),
         layouts_{KPatchLayout(plan.steps, s.lattice, 0), KPatchLayout(plan.steps, s.lattice, 1)},
-        threads_(s.threads > 0 ? s.threads : std::max(1u, std::thread::hardware_concurrency())),
+        threads_(s.worker_threads()),
         global_(plan.tiling.scheme != "local") {}
 
   BuildSummary run() {

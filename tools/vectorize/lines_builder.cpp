@@ -149,10 +149,7 @@ std::string num(double v) {
 class Builder {
  public:
   Builder(const LinesSettings& s, Progress& progress)
-      : s_(s),
-        progress_(progress),
-        threads_(s.threads > 0 ? s.threads : std::max(1u, std::thread::hardware_concurrency())),
-        classes_(s.class_map, s.styles) {}
+      : s_(s), progress_(progress), threads_(s.worker_threads()), classes_(s.class_map, s.styles) {}
 
   LinesSummary run() {
     const auto start = std::chrono::steady_clock::now();
