@@ -13,6 +13,36 @@ namespace globe::viewer {
 
 using tileformat::TileId;
 
+namespace {
+
+// Runs on the loader thread.
+auto decode_block(int block_size, int lattice) {
+  return [block_size, lattice](TileId id, std::span<const uint8_t> blob) {
+    tileformat::MBlock b = tileformat::decode_mblock(blob);
+    if (b.size != block_size || b.lattice != lattice)
+      throw tileformat::FormatError("§5", "block size or lattice differs from the metadata");
+    const size_t n = b.q.size();
+    DecodedBlock d;
+    d.block.id = id;
+    d.block.heights.resize(n);
+    d.block.mask.assign(n, 255);
+    float lo = 0, hi = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const float h = static_cast<float>(b.q[i] * b.step);
+      d.block.heights[i] = h;
+      lo = i == 0 ? h : std::min(lo, h);
+      hi = i == 0 ? h : std::max(hi, h);
+      if (!b.valid.empty() && !b.valid[i]) d.block.mask[i] = 0;
+    }
+    d.meta.min_h = lo;
+    d.meta.max_h = hi;
+    d.meta.vertex_error = std::move(b.vertex_error);
+    return d;
+  };
+}
+
+}  // namespace
+
 BlockCache::BlockCache(const std::string& path, TerrainPackage package, uint64_t budget_bytes)
     : path_(path), package_(std::move(package)) {
   const uint64_t samples = uint64_t(package_.block_size) * package_.block_size;
@@ -27,17 +57,10 @@ BlockCache::BlockCache(const std::string& path, TerrainPackage package, uint64_t
   exists_ = std::make_unique<tileformat::SqliteStatement>(
       package_.reader->db(),
       "SELECT 1 FROM map WHERE zoom_level = ? AND tile_column = ? AND tile_row = ?");
-  loader_ = std::thread([this] { loader_main(); });
+  loader_ = std::make_unique<Loader>(path_, decode_block(package_.block_size, package_.lattice));
 }
 
-BlockCache::~BlockCache() {
-  {
-    std::lock_guard lock(mutex_);
-    stop_ = true;
-  }
-  wake_loader_.notify_all();
-  loader_.join();
-}
+BlockCache::~BlockCache() = default;
 
 BlockState BlockCache::state(TileId id) {
   if (id.z < package_.min_zoom || id.z > package_.max_zoom || !package_.tiling.contains(id))
@@ -90,7 +113,7 @@ void BlockCache::flush_requests() {
   std::sort(wanted_.begin(), wanted_.end(), [](const auto& a, const auto& b) {
     return a.first < b.first || (a.first == b.first && a.second < b.second);
   });
-  std::vector<Job> jobs;
+  std::vector<Loader::Job> jobs;
   for (const auto& [priority, id] : wanted_) {
     Entry& e = entries_[id];
     if (e.state != BlockState::kNotLoaded) continue;  // requested twice this frame
@@ -100,53 +123,34 @@ void BlockCache::flush_requests() {
     jobs.push_back({id, slot});
   }
   wanted_.clear();
-  if (jobs.empty()) return;
-  {
-    std::lock_guard lock(mutex_);
-    for (const Job& j : jobs)
-      jobs_.push_back(j);
-    in_flight_ += static_cast<int>(jobs.size());
-  }
-  wake_loader_.notify_one();
+  loader_->submit(jobs);
 }
 
 std::vector<LoadedBlock> BlockCache::take_loaded() {
-  std::vector<Done> done;
-  {
-    std::lock_guard lock(mutex_);
-    done.swap(done_);
-  }
   std::vector<LoadedBlock> out;
-  for (Done& d : done) {
-    Entry& e = entries_[d.block.id];
+  for (Loader::Done& d : loader_->take_done()) {
+    const TileId id = d.job.id;
+    const int slot = d.job.tag;
+    Entry& e = entries_[id];
     stats_.bytes_read += d.bytes;
     if (!d.ok) {
       std::fprintf(stderr, "globe-view: warning: %s: tile %s: %s; drawing a coarser level there\n",
-                   path_.c_str(), d.block.id.str().c_str(), d.error.c_str());
+                   path_.c_str(), id.str().c_str(), d.error.c_str());
       e.state = BlockState::kBroken;
-      free_slots_.push_back(d.block.slot);
+      free_slots_.push_back(slot);
       ++stats_.broken;
       continue;
     }
     e.state = BlockState::kResident;
-    e.block = std::move(d.meta);
-    e.block.slot = d.block.slot;
+    e.block = std::move(d.value.meta);
+    e.block.slot = slot;
     e.block.last_used_frame = frame_;
     ++stats_.blocks_loaded;
     ++stats_.resident;
-    out.push_back(std::move(d.block));
+    d.value.block.slot = slot;
+    out.push_back(std::move(d.value.block));
   }
   return out;
-}
-
-void BlockCache::wait_for_loader() {
-  std::unique_lock lock(mutex_);
-  wake_main_.wait(lock, [this] { return !done_.empty() || in_flight_ == 0; });
-}
-
-bool BlockCache::loader_busy() {
-  std::lock_guard lock(mutex_);
-  return in_flight_ > 0 || !done_.empty();
 }
 
 CacheStats BlockCache::stats() const {
@@ -155,60 +159,11 @@ CacheStats BlockCache::stats() const {
   return s;
 }
 
-void BlockCache::loader_main() {
-  // The loader has its own connection: SQLite handles are not shared across threads.
-  std::unique_ptr<tileformat::PackageReader> reader;
-  std::string open_error;
-  try {
-    reader = std::make_unique<tileformat::PackageReader>(path_);
-  } catch (const std::exception& e) {
-    open_error = e.what();
-  }
-  for (;;) {
-    Job job;
-    {
-      std::unique_lock lock(mutex_);
-      wake_loader_.wait(lock, [this] { return stop_ || !jobs_.empty(); });
-      if (stop_) return;
-      job = jobs_.front();
-      jobs_.pop_front();
-    }
-    Done d;
-    d.block.id = job.id;
-    d.block.slot = job.slot;
-    try {
-      if (!reader) throw std::runtime_error(open_error);
-      auto blob = reader->tile(job.id);
-      if (!blob) throw std::runtime_error("tile vanished from the package");
-      d.bytes = blob->size();
-      tileformat::MBlock b = tileformat::decode_mblock(*blob);
-      if (b.size != package_.block_size || b.lattice != package_.lattice)
-        throw tileformat::FormatError("§5", "block size or lattice differs from the metadata");
-      const size_t n = b.q.size();
-      d.block.heights.resize(n);
-      d.block.mask.assign(n, 255);
-      float lo = 0, hi = 0;
-      for (size_t i = 0; i < n; ++i) {
-        const float h = static_cast<float>(b.q[i] * b.step);
-        d.block.heights[i] = h;
-        lo = i == 0 ? h : std::min(lo, h);
-        hi = i == 0 ? h : std::max(hi, h);
-        if (!b.valid.empty() && !b.valid[i]) d.block.mask[i] = 0;
-      }
-      d.meta.min_h = lo;
-      d.meta.max_h = hi;
-      d.meta.vertex_error = std::move(b.vertex_error);
-    } catch (const std::exception& e) {
-      d.ok = false;
-      d.error = e.what();
-    }
-    {
-      std::lock_guard lock(mutex_);
-      done_.push_back(std::move(d));
-      --in_flight_;
-    }
-    wake_main_.notify_all();
-  }
+std::vector<std::pair<TileId, int>> BlockCache::resident_slots() const {
+  std::vector<std::pair<TileId, int>> out;
+  for (const auto& [id, e] : entries_)
+    if (e.state == BlockState::kResident) out.emplace_back(id, e.block.slot);
+  return out;
 }
 
 }  // namespace globe::viewer

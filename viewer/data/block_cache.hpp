@@ -14,16 +14,13 @@
 // so the selection keeps drawing their coarser ancestor.
 #pragma once
 
-#include <condition_variable>
 #include <cstdint>
-#include <deque>
 #include <memory>
-#include <mutex>
 #include <string>
-#include <thread>
 #include <unordered_map>
 #include <vector>
 
+#include "data/tile_loader.hpp"
 #include "terrain_package.hpp"
 #include "tileformat/tile_id.hpp"
 
@@ -51,6 +48,12 @@ struct LoadedBlock {
   int slot = -1;
   std::vector<float> heights;  // size*size, metres, row-major from the north row
   std::vector<uint8_t> mask;   // size*size, 255 = data, 0 = hole
+};
+
+// What the loader thread makes of one blob.
+struct DecodedBlock {
+  LoadedBlock block;
+  ResidentBlock meta;
 };
 
 struct CacheStats {
@@ -87,28 +90,19 @@ class BlockCache {
   // Decoded blocks to upload now (they are resident from this call on).
   std::vector<LoadedBlock> take_loaded();
   // Blocks until the loader has finished something or has nothing to do.
-  void wait_for_loader();
-  bool loader_busy();
+  void wait_for_loader() { loader_->wait(); }
+  bool loader_busy() { return loader_->busy(); }
   CacheStats stats() const;
+  // Every resident block and its texture slot (for height lookups on the GPU).
+  std::vector<std::pair<tileformat::TileId, int>> resident_slots() const;
 
  private:
   struct Entry {
     BlockState state = BlockState::kNotLoaded;
     ResidentBlock block;
   };
-  struct Job {
-    tileformat::TileId id;
-    int slot;
-  };
-  struct Done {
-    LoadedBlock block;
-    ResidentBlock meta;
-    bool ok = true;
-    std::string error;
-    uint64_t bytes = 0;
-  };
+  using Loader = TileLoader<DecodedBlock>;
   int take_slot();
-  void loader_main();
 
   std::string path_;
   TerrainPackage package_;
@@ -120,14 +114,7 @@ class BlockCache {
   std::vector<int> free_slots_;
   std::vector<std::pair<double, tileformat::TileId>> wanted_;
   CacheStats stats_;
-
-  std::mutex mutex_;
-  std::condition_variable wake_loader_, wake_main_;
-  std::deque<Job> jobs_;
-  std::vector<Done> done_;
-  int in_flight_ = 0;
-  bool stop_ = false;
-  std::thread loader_;
+  std::unique_ptr<Loader> loader_;
 };
 
 }  // namespace globe::viewer

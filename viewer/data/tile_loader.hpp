@@ -1,0 +1,134 @@
+// A loader thread for one package: reads the blobs of queued tiles through
+// its own read-only connection (SQLite handles are not shared across
+// threads), decodes them with the caller's function, and hands the results
+// back to the render thread, which never waits unless it asks to. Used by the
+// terrain block cache and the line tile cache.
+#pragma once
+
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "tileformat/package.hpp"
+#include "tileformat/tile_id.hpp"
+
+namespace globe::viewer {
+
+template <class Decoded>
+class TileLoader {
+ public:
+  // Runs on the loader thread; throws to report a bad tile.
+  using Decode = std::function<Decoded(tileformat::TileId, std::span<const uint8_t> blob)>;
+
+  struct Job {
+    tileformat::TileId id;
+    int tag = -1;  // the caller's (e.g. the reserved texture slot)
+  };
+  struct Done {
+    Job job;
+    Decoded value{};
+    bool ok = true;
+    std::string error;  // when !ok
+    uint64_t bytes = 0;
+  };
+
+  TileLoader(std::string path, Decode decode)
+      : path_(std::move(path)), decode_(std::move(decode)), thread_([this] { main(); }) {}
+  ~TileLoader() {
+    {
+      std::lock_guard lock(mutex_);
+      stop_ = true;
+    }
+    wake_loader_.notify_all();
+    thread_.join();
+  }
+  TileLoader(const TileLoader&) = delete;
+  TileLoader& operator=(const TileLoader&) = delete;
+
+  void submit(const std::vector<Job>& jobs) {
+    if (jobs.empty()) return;
+    {
+      std::lock_guard lock(mutex_);
+      jobs_.insert(jobs_.end(), jobs.begin(), jobs.end());
+      in_flight_ += static_cast<int>(jobs.size());
+    }
+    wake_loader_.notify_one();
+  }
+  std::vector<Done> take_done() {
+    std::vector<Done> out;
+    std::lock_guard lock(mutex_);
+    out.swap(done_);
+    return out;
+  }
+  // Blocks until something is done or nothing is queued.
+  void wait() {
+    std::unique_lock lock(mutex_);
+    wake_main_.wait(lock, [this] { return !done_.empty() || in_flight_ == 0; });
+  }
+  // Blocks until every queued tile is done.
+  void wait_all() {
+    std::unique_lock lock(mutex_);
+    wake_main_.wait(lock, [this] { return in_flight_ == 0; });
+  }
+  bool busy() {
+    std::lock_guard lock(mutex_);
+    return in_flight_ > 0 || !done_.empty();
+  }
+
+ private:
+  void main() {
+    std::unique_ptr<tileformat::PackageReader> reader;
+    std::string open_error;
+    try {
+      reader = std::make_unique<tileformat::PackageReader>(path_);
+    } catch (const std::exception& e) {
+      open_error = e.what();
+    }
+    for (;;) {
+      Done d;
+      {
+        std::unique_lock lock(mutex_);
+        wake_loader_.wait(lock, [this] { return stop_ || !jobs_.empty(); });
+        if (stop_) return;
+        d.job = jobs_.front();
+        jobs_.pop_front();
+      }
+      try {
+        if (!reader) throw std::runtime_error(open_error);
+        const auto blob = reader->tile(d.job.id);
+        if (!blob) throw std::runtime_error("tile vanished from the package");
+        d.bytes = blob->size();
+        d.value = decode_(d.job.id, *blob);
+      } catch (const std::exception& e) {
+        d.ok = false;
+        d.error = e.what();
+      }
+      {
+        std::lock_guard lock(mutex_);
+        done_.push_back(std::move(d));
+        --in_flight_;
+      }
+      wake_main_.notify_all();
+    }
+  }
+
+  std::string path_;
+  Decode decode_;
+  std::mutex mutex_;
+  std::condition_variable wake_loader_, wake_main_;
+  std::deque<Job> jobs_;
+  std::vector<Done> done_;
+  int in_flight_ = 0;
+  bool stop_ = false;
+  std::thread thread_;  // last: starts after everything it uses exists
+};
+
+}  // namespace globe::viewer
