@@ -1,8 +1,6 @@
 // Opening line-cluster packages (see line_package.hpp).
 #include "line_package.hpp"
 
-#include <cpl_json.h>
-
 #include "errors.hpp"
 #include "package_open.hpp"
 #include "tileformat/line_tile.hpp"
@@ -17,15 +15,9 @@ LinePackage open_line_package(const std::string& path) {
   p.cluster_grid = static_cast<int>(meta_number(*p.reader, path, "globe:cluster_grid"));
   p.min_zoom = static_cast<int>(meta_number(*p.reader, path, "minzoom"));
   p.max_zoom = static_cast<int>(meta_number(*p.reader, path, "maxzoom"));
-  CPLJSONDocument doc;
   const auto classes = p.reader->meta("globe:classes");
-  if (!classes || !doc.LoadMemory(*classes) ||
-      doc.GetRoot().GetType() != CPLJSONObject::Type::Array)
-    throw InputError(path +
-                     ": metadata globe:classes is missing or not a JSON array (tileformat §7.4)");
-  const CPLJSONArray arr = doc.GetRoot().ToArray();
-  for (int i = 0; i < arr.Size(); ++i)
-    p.class_names.push_back(arr[i].GetString("name"));
+  if (!classes) throw InputError(path + ": metadata globe:classes is missing (tileformat §7.4)");
+  p.classes = parse_classes_json(*classes, path + ": metadata globe:classes (tileformat §7.4)");
   return p;
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "line_style.hpp"
 #include "tileformat/package.hpp"
 #include "tileformat/tiling.hpp"
 
@@ -15,7 +16,7 @@ struct LinePackage {
   std::unique_ptr<tileformat::PackageReader> reader;
   tileformat::Tiling tiling;
   int extent = 0, cluster_grid = 0, min_zoom = 0, max_zoom = 0;
-  std::vector<std::string> class_names;  // by class id (metadata globe:classes)
+  std::vector<NamedLineStyle> classes;  // by class id (metadata globe:classes)
 };
 
 // Throws InputError naming the file if it is missing, not a package, or not

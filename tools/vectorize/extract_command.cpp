@@ -63,7 +63,7 @@ int run_lines_extract(const std::vector<std::string>& args) {
           const uint64_t fid = t.feature_ids[feature_index];
           const auto& [layer, props] = feature(fid);
           return VectorAttributes{static_cast<int64_t>(fid),
-                                  class_id < p.class_names.size() ? p.class_names[class_id] : "",
+                                  class_id < p.classes.size() ? p.classes[class_id].name : "",
                                   layer, id.str(), props};
         };
         for (const auto& run : t.runs) {

@@ -22,8 +22,8 @@ int run_lines_info(const std::vector<std::string>& args) {
   LinePackage p = open_line_package(path);
   print_package_info(*p.reader, path);
   std::printf("classes:\n");
-  for (size_t i = 0; i < p.class_names.size(); ++i)
-    std::printf("  %4zu %s\n", i, p.class_names[i].c_str());
+  for (size_t i = 0; i < p.classes.size(); ++i)
+    std::printf("  %4zu %s\n", i, p.classes[i].name.c_str());
   const auto features = p.reader->db().query_int("SELECT count(*) FROM features");
   std::printf("features: %lld\n", static_cast<long long>(features.value_or(0)));
   std::map<int, tileformat::LineTileCounts> per_zoom;

@@ -11,10 +11,6 @@
 namespace globe {
 namespace {
 
-// Distinct, print-safe colours (ColorBrewer Dark2 + Set1), by class id.
-const char* const kPalette[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e",
-                                "#e6ab02", "#a6761d", "#377eb8", "#e41a1c", "#4daf4a"};
-
 std::vector<std::string> split(const std::string& s, char sep) {
   std::vector<std::string> out;
   std::string cur;
@@ -22,13 +18,6 @@ std::vector<std::string> split(const std::string& s, char sep) {
   while (std::getline(in, cur, sep))
     out.push_back(cur);
   return out;
-}
-
-bool is_color(const std::string& c) {
-  if (c.size() != 7 || c[0] != '#') return false;
-  for (size_t i = 1; i < 7; ++i)
-    if (!std::isxdigit(static_cast<unsigned char>(c[i]))) return false;
-  return true;
 }
 
 // "3", "3px" or "12m" -> value; sets *in_m when given.
@@ -63,7 +52,8 @@ void parse_style(const std::string& spec, LineStyle& s, const std::string& conte
                        "' is not key=value (keys: color, width, casing, dash)");
     const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
     if (key == "color") {
-      if (!is_color(value)) throw UsageError(context + ": color '" + value + "' is not #rrggbb");
+      if (!is_hex_color(value))
+        throw UsageError(context + ": color '" + value + "' is not #rrggbb");
       s.color = value;
     } else if (key == "width") {
       s.width = parse_length(value, context + " width", &s.width_in_m);
@@ -71,7 +61,7 @@ void parse_style(const std::string& spec, LineStyle& s, const std::string& conte
     } else if (key == "casing") {  // #rrggbb@WIDTH
       const auto at = value.find('@');
       s.casing_color = value.substr(0, at);
-      if (!is_color(s.casing_color))
+      if (!is_hex_color(s.casing_color))
         throw UsageError(context + ": casing '" + value + "' is not #rrggbb@WIDTH");
       s.casing_width =
           at == std::string::npos ? 1 : parse_length(value.substr(at + 1), context, nullptr);
@@ -119,7 +109,7 @@ uint32_t LineClasses::class_for(const std::string& layer, const std::string& val
   const uint32_t id = static_cast<uint32_t>(classes_.size());
   LineClass c{name, layer, {}, 1};
   if (auto it = styles_.find(name); it != styles_.end()) c.style = it->second;
-  if (c.style.color.empty()) c.style.color = kPalette[id % std::size(kPalette)];
+  if (c.style.color.empty()) c.style.color = palette_color(id);
   ids_[name] = id;
   classes_.push_back(std::move(c));
   return id;

@@ -9,18 +9,9 @@
 #include <string>
 #include <vector>
 
-namespace globe {
+#include "line_style.hpp"
 
-struct LineStyle {
-  std::string color;  // "#rrggbb"; "" = from the default palette
-  double width = 1.5;
-  bool width_in_m = false;   // false: pixels
-  std::string casing_color;  // "" = no casing
-  double casing_width = 0;   // on each side, in the unit of `width`
-  std::vector<double> dash;  // on/off lengths in the unit of `width`; empty = solid
-  // Half the drawn width including casing, in the width's unit.
-  double half_extent() const { return width / 2 + (casing_color.empty() ? 0 : casing_width); }
-};
+namespace globe {
 
 struct LineClass {
   std::string name;

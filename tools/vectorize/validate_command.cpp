@@ -62,7 +62,7 @@ int run_lines_validate(const std::vector<std::string>& args) {
         break;
       }
     for (const auto& run : t.runs)
-      if (run.class_id >= p.class_names.size()) {
+      if (run.class_id >= p.classes.size()) {
         r.error(where + ": class id " + std::to_string(run.class_id) + " not in globe:classes");
         break;
       }

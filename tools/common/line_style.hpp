@@ -1,0 +1,45 @@
+// The style of a line class (colour, width in px or m, casing, dash), as
+// globe-vectorize writes it into a line package's metadata (`globe:classes`,
+// tileformat §7.4) and as globe-view reads it back, optionally overridden by
+// a style file (docs/viewer.md "Style files").
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace globe {
+
+struct LineStyle {
+  std::string color;  // "#rrggbb"; "" = from the default palette
+  double width = 1.5;
+  bool width_in_m = false;   // false: pixels
+  std::string casing_color;  // "" = no casing
+  double casing_width = 0;   // on each side, in the unit of `width`
+  std::vector<double> dash;  // on/off lengths in the unit of `width`; empty = solid
+  bool visible = true;       // style files may hide a class
+  // Half the drawn width including casing, in the width's unit.
+  double half_extent() const { return width / 2 + (casing_color.empty() ? 0 : casing_width); }
+};
+
+struct NamedLineStyle {
+  std::string name;
+  LineStyle style;
+};
+
+// The default palette colour of class `id`.
+const char* palette_color(size_t id);
+bool is_hex_color(const std::string& c);
+
+// `globe:classes` (a JSON array, by class id) -> styles; empty colours take
+// the palette. Throws InputError naming `context`.
+std::vector<NamedLineStyle> parse_classes_json(const std::string& json, const std::string& context);
+
+// Applies a style file on top of `classes`: a JSON object whose keys are
+// class names, or "*" for every class a key does not name, each holding any
+// of "color", "width", "unit" ("px"|"m"), "casing_color", "casing_width",
+// "dash" (array of on/off lengths) and "visible". Throws InputError naming
+// `context` (the file) and the key.
+void apply_style_json(const std::string& json, const std::string& context,
+                      std::vector<NamedLineStyle>& classes);
+
+}  // namespace globe
