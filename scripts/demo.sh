@@ -3,7 +3,7 @@
 # missing, builds, fetches the sample DEMs, tiles one into a terrain package
 # prints its summary and renders a headless snapshot (OSMesa, no display needed),
 # then turns a real road network into a line-cluster package with styled classes.
-# Output: demo/jacksboro.mbtiles, demo/jacksboro.png, demo/canada_roads.mbtiles,
+# Output: demo/jacksboro.mbtiles, demo/jacksboro.png, demo/contours.png, demo/canada_roads.mbtiles,
 # demo/cbers20.mbtiles (git-ignored).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -23,8 +23,16 @@ build/tools/vectorize/globe-vectorize lines samples/data/canada_roads.shp --s_sr
   --style ferry:color=#2b8cbe,width=2px,dash=6+4 -o demo/canada_roads.mbtiles --force
 build/tools/vectorize/globe-vectorize validate demo/canada_roads.mbtiles
 build/tools/vectorize/globe-vectorize info demo/canada_roads.mbtiles | tail -n 20
+# Lines over terrain: 50 m contours of the same DEM, shaded per pixel on the terrain.
+rm -f demo/contours50.*
+gdal_contour -q -i 50 -a elev samples/data/jacksboro.tif demo/contours50.shp
+build/tools/vectorize/globe-vectorize lines -q demo/contours50.shp -o demo/contours.mbtiles --force \
+  --style 'contours50:color=#8c2d04,width=1.5px'
+build/viewer/globe-view demo/jacksboro.mbtiles demo/contours.mbtiles --snapshot demo/contours.png \
+  --size 1280x720 --camera=-84.30,36.55,2500,30,65 --stats
 build/tools/tiler/globe-tiler imagery samples/data/cbers20.tif --format jpg \
   -o demo/cbers20.mbtiles --force
 build/tools/tiler/globe-tiler validate demo/cbers20.mbtiles
 gdalinfo demo/cbers20.mbtiles >/dev/null && echo "demo: GDAL opens demo/cbers20.mbtiles (MBTiles)" >&2
-echo "demo: wrote demo/jacksboro.png, demo/canada_roads.mbtiles and demo/cbers20.mbtiles" >&2
+echo "demo: wrote demo/jacksboro.png, demo/contours.png, demo/canada_roads.mbtiles and" \
+  "demo/cbers20.mbtiles" >&2

@@ -9,15 +9,12 @@
 #include <fstream>
 
 #include "raster_fixtures.hpp"
+#include "render_fixtures.hpp"
 #include "test_support.hpp"
 
 namespace {
 
 using namespace globe_test;
-
-std::string viewer() {
-  return GLOBE_VIEW_PATH;
-}
 
 const char* kCamera = "--camera=-84.30,36.55,2500,30,65";
 
@@ -34,59 +31,6 @@ const std::string& jacksboro_package() {
     return p;
   }();
   return pkg;
-}
-
-std::vector<uint8_t> read_rgb(const std::string& path, int& w, int& h) {
-  gdal_setup();
-  GDALDatasetH ds = GDALOpen(path.c_str(), GA_ReadOnly);
-  if (!ds) return {};
-  w = GDALGetRasterXSize(ds), h = GDALGetRasterYSize(ds);
-  std::vector<uint8_t> rgb(size_t(w) * h * 3);
-  for (int b = 0; b < 3; ++b)
-    EXPECT_EQ(GDALRasterIO(GDALGetRasterBand(ds, b + 1), GF_Read, 0, 0, w, h, rgb.data() + b, w, h,
-                           GDT_Byte, 3, w * 3),
-              CE_None);
-  GDALClose(ds);
-  return rgb;
-}
-
-// Compares with the expected image; on failure writes <name>.actual.png and
-// <name>.diff.png (|difference| x 8) under the build's render-diffs folder.
-void expect_image(const std::string& actual, const std::string& name) {
-  const std::string expected = std::string(GLOBE_TEST_DATA_DIR) + "/render/" + name + ".png";
-  int w = 0, h = 0, ew = 0, eh = 0;
-  const auto a = read_rgb(actual, w, h);
-  const auto e = read_rgb(expected, ew, eh);
-  ASSERT_FALSE(e.empty()) << expected << " missing: run tests/data/render/make_expected.sh";
-  ASSERT_EQ(w, ew);
-  ASSERT_EQ(h, eh);
-  size_t bad = 0;
-  double sum = 0;
-  std::vector<uint8_t> diff(a.size());
-  for (size_t i = 0; i < a.size(); ++i) {
-    const int d = std::abs(int(a[i]) - int(e[i]));
-    sum += d;
-    if (d > 24) ++bad;
-    diff[i] = static_cast<uint8_t>(std::min(255, d * 8));
-  }
-  const double mean = sum / a.size();
-  const bool ok = mean <= 1.5 && bad <= a.size() / 200;
-  EXPECT_TRUE(ok) << name << ": mean |diff| " << mean << ", " << bad
-                  << " channel values off by > 24";
-  if (!ok) {
-    const fs::path out = fs::path(GLOBE_RENDER_DIFF_DIR);
-    fs::create_directories(out);
-    fs::copy_file(actual, out / (name + ".actual.png"), fs::copy_options::overwrite_existing);
-    GDALDatasetH mem = GDALCreate(GDALGetDriverByName("MEM"), "", w, h, 3, GDT_Byte, nullptr);
-    for (int b = 0; b < 3; ++b)
-      EXPECT_EQ(GDALRasterIO(GDALGetRasterBand(mem, b + 1), GF_Write, 0, 0, w, h, diff.data() + b,
-                             w, h, GDT_Byte, 3, w * 3),
-                CE_None);
-    GDALClose(GDALCreateCopy(GDALGetDriverByName("PNG"), (out / (name + ".diff.png")).c_str(), mem,
-                             FALSE, nullptr, nullptr, nullptr));
-    GDALClose(mem);
-    ADD_FAILURE() << "images kept in " << out;
-  }
 }
 
 TEST(ViewerRender, HillshadeSnapshotMatchesExpected) {
@@ -187,7 +131,7 @@ TEST(ViewerCli, BadInputGetsAClearError) {
   const Case cases[] = {
       {(dir / "missing.mbtiles").string() + snap, "missing.mbtiles", 1},
       {(dir / "text.mbtiles").string() + snap, "text.mbtiles", 1},
-      {(dir / "png.mbtiles").string() + snap, "not a terrain package", 1},
+      {(dir / "png.mbtiles").string() + snap, "an image package", 1},
       {jacksboro_package() + snap + " --camera 1,2,3", "--camera", 2},
       {jacksboro_package() + snap + " --shading sepia", "--shading", 2},
       {jacksboro_package() + " --snapshot " + (dir / "no/such/dir/x.png").string(), "x.png", 3},

@@ -44,7 +44,7 @@ int run_headless(const ViewerSettings& settings) {
   const double first_frame_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_start).count();
 
-  std::vector<double> frame_ms, terrain_ms, select_ms;
+  std::vector<double> frame_ms, terrain_ms, select_ms, lines_ms;
   uint64_t max_resident = scene.cache().stats().resident_bytes;
   for (size_t i = 0; i < poses.size(); ++i) {
     const int frames = settings.stats ? settings.frames : 1;
@@ -55,12 +55,13 @@ int run_headless(const ViewerSettings& settings) {
       frame_ms.push_back(
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       terrain_ms.push_back(f.terrain_ms);
+      lines_ms.push_back(f.lines_ms);
       select_ms.push_back(f.select_ms);
       max_resident = std::max(max_resident, scene.cache().stats().resident_bytes);
     }
   }
   if (settings.snapshot)
-    write_png(*settings.snapshot, scene.renderer().read_pixels(), scene.renderer().width(),
+    write_png(*settings.snapshot, scene.read_pixels(), scene.renderer().width(),
               scene.renderer().height());
   if (settings.export_mesh)
     write_mesh_ply(*settings.export_mesh, scene.capture(f), f.view, scene.world(),
@@ -84,7 +85,7 @@ int run_headless(const ViewerSettings& settings) {
         "\"max_error_px\": %g, \"vertices_evaluated\": %zu, \"waiting\": %zu, "
         "\"resident_blocks\": %zu, \"resident_bytes\": %llu, \"max_resident_bytes\": %llu, "
         "\"budget_bytes\": %llu, \"blocks_loaded\": %llu, \"evictions\": %llu, "
-        "\"broken_tiles\": %llu, \"bytes_read\": %llu, \"camera\": \"%s\"}\n",
+        "\"broken_tiles\": %llu, \"bytes_read\": %llu, \"camera\": \"%s\"",
         context->platform().c_str(), scene.renderer().width(), scene.renderer().height(),
         frame_ms.size(), median(frame_ms), median(terrain_ms), median(select_ms), first_frame_ms,
         f.patches.size(), triangles, full_res, settings.max_error_px,
@@ -95,6 +96,23 @@ int run_headless(const ViewerSettings& settings) {
         static_cast<unsigned long long>(cs.blocks_loaded),
         static_cast<unsigned long long>(cs.evictions), static_cast<unsigned long long>(cs.broken),
         static_cast<unsigned long long>(cs.bytes_read), poses.back().str().c_str());
+    if (LineLayer* lines = scene.lines()) {
+      const LineLayerStats ls = lines->stats();
+      std::printf(
+          ", \"lines\": \"%s\", \"lines_ms\": %.3f, \"line_tiles_used\": %zu, "
+          "\"line_tiles_resident\": %zu, \"line_tiles_empty\": %zu, \"line_bytes\": %llu, "
+          "\"line_budget_bytes\": %llu, \"line_tiles_loaded\": %llu, \"line_evictions\": %llu, "
+          "\"broken_line_tiles\": %llu, \"line_bytes_read\": %llu",
+          lines->mode() == LineMode::kDeferred ? "deferred" : "geometry", median(lines_ms),
+          ls.tiles_used, ls.cache.resident, ls.cache.known_empty,
+          static_cast<unsigned long long>(ls.cache.resident_bytes),
+          static_cast<unsigned long long>(ls.cache.budget_bytes),
+          static_cast<unsigned long long>(ls.cache.loaded),
+          static_cast<unsigned long long>(ls.cache.evictions),
+          static_cast<unsigned long long>(ls.cache.broken),
+          static_cast<unsigned long long>(ls.cache.bytes_read));
+    }
+    std::printf("}\n");
   }
   return kExitOk;
 }

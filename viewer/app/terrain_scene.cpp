@@ -4,7 +4,10 @@
 #include <chrono>
 #include <sstream>
 
+#include "app/package_set.hpp"
 #include "errors.hpp"
+#include "line_package.hpp"
+#include "render/readback.hpp"
 #include "terrain_package.hpp"
 #include "tileformat/package.hpp"
 
@@ -41,17 +44,24 @@ tileformat::Bounds data_bounds_crs(const TerrainPackage& p, const WorldFrame& wo
 }  // namespace
 
 TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings) {
-  if (settings_.packages.size() > 1)
-    throw UsageError(
-        "one terrain package per view for now; imagery and line packages come "
-        "with their tools (docs/viewer.md)");
-  const std::string& path = settings_.packages.front();
+  const PackageSet set = sort_packages(settings_.packages);
+  const std::string& path = set.terrain;
   TerrainPackage package = open_terrain_package(path);
+  std::optional<LinePackage> lines;
+  if (set.lines && settings_.lines) {
+    lines = open_line_package(*set.lines);
+    check_same_tiling(package.tiling, path, lines->tiling, *set.lines);
+  } else if (settings_.style) {
+    throw UsageError("--style styles lines; give a line package too");
+  }
+  // With lines, a quarter of the budget holds line tiles.
+  const uint64_t budget = settings_.cache_mb << 20;
+  const uint64_t line_budget = lines ? budget / 4 : 0;
   if (package.max_zoom > 21)
     throw InputError(path + ": maxzoom " + std::to_string(package.max_zoom) +
                      " is deeper than the viewer's integer vertex frame supports (21)");
   world_ = std::make_unique<WorldFrame>(package.tiling, package.block_size - 1, package.max_zoom);
-  cache_ = std::make_unique<BlockCache>(path, std::move(package), settings_.cache_mb << 20);
+  cache_ = std::make_unique<BlockCache>(path, std::move(package), budget - line_budget);
   selector_ = std::make_unique<PatchSelector>(cache_->package());
   if (selector_->root_tiles().empty())
     throw InputError(path + ": no tiles at minzoom " + std::to_string(cache_->package().min_zoom) +
@@ -59,9 +69,26 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
   renderer_ = std::make_unique<TerrainRenderer>(
       cache_->package().block_size, cache_->package().lattice,
       static_cast<int>(cache_->slot_count()), settings_.width, settings_.height);
+  if (lines)
+    lines_ = std::make_unique<LineLayer>(*set.lines, std::move(*lines), settings_.style,
+                                         settings_.line_mode, line_budget, settings_.width,
+                                         settings_.height);
 }
 
 TerrainScene::~TerrainScene() = default;
+
+void TerrainScene::resize(int width, int height) {
+  renderer_->resize(width, height);
+  if (lines_) lines_->resize(width, height);
+}
+
+GLuint TerrainScene::output_fbo() const {
+  return lines_ ? lines_->output_fbo() : renderer_->gbuffer().fbo;
+}
+
+std::vector<uint8_t> TerrainScene::read_pixels() const {
+  return read_rgba(output_fbo(), renderer_->width(), renderer_->height());
+}
 
 void TerrainScene::upload_loaded() {
   for (const LoadedBlock& b : cache_->take_loaded())
@@ -113,8 +140,17 @@ FrameResult TerrainScene::frame(const CameraPose& pose, bool settle, bool draw) 
     if (!settle || !cache_->loader_busy() || round > 1000) break;
     cache_->wait_for_loader();
   }
-  if (draw)
-    f.terrain_ms = renderer_->draw(f.patches, f.view, *world_, settings_.shading).terrain_ms;
+  if (!draw) return f;
+  f.terrain_ms = renderer_->draw(f.patches, f.view, *world_, settings_.shading).terrain_ms;
+  if (lines_) {
+    TerrainHeights heights;
+    if (lines_->mode() == LineMode::kGeometry) {
+      heights = {renderer_->heights_texture(), cache_->resident_slots(), package().min_zoom,
+                 package().max_zoom, package().block_size};
+    }
+    f.lines_ms = lines_->draw(renderer_->gbuffer(), f.view, *world_, settings_.shading.exaggeration,
+                              heights, settle);
+  }
   return f;
 }
 

@@ -1,13 +1,14 @@
 // What one viewer session shows: the opened terrain package, its block cache,
-// the patch selector, the world frame and the renderer, and the per-frame
-// sequence (select -> request -> upload -> draw) that both the window and the
-// headless runs use.
+// the patch selector, the world frame and the renderer, the optional line
+// layer, and the per-frame sequence (select -> request -> upload -> draw
+// terrain -> line pass) that both the window and the headless runs use.
 #pragma once
 
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "app/line_layer.hpp"
 #include "app/viewer_settings.hpp"
 #include "camera/camera.hpp"
 #include "camera/world_frame.hpp"
@@ -21,7 +22,7 @@ struct FrameResult {
   View view;
   std::vector<Patch> patches;
   SelectionStats selection;
-  double select_ms = 0, terrain_ms = 0;
+  double select_ms = 0, terrain_ms = 0, lines_ms = 0;
 };
 
 class TerrainScene {
@@ -34,7 +35,7 @@ class TerrainScene {
   // Loads the root blocks (needed for heights and --fit) and returns the pose
   // to start from: --camera, else a view of the whole package.
   CameraPose initial_pose();
-  void resize(int width, int height) { renderer_->resize(width, height); }
+  void resize(int width, int height);
 
   // One frame. `settle`: keep selecting and loading until nothing the view
   // needs is missing (headless); otherwise never wait for I/O.
@@ -44,6 +45,10 @@ class TerrainScene {
   }
 
   TerrainRenderer& renderer() { return *renderer_; }
+  LineLayer* lines() { return lines_.get(); }
+  // The finished image (terrain, with lines if any): framebuffer and pixels.
+  GLuint output_fbo() const;
+  std::vector<uint8_t> read_pixels() const;
   BlockCache& cache() { return *cache_; }
   WorldFrame& world() { return *world_; }
   const TerrainPackage& package() const { return cache_->package(); }
@@ -59,6 +64,7 @@ class TerrainScene {
   std::unique_ptr<PatchSelector> selector_;
   std::unique_ptr<WorldFrame> world_;
   std::unique_ptr<TerrainRenderer> renderer_;
+  std::unique_ptr<LineLayer> lines_;
 };
 
 }  // namespace globe::viewer

@@ -11,8 +11,9 @@ namespace globe::viewer {
 std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::string>& args) {
   ViewerSettings s;
   CliArgs cli("globe-view",
-              "globe-view TERRAIN.mbtiles [options]\n"
-              "Renders a terrain package: in a window, or headless with --snapshot, --stats or\n"
+              "globe-view TERRAIN.mbtiles [LINES.mbtiles] [options]\n"
+              "Renders a terrain package, and the lines of a line-cluster package shaded per\n"
+              "pixel over it: in a window, or headless with --snapshot, --stats or\n"
               "--export-mesh (OSMesa or EGL; no display needed).");
   cli.option("--snapshot", "OUT.png", "render headless, write the image, exit",
              [&](const std::string& v) { s.snapshot = v; });
@@ -66,7 +67,9 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
                if (s.max_error_px <= 0) throw UsageError("--max-error-px: must be > 0");
              });
   cli.option(
-      "--cache-mb", "MB", "memory budget for resident terrain blocks (default 512)",
+      "--cache-mb", "MB",
+      "memory budget for resident terrain blocks and line tiles (default 512; a quarter goes "
+      "to line tiles when there are lines)",
       [&](const std::string& v) { s.cache_mb = CliArgs::to_int("--cache-mb", v, 4, 1 << 20); });
   cli.option("--shading", "MODE", "hillshade (default), elevation, slope or aspect",
              [&](const std::string& v) {
@@ -96,6 +99,23 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
     if (s.shading.exaggeration <= 0 || s.shading.exaggeration > 100)
       throw UsageError("--exaggeration: must be within (0, 100]");
   });
+  cli.option("--style", "FILE.json",
+             "line styles by class name, over the package's own (docs/viewer.md); the window "
+             "reloads the file when it changes, or on R",
+             [&](const std::string& v) { s.style = v; });
+  cli.option("--lines", "MODE",
+             "deferred (default: per-pixel shading from the G-buffer), geometry (the baseline: "
+             "draped quads) or off",
+             [&](const std::string& v) {
+               if (v == "deferred")
+                 s.line_mode = LineMode::kDeferred;
+               else if (v == "geometry")
+                 s.line_mode = LineMode::kGeometry;
+               else if (v == "off")
+                 s.lines = false;
+               else
+                 throw UsageError("--lines: unknown mode '" + v + "' (deferred, geometry, off)");
+             });
   cli.flag("--stats", "print frame statistics as JSON on stdout (headless)",
            [&] { s.stats = true; });
   cli.option("--frames", "N", "frames measured for --stats (default 5)",
@@ -112,7 +132,7 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
                  throw UsageError("--platform: unknown '" + v + "' (auto, glfw, osmesa, egl)");
                s.platform = v;
              });
-  auto positional = cli.parse_command(args, 1, 8, "package");
+  auto positional = cli.parse_command(args, 1, 3, "package");
   if (!positional) return std::nullopt;
   s.packages = *positional;
   if (s.platform == "glfw" && (s.snapshot || s.export_mesh || s.stats))

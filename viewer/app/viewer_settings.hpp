@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "camera/camera.hpp"
+#include "render/line_renderer.hpp"
 #include "render/terrain_renderer.hpp"
 
 namespace globe::viewer {
@@ -26,6 +27,9 @@ struct ViewerSettings {
   std::string platform = "auto";  // auto | osmesa | egl | glfw
   int frames = 5;                 // frames measured for --stats
   bool cull = true;
+  std::optional<std::string> style;  // line style file (JSON)
+  LineMode line_mode = LineMode::kDeferred;
+  bool lines = true;  // --lines off: draw none
 
   bool headless() const {
     return snapshot || export_mesh || stats || platform == "osmesa" || platform == "egl";

@@ -17,6 +17,7 @@
 #include "app/terrain_scene.hpp"
 #include "errors.hpp"
 #include "platform/glfw_window.hpp"
+#include "render/readback.hpp"
 
 namespace globe::viewer {
 
@@ -127,6 +128,13 @@ int run_window(const ViewerSettings& settings) {
       case GLFW_KEY_4:
         s.mode = Shading::kAspect;
         break;
+      case GLFW_KEY_F5:
+        if (scene->lines()) scene->lines()->reload_style(true);
+        break;
+      case GLFW_KEY_L:
+        if (LineLayer* l = scene->lines())
+          l->set_mode(l->mode() == LineMode::kDeferred ? LineMode::kGeometry : LineMode::kDeferred);
+        break;
       case GLFW_KEY_EQUAL:
       case GLFW_KEY_KP_ADD:
         s.exaggeration = std::min(s.exaggeration * 1.25, 100.0);
@@ -182,19 +190,21 @@ int run_window(const ViewerSettings& settings) {
     const FrameResult f = s.frame(orbit.pose(s.world(), settings.fov_y_deg), false, true);
     if (screenshot_pending) {
       const std::string name = "globe-view-" + std::to_string(++screenshot) + ".png";
-      write_png(name, s.renderer().read_pixels(), w, h);
+      write_png(name, s.read_pixels(), w, h);
       std::fprintf(stderr, "globe-view: wrote %s\n", name.c_str());
       screenshot_pending = false;
     }
-    s.renderer().blit_to_default(w, h);
+    blit_to_window(s.output_fbo(), s.renderer().width(), s.renderer().height(), w, h);
     window->swap();
     const auto now = std::chrono::steady_clock::now();
     if (now - last_title > std::chrono::milliseconds(500)) {
+      if (s.lines()) s.lines()->reload_style(false);  // picks up edits of the style file
       const double ms = std::chrono::duration<double, std::milli>(now - t0).count();
       char title[256];
       std::snprintf(title, sizeof title,
-                    "globe-view  %.1f ms  %zu patches  %zu k triangles  %zu blocks  waiting %zu",
-                    ms, f.patches.size(),
+                    "globe-view  %.1f ms (lines %.1f)  %zu patches  %zu k triangles  %zu blocks  "
+                    "waiting %zu",
+                    ms, f.lines_ms, f.patches.size(),
                     f.patches.size() * s.renderer().triangles_per_patch() / 1000,
                     s.cache().stats().resident, f.selection.waiting);
       window->set_title(title);

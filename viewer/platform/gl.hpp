@@ -77,7 +77,18 @@
   X(PFNGLBEGINQUERYPROC, BeginQuery)                                   \
   X(PFNGLENDQUERYPROC, EndQuery)                                       \
   X(PFNGLGETQUERYOBJECTUI64VPROC, GetQueryObjectui64v)                 \
-  X(PFNGLDELETEQUERIESPROC, DeleteQueries)
+  X(PFNGLDELETEQUERIESPROC, DeleteQueries)                             \
+  X(PFNGLNAMEDFRAMEBUFFERDRAWBUFFERSPROC, NamedFramebufferDrawBuffers) \
+  X(PFNGLCLEARNAMEDFRAMEBUFFERFVPROC, ClearNamedFramebufferfv)         \
+  X(PFNGLDRAWARRAYSPROC, DrawArrays)                                   \
+  X(PFNGLDRAWARRAYSINSTANCEDPROC, DrawArraysInstanced)                 \
+  X(PFNGLPOLYGONOFFSETPROC, PolygonOffset)                             \
+  X(PFNGLDEPTHMASKPROC, DepthMask)                                     \
+  X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)                             \
+  X(PFNGLUNIFORM1UIPROC, Uniform1ui)                                   \
+  X(PFNGLUNIFORM2IPROC, Uniform2i)                                     \
+  X(PFNGLNAMEDBUFFERSUBDATAPROC, NamedBufferSubData)                   \
+  X(PFNGLNAMEDFRAMEBUFFERREADBUFFERPROC, NamedFramebufferReadBuffer)
 
 namespace gl {
 

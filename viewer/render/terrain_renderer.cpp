@@ -2,7 +2,6 @@
 #include "render/terrain_renderer.hpp"
 
 #include <cmath>
-#include <cstring>
 #include <numbers>
 #include <stdexcept>
 
@@ -90,31 +89,43 @@ TerrainRenderer::TerrainRenderer(int block_size, int lattice, int slots, int wid
 
 TerrainRenderer::~TerrainRenderer() {
   gl::DeleteQueries(1, &timer_);
-  gl::DeleteFramebuffers(1, &fbo_);
-  GLuint textures[4] = {heights_, mask_, color_, depth_};
-  gl::DeleteTextures(4, textures);
+  gl::DeleteFramebuffers(1, &g_.fbo);
+  GLuint textures[6] = {heights_, mask_, g_.color, g_.position, g_.normal, g_.depth};
+  gl::DeleteTextures(6, textures);
   GLuint buffers[3] = {lattice_vbo_, index_buffer_, instance_buffer_};
   gl::DeleteBuffers(3, buffers);
   gl::DeleteVertexArrays(1, &vao_);
 }
 
 void TerrainRenderer::resize(int width, int height) {
-  if (width == width_ && height == height_) return;
-  width_ = width;
-  height_ = height;
-  if (fbo_) {
-    gl::DeleteFramebuffers(1, &fbo_);
-    GLuint t[2] = {color_, depth_};
-    gl::DeleteTextures(2, t);
+  if (width == g_.width && height == g_.height) return;
+  if (g_.fbo) {
+    gl::DeleteFramebuffers(1, &g_.fbo);
+    GLuint t[4] = {g_.color, g_.position, g_.normal, g_.depth};
+    gl::DeleteTextures(4, t);
   }
-  gl::CreateTextures(GL_TEXTURE_2D, 1, &color_);
-  gl::TextureStorage2D(color_, 1, GL_RGBA8, width, height);
-  gl::CreateTextures(GL_TEXTURE_2D, 1, &depth_);
-  gl::TextureStorage2D(depth_, 1, GL_DEPTH_COMPONENT24, width, height);
-  gl::CreateFramebuffers(1, &fbo_);
-  gl::NamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0, color_, 0);
-  gl::NamedFramebufferTexture(fbo_, GL_DEPTH_ATTACHMENT, depth_, 0);
-  if (gl::CheckNamedFramebufferStatus(fbo_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+  g_.width = width;
+  g_.height = height;
+  auto texture = [&](GLenum format) {
+    GLuint t = 0;
+    gl::CreateTextures(GL_TEXTURE_2D, 1, &t);
+    gl::TextureStorage2D(t, 1, format, width, height);
+    gl::TextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl::TextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return t;
+  };
+  g_.color = texture(GL_RGBA8);
+  g_.position = texture(GL_RGBA32F);
+  g_.normal = texture(GL_RGBA16F);
+  g_.depth = texture(GL_DEPTH_COMPONENT24);
+  gl::CreateFramebuffers(1, &g_.fbo);
+  gl::NamedFramebufferTexture(g_.fbo, GL_COLOR_ATTACHMENT0, g_.color, 0);
+  gl::NamedFramebufferTexture(g_.fbo, GL_COLOR_ATTACHMENT1, g_.position, 0);
+  gl::NamedFramebufferTexture(g_.fbo, GL_COLOR_ATTACHMENT2, g_.normal, 0);
+  gl::NamedFramebufferTexture(g_.fbo, GL_DEPTH_ATTACHMENT, g_.depth, 0);
+  const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+  gl::NamedFramebufferDrawBuffers(g_.fbo, 3, buffers);
+  if (gl::CheckNamedFramebufferStatus(g_.fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw std::runtime_error("the offscreen framebuffer is incomplete");
 }
 
@@ -166,12 +177,16 @@ void TerrainRenderer::set_common_uniforms(const GlProgram& p, const View& view,
 RenderTimes TerrainRenderer::draw(const std::vector<Patch>& patches, const View& view,
                                   const WorldFrame& frame, const ShadingSettings& s) {
   upload_instances(patches, view, frame);
-  gl::BindFramebuffer(GL_FRAMEBUFFER, fbo_);
-  gl::Viewport(0, 0, width_, height_);
-  gl::ClearColor(0.62f, 0.72f, 0.82f, 1.0f);
+  gl::BindFramebuffer(GL_FRAMEBUFFER, g_.fbo);
+  gl::Viewport(0, 0, g_.width, g_.height);
   gl::Enable(GL_DEPTH_TEST);
   gl::DepthFunc(GL_LESS);
-  gl::Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  gl::DepthMask(GL_TRUE);
+  const float sky[4] = {0.62f, 0.72f, 0.82f, 1.0f}, none[4] = {0, 0, 0, 0}, far = 1.0f;
+  gl::ClearNamedFramebufferfv(g_.fbo, GL_COLOR, 0, sky);
+  gl::ClearNamedFramebufferfv(g_.fbo, GL_COLOR, 1, none);
+  gl::ClearNamedFramebufferfv(g_.fbo, GL_COLOR, 2, none);
+  gl::ClearNamedFramebufferfv(g_.fbo, GL_DEPTH, 0, &far);
   set_common_uniforms(draw_program_, view, frame, s.exaggeration);
   const GlProgram& p = draw_program_;
   gl::Uniform1i(p.uniform("u_mask"), 1);
@@ -200,21 +215,6 @@ RenderTimes TerrainRenderer::draw(const std::vector<Patch>& patches, const View&
   return {static_cast<double>(ns) / 1e6};
 }
 
-std::vector<uint8_t> TerrainRenderer::read_pixels() const {
-  std::vector<uint8_t> rgba(size_t(width_) * height_ * 4);
-  gl::BindFramebuffer(GL_FRAMEBUFFER, fbo_);
-  gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
-  gl::ReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-  gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
-  gl::check("reading the image back");
-  // GL rows are bottom-up.
-  const size_t row = size_t(width_) * 4;
-  std::vector<uint8_t> flipped(rgba.size());
-  for (int y = 0; y < height_; ++y)
-    std::memcpy(&flipped[size_t(y) * row], &rgba[size_t(height_ - 1 - y) * row], row);
-  return flipped;
-}
-
 std::vector<float> TerrainRenderer::capture_triangles(const std::vector<Patch>& patches,
                                                       const View& view, const WorldFrame& frame,
                                                       double exaggeration) {
@@ -240,11 +240,6 @@ std::vector<float> TerrainRenderer::capture_triangles(const std::vector<Patch>& 
   gl::DeleteBuffers(1, &buffer);
   gl::check("capturing the mesh");
   return out;
-}
-
-void TerrainRenderer::blit_to_default(int width, int height) const {
-  gl::BlitNamedFramebuffer(fbo_, 0, 0, 0, width_, height_, 0, 0, width, height, GL_COLOR_BUFFER_BIT,
-                           GL_LINEAR);
 }
 
 }  // namespace globe::viewer

@@ -24,6 +24,14 @@ struct ShadingSettings {
   double range_min_m = 0, range_max_m = 1000;  // elevation ramp
 };
 
+// The terrain pass's output: shaded colour (RGBA8), world position (RGBA32F,
+// metres from the view origin, w = 1 where terrain was drawn), the drawn
+// triangle's normal (RGBA16F) and depth.
+struct GBuffer {
+  GLuint fbo = 0, color = 0, position = 0, normal = 0, depth = 0;
+  int width = 0, height = 0;
+};
+
 struct RenderTimes {
   double terrain_ms = 0;  // GPU time of the terrain pass
 };
@@ -41,17 +49,14 @@ class TerrainRenderer {
   // Draws into the offscreen framebuffer; waits for the GPU and returns its time.
   RenderTimes draw(const std::vector<Patch>& patches, const View& view, const WorldFrame& frame,
                    const ShadingSettings& shading);
-  // RGBA8, top row first.
-  std::vector<uint8_t> read_pixels() const;
+  const GBuffer& gbuffer() const { return g_; }
+  GLuint heights_texture() const { return heights_; }
   // The drawn triangles, 3 vertices each, world metres relative to view.origin.
   std::vector<float> capture_triangles(const std::vector<Patch>& patches, const View& view,
                                        const WorldFrame& frame, double exaggeration);
-  // Copies the image to the window's framebuffer (0).
-  void blit_to_default(int width, int height) const;
-
   size_t triangles_per_patch() const { return static_cast<size_t>(lattice_) * lattice_; }
-  int width() const { return width_; }
-  int height() const { return height_; }
+  int width() const { return g_.width; }
+  int height() const { return g_.height; }
 
  private:
   void upload_instances(const std::vector<Patch>& patches, const View& view,
@@ -59,12 +64,12 @@ class TerrainRenderer {
   void set_common_uniforms(const GlProgram& p, const View& view, const WorldFrame& frame,
                            double exaggeration) const;
 
-  int size_, lattice_, slots_, width_ = 0, height_ = 0;
+  int size_, lattice_, slots_;
   GLsizei index_count_ = 0;
   GlProgram draw_program_, capture_program_;
   GLuint vao_ = 0, lattice_vbo_ = 0, index_buffer_ = 0, instance_buffer_ = 0;
   GLuint heights_ = 0, mask_ = 0;
-  GLuint fbo_ = 0, color_ = 0, depth_ = 0;
+  GBuffer g_;
   GLuint timer_ = 0;
 };
 

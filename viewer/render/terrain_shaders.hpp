@@ -32,7 +32,8 @@ void main() {
 }
 )";
 
-// Shading modes: 0 hillshade, 1 elevation ramp, 2 slope, 3 aspect.
+// Shading modes: 0 hillshade, 1 elevation ramp, 2 slope, 3 aspect. Also
+// writes the G-buffer the line pass reads: position and surface plane.
 inline constexpr const char* kTerrainFragment = R"(#version 450 core
 in vec3 v_world;
 in vec2 v_sample;
@@ -45,7 +46,9 @@ uniform float u_zscale;    // world z per metre of height (with exaggeration)
 uniform vec3 u_sun;        // unit vector towards the sun
 uniform int u_mode;
 uniform vec2 u_range;      // height range for the ramp (metres)
-out vec4 o_color;
+layout(location = 0) out vec4 o_color;
+layout(location = 1) out vec4 o_position;  // G-buffer: world point, w = 1 on terrain
+layout(location = 2) out vec4 o_normal;    // G-buffer: plane of the drawn triangle
 
 float height_at(vec2 s) {
   return texture(u_heights, vec3((s + 0.5) / u_size, float(v_layer))).r;
@@ -84,6 +87,8 @@ void main() {
     color = mix(vec3(0.85), hue(aspect), steep);
   }
   o_color = vec4(color, 1.0);
+  o_position = vec4(v_world, 1.0);
+  o_normal = vec4(normalize(cross(dFdx(v_world), dFdy(v_world))), 0.0);
 }
 )";
 

@@ -13,4 +13,14 @@ for mode in elevation slope aspect; do
   build/viewer/globe-view "$tmp/j.mbtiles" --snapshot $out/jacksboro_fit_$mode.png --size 320x180 \
     --fit --shading $mode
 done
+# Lines (tests/viewer_lines_test.cpp): 50 m contours of the same DEM.
+gdal_contour -q -i 50 -a elev samples/data/jacksboro.tif "$tmp/c50.shp"
+build/tools/vectorize/globe-vectorize lines -q "$tmp/c50.shp" -o "$tmp/c.mbtiles" \
+  --style 'c50:color=#8c2d04,width=1.5px'
+build/viewer/globe-view "$tmp/j.mbtiles" "$tmp/c.mbtiles" --snapshot $out/jacksboro_contours.png \
+  --size 320x180 --camera=-84.30,36.55,2500,30,65
+echo '{"c50": {"color": "#ffd92f", "width": 3, "casing_color": "#303030",
+  "casing_width": 1, "dash": [8, 4]}}' >"$tmp/style.json"
+build/viewer/globe-view "$tmp/j.mbtiles" "$tmp/c.mbtiles" --style "$tmp/style.json" \
+  --snapshot $out/jacksboro_contours_styled.png --size 320x180 --camera=-84.25,36.60,6000,0,0
 ls -l $out/*.png

@@ -1,0 +1,74 @@
+// Helpers of the viewer tests: running globe-view, reading PNG snapshots,
+// comparing them with expected images (tolerance; the diff image is kept on
+// failure).
+#pragma once
+
+#include <gdal.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "raster_fixtures.hpp"
+#include "test_support.hpp"
+
+namespace globe_test {
+
+inline std::string viewer() {
+  return GLOBE_VIEW_PATH;
+}
+
+inline std::vector<uint8_t> read_rgb(const std::string& path, int& w, int& h) {
+  gdal_setup();
+  GDALDatasetH ds = GDALOpen(path.c_str(), GA_ReadOnly);
+  if (!ds) return {};
+  w = GDALGetRasterXSize(ds), h = GDALGetRasterYSize(ds);
+  std::vector<uint8_t> rgb(size_t(w) * h * 3);
+  for (int b = 0; b < 3; ++b)
+    EXPECT_EQ(GDALRasterIO(GDALGetRasterBand(ds, b + 1), GF_Read, 0, 0, w, h, rgb.data() + b, w, h,
+                           GDT_Byte, 3, w * 3),
+              CE_None);
+  GDALClose(ds);
+  return rgb;
+}
+
+// Compares with the expected image; on failure writes <name>.actual.png and
+// <name>.diff.png (|difference| x 8) under the build's render-diffs folder.
+inline void expect_image(const std::string& actual, const std::string& name) {
+  const std::string expected = std::string(GLOBE_TEST_DATA_DIR) + "/render/" + name + ".png";
+  int w = 0, h = 0, ew = 0, eh = 0;
+  const auto a = read_rgb(actual, w, h);
+  const auto e = read_rgb(expected, ew, eh);
+  ASSERT_FALSE(e.empty()) << expected << " missing: run tests/data/render/make_expected.sh";
+  ASSERT_EQ(w, ew);
+  ASSERT_EQ(h, eh);
+  size_t bad = 0;
+  double sum = 0;
+  std::vector<uint8_t> diff(a.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    const int d = std::abs(int(a[i]) - int(e[i]));
+    sum += d;
+    if (d > 24) ++bad;
+    diff[i] = static_cast<uint8_t>(std::min(255, d * 8));
+  }
+  const double mean = sum / a.size();
+  const bool ok = mean <= 1.5 && bad <= a.size() / 200;
+  EXPECT_TRUE(ok) << name << ": mean |diff| " << mean << ", " << bad
+                  << " channel values off by > 24";
+  if (!ok) {
+    const fs::path out = fs::path(GLOBE_RENDER_DIFF_DIR);
+    fs::create_directories(out);
+    fs::copy_file(actual, out / (name + ".actual.png"), fs::copy_options::overwrite_existing);
+    GDALDatasetH mem = GDALCreate(GDALGetDriverByName("MEM"), "", w, h, 3, GDT_Byte, nullptr);
+    for (int b = 0; b < 3; ++b)
+      EXPECT_EQ(GDALRasterIO(GDALGetRasterBand(mem, b + 1), GF_Write, 0, 0, w, h, diff.data() + b,
+                             w, h, GDT_Byte, 3, w * 3),
+                CE_None);
+    GDALClose(GDALCreateCopy(GDALGetDriverByName("PNG"), (out / (name + ".diff.png")).c_str(), mem,
+                             FALSE, nullptr, nullptr, nullptr));
+    GDALClose(mem);
+    ADD_FAILURE() << "images kept in " << out;
+  }
+}
+
+}  // namespace globe_test

@@ -1,0 +1,59 @@
+// The lines of one view: a line package's tile cache, its styles (from the
+// package, optionally overridden by a style file that can be reloaded while
+// the window is open) and the line pass that draws them over the terrain.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "data/line_cache.hpp"
+#include "line_style.hpp"
+#include "render/line_renderer.hpp"
+
+namespace globe::viewer {
+
+struct LineLayerStats {
+  LineCacheStats cache;
+  size_t tiles_used = 0;  // records the last frame read
+};
+
+class LineLayer {
+ public:
+  // Throws InputError if the style file is unreadable or wrong.
+  LineLayer(const std::string& path, LinePackage package, std::optional<std::string> style_path,
+            LineMode mode, uint64_t budget_bytes, int width, int height);
+
+  void resize(int width, int height) { renderer_.resize(width, height); }
+  // The line pass over `g`; `settle`: keep loading until no visible tile is
+  // missing (headless). Returns the GPU time of the last pass in ms.
+  double draw(const GBuffer& g, const View& view, const WorldFrame& world, double exaggeration,
+              const TerrainHeights& terrain, bool settle);
+  GLuint output_fbo() const { return renderer_.output_fbo(); }
+
+  // Re-reads the style file if it changed since the last read (force: even
+  // if not). A broken file keeps the current styles; the error goes to stderr.
+  void reload_style(bool force);
+  LineMode mode() const { return mode_; }
+  void set_mode(LineMode m) { mode_ = m; }
+  LineLayerStats stats() const { return {cache_.stats(), tiles_used_}; }
+
+ private:
+  std::vector<NamedLineStyle> read_styles() const;
+  size_t upload_loaded();
+
+  std::string path_;
+  std::optional<std::string> style_path_;
+  std::filesystem::file_time_type style_time_{};
+  std::vector<NamedLineStyle> package_styles_;
+  LineMode mode_;
+  LineCache cache_;
+  LineRenderer renderer_;
+  uint32_t frame_ = 0;
+  size_t tiles_used_ = 0;
+};
+
+}  // namespace globe::viewer

@@ -1,0 +1,61 @@
+// Sorting the viewer's packages (see package_set.hpp).
+#include "app/package_set.hpp"
+
+#include <cmath>
+
+#include "errors.hpp"
+#include "image_package.hpp"
+#include "package_open.hpp"
+#include "spatial_ref.hpp"
+#include "tileformat/line_tile.hpp"
+#include "tileformat/package.hpp"
+
+namespace globe::viewer {
+
+PackageSet sort_packages(const std::vector<std::string>& paths) {
+  PackageSet set;
+  for (const std::string& path : paths) {
+    const std::string format = package_format(*open_package(path), path);
+    if (format == tileformat::kMBlockFormat) {
+      if (!set.terrain.empty())
+        throw UsageError("two terrain packages (" + set.terrain + ", " + path +
+                         "); globe-view draws one terrain per view");
+      set.terrain = path;
+    } else if (format == tileformat::kLineClustersFormat) {
+      if (set.lines)
+        throw UsageError("two line packages (" + *set.lines + ", " + path +
+                         "); globe-view draws one line package per view");
+      set.lines = path;
+    } else if (is_image_format(format)) {
+      throw InputError(path +
+                       ": an image package; draping imagery is not supported by this version "
+                       "of globe-view (docs/viewer.md)");
+    } else {
+      throw InputError(path + ": format '" + format +
+                       "' is neither a terrain nor a line-cluster package");
+    }
+  }
+  if (set.terrain.empty())
+    throw UsageError("no terrain package among the arguments; lines are drawn over terrain");
+  return set;
+}
+
+void check_same_tiling(const tileformat::Tiling& t, const std::string& terrain_path,
+                       const tileformat::Tiling& o, const std::string& other_path) {
+  auto close = [](double a, double b) {
+    return std::abs(a - b) <= 1e-9 * std::max(1.0, std::abs(a) + std::abs(b));
+  };
+  bool same = t.scheme == o.scheme && close(t.origin_x, o.origin_x) &&
+              close(t.origin_y, o.origin_y) && close(t.root_size, o.root_size) &&
+              t.roots_x == o.roots_x && t.roots_y == o.roots_y;
+  if (same && t.scheme == "local" && t.crs != o.crs)
+    same = SpatialRef::from_user_input(t.crs, terrain_path)
+               .is_same(SpatialRef::from_user_input(o.crs, other_path));
+  if (!same)
+    throw InputError(other_path + ": its tiling (" + o.scheme + ", root " +
+                     std::to_string(o.root_size) + ") differs from the terrain's (" + terrain_path +
+                     ": " + t.scheme + ", root " + std::to_string(t.root_size) +
+                     "); rebuild it with the terrain's --tiling (and --like for local tilings)");
+}
+
+}  // namespace globe::viewer

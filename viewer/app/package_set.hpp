@@ -1,0 +1,27 @@
+// Which of the command line's packages is the terrain and which the lines:
+// sorted by their `format` metadata, checked for a common tiling.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tileformat/tiling.hpp"
+
+namespace globe::viewer {
+
+struct PackageSet {
+  std::string terrain;
+  std::optional<std::string> lines;
+};
+
+// Throws InputError (a package that is missing or of an unknown kind, an
+// image package) or UsageError (no terrain, two of a kind).
+PackageSet sort_packages(const std::vector<std::string>& paths);
+
+// Throws InputError naming both files unless `other` uses the terrain's
+// tiling scheme, CRS, origin and root size.
+void check_same_tiling(const tileformat::Tiling& terrain, const std::string& terrain_path,
+                       const tileformat::Tiling& other, const std::string& other_path);
+
+}  // namespace globe::viewer

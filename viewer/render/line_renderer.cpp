@@ -1,0 +1,309 @@
+// The line pass (see line_renderer.hpp).
+#include "render/line_renderer.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <stdexcept>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "render/line_shaders.hpp"
+#include "render/tile_table.hpp"
+
+namespace globe::viewer {
+
+namespace {
+
+constexpr uint32_t kRequestSlots = 4096;  // power of two
+constexpr float kTilePx = 256;            // tileformat §7.3: draw tiles at >= 256 px per edge
+
+// Buffer bindings, as in line_shaders.hpp.
+enum Binding : GLuint {
+  kArena = 0,
+  kRecords = 1,
+  kLineTable = 2,
+  kStyles = 3,
+  kRequests = 4,
+  kUsed = 5,
+  kTerrainTable = 6
+};
+
+glm::vec4 rgb(const std::string& hex) {
+  if (hex.size() != 7) return glm::vec4(0);
+  const unsigned v = static_cast<unsigned>(std::stoul(hex.substr(1), nullptr, 16));
+  return {((v >> 16) & 255) / 255.0f, ((v >> 8) & 255) / 255.0f, (v & 255) / 255.0f, 1.0f};
+}
+
+// Where the view origin lies in tiles of zoom `zoom`, for tile_at() in GLSL.
+void set_tile_ref(const GlProgram& p, const std::string& name, const View& view,
+                  const WorldFrame& world, int zoom) {
+  const tileformat::Tiling& t = world.tiling();
+  const double size = t.tile_size(zoom);
+  const glm::dvec2 o = world.key_to_crs(double(view.origin.x), double(view.origin.y));
+  const double tx = (o.x - t.origin_x) / size, ty = (t.origin_y - o.y) / size;
+  const double bx = std::floor(tx), by = std::floor(ty);
+  gl::Uniform2i(p.uniform((name + ".base").c_str()), static_cast<int>(bx), static_cast<int>(by));
+  gl::Uniform2f(p.uniform((name + ".frac").c_str()), static_cast<float>(tx - bx),
+                static_cast<float>(ty - by));
+  gl::Uniform2f(p.uniform((name + ".per_m").c_str()),
+                static_cast<float>(1 / (world.metres_per_crs_x() * size)),
+                static_cast<float>(1 / (world.metres_per_crs_y() * size)));
+  gl::Uniform1i(p.uniform((name + ".zoom").c_str()), zoom);
+}
+
+void fill_buffer(GLuint buffer, size_t bytes, const void* data) {
+  gl::NamedBufferData(buffer, std::max<size_t>(bytes, 16), nullptr, GL_STREAM_DRAW);
+  if (bytes) gl::NamedBufferSubData(buffer, 0, bytes, data);
+}
+
+std::string program_source(const std::string& table, int binding, const char* body) {
+  return std::string(shaders::kLineCommon) + kTileHashGlsl + tile_table_glsl(table, binding) + body;
+}
+
+}  // namespace
+
+LineRenderer::LineRenderer(uint64_t arena_words, int width, int height) {
+  deferred_ = GlProgram("line pass", shaders::kFullScreenVertex,
+                        program_source("line_table", kLineTable, shaders::kLineDeferredFragment));
+  geometry_ = GlProgram(
+      "line geometry", program_source("terrain_table", kTerrainTable, shaders::kLineGeometryVertex),
+      shaders::kLineGeometryFragment);
+  GLuint buffers[7];
+  gl::CreateBuffers(7, buffers);
+  arena_ = buffers[0], records_ = buffers[1], table_ = buffers[2], styles_ = buffers[3],
+  requests_ = buffers[4], used_ = buffers[5], terrain_table_ = buffers[6];
+  gl::NamedBufferStorage(arena_, std::max<uint64_t>(arena_words, 4) * 4, nullptr,
+                         GL_DYNAMIC_STORAGE_BIT);
+  gl::NamedBufferStorage(requests_, kRequestSlots * 2 * sizeof(uint32_t), nullptr,
+                         GL_DYNAMIC_STORAGE_BIT);
+  for (GLuint b : {records_, table_, styles_, used_, terrain_table_})
+    fill_buffer(b, 0, nullptr);
+  gl::CreateVertexArrays(1, &vao_);
+  gl::CreateQueries(GL_TIME_ELAPSED, 1, &timer_);
+  resize(width, height);
+  gl::check("creating the line renderer");
+}
+
+LineRenderer::~LineRenderer() {
+  GLuint buffers[7] = {arena_, records_, table_, styles_, requests_, used_, terrain_table_};
+  gl::DeleteBuffers(7, buffers);
+  gl::DeleteVertexArrays(1, &vao_);
+  GLuint fbos[2] = {fbo_, geometry_fbo_}, textures[2] = {output_, pixel_record_};
+  gl::DeleteFramebuffers(2, fbos);
+  gl::DeleteTextures(2, textures);
+  gl::DeleteQueries(1, &timer_);
+}
+
+void LineRenderer::resize(int width, int height) {
+  if (width == width_ && height == height_) return;
+  width_ = width, height_ = height;
+  if (fbo_) {
+    GLuint fbos[2] = {fbo_, geometry_fbo_}, textures[2] = {output_, pixel_record_};
+    gl::DeleteFramebuffers(2, fbos);
+    gl::DeleteTextures(2, textures);
+  }
+  gl::CreateTextures(GL_TEXTURE_2D, 1, &output_);
+  gl::TextureStorage2D(output_, 1, GL_RGBA8, width, height);
+  gl::CreateTextures(GL_TEXTURE_2D, 1, &pixel_record_);
+  gl::TextureStorage2D(pixel_record_, 1, GL_R32UI, width, height);
+  gl::TextureParameteri(pixel_record_, GL_TEXTURE_MIN_FILTER,
+                        GL_NEAREST);  // complete without mipmaps
+  gl::TextureParameteri(pixel_record_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl::CreateFramebuffers(1, &fbo_);
+  gl::NamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0, output_, 0);
+  gl::NamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT1, pixel_record_, 0);
+  const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  gl::NamedFramebufferDrawBuffers(fbo_, 2, buffers);
+  gl::CreateFramebuffers(1, &geometry_fbo_);
+  gl::NamedFramebufferTexture(geometry_fbo_, GL_COLOR_ATTACHMENT0, output_, 0);
+}
+
+void LineRenderer::set_styles(const std::vector<NamedLineStyle>& classes) {
+  std::vector<glm::vec4> v;
+  for (const NamedLineStyle& c : classes) {
+    const LineStyle& s = c.style;
+    const bool casing = !s.casing_color.empty() && s.casing_width > 0;
+    float dash[8] = {};
+    for (size_t i = 0; i < s.dash.size() && i < 8; ++i)
+      dash[i] = static_cast<float>(s.dash[i]);
+    v.push_back(rgb(s.color));
+    v.push_back(casing ? rgb(s.casing_color) : glm::vec4(0));
+    v.push_back({s.visible ? s.width / 2 : 0.0, casing ? s.casing_width : 0.0,
+                 s.width_in_m ? 1.0 : 0.0, static_cast<float>(s.dash.size())});
+    v.push_back({dash[0], dash[1], dash[2], dash[3]});
+    v.push_back({dash[4], dash[5], dash[6], dash[7]});
+  }
+  fill_buffer(styles_, v.size() * sizeof(glm::vec4), v.data());
+  class_count_ = static_cast<int>(classes.size());
+}
+
+void LineRenderer::upload(const LineRecord& r) {
+  if (!r.tile.words.empty())
+    gl::NamedBufferSubData(arena_, r.offset * 4, r.tile.words.size() * 4, r.tile.words.data());
+}
+
+void LineRenderer::upload_tables(const LineCache& cache) {
+  const auto& recs = cache.records();
+  std::vector<glm::uvec4> gpu(recs.size() * 2, glm::uvec4(0));
+  std::vector<std::pair<tileformat::TileId, uint32_t>> entries;
+  for (uint32_t i = 0; i < recs.size(); ++i) {
+    if (!cache.live(i)) continue;
+    const LineRecord& r = recs[i];
+    entries.emplace_back(r.id, i);
+    const uint32_t cells = r.tile.grid * r.tile.grid + 1;
+    const uint32_t off = static_cast<uint32_t>(r.offset);
+    gpu[2 * i] = {off, off + cells, off + cells + r.tile.cell_entries, r.tile.grid};
+    gpu[2 * i + 1] = {std::bit_cast<uint32_t>(float(r.tile.extent)),
+                      std::bit_cast<uint32_t>(float(r.tile.reach)), r.empty ? 1u : 0u, 0u};
+  }
+  fill_buffer(records_, gpu.size() * sizeof(glm::uvec4), gpu.data());
+  const auto table = build_tile_table(entries);
+  fill_buffer(table_, table.size() * sizeof(glm::uvec4), table.data());
+  table_mask_ = static_cast<uint32_t>(table.size() - 1);
+  record_count_ = static_cast<uint32_t>(recs.size());
+  const std::vector<uint32_t> zeros(std::max<size_t>(record_count_, kRequestSlots * 2), 0);
+  fill_buffer(used_, record_count_ * sizeof(uint32_t), zeros.data());
+  gl::NamedBufferSubData(requests_, 0, kRequestSlots * 2 * sizeof(uint32_t), zeros.data());
+}
+
+double LineRenderer::draw(const GBuffer& g, const View& view, const WorldFrame& world,
+                          double exaggeration, const LineCache& cache,
+                          const TerrainHeights& terrain, LineMode mode, uint32_t frame,
+                          LineFeedback& feedback) {
+  upload_tables(cache);
+  const LinePackage& pkg = cache.package();
+  const tileformat::Tiling& tiling = world.tiling();
+  const double mx = world.metres_per_crs_x(), my = world.metres_per_crs_y();
+
+  gl::BindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  gl::Viewport(0, 0, width_, height_);
+  gl::Disable(GL_DEPTH_TEST);
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kArena, arena_);
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kRecords, records_);
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kLineTable, table_);
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kStyles, styles_);
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kRequests, requests_);
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kUsed, used_);
+
+  const GlProgram& p = deferred_;
+  gl::UseProgram(p.id());
+  gl::BindTextureUnit(0, g.color);
+  gl::BindTextureUnit(1, g.position);
+  gl::BindTextureUnit(2, g.normal);
+  gl::Uniform1i(p.uniform("u_color"), 0);
+  gl::Uniform1i(p.uniform("u_position"), 1);
+  gl::Uniform1i(p.uniform("u_normal"), 2);
+  const glm::mat4 inv = glm::mat4(glm::inverse(view.proj * view.view));
+  gl::UniformMatrix4fv(p.uniform("u_inv_view_proj"), 1, GL_FALSE, glm::value_ptr(inv));
+  gl::Uniform3f(p.uniform("u_eye"), float(view.eye.x), float(view.eye.y), float(view.eye.z));
+  set_tile_ref(p, "u_ref", view, world, pkg.max_zoom);
+  gl::Uniform1i(p.uniform("u_min_zoom"), pkg.min_zoom);
+  gl::Uniform1i(p.uniform("u_max_zoom"), pkg.max_zoom);
+  const double m0x = mx * tiling.root_size, m0y = my * tiling.root_size;
+  gl::Uniform1f(p.uniform("u_zoom_bias"),
+                static_cast<float>(std::log2(std::min(m0x, m0y) / kTilePx)));
+  gl::Uniform2f(p.uniform("u_tile_m0"), float(m0x), float(m0y));
+  gl::Uniform1f(p.uniform("u_units_to_nominal_px"), kTilePx / float(std::max(pkg.extent, 1)));
+  gl::Uniform1f(p.uniform("u_world_per_m"), static_cast<float>(world.height_scale()));
+  gl::Uniform1ui(p.uniform("line_table_mask"), table_mask_);
+  gl::Uniform1ui(p.uniform("u_request_mask"), kRequestSlots - 1);
+  gl::Uniform1ui(p.uniform("u_frame"), frame);
+  gl::Uniform1i(p.uniform("u_class_count"), class_count_);
+  gl::Uniform1i(p.uniform("u_select_only"), mode == LineMode::kGeometry ? 1 : 0);
+  gl::BindVertexArray(vao_);
+  if (mode == LineMode::kDeferred) gl::BeginQuery(GL_TIME_ELAPSED, timer_);
+  gl::DrawArrays(GL_TRIANGLES, 0, 3);
+  if (mode == LineMode::kDeferred) gl::EndQuery(GL_TIME_ELAPSED);
+  read_feedback(cache, frame, feedback);
+  if (mode == LineMode::kGeometry) {
+    gl::BeginQuery(GL_TIME_ELAPSED, timer_);
+    draw_geometry(view, world, exaggeration, cache, terrain, g.depth, feedback.used);
+    gl::EndQuery(GL_TIME_ELAPSED);
+  }
+  GLuint64 ns = 0;
+  gl::GetQueryObjectui64v(timer_, GL_QUERY_RESULT, &ns);
+  gl::BindVertexArray(0);
+  gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
+  gl::check("drawing the lines");
+  return static_cast<double>(ns) / 1e6;
+}
+
+void LineRenderer::read_feedback(const LineCache& cache, uint32_t frame, LineFeedback& fb) {
+  gl::MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<uint32_t> req(kRequestSlots * 2), used(record_count_);
+  gl::GetNamedBufferSubData(requests_, 0, req.size() * 4, req.data());
+  if (record_count_) gl::GetNamedBufferSubData(used_, 0, used.size() * 4, used.data());
+  fb.requests.clear();
+  fb.used.clear();
+  for (uint32_t i = 0; i < kRequestSlots; ++i) {
+    if (req[2 * i] == 0 || req[2 * i + 1] == 0) continue;
+    const uint32_t k0 = req[2 * i] - 1;
+    fb.requests.push_back({static_cast<int>(k0 >> 24), k0 & 0xFFFFFF, req[2 * i + 1] - 1});
+  }
+  for (uint32_t r = 0; r < record_count_; ++r)
+    if (used[r] == frame && cache.live(r)) fb.used.push_back(r);
+}
+
+void LineRenderer::draw_geometry(const View& view, const WorldFrame& world, double exaggeration,
+                                 const LineCache& cache, const TerrainHeights& terrain,
+                                 GLuint depth, const std::vector<uint32_t>& used) {
+  std::vector<std::pair<tileformat::TileId, uint32_t>> slots;
+  for (const auto& [id, slot] : terrain.slots)
+    slots.emplace_back(id, static_cast<uint32_t>(slot));
+  const auto table = build_tile_table(slots);
+  fill_buffer(terrain_table_, table.size() * sizeof(glm::uvec4), table.data());
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTerrainTable, terrain_table_);
+
+  gl::NamedFramebufferTexture(geometry_fbo_, GL_DEPTH_ATTACHMENT, depth, 0);
+  gl::BindFramebuffer(GL_FRAMEBUFFER, geometry_fbo_);
+  const GlProgram& p = geometry_;
+  gl::UseProgram(p.id());
+  gl::BindTextureUnit(4, pixel_record_);
+  gl::Uniform1i(p.uniform("u_pixel_record"), 4);
+  gl::BindTextureUnit(3, terrain.texture);
+  gl::Uniform1i(p.uniform("u_heights"), 3);
+  gl::Uniform1ui(p.uniform("terrain_table_mask"), static_cast<uint32_t>(table.size() - 1));
+  set_tile_ref(p, "u_terrain_ref", view, world, terrain.max_zoom);
+  gl::Uniform1i(p.uniform("u_terrain_min_zoom"), terrain.min_zoom);
+  gl::Uniform1i(p.uniform("u_terrain_max_zoom"), terrain.max_zoom);
+  gl::Uniform1f(p.uniform("u_block_steps"), float(terrain.block_size - 1));
+  gl::Uniform1f(p.uniform("u_block_size"), float(terrain.block_size));
+  gl::Uniform1f(p.uniform("u_zscale"), float(world.height_scale() * exaggeration));
+  gl::UniformMatrix4fv(p.uniform("u_view_proj"), 1, GL_FALSE, glm::value_ptr(view.view_proj));
+  gl::Uniform2f(p.uniform("u_viewport"), float(width_), float(height_));
+  gl::Uniform1f(p.uniform("u_focal_px"), float(height_ * 0.5 * view.proj[1][1]));
+  gl::Uniform1i(p.uniform("u_class_count"), class_count_);
+  gl::Uniform1f(p.uniform("u_world_per_m"), static_cast<float>(world.height_scale()));
+
+  gl::Enable(GL_DEPTH_TEST);
+  gl::DepthFunc(GL_LEQUAL);
+  gl::DepthMask(GL_FALSE);
+  gl::Enable(GL_POLYGON_OFFSET_FILL);
+  gl::PolygonOffset(-1.0f, -4.0f);
+  const tileformat::Tiling& tiling = world.tiling();
+  const glm::dvec2 o = world.key_to_crs(double(view.origin.x), double(view.origin.y));
+  const double mx = world.metres_per_crs_x(), my = world.metres_per_crs_y();
+  for (int layer = 0; layer < 2; ++layer) {
+    gl::Uniform1i(p.uniform("u_layer"), layer);
+    for (uint32_t r : used) {
+      const LineRecord& rec = cache.records()[r];
+      if (rec.empty || rec.tile.segments == 0) continue;
+      const double size = tiling.tile_size(rec.id.z);
+      const double cx = tiling.origin_x + rec.id.x * size, cy = tiling.origin_y - rec.id.y * size;
+      const uint32_t cells = rec.tile.grid * rec.tile.grid + 1;
+      gl::Uniform1ui(p.uniform("u_segs_base"),
+                     static_cast<uint32_t>(rec.offset) + cells + rec.tile.cell_entries);
+      gl::Uniform2f(p.uniform("u_tile_origin"), float((cx - o.x) * mx), float((cy - o.y) * my));
+      gl::Uniform2f(p.uniform("u_m_per_unit"), float(mx * size / rec.tile.extent),
+                    float(my * size / rec.tile.extent));
+      gl::Uniform1ui(p.uniform("u_record"), r);
+      gl::DrawArraysInstanced(GL_TRIANGLES, 0, 6, static_cast<GLsizei>(rec.tile.segments));
+    }
+  }
+  gl::Disable(GL_POLYGON_OFFSET_FILL);
+  gl::DepthMask(GL_TRUE);
+  gl::Disable(GL_DEPTH_TEST);
+}
+
+}  // namespace globe::viewer

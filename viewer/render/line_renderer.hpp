@@ -1,0 +1,73 @@
+// The line pass (docs/viewer.md "Lines"): after the terrain pass, draws the
+// resident line tiles over the terrain image into its own output image.
+//  - deferred (default): one full-screen pass reads the G-buffer and shades
+//    each pixel from its line tile's cluster cell (line_shaders.hpp);
+//  - geometry: the baseline, the same tiles' segments as draped quads.
+// Either way the GPU reports which tiles its pixels wanted but did not find
+// (requests) and which records it used, for the line cache.
+#pragma once
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "camera/camera.hpp"
+#include "data/line_cache.hpp"
+#include "line_style.hpp"
+#include "render/gl_program.hpp"
+#include "render/terrain_renderer.hpp"
+
+namespace globe::viewer {
+
+enum class LineMode { kDeferred, kGeometry };
+
+// The terrain data the geometry baseline drapes its lines on.
+struct TerrainHeights {
+  GLuint texture = 0;                                     // R32F layers
+  std::vector<std::pair<tileformat::TileId, int>> slots;  // resident block -> layer
+  int min_zoom = 0, max_zoom = 0, block_size = 0;
+};
+
+struct LineFeedback {
+  std::vector<tileformat::TileId> requests;  // wanted, not resident
+  std::vector<uint32_t> used;                // records the frame read
+};
+
+class LineRenderer {
+ public:
+  // arena_words: capacity of the tile arena (the line cache's budget).
+  LineRenderer(uint64_t arena_words, int width, int height);
+  ~LineRenderer();
+  LineRenderer(const LineRenderer&) = delete;
+  LineRenderer& operator=(const LineRenderer&) = delete;
+
+  void resize(int width, int height);
+  void set_styles(const std::vector<NamedLineStyle>& classes);
+  // Copies a freshly loaded record's words into the arena.
+  void upload(const LineRecord& record);
+  // Draws the lines over g's colour into output_fbo(); returns the GPU time
+  // of the line work in ms (geometry mode: the quads alone, not the tile
+  // selection pass) and fills `feedback`.
+  double draw(const GBuffer& g, const View& view, const WorldFrame& world, double exaggeration,
+              const LineCache& cache, const TerrainHeights& terrain, LineMode mode, uint32_t frame,
+              LineFeedback& feedback);
+  GLuint output_fbo() const { return fbo_; }
+
+ private:
+  void upload_tables(const LineCache& cache);
+  void read_feedback(const LineCache& cache, uint32_t frame, LineFeedback& feedback);
+  void draw_geometry(const View& view, const WorldFrame& world, double exaggeration,
+                     const LineCache& cache, const TerrainHeights& terrain, GLuint depth,
+                     const std::vector<uint32_t>& used);
+
+  GlProgram deferred_, geometry_;
+  GLuint arena_ = 0, records_ = 0, table_ = 0, styles_ = 0, requests_ = 0, used_ = 0,
+         terrain_table_ = 0;
+  // fbo_: output + pixel records (the full-screen pass); geometry_fbo_:
+  // output + the terrain's depth (the baseline's quads).
+  GLuint vao_ = 0, fbo_ = 0, geometry_fbo_ = 0, output_ = 0, pixel_record_ = 0, timer_ = 0;
+  uint32_t table_mask_ = 0, record_count_ = 0;
+  int class_count_ = 0, width_ = 0, height_ = 0;
+};
+
+}  // namespace globe::viewer

@@ -1,0 +1,288 @@
+// GLSL of the line pass (docs/viewer.md "Lines"): the deferred shader that
+// shades every terrain pixel from its line tile's cluster cell, and the
+// draped-geometry baseline it is measured against. Both read the line tiles
+// from one arena buffer (layout in data/line_cache.hpp).
+#pragma once
+
+namespace globe::viewer::shaders {
+
+// Declarations and helpers shared by both programs.
+inline constexpr const char* kLineCommon = R"(#version 450 core
+layout(std430, binding = 0) readonly buffer Arena { uint arena[]; };
+layout(std430, binding = 3) readonly buffer Styles { vec4 styles[]; };  // 5 per class
+uniform int u_class_count;
+
+// Tile coordinates of world points: `base + frac` is the view origin in
+// tiles of zoom `zoom`, `per_m` tiles per world metre (x east, y north).
+struct TileRef {
+  ivec2 base;
+  vec2 frac;
+  vec2 per_m;
+  int zoom;
+};
+// The tile of zoom z (<= ref.zoom) holding world point w, and w's position
+// inside it (0..1, y south).
+ivec2 tile_at(TileRef r, int z, vec2 w, out vec2 local) {
+  vec2 p = r.frac + vec2(w.x, -w.y) * r.per_m;
+  vec2 fl = floor(p);
+  ivec2 g = r.base + ivec2(fl);
+  int s = r.zoom - z;
+  ivec2 t = g >> s;
+  local = (vec2(g - (t << s)) + (p - fl)) / float(1 << s);
+  return t;
+}
+vec2 seg_a(uint o) { return vec2(uintBitsToFloat(arena[o]), uintBitsToFloat(arena[o + 1u])); }
+vec2 seg_b(uint o) { return vec2(uintBitsToFloat(arena[o + 2u]), uintBitsToFloat(arena[o + 3u])); }
+)";
+
+// Full-screen triangle.
+inline constexpr const char* kFullScreenVertex = R"(#version 450 core
+void main() {
+  vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+  gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+
+// The deferred pass. Per pixel: the surface point and its plane from the
+// G-buffer give the Jacobian J (world metres per screen pixel) of the map
+// position; the line zoom is the finest whose tiles still span
+// globe:tile_px pixels at the pixel's area footprint; the segments of
+// the pixel's cell are measured in screen pixels through J^-1 (so widths hold
+// on slopes and in perspective) and composited: casings under fills, the
+// higher (coverage, class) winning, coverage from a 1-px box filter.
+inline constexpr const char* kLineDeferredFragment = R"(
+layout(std430, binding = 1) readonly buffer Records { uvec4 records[]; };  // 2 per record
+layout(std430, binding = 4) buffer Requests { uint requests[]; };  // 2 per slot
+layout(std430, binding = 5) buffer Used { uint used[]; };
+uniform uint u_request_mask;
+uniform uint u_frame;
+uniform sampler2D u_color, u_position, u_normal;
+uniform mat4 u_inv_view_proj;
+uniform vec3 u_eye;
+uniform TileRef u_ref;
+uniform int u_min_zoom, u_max_zoom;
+uniform float u_zoom_bias;  // log2(shorter zoom-0 tile edge in world metres / tile_px)
+uniform vec2 u_tile_m0;     // world metres per tile edge at zoom 0 (x, y)
+uniform float u_units_to_nominal_px;  // tile_px / extent: dash layout scale
+uniform float u_world_per_m;          // world units per metre on the ground (world_frame.hpp)
+uniform int u_select_only;
+layout(location = 0) out vec4 o_color;
+layout(location = 1) out uint o_record;  // record + 1 the pixel reads, 0 = none
+
+vec3 plane_hit(vec2 pixel, vec3 p, vec3 n, out bool ok) {
+  vec4 w = u_inv_view_proj * vec4(pixel / vec2(textureSize(u_position, 0)) * 2.0 - 1.0, 1.0, 1.0);
+  vec3 dir = w.xyz / w.w - u_eye;
+  float denom = dot(dir, n);
+  float t = dot(p - u_eye, n) / denom;
+  ok = abs(denom) > 1e-5 * length(dir) && t > 0.0;
+  return u_eye + t * dir;
+}
+void request(int z, ivec2 t) {
+  if (t.x < 0 || t.y < 0) return;
+  uint k0 = ((uint(z) << 24) | uint(t.x)) + 1u, k1 = uint(t.y) + 1u;
+  uint h = tile_hash(z, t) & u_request_mask;
+  for (int i = 0; i < 16; ++i) {
+    uint p0 = atomicCompSwap(requests[2u * h], 0u, k0);
+    if (p0 == 0u || p0 == k0) {
+      uint p1 = atomicCompSwap(requests[2u * h + 1u], 0u, k1);
+      if (p1 == 0u || p1 == k1) return;
+    }
+    h = (h + 1u) & u_request_mask;
+  }
+}
+// Coverage of a pixel (1-px box filter across the line) by a band of half
+// width h around a line at distance d.
+float coverage(float d, float h) {
+  return clamp(min(d + h, 0.5) - max(d - h, -0.5), 0.0, 1.0);
+}
+// Fraction of [pos - q/2, pos + q/2] that falls on the dash pattern's "on" parts.
+float dash_coverage(float pos, float q, int cls) {
+  vec4 d0 = styles[cls * 5 + 3], d1 = styles[cls * 5 + 4];
+  float pat[8] = float[8](d0.x, d0.y, d0.z, d0.w, d1.x, d1.y, d1.z, d1.w);
+  int n = int(styles[cls * 5 + 2].w);
+  float total = 0.0;
+  for (int i = 0; i < n; ++i) total += pat[i];
+  float p = mod(pos, total), cov = 0.0, s = 0.0;
+  for (int i = 0; i < n; i += 2) {
+    for (int w = -1; w <= 1; ++w) {
+      float o = float(w) * total;
+      cov += max(0.0, min(p + 0.5 * q, s + pat[i] + o) - max(p - 0.5 * q, s + o));
+    }
+    s += pat[i] + pat[i + 1];
+  }
+  return clamp(cov / q, 0.0, 1.0);
+}
+
+void main() {
+  ivec2 px = ivec2(gl_FragCoord.xy);
+  vec4 base = texelFetch(u_color, px, 0);
+  o_color = base;
+  o_record = 0u;
+  vec4 p4 = texelFetch(u_position, px, 0);
+  if (p4.w == 0.0) return;
+  vec3 P = p4.xyz, N = texelFetch(u_normal, px, 0).xyz;
+  bool ok1, ok2;
+  vec3 q1 = plane_hit(gl_FragCoord.xy + vec2(1, 0), P, N, ok1);
+  vec3 q2 = plane_hit(gl_FragCoord.xy + vec2(0, 1), P, N, ok2);
+  if (!ok1 || !ok2) return;  // grazing: the surface is edge-on
+  mat2 J = mat2(q1.xy - P.xy, q2.xy - P.xy);  // world metres per pixel (columns: x, y)
+  if (abs(determinant(J)) < 1e-12) return;
+  mat2 Jinv = inverse(J);
+  // The zoom follows the pixel's area footprint (sqrt |det J|); in oblique
+  // views that is finer than the most stretched direction would allow, so
+  // widths are clamped per segment below.
+  float footprint = sqrt(abs(determinant(J)));
+  int z = clamp(int(floor(u_zoom_bias - log2(footprint))), u_min_zoom, u_max_zoom);
+
+  int rec = -1, zz = z;
+  vec2 local;
+  for (; zz >= u_min_zoom; --zz) {
+    ivec2 t = tile_at(u_ref, zz, P.xy, local);
+    rec = line_table_lookup(zz, t);
+    if (rec >= 0) break;
+    if (zz == z) request(zz, t);
+  }
+  if (rec < 0) return;
+  used[rec] = u_frame;
+  o_record = uint(rec) + 1u;
+  uvec4 r0 = records[2 * rec], r1 = records[2 * rec + 1];
+  if (r1.z != 0u || u_select_only != 0) return;
+
+  float extent = uintBitsToFloat(r1.x), reach = uintBitsToFloat(r1.y);
+  uint grid = r0.w;
+  vec2 lu = local * extent;
+  vec2 m_per_unit = u_tile_m0 / (exp2(float(zz)) * extent);
+  ivec2 cell = clamp(ivec2(lu * float(grid) / extent), ivec2(0), ivec2(int(grid) - 1));
+  uint ci = uint(cell.y) * grid + uint(cell.x);
+  uint begin = arena[r0.x + ci], end = arena[r0.x + ci + 1u];
+  float reach_m = reach * min(m_per_unit.x, m_per_unit.y);
+  float best_c = 0.0, best_f = 0.0;
+  int cls_c = -1, cls_f = -1;
+  for (uint k = begin; k < end; ++k) {
+    uint o = r0.z + arena[r0.y + k] * 6u;
+    int cls = int(arena[o + 4u]);
+    if (cls >= u_class_count) continue;
+    vec4 st = styles[cls * 5 + 2];  // half width, casing width, unit is metres, dash count
+    if (st.x <= 0.0) continue;
+    vec2 A = seg_a(o), B = seg_b(o);
+    vec2 aw = (A - lu) * m_per_unit * vec2(1, -1), bw = (B - lu) * m_per_unit * vec2(1, -1);
+    vec2 as = Jinv * aw, ab = Jinv * bw - as;
+    float len2 = dot(ab, ab);
+    float t = len2 > 1e-12 ? clamp(-dot(as, ab) / len2, 0.0, 1.0) : 0.0;
+    float d = length(as + t * ab);
+    float scale = 1.0;  // pixels per style unit across the line
+    if (st.z > 0.5) {
+      vec2 dw = bw - aw;
+      scale = u_world_per_m *
+              (len2 > 1e-12 ? abs(dot(Jinv * normalize(vec2(-dw.y, dw.x)), normalize(vec2(-ab.y, ab.x))))
+                            : inversesqrt(abs(determinant(J))));
+    }
+    float hw = st.x * scale, outer = hw + st.y * scale;
+    // Across the line, one pixel spans |J n| metres: keep everything drawn
+    // within `reach` of the segment, so the cell that lists it is the one
+    // the pixel looks in (tileformat §7.3).
+    vec2 n_s = len2 > 1e-12 ? normalize(vec2(-ab.y, ab.x)) : vec2(0.7071068);
+    float limit = max(reach_m / length(J * n_s) - 0.5, 0.0);
+    if (outer > limit) {
+      hw *= limit / outer;
+      outer = limit;
+    }
+    if (d > outer + 0.5) continue;
+    float cov_c = st.y > 0.0 ? coverage(d, outer) : 0.0;
+    float cov_f = coverage(d, hw);
+    if (st.w > 0.0 && cov_f > 0.0 && len2 > 1e-12) {
+      float seg_units = length(B - A);
+      float along = uintBitsToFloat(arena[o + 5u]) + t * seg_units;
+      float px_per_unit = sqrt(len2) / seg_units;
+      if (st.z > 0.5) {
+        float m_per_u = length(bw - aw) / (seg_units * u_world_per_m);
+        cov_f *= dash_coverage(along * m_per_u, m_per_u / px_per_unit, cls);
+      } else {
+        cov_f *= dash_coverage(along * u_units_to_nominal_px, u_units_to_nominal_px / px_per_unit, cls);
+      }
+    }
+    if (cov_c > 0.0 && (cov_c > best_c || (cov_c == best_c && cls > cls_c))) best_c = cov_c, cls_c = cls;
+    if (cov_f > 0.0 && (cov_f > best_f || (cov_f == best_f && cls > cls_f))) best_f = cov_f, cls_f = cls;
+  }
+  vec3 col = base.rgb;
+  if (cls_c >= 0) col = mix(col, styles[cls_c * 5 + 1].rgb, best_c);
+  if (cls_f >= 0) col = mix(col, styles[cls_f * 5].rgb, best_f);
+  o_color = vec4(col, 1.0);
+}
+)";
+
+// The baseline: each segment of a tile as a screen-space quad (6 vertices,
+// instanced per segment) at the heights of the finest resident terrain
+// block, depth-tested against the terrain with a polygon offset; fragments
+// are kept only on pixels that chose this tile in the selection pass (so the
+// baseline draws exactly the tiles, and zooms, the deferred pass would).
+inline constexpr const char* kLineGeometryVertex = R"(
+uniform sampler2DArray u_heights;
+uniform TileRef u_terrain_ref;
+uniform int u_terrain_min_zoom, u_terrain_max_zoom;
+uniform float u_block_steps, u_block_size, u_zscale;
+uniform mat4 u_view_proj;
+uniform vec2 u_viewport;
+uniform float u_focal_px;  // pixels per world unit at clip w = 1
+uniform float u_world_per_m;
+uniform uint u_segs_base;
+uniform vec2 u_tile_origin;  // world metres of tile unit (0, 0)
+uniform vec2 u_m_per_unit;
+uniform int u_layer;  // 0 casing, 1 fill
+flat out vec4 v_color;
+
+float terrain_height(vec2 w) {
+  for (int z = u_terrain_max_zoom; z >= u_terrain_min_zoom; --z) {
+    vec2 local;
+    ivec2 t = tile_at(u_terrain_ref, z, w, local);
+    int slot = terrain_table_lookup(z, t);
+    if (slot >= 0)
+      return texture(u_heights, vec3((local * u_block_steps + 0.5) / u_block_size, float(slot))).r;
+  }
+  return 0.0;
+}
+void main() {
+  uint o = u_segs_base + uint(gl_InstanceID) * 6u;
+  int cls = int(arena[o + 4u]);
+  const ivec2 corners[6] = ivec2[6](ivec2(0, -1), ivec2(1, -1), ivec2(0, 1), ivec2(0, 1),
+                                    ivec2(1, -1), ivec2(1, 1));
+  ivec2 cs = corners[gl_VertexID];
+  vec4 st = cls < u_class_count ? styles[cls * 5 + 2] : vec4(0);
+  float hw = u_layer == 0 ? (st.y > 0.0 ? st.x + st.y : 0.0) : st.x;
+  v_color = cls < u_class_count ? styles[cls * 5 + (u_layer == 0 ? 1 : 0)] : vec4(0);
+  if (hw <= 0.0) {  // no casing, or hidden
+    gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+    return;
+  }
+  vec2 A = seg_a(o), B = seg_b(o);
+  vec2 wa = u_tile_origin + A * u_m_per_unit * vec2(1, -1);
+  vec2 wb = u_tile_origin + B * u_m_per_unit * vec2(1, -1);
+  vec4 ca = u_view_proj * vec4(wa, terrain_height(wa) * u_zscale, 1.0);
+  vec4 cb = u_view_proj * vec4(wb, terrain_height(wb) * u_zscale, 1.0);
+  if (ca.w <= 0.0 || cb.w <= 0.0) {
+    gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume
+    return;
+  }
+  if (st.z > 0.5) hw *= u_world_per_m * u_focal_px / (cs.x == 0 ? ca.w : cb.w);
+  vec2 sa = ca.xy / ca.w * u_viewport * 0.5, sb = cb.xy / cb.w * u_viewport * 0.5;
+  vec2 dir = length(sb - sa) > 1e-6 ? normalize(sb - sa) : vec2(1, 0);
+  vec2 n = vec2(-dir.y, dir.x);
+  vec4 c = cs.x == 0 ? ca : cb;
+  vec2 off = (n * float(cs.y) + dir * float(cs.x * 2 - 1)) * max(hw, 0.5);  // no AA
+  c.xy += off * 2.0 / u_viewport * c.w;
+  gl_Position = c;
+}
+)";
+
+inline constexpr const char* kLineGeometryFragment = R"(#version 450 core
+flat in vec4 v_color;
+uniform usampler2D u_pixel_record;
+uniform uint u_record;
+out vec4 o_color;
+void main() {
+  if (texelFetch(u_pixel_record, ivec2(gl_FragCoord.xy), 0).r != u_record + 1u) discard;
+  o_color = vec4(v_color.rgb, 1.0);
+}
+)";
+
+}  // namespace globe::viewer::shaders

@@ -1,0 +1,30 @@
+// Image readback (see readback.hpp).
+#include "render/readback.hpp"
+
+#include <cstring>
+
+namespace globe::viewer {
+
+std::vector<uint8_t> read_rgba(GLuint fbo, int width, int height) {
+  std::vector<uint8_t> rgba(size_t(width) * height * 4);
+  gl::NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
+  gl::BindFramebuffer(GL_FRAMEBUFFER, fbo);
+  gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
+  gl::ReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
+  gl::check("reading the image back");
+  // GL rows are bottom-up.
+  const size_t row = size_t(width) * 4;
+  std::vector<uint8_t> flipped(rgba.size());
+  for (int y = 0; y < height; ++y)
+    std::memcpy(&flipped[size_t(y) * row], &rgba[size_t(height - 1 - y) * row], row);
+  return flipped;
+}
+
+void blit_to_window(GLuint fbo, int width, int height, int window_width, int window_height) {
+  gl::NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
+  gl::BlitNamedFramebuffer(fbo, 0, 0, 0, width, height, 0, 0, window_width, window_height,
+                           GL_COLOR_BUFFER_BIT, GL_LINEAR);
+}
+
+}  // namespace globe::viewer
