@@ -113,12 +113,9 @@ void LineCache::flush_requests() {
   wanted_.clear();
 }
 
-bool LineCache::make_room(uint64_t words) {
+std::optional<uint64_t> LineCache::allocate_evicting(uint64_t words) {
   for (;;) {
-    if (auto at = arena_.allocate(words)) {
-      arena_.release(*at, words);
-      return true;
-    }
+    if (auto at = arena_.allocate(words)) return at;
     // Evict the least recently used tile that the last frame did not touch.
     int victim = -1;
     uint64_t victim_used = 0;
@@ -128,7 +125,7 @@ bool LineCache::make_room(uint64_t words) {
       if (used >= frame_) continue;
       if (victim < 0 || used < victim_used) victim = static_cast<int>(r), victim_used = used;
     }
-    if (victim < 0) return false;
+    if (victim < 0) return std::nullopt;
     ++stats_.evictions;
     free_record(static_cast<uint32_t>(victim));
   }
@@ -159,7 +156,8 @@ std::vector<uint32_t> LineCache::take_loaded() {
       it->second.record = static_cast<int>(new_record(id));
       continue;
     }
-    if (!make_room(size)) {
+    const auto offset = allocate_evicting(size);
+    if (!offset) {
       entries_.erase(it);  // the budget is full of tiles in view; asked again later
       continue;
     }
@@ -167,7 +165,7 @@ std::vector<uint32_t> LineCache::take_loaded() {
     LineRecord& rec = records_[r];
     rec.empty = false;
     rec.size = size;
-    rec.offset = *arena_.allocate(size);
+    rec.offset = *offset;
     rec.tile = std::move(d.value);
     it->second.record = static_cast<int>(r);
     it->second.last_used = frame_;

@@ -16,6 +16,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -91,7 +92,9 @@ class LineCache {
   };
   uint32_t new_record(tileformat::TileId id);
   void free_record(uint32_t r);
-  bool make_room(uint64_t words);
+  // A range of `words` in the arena, evicting least recently used tiles the
+  // last frame did not read; nullopt if those do not free enough.
+  std::optional<uint64_t> allocate_evicting(uint64_t words);
 
   std::string path_;
   LinePackage package_;
