@@ -29,20 +29,54 @@ void fsync_path(const std::string& path) {
   ::close(fd);
 }
 
+void remove_temp(const std::string& temp_path) {
+  std::error_code ec;
+  std::filesystem::remove(temp_path, ec);
+  std::filesystem::remove(temp_path + "-journal", ec);
+}
+
 }  // namespace
 
+int32_t build_key_hash(const std::string& build_key) {
+  const auto h = static_cast<uint64_t>(
+      fnv1a({reinterpret_cast<const uint8_t*>(build_key.data()), build_key.size()}));
+  // Never 0: a finished package's user_version is 0.
+  return static_cast<int32_t>((h ^ (h >> 32)) & 0x7fffffff) | 1;
+}
+
 PackageWriter::PackageWriter(std::string final_path, bool overwrite)
+    : PackageWriter(std::move(final_path), overwrite, "", false) {}
+
+PackageWriter::PackageWriter(std::string final_path, bool overwrite, const std::string& build_key,
+                             bool resume)
     : final_path_(std::move(final_path)), temp_path_(final_path_ + ".tmp") {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (fs::exists(final_path_, ec) && !overwrite)
     throw PackageError(final_path_ + ": output exists; pass --force to replace it");
-  fs::remove(temp_path_, ec);  // a stale temporary file from a killed run
-  db_ = std::make_unique<SqliteDb>(temp_path_, SqliteDb::Mode::kReadWriteCreate);
+  if (resume && fs::exists(temp_path_, ec)) {
+    resumed_ = open_existing(build_key);
+    if (!resumed_)
+      throw PackageError(temp_path_ +
+                         ": this unfinished build was started with other inputs or options, so "
+                         "--resume cannot continue it; run again without --resume to start over");
+  } else {
+    remove_temp(temp_path_);  // a stale temporary file from a killed run
+    db_ = std::make_unique<SqliteDb>(temp_path_, SqliteDb::Mode::kReadWriteCreate);
+    create_schema(build_key);
+  }
+  prepare_statements();
+  db_->exec("BEGIN");
+}
+
+void PackageWriter::create_schema(const std::string& build_key) {
   // page_size must come first: any write fixes it. Small pages waste less
-  // space at the end of each blob's overflow chain.
-  db_->exec("PRAGMA page_size = 1024; PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF;");
+  // space at the end of each blob's overflow chain. A rollback journal (not
+  // fsynced) keeps the file consistent at its last commit when the process
+  // is killed; it is not there to survive power loss.
+  db_->exec("PRAGMA page_size = 1024; PRAGMA journal_mode = TRUNCATE; PRAGMA synchronous = OFF;");
   db_->exec("PRAGMA application_id = " + std::to_string(kApplicationId));
+  db_->exec("PRAGMA user_version = " + std::to_string(build_key_hash(build_key)));
   db_->exec(
       "CREATE TABLE metadata (name TEXT NOT NULL, value TEXT);"
       "CREATE TABLE blobs (blob_id INTEGER PRIMARY KEY, hash INTEGER NOT NULL, tile_data BLOB "
@@ -53,13 +87,38 @@ PackageWriter::PackageWriter(std::string final_path, bool overwrite)
       "CREATE VIEW tiles AS SELECT map.zoom_level AS zoom_level, map.tile_column AS tile_column, "
       "map.tile_row AS tile_row, blobs.tile_data AS tile_data FROM map JOIN blobs ON "
       "map.blob_id = blobs.blob_id;");
+}
+
+// Opens an interrupted build's file (SQLite rolls a hot journal back on the
+// first read). False if it belongs to another build.
+bool PackageWriter::open_existing(const std::string& build_key) {
+  db_ = std::make_unique<SqliteDb>(temp_path_, SqliteDb::Mode::kReadWriteCreate);
+  try {
+    db_->exec("PRAGMA journal_mode = TRUNCATE; PRAGMA synchronous = OFF;");
+    if (db_->query_int("PRAGMA application_id").value_or(0) != kApplicationId) return false;
+    const int64_t version = db_->query_int("PRAGMA user_version").value_or(0);
+    const bool has_metadata = db_->query_int("SELECT COUNT(*) FROM metadata").value_or(0) > 0;
+    // A build killed between its final commit and the rename: finished.
+    finished_ = version == 0 && has_metadata;
+    if (!finished_ && version != build_key_hash(build_key)) return false;
+    tiles_ = static_cast<uint64_t>(db_->query_int("SELECT COUNT(*) FROM map").value_or(0));
+    unique_ = static_cast<uint64_t>(db_->query_int("SELECT COUNT(*) FROM blobs").value_or(0));
+    blob_bytes_ = static_cast<uint64_t>(
+        db_->query_int("SELECT SUM(LENGTH(tile_data)) FROM blobs").value_or(0));
+  } catch (const PackageError& e) {
+    throw PackageError(temp_path_ + ": the unfinished build cannot be continued (" + e.what() +
+                       "); run again without --resume to start over");
+  }
+  return true;
+}
+
+void PackageWriter::prepare_statements() {
   find_blob_ = std::make_unique<SqliteStatement>(
       *db_, "SELECT blob_id, tile_data FROM blobs WHERE hash = ?");
   insert_blob_ =
       std::make_unique<SqliteStatement>(*db_, "INSERT INTO blobs (hash, tile_data) VALUES (?, ?)");
   insert_map_ = std::make_unique<SqliteStatement>(
       *db_, "INSERT INTO map (zoom_level, tile_column, tile_row, blob_id) VALUES (?, ?, ?, ?)");
-  db_->exec("BEGIN");
 }
 
 PackageWriter::~PackageWriter() {
@@ -68,8 +127,7 @@ PackageWriter::~PackageWriter() {
   insert_blob_.reset();
   insert_map_.reset();
   db_.reset();
-  std::error_code ec;
-  std::filesystem::remove(temp_path_, ec);
+  remove_temp(temp_path_);
 }
 
 void PackageWriter::set_metadata(const std::string& name, const std::string& value) {
@@ -109,19 +167,32 @@ void PackageWriter::flush_batch() {
   in_batch_ = 0;
 }
 
+void PackageWriter::checkpoint() {
+  flush_batch();
+}
+
+uint64_t PackageWriter::tiles_at_zoom(int z) {
+  return static_cast<uint64_t>(
+      db_->query_int("SELECT COUNT(*) FROM map WHERE zoom_level = " + std::to_string(z))
+          .value_or(0));
+}
+
 void PackageWriter::commit() {
-  {
+  if (!finished_) {
     SqliteStatement meta(*db_, "INSERT INTO metadata (name, value) VALUES (?, ?)");
     for (const auto& [name, value] : metadata_) {  // std::map: sorted, deterministic
       meta.bind(1, name).bind(2, value);
       meta.step();
       meta.reset();
     }
+    db_->exec(
+        "CREATE UNIQUE INDEX map_index ON map (zoom_level, tile_column, tile_row);"
+        "CREATE UNIQUE INDEX metadata_name ON metadata (name);"
+        "PRAGMA user_version = 0;"
+        "COMMIT;");
+  } else {
+    db_->exec("COMMIT");
   }
-  db_->exec(
-      "CREATE UNIQUE INDEX map_index ON map (zoom_level, tile_column, tile_row);"
-      "CREATE UNIQUE INDEX metadata_name ON metadata (name);"
-      "COMMIT;");
   db_->exec("PRAGMA journal_mode = DELETE");
   find_blob_.reset();
   insert_blob_.reset();

@@ -5,8 +5,20 @@
 // writer deletes the temporary file, so the final name only ever holds a
 // complete package. Identical blobs are stored once.
 //
+// Crash safety and resume (docs/robustness.md): tiles are committed in
+// batches of kBatchTiles through a rollback journal, so a killed build leaves
+// <final>.tmp holding every batch committed before the kill. A writer opened
+// with `resume` keeps that file (its header's user_version holds a hash of
+// the build key, so a build with other inputs or options cannot continue
+// it); the builder then skips the tiles already there (tiles_at_zoom) and
+// puts the rest in the same order, which yields the same bytes as an
+// uninterrupted run.
+//
 // PackageReader opens a package read-only with memory mapping. Spans it
 // returns point into SQLite's buffers and stay valid only until the next call.
+// Its connection is serialized: one thread may call tile() while others run
+// their own statements on db(); everything then reads the file that was open
+// when the reader was made, even if the path is replaced meanwhile.
 #pragma once
 
 #include <cstdint>
@@ -29,8 +41,12 @@ inline constexpr const char* kMBlockFormat = "application/vnd.globe.mblock";
 class PackageWriter {
  public:
   // Throws PackageError if `final_path` exists and !overwrite, or if the
-  // temporary file cannot be created.
+  // temporary file cannot be created. A stale temporary file is deleted.
   PackageWriter(std::string final_path, bool overwrite);
+  // With `resume`, an existing temporary file started with the same
+  // `build_key` is continued (resumed() is then true); one started with
+  // another key throws PackageError. Without it, a stale one is deleted.
+  PackageWriter(std::string final_path, bool overwrite, const std::string& build_key, bool resume);
   ~PackageWriter();  // rolls back (deletes the temporary file) unless committed
   PackageWriter(const PackageWriter&) = delete;
   PackageWriter& operator=(const PackageWriter&) = delete;
@@ -38,8 +54,16 @@ class PackageWriter {
   void set_metadata(const std::string& name, const std::string& value);
   // Stores the tile; a blob identical to one stored before is shared.
   void put_tile(TileId id, std::span<const uint8_t> blob);
+  // Commits the tiles put so far now (e.g. at the end of a build stage whose
+  // scratch data is about to be dropped).
+  void checkpoint();
   // Writes metadata, builds indexes, syncs, and renames to the final path.
   void commit();
+
+  // Whether an interrupted build's temporary file was continued.
+  bool resumed() const { return resumed_; }
+  // Tiles of zoom z committed before this writer was opened plus those put since.
+  uint64_t tiles_at_zoom(int z);
 
   // The database being built, for tables beyond the tiles (e.g. a line
   // package's features table). Writes join the writer's open transaction.
@@ -50,14 +74,20 @@ class PackageWriter {
   uint64_t blob_bytes() const { return blob_bytes_; }
 
  private:
+  void create_schema(const std::string& build_key);
+  bool open_existing(const std::string& build_key);
+  void prepare_statements();
   void flush_batch();
   std::string final_path_, temp_path_;
   std::unique_ptr<SqliteDb> db_;
   std::unique_ptr<SqliteStatement> find_blob_, insert_blob_, insert_map_;
   std::map<std::string, std::string> metadata_;
   uint64_t tiles_ = 0, unique_ = 0, blob_bytes_ = 0, in_batch_ = 0;
-  bool committed_ = false;
+  bool committed_ = false, resumed_ = false, finished_ = false;
 };
+
+// The hash stored in a temporary package's header while it is being built.
+int32_t build_key_hash(const std::string& build_key);
 
 struct ZoomSummary {
   int zoom = 0;
