@@ -57,7 +57,8 @@ BlockCache::BlockCache(const std::string& path, TerrainPackage package, uint64_t
   exists_ = std::make_unique<tileformat::SqliteStatement>(
       package_.reader->db(),
       "SELECT 1 FROM map WHERE zoom_level = ? AND tile_column = ? AND tile_row = ?");
-  loader_ = std::make_unique<Loader>(path_, decode_block(package_.block_size, package_.lattice));
+  loader_ = std::make_unique<Loader>(*package_.reader,
+                                     decode_block(package_.block_size, package_.lattice));
 }
 
 BlockCache::~BlockCache() = default;

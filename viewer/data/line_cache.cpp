@@ -52,7 +52,7 @@ LineCache::LineCache(const std::string& path, LinePackage package, uint64_t budg
   exists_ = std::make_unique<tileformat::SqliteStatement>(
       package_.reader->db(),
       "SELECT 1 FROM map WHERE zoom_level = ? AND tile_column = ? AND tile_row = ?");
-  loader_ = std::make_unique<Loader>(path_, [](TileId, std::span<const uint8_t> blob) {
+  loader_ = std::make_unique<Loader>(*package_.reader, [](TileId, std::span<const uint8_t> blob) {
     return line_tile_words(tileformat::decode_line_tile(blob));
   });
 }

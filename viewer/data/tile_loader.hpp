@@ -1,8 +1,10 @@
 // A loader thread for one package: reads the blobs of queued tiles through
-// its own read-only connection (SQLite handles are not shared across
-// threads), decodes them with the caller's function, and hands the results
-// back to the render thread, which never waits unless it asks to. Used by the
-// terrain block cache and the line tile cache.
+// the caller's reader (the only user of its tile(); the connection is
+// serialized, so the caller may query db() meanwhile, and both see the one
+// file opened at start even if the path is replaced), decodes them with the
+// caller's function, and hands the results back to the render thread, which
+// never waits unless it asks to. Used by the terrain block cache and the line
+// tile cache.
 #pragma once
 
 #include <condition_variable>
@@ -40,8 +42,9 @@ class TileLoader {
     uint64_t bytes = 0;
   };
 
-  TileLoader(std::string path, Decode decode)
-      : path_(std::move(path)), decode_(std::move(decode)), thread_([this] { main(); }) {}
+  // `reader` must outlive the loader.
+  TileLoader(tileformat::PackageReader& reader, Decode decode)
+      : reader_(reader), decode_(std::move(decode)), thread_([this] { main(); }) {}
   ~TileLoader() {
     {
       std::lock_guard lock(mutex_);
@@ -85,13 +88,6 @@ class TileLoader {
 
  private:
   void main() {
-    std::unique_ptr<tileformat::PackageReader> reader;
-    std::string open_error;
-    try {
-      reader = std::make_unique<tileformat::PackageReader>(path_);
-    } catch (const std::exception& e) {
-      open_error = e.what();
-    }
     for (;;) {
       Done d;
       {
@@ -102,8 +98,7 @@ class TileLoader {
         jobs_.pop_front();
       }
       try {
-        if (!reader) throw std::runtime_error(open_error);
-        const auto blob = reader->tile(d.job.id);
+        const auto blob = reader_.tile(d.job.id);
         if (!blob) throw std::runtime_error("tile vanished from the package");
         d.bytes = blob->size();
         d.value = decode_(d.job.id, *blob);
@@ -120,7 +115,7 @@ class TileLoader {
     }
   }
 
-  std::string path_;
+  tileformat::PackageReader& reader_;
   Decode decode_;
   std::mutex mutex_;
   std::condition_variable wake_loader_, wake_main_;

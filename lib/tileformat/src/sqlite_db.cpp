@@ -8,9 +8,14 @@
 namespace tileformat {
 
 SqliteDb::SqliteDb(const std::string& path, Mode mode) : path_(path) {
-  const int flags =
-      mode == Mode::kReadOnly ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
-  int rc = sqlite3_open_v2(path.c_str(), &db_, flags | SQLITE_OPEN_NOMUTEX, nullptr);
+  // Readers are serialized (one mutex per connection) so that the viewer's
+  // threads can share one connection, and with it one open file: a package
+  // replaced on disk while it is open is never half seen. Writers belong to
+  // one thread.
+  const int flags = mode == Mode::kReadOnly
+                        ? SQLITE_OPEN_READONLY | SQLITE_OPEN_FULLMUTEX
+                        : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_NOMUTEX;
+  int rc = sqlite3_open_v2(path.c_str(), &db_, flags, nullptr);
   if (rc != SQLITE_OK) {
     std::string msg = db_ ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
     sqlite3_close(db_);
