@@ -1,6 +1,8 @@
 // Shared build options (see build_options.hpp).
 #include "build_options.hpp"
 
+#include <filesystem>
+
 #include "errors.hpp"
 
 namespace globe {
@@ -34,7 +36,24 @@ void declare_run_options(CliArgs& cli, BuildOptions& o) {
                o.progress = ProgressMode::kJson;
              });
   cli.flag("--force", "replace an existing output", [&o] { o.force = true; });
+  cli.flag("--resume",
+           "continue the build a kill or crash interrupted (OUT.mbtiles.tmp) instead of starting "
+           "over; same inputs and options required; the result is identical to an "
+           "uninterrupted run",
+           [&o] { o.resume = true; });
   cli.flag("-q,--quiet", "no progress or summary on stderr", [&o] { o.quiet = true; });
+}
+
+std::string build_key(const BuildOptions& o) {
+  std::string key = o.command_line;
+  for (const std::string& in : o.inputs) {
+    std::error_code ec;
+    const auto bytes = std::filesystem::file_size(in, ec);
+    const auto time = std::filesystem::last_write_time(in, ec);
+    key += "\n" + in + " " + std::to_string(ec ? 0 : bytes) + " " +
+           std::to_string(ec ? 0 : time.time_since_epoch().count());
+  }
+  return key;
 }
 
 bool parse_build_command(CliArgs& cli, BuildOptions& o, const std::vector<std::string>& args,

@@ -24,6 +24,7 @@ struct BuildOptions {
   std::optional<std::vector<double>> bbox;  // lon/lat: west,south,east,north
   int threads = 0;                          // 0 = all cores
   bool force = false;
+  bool resume = false;  // continue an interrupted build's OUT.tmp
   bool quiet = false;
   ProgressMode progress = ProgressMode::kAuto;
   std::string command_line;  // recorded in metadata (see reproducible_command_line)
@@ -38,8 +39,12 @@ struct BuildOptions {
 // -o, --tiling, --t_srs, --s_srs, --min-zoom, --max-zoom, --bbox.
 void declare_area_options(CliArgs& cli, BuildOptions& o, const std::string& s_srs_help,
                           const std::string& max_zoom_help);
-// -j, --progress, --force, -q.
+// -j, --progress, --force, --resume, -q.
 void declare_run_options(CliArgs& cli, BuildOptions& o);
+// What identifies a build for --resume: the reproducible command line and
+// each input's size and modification time.
+std::string build_key(const BuildOptions& o);
+
 // Parses; false after --help. Requires inputs and -o, checks --bbox and the
 // zoom range; applies -q; records the command line under `program`.
 bool parse_build_command(CliArgs& cli, BuildOptions& o, const std::vector<std::string>& args,

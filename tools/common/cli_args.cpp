@@ -169,9 +169,9 @@ std::string CliArgs::reproducible_command_line(const std::string& prefix,
       ++i;
       continue;
     }
-    if (a == "-q" || a == "--quiet" || a == "--force" || a.rfind("--threads=", 0) == 0 ||
-        a.rfind("--progress=", 0) == 0 || a.rfind("--memory-mb=", 0) == 0 ||
-        (a.size() > 2 && a.rfind("-j", 0) == 0))
+    if (a == "-q" || a == "--quiet" || a == "--force" || a == "--resume" ||
+        a.rfind("--threads=", 0) == 0 || a.rfind("--progress=", 0) == 0 ||
+        a.rfind("--memory-mb=", 0) == 0 || (a.size() > 2 && a.rfind("-j", 0) == 0))
       continue;
     out += " " + a;
   }

@@ -3,17 +3,39 @@
 
 #include <filesystem>
 
+#include "build_options.hpp"
 #include "errors.hpp"
+#include "progress.hpp"
 #include "tileformat/error.hpp"
 
 namespace globe {
 
-std::unique_ptr<tileformat::PackageWriter> create_package(const std::string& path, bool force) {
+std::unique_ptr<tileformat::PackageWriter> create_package(const BuildOptions& o,
+                                                          Progress& progress) {
+  std::error_code ec;
+  const bool stale = std::filesystem::exists(o.output + ".tmp", ec);
+  std::unique_ptr<tileformat::PackageWriter> w;
   try {
-    return std::make_unique<tileformat::PackageWriter>(path, force);
+    w = std::make_unique<tileformat::PackageWriter>(o.output, o.force, build_key(o), o.resume);
   } catch (const tileformat::PackageError& e) {
     throw OutputError(e.what());
   }
+  if (w->resumed())
+    progress.note("resuming " + o.output + ".tmp: " + std::to_string(w->tiles_written()) +
+                  " tiles were committed before the interruption");
+  else if (o.resume)
+    progress.note("nothing to resume for " + o.output + "; starting a new build");
+  else if (stale)
+    progress.note("removed " + o.output +
+                  ".tmp left by an interrupted build (pass --resume to continue it)");
+  return w;
+}
+
+OutputError build_write_error(const std::string& output, const std::exception& e) {
+  std::string what = e.what();
+  if (what.find("check free space") == std::string::npos)
+    what += "; check free space and permissions";
+  return OutputError(what + " (nothing was written to " + output + ")");
 }
 
 uint64_t commit_package(tileformat::PackageWriter& writer, const std::string& path) {

@@ -6,12 +6,24 @@
 #include <memory>
 #include <string>
 
+#include "errors.hpp"
 #include "tileformat/package.hpp"
 
 namespace globe {
 
-// Throws OutputError if `path` exists and !force, or cannot be created.
-std::unique_ptr<tileformat::PackageWriter> create_package(const std::string& path, bool force);
+struct BuildOptions;
+class Progress;
+
+// The writer for o.output. Throws OutputError if it exists and !o.force, or
+// cannot be created, or o.resume finds an unfinished build it cannot
+// continue. Notes on `progress` when it continues one or removes a stale one.
+std::unique_ptr<tileformat::PackageWriter> create_package(const BuildOptions& o,
+                                                          Progress& progress);
+// The OutputError for a write that failed while building `output` (disk
+// full, folder removed): says what failed and that nothing was written under
+// the final name (the temporary files are removed as the build unwinds).
+OutputError build_write_error(const std::string& output, const std::exception& e);
+
 // Commits (renames to the final name) and returns the final file's size.
 uint64_t commit_package(tileformat::PackageWriter& writer, const std::string& path);
 

@@ -1,7 +1,8 @@
 // Deterministic parallelism: work items are processed in batches; inside a
 // batch, worker threads compute results in any order, then the caller's
 // thread consumes them in item order. Output therefore never depends on the
-// thread count. The first exception (in item order) is rethrown.
+// thread count. The first exception (in item order) is rethrown. Items
+// before `first` are skipped (a resumed build's finished work).
 #pragma once
 
 #include <atomic>
@@ -17,9 +18,10 @@ template <typename Result>
 void parallel_batches(size_t count, int threads, size_t batch_size,
                       const std::function<void(size_t begin, size_t end)>& prepare,
                       const std::function<Result(size_t index, int worker)>& compute,
-                      const std::function<void(size_t index, Result&& result)>& consume) {
+                      const std::function<void(size_t index, Result&& result)>& consume,
+                      size_t first = 0) {
   threads = std::max(1, threads);
-  for (size_t begin = 0; begin < count; begin += batch_size) {
+  for (size_t begin = first; begin < count; begin += batch_size) {
     const size_t end = std::min(count, begin + batch_size);
     prepare(begin, end);
     std::vector<std::optional<Result>> results(end - begin);

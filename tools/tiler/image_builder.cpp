@@ -44,21 +44,33 @@ class Builder {
 
   ImageSummary run() {
     const auto start = std::chrono::steady_clock::now();
-    std::unique_ptr<tileformat::PackageWriter> writer = create_package(s_.output, s_.force);
+    std::unique_ptr<tileformat::PackageWriter> writer = create_package(s_, progress_);
     try {
-      StagingStore stage(s_.output + ".staging");
+      // Resume works by level: the stage's checkpoint names the next level
+      // to build; that level is built again and the tiles the package
+      // already holds are not put twice.
+      StagingStore stage(s_.output + ".staging", tileformat::build_key_hash(build_key(s_)),
+                         writer->resumed());
+      const std::optional<StageCheckpoint> resume_at =
+          writer->resumed() ? stage.checkpoint() : std::nullopt;
       warpers_.resize(threads_);
       for (int z = plan_.max_zoom; z >= plan_.min_zoom; --z) {
+        if (resume_at && z > resume_at->z) {  // finished before the interruption
+          if (writer->tiles_at_zoom(z) > 0) coarsest_written_ = z;
+          continue;
+        }
+        skip_puts_ = writer->resumed() ? writer->tiles_at_zoom(z) : 0;
         if (z == plan_.max_zoom)
           pass_warp(stage, *writer, z);
         else
           pass_pyramid(stage, *writer, z);
+        writer->checkpoint();  // the package holds level z before the stage forgets z + 1
         stage.drop(Stage::kRaw, z + 1);
-        stage.commit();
+        stage.commit({z - 1, 0, 0});
       }
       warpers_.clear();
     } catch (const tileformat::PackageError& e) {
-      throw OutputError(std::string(e.what()) + "; check free space and permissions");
+      throw build_write_error(s_.output, e);
     }
     if (writer->tiles_written() == 0)
       throw InputError(plan_.sources[0].path +
@@ -86,7 +98,10 @@ class Builder {
 
   void store(StagingStore& stage, tileformat::PackageWriter& writer, const TileOut& out) {
     if (!out.stage.empty()) stage.put(Stage::kRaw, out.id, out.stage);
-    writer.put_tile(out.id, out.blob);
+    if (skip_puts_ > 0)
+      --skip_puts_;  // committed before an interruption
+    else
+      writer.put_tile(out.id, out.blob);
     coarsest_written_ = out.id.z;
     switch (tileformat::inspect_image_tile(out.blob).format) {
       case tileformat::ImageFormat::kPng:
@@ -230,6 +245,7 @@ class Builder {
   const int threads_;
   std::vector<std::unique_ptr<ImageWarper>> warpers_;
   int coarsest_written_ = 0;
+  uint64_t skip_puts_ = 0;  // tiles of this level a resumed package already holds
   ImageSummary sum_;
 };
 

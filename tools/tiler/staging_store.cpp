@@ -3,19 +3,50 @@
 
 #include <filesystem>
 
+#include "tileformat/error.hpp"
+
 namespace globe {
 
 using tileformat::SqliteDb;
 using tileformat::SqliteStatement;
 
-StagingStore::StagingStore(std::string path) : path_(std::move(path)) {
+namespace {
+
+void remove_store(const std::string& path) {
   std::error_code ec;
-  std::filesystem::remove(path_, ec);
-  db_ = std::make_unique<SqliteDb>(path_, SqliteDb::Mode::kReadWriteCreate);
-  db_->exec("PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF; PRAGMA cache_size = -16384;");
+  std::filesystem::remove(path, ec);
+  std::filesystem::remove(path + "-journal", ec);
+}
+
+}  // namespace
+
+StagingStore::StagingStore(std::string path, int32_t key, bool resume) : path_(std::move(path)) {
+  std::error_code ec;
+  if (resume && std::filesystem::exists(path_, ec)) {
+    // SQLite rolls a hot journal back on the first read.
+    db_ = std::make_unique<SqliteDb>(path_, SqliteDb::Mode::kReadWriteCreate);
+    try {
+      if (db_->query_int("PRAGMA user_version").value_or(0) != key) db_.reset();
+    } catch (const tileformat::PackageError&) {
+      db_.reset();  // unreadable: start over
+    }
+  }
+  const bool fresh = !db_;
+  if (fresh) {
+    db_.reset();
+    remove_store(path_);
+    db_ = std::make_unique<SqliteDb>(path_, SqliteDb::Mode::kReadWriteCreate);
+  }
+  // Not fsynced: the journal is there for a killed process, not power loss.
   db_->exec(
-      "CREATE TABLE stage (kind INTEGER, z INTEGER, x INTEGER, y INTEGER, data BLOB, PRIMARY KEY "
-      "(kind, z, y, x))");
+      "PRAGMA journal_mode = TRUNCATE; PRAGMA synchronous = OFF; PRAGMA cache_size = -16384;");
+  if (fresh) {
+    db_->exec("PRAGMA user_version = " + std::to_string(key));
+    db_->exec(
+        "CREATE TABLE stage (kind INTEGER, z INTEGER, x INTEGER, y INTEGER, data BLOB, PRIMARY "
+        "KEY (kind, z, y, x));"
+        "CREATE TABLE progress (id INTEGER PRIMARY KEY, z INTEGER, pass INTEGER, done INTEGER)");
+  }
   put_ = std::make_unique<SqliteStatement>(*db_,
                                            "INSERT OR REPLACE INTO stage VALUES (?, ?, ?, ?, ?)");
   get_ = std::make_unique<SqliteStatement>(
@@ -27,8 +58,14 @@ StagingStore::~StagingStore() {
   put_.reset();
   get_.reset();
   db_.reset();
-  std::error_code ec;
-  std::filesystem::remove(path_, ec);
+  remove_store(path_);
+}
+
+std::optional<StageCheckpoint> StagingStore::checkpoint() {
+  SqliteStatement st(*db_, "SELECT z, pass, done FROM progress WHERE id = 0");
+  if (!st.step()) return std::nullopt;
+  return StageCheckpoint{static_cast<int>(st.column_int(0)), static_cast<int>(st.column_int(1)),
+                         static_cast<uint64_t>(st.column_int(2))};
 }
 
 void StagingStore::put(Stage stage, tileformat::TileId id, const std::vector<uint8_t>& data) {
@@ -66,6 +103,13 @@ void StagingStore::drop(Stage stage, int z) {
 
 void StagingStore::commit() {
   db_->exec("COMMIT; BEGIN");
+}
+
+void StagingStore::commit(const StageCheckpoint& at) {
+  SqliteStatement st(*db_, "INSERT OR REPLACE INTO progress VALUES (0, ?, ?, ?)");
+  st.bind(1, at.z).bind(2, at.pass).bind(3, static_cast<int64_t>(at.done));
+  st.step();
+  commit();
 }
 
 std::vector<uint8_t> pack_u32(const std::vector<uint32_t>& v) {

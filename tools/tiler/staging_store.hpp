@@ -1,8 +1,11 @@
-// Scratch storage for a terrain build: per-level intermediate blocks live in
-// a temporary SQLite file (not in memory), so peak memory does not grow with
-// the input. Deleted when the build ends, successfully or not.
+// Scratch storage for a terrain or image build: per-level intermediate
+// blocks live in a temporary SQLite file (not in memory), so peak memory does
+// not grow with the input. Deleted when the build ends, successfully or not;
+// a killed build leaves it behind, consistent at its last commit (rollback
+// journal), with a checkpoint saying how far the build had got, for --resume.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -17,10 +20,24 @@ namespace globe {
 // its west/north neighbours take from it); kFinal / kNodeErrors: after pass 2.
 enum class Stage : int { kRaw = 1, kFinal = 2, kNodeErrors = 3, kEdges = 4 };
 
+// How far a build got: pass `pass` of zoom `z` has consumed its first `done`
+// work items (the meaning of passes and items is the builder's).
+struct StageCheckpoint {
+  int z = 0;
+  int pass = 0;
+  uint64_t done = 0;
+};
+
 class StagingStore {
  public:
-  explicit StagingStore(std::string path);
+  // `key` identifies the build (see tileformat::build_key_hash). With
+  // `resume`, an existing store made with the same key is kept; otherwise
+  // the store starts empty.
+  StagingStore(std::string path, int32_t key, bool resume);
   ~StagingStore();
+
+  // The last committed checkpoint of a kept store; nullopt for a new one.
+  std::optional<StageCheckpoint> checkpoint();
 
   void put(Stage stage, tileformat::TileId id, const std::vector<uint8_t>& data);
   std::optional<std::vector<uint8_t>> get(Stage stage, tileformat::TileId id);
@@ -28,6 +45,8 @@ class StagingStore {
   std::vector<tileformat::TileId> list(Stage stage, int z);
   void drop(Stage stage, int z);
   void commit();  // ends the current write transaction
+  // Commits together with a checkpoint (atomically).
+  void commit(const StageCheckpoint& at);
 
  private:
   std::string path_;

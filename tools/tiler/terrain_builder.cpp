@@ -34,6 +34,14 @@ using tileformat::TileId;
 constexpr int kStageZstdLevel = 1;
 constexpr int kFinalZstdLevel = 9;
 
+// The passes of one zoom level, in order (StageCheckpoint::pass). Items are
+// warp groups (finest zoom) or tiles; kPassEncode's progress is the tiles in
+// the package itself.
+enum Pass : int { kPassRaw = 0, kPassFinal = 1, kPassEncode = 2 };
+// The stage commits (with its checkpoint) at most this often, so a killed
+// build loses little work and a running one little time.
+constexpr auto kStageCommitInterval = std::chrono::seconds(1);
+
 struct Block {
   std::vector<int32_t> q;
   std::vector<uint8_t> valid;  // always size*size here
@@ -78,25 +86,41 @@ class Builder {
 
   BuildSummary run() {
     const auto start = std::chrono::steady_clock::now();
-    std::unique_ptr<tileformat::PackageWriter> writer = create_package(s_.output, s_.force);
+    std::unique_ptr<tileformat::PackageWriter> writer = create_package(s_, progress_);
     try {
-      StagingStore stage(s_.output + ".staging");
+      StagingStore stage(s_.output + ".staging", tileformat::build_key_hash(build_key(s_)),
+                         writer->resumed());
+      // Without the stage's checkpoint (none kept), every level is computed
+      // again and only the package's committed tiles are skipped.
+      const std::optional<StageCheckpoint> resume_at =
+          writer->resumed() ? stage.checkpoint() : std::nullopt;
       warpers_.resize(threads_);
       for (int z = plan_.max_zoom; z >= plan_.min_zoom; --z) {
-        pass_raw(stage, z);
-        pass_final(stage, z);
-        stage.drop(Stage::kRaw, z);
-        stage.drop(Stage::kEdges, z);
-        stage.drop(Stage::kFinal, z + 1);
-        stage.drop(Stage::kNodeErrors, z + 1);
+        if (resume_at && z > resume_at->z) {  // finished before the interruption
+          if (writer->tiles_at_zoom(z) > 0) coarsest_written_ = z;
+          continue;
+        }
+        const StageCheckpoint from =
+            resume_at && resume_at->z == z ? *resume_at : StageCheckpoint{z, kPassRaw, 0};
+        if (from.pass <= kPassRaw) pass_raw(stage, z, from.pass == kPassRaw ? from.done : 0);
+        if (from.pass <= kPassFinal) {
+          pass_final(stage, z, from.pass == kPassFinal ? from.done : 0);
+          stage.drop(Stage::kRaw, z);
+          stage.drop(Stage::kEdges, z);
+          stage.drop(Stage::kFinal, z + 1);
+          stage.drop(Stage::kNodeErrors, z + 1);
+          stage.commit({z, kPassEncode, 0});
+        }
         pass_encode(stage, *writer, z);
-        stage.commit();
+        // The package holds level z before the stage forgets its inputs.
+        writer->checkpoint();
+        stage.commit({z - 1, kPassRaw, 0});
       }
       warpers_.clear();
     } catch (const tileformat::PackageError& e) {
       // Only the output and scratch databases are written here: a failure is
       // an output problem (disk full, folder removed), not bad input.
-      throw OutputError(std::string(e.what()) + "; check free space and permissions");
+      throw build_write_error(s_.output, e);
     }
     if (writer->tiles_written() == 0)
       throw InputError(plan_.sources[0].path + ": no tile holds valid data in the requested area" +
@@ -150,18 +174,29 @@ class Builder {
     std::vector<uint8_t> block, edges;  // both empty: no valid sample
   };
 
-  // Pass 1: raw samples of every tile of zoom z.
-  void pass_raw(StagingStore& stage, int z) {
-    if (z == plan_.max_zoom) return pass_warp(stage, z);
+  // Commits the stage now and then inside a pass: items before `done` are
+  // stored. Called where a batch begins.
+  void maybe_commit(StagingStore& stage, int z, Pass pass, size_t done) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_stage_commit_ < kStageCommitInterval) return;
+    stage.commit({z, pass, done});
+    last_stage_commit_ = now;
+  }
+
+  // Pass 1: raw samples of every tile of zoom z, from item `first` on.
+  void pass_raw(StagingStore& stage, int z, size_t first) {
+    if (z == plan_.max_zoom) return pass_warp(stage, z, first);
     std::vector<TileId> tiles;
     for (const TileId& c : stage.list(Stage::kFinal, z + 1))
       tiles.push_back(c.parent());
     sort_tiles(tiles);
     std::map<TileId, std::vector<uint8_t>> cache;
     progress_.begin("z" + std::to_string(z) + " pyramid", tiles.size());
+    progress_.advance(first);
     parallel_batches<RawOut>(
         tiles.size(), threads_, batch_size(),
         [&](size_t begin, size_t end) {
+          maybe_commit(stage, z, kPassRaw, begin);
           cache.clear();
           for (size_t i = begin; i < end; ++i)
             for (const TileId& c : tiles[i].children())
@@ -171,19 +206,23 @@ class Builder {
         [&](size_t i, RawOut&& out) {
           store_raw(stage, tiles[i], out);
           progress_.advance();
-        });
+        },
+        first);
     progress_.end();
   }
 
   // The finest zoom: tiles are warped in fixed groups of up to 4 x 4 (one
   // GDAL call each); groups depend only on tile positions, not on -j.
-  void pass_warp(StagingStore& stage, int z) {
+  void pass_warp(StagingStore& stage, int z, size_t first) {
     const std::vector<TileId> tiles = tiles_in_areas(plan_.tiling, plan_.data_areas, z);
     const int g = plan_.tiling.tiles_x(z) >= 16 ? TileWarper::kMaxGroup : 1;
     const std::vector<TileGroup> groups = group_tiles(tiles, g);
     progress_.begin("z" + std::to_string(z) + " warp", tiles.size());
+    for (size_t i = 0; i < first && i < groups.size(); ++i)
+      progress_.advance(groups[i].members.size());
     parallel_batches<std::vector<RawOut>>(
-        groups.size(), threads_, std::max<size_t>(1, batch_size() / 4), [](size_t, size_t) {},
+        groups.size(), threads_, std::max<size_t>(1, batch_size() / 4),
+        [&](size_t begin, size_t) { maybe_commit(stage, z, kPassRaw, begin); },
         [&](size_t i, int worker) {
           return warp_group(groups[i].first, groups[i].cols, groups[i].rows, groups[i].members,
                             worker);
@@ -193,7 +232,8 @@ class Builder {
             store_raw(stage, groups[i].members[k], outs[k]);
             progress_.advance();
           }
-        });
+        },
+        first);
     progress_.end();
   }
 
@@ -220,7 +260,7 @@ class Builder {
       for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x) {
           const double v = h[(oy + y) * stride + ox + x];
-          if (std::isnan(v)) continue;
+          if (!std::isfinite(v)) continue;  // nodata, and infinite heights: holes
           const double qv = std::round(v / plan_.step_m);
           if (!(std::abs(qv) <= tileformat::kMaxQuantum))
             throw InputError(plan_.sources[0].path + ": height " + std::to_string(v) + " in tile " +
@@ -273,13 +313,15 @@ class Builder {
   }
 
   // Pass 2: shared edges from the owners, hole filling, node errors.
-  void pass_final(StagingStore& stage, int z) {
+  void pass_final(StagingStore& stage, int z, size_t first) {
     const std::vector<TileId> tiles = stage.list(Stage::kRaw, z);
     std::map<TileId, std::vector<uint8_t>> raw, edges, child_err;
     progress_.begin("z" + std::to_string(z) + " errors", tiles.size());
+    progress_.advance(first);
     parallel_batches<FinalOut>(
         tiles.size(), threads_, batch_size(),
         [&](size_t begin, size_t end) {
+          maybe_commit(stage, z, kPassFinal, begin);
           raw.clear();
           edges.clear();
           child_err.clear();
@@ -300,7 +342,8 @@ class Builder {
             stage.put(Stage::kNodeErrors, tiles[i], out.errors);
           }
           progress_.advance();
-        });
+        },
+        first);
     progress_.end();
   }
 
@@ -344,12 +387,16 @@ class Builder {
     return FinalOut{encode_stage(b, true), pack_u32(errors)};
   }
 
-  // Pass 3: vertex errors and the final MBlock.
+  // Pass 3: vertex errors and the final MBlock. Tiles are put in list order,
+  // so those a resumed package already holds are the first ones.
   void pass_encode(StagingStore& stage, tileformat::PackageWriter& writer, int z) {
     const std::vector<TileId> tiles = stage.list(Stage::kFinal, z);
     std::map<TileId, std::vector<uint8_t>> finals;
     std::map<TileId, std::vector<uint32_t>> errs;
+    const size_t first = writer.resumed() ? writer.tiles_at_zoom(z) : 0;
+    if (first > 0) coarsest_written_ = z;
     progress_.begin("z" + std::to_string(z) + " encode", tiles.size());
+    progress_.advance(first);
     parallel_batches<std::vector<uint8_t>>(
         tiles.size(), threads_, batch_size(),
         [&](size_t begin, size_t end) {
@@ -379,7 +426,8 @@ class Builder {
           writer.put_tile(tiles[i], blob);
           coarsest_written_ = z;
           progress_.advance();
-        });
+        },
+        first);
     progress_.end();
   }
 
@@ -416,6 +464,7 @@ class Builder {
   const bool global_;
   std::vector<std::unique_ptr<TileWarper>> warpers_;
   int coarsest_written_ = 0;
+  std::chrono::steady_clock::time_point last_stage_commit_ = std::chrono::steady_clock::now();
 };
 
 }  // namespace

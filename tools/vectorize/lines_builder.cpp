@@ -159,13 +159,25 @@ class Builder {
     VectorReader reader(s_.inputs, ro);
     if (frame_ == TargetFrame::kProjected && !target_)
       target_ = *reader.layers().front().crs;  // local tiling in the first input's CRS
-    std::unique_ptr<tileformat::PackageWriter> writer = create_package(s_.output, s_.force);
+    std::unique_ptr<tileformat::PackageWriter> writer = create_package(s_, progress_);
     try {
-      writer->db().exec(
-          "CREATE TABLE features (id INTEGER PRIMARY KEY, layer TEXT NOT NULL, properties TEXT "
-          "NOT NULL)");
+      // A resumed build reads and cuts the input again (that state is not
+      // kept) but keeps the committed features table and tiles.
+      const bool have_features =
+          writer->resumed() && writer->db()
+                                       .query_int(
+                                           "SELECT COUNT(*) FROM sqlite_master WHERE "
+                                           "type = 'table' AND name = 'features'")
+                                       .value_or(0) > 0;
+      if (!have_features)
+        writer->db().exec(
+            "CREATE TABLE features (id INTEGER PRIMARY KEY, layer TEXT NOT NULL, properties TEXT "
+            "NOT NULL)");
+      store_features_ =
+          !have_features || writer->db().query_int("SELECT COUNT(*) FROM features") == 0;
       GeometryScratch scratch(s_.output + ".scratch-geometry");
       pass_read(reader, *writer, scratch);
+      writer->checkpoint();  // the features table is committed before any tile
       plan();
       TileSorter sorter(s_.output + ".scratch-sort", s_.memory_mb << 20);
       pass_cut(scratch, sorter);
@@ -173,7 +185,9 @@ class Builder {
       sum_.spilled_runs = sorter.spilled_runs();
       sum_.spilled_bytes = sorter.spilled_bytes();
     } catch (const tileformat::PackageError& e) {
-      throw OutputError(std::string(e.what()) + "; check free space and permissions");
+      throw build_write_error(s_.output, e);
+    } catch (const OutputError& e) {  // scratch files
+      throw build_write_error(s_.output, e);
     }
     if (writer->tiles_written() == 0)
       throw InputError(s_.inputs[0] + ": no line or point falls in the requested area" +
@@ -252,9 +266,11 @@ class Builder {
       pf.class_id = classes_.class_for(layer, vf.class_value);
       pf.id = ++sum_.features_kept;
       ++layer_kept_[vf.layer];
-      insert.bind(1, static_cast<int64_t>(pf.id)).bind(2, layer).bind(3, vf.properties_json);
-      insert.step();
-      insert.reset();
+      if (store_features_) {
+        insert.bind(1, static_cast<int64_t>(pf.id)).bind(2, layer).bind(3, vf.properties_json);
+        insert.step();
+        insert.reset();
+      }
       for (const auto& part : pf.lines)
         for (size_t i = 0; i < part.size(); ++i) {
           extend(part[i]);
@@ -427,6 +443,8 @@ class Builder {
       uint64_t segments = 0, points = 0;
     };
     progress_.begin("encode tiles", sorter.records());
+    // Tiles are put in key order: those a resumed package holds come first.
+    uint64_t skip = writer.resumed() ? writer.tiles_written() : 0;
     std::vector<TileGroup> groups;
     for (bool more = true; more;) {
       groups.clear();
@@ -436,6 +454,11 @@ class Builder {
         if (!sorter.next_group(g)) {
           more = false;
           break;
+        }
+        if (skip > 0) {
+          --skip;
+          progress_.advance(g.records.size());
+          continue;
         }
         bytes += g.bytes.size() + g.records.size() * sizeof(TileRecord);
         groups.push_back(std::move(g));
@@ -531,6 +554,7 @@ class Builder {
   std::vector<uint32_t> reach_;
   CutStats cut_;
   LinesSummary sum_;
+  bool store_features_ = true;  // false: a resumed package holds them already
 };
 
 }  // namespace
