@@ -68,20 +68,22 @@ struct RasterWarper::Operation {
 };
 
 RasterWarper::RasterWarper(std::vector<GdalDataset> sources, WarpSpec spec, std::string inputs)
-    : sources_(std::move(sources)), spec_(std::move(spec)), inputs_(std::move(inputs)) {
+    : sources_(std::move(sources)),
+      spec_(std::move(spec)),
+      inputs_(std::move(inputs)),
+      target_(SpatialRef::from_user_input(spec_.tiling.crs, "tiling CRS")) {
   GDALDriverH mem = GDALGetDriverByName("MEM");
   dest_ = GdalDataset(
       GDALCreate(mem, "", spec_.max_width, spec_.max_height, spec_.bands, spec_.type, nullptr),
       "window");
   if (!dest_.get()) throw std::runtime_error("cannot create the warp buffer: " + gdal_last_error());
-  const SpatialRef target = SpatialRef::from_user_input(spec_.tiling.crs, "tiling CRS");
-  GDALSetSpatialRef(dest_.get(), target.get());
+  GDALSetSpatialRef(dest_.get(), target_.get());
   if (spec_.alpha) GDALSetRasterColorInterpretation(dest_.band(spec_.bands), GCI_AlphaBand);
   if (spec_.nan_nodata)
     for (int b = 1; b <= spec_.bands; ++b)
       GDALSetRasterNoDataValue(dest_.band(b), std::numeric_limits<double>::quiet_NaN());
   GDALSetGeoTransform(dest_.get(), spec_.initial_gt.data());
-  operations_ = make_operations();
+  make_operations();  // fails early, naming the input, if there is no transformation
 }
 
 RasterWarper::~RasterWarper() = default;
@@ -177,7 +179,10 @@ void RasterWarper::warp(const std::array<double, 6>& window_gt, int w, int h,
   const double min_x = gt[0], max_x = gt[0] + w * gt[1], half = tileformat::kWebMercatorHalf;
   const bool at_antimeridian =
       spec_.tiling.scheme == "webmercator" && (min_x < -half + gt[1] || max_x > half - gt[1]);
-  std::vector<std::unique_ptr<Operation>> centred;
+  // Fresh warp operations for every window: GDAL's operations keep state
+  // from earlier windows (reused ones made image tiles depend on which
+  // windows a warper had done before, i.e. on the thread count). Setting one
+  // up costs far less than the warp.
   if (at_antimeridian) {
     // The same projection up to a shift in x (with +over, longitudes continue
     // past +-180), but the window stays away from the wrap.
@@ -189,15 +194,13 @@ void RasterWarper::warp(const std::array<double, 6>& window_gt, int w, int h,
         "window CRS");
     gt[0] -= centre_lon / 180.0 * half;
     GDALSetSpatialRef(dest_.get(), crs.get());
-    GDALSetGeoTransform(dest_.get(), gt.data());
-    centred = make_operations();
-    const SpatialRef target = SpatialRef::from_user_input(spec_.tiling.crs, "tiling CRS");
-    GDALSetSpatialRef(dest_.get(), target.get());
+  } else {
+    GDALSetSpatialRef(dest_.get(), target_.get());
   }
-  auto& ops = at_antimeridian ? centred : operations_;
+  GDALSetGeoTransform(dest_.get(), gt.data());
+  const std::vector<std::unique_ptr<Operation>> ops = make_operations();
   CPLErrorReset();
-  for (auto& op : ops) {
-    GDALSetGenImgProjTransformerDstGeoTransform(op->transformer, gt.data());
+  for (const auto& op : ops) {
     if (GDALChunkAndWarpImage(op->operation, 0, 0, w, h) != CE_None ||
         CPLGetLastErrorType() == CE_Failure)
       throw InputError(inputs_ + ": reading data for " + what + " failed (" + gdal_last_error() +

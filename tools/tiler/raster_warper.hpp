@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "gdal_dataset.hpp"
+#include "spatial_ref.hpp"
 #include "tileformat/tiling.hpp"
 
 namespace globe {
@@ -65,8 +66,8 @@ class RasterWarper {
   std::vector<GdalDataset> sources_;
   WarpSpec spec_;
   std::string inputs_;
+  SpatialRef target_;  // the tiling CRS
   GdalDataset dest_;
-  std::vector<std::unique_ptr<Operation>> operations_;  // for the tiling CRS
 };
 
 }  // namespace globe
