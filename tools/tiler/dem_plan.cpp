@@ -5,6 +5,8 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <optional>
+#include <vector>
 
 #include "errors.hpp"
 #include "gdal_dataset.hpp"
@@ -27,6 +29,28 @@ void check_settings(const TerrainSettings& s) {
   if (s.min_zoom && s.max_zoom && *s.min_zoom > *s.max_zoom)
     throw UsageError("--min-zoom " + std::to_string(*s.min_zoom) + " is larger than --max-zoom " +
                      std::to_string(*s.max_zoom));
+}
+
+// Min and max over the finite samples that are not nodata (GDAL's own
+// min/max is infinite as soon as one sample is), read row by row; both NaN
+// when there is none.
+void finite_min_max(GDALRasterBandH band, std::optional<double> nodata, const std::string& path,
+                    double mm[2]) {
+  const int w = GDALGetRasterBandXSize(band), h = GDALGetRasterBandYSize(band);
+  std::vector<double> row(static_cast<size_t>(w));
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (int y = 0; y < h; ++y) {
+    if (GDALRasterIO(band, GF_Read, 0, y, w, 1, row.data(), w, 1, GDT_Float64, 0, 0) != CE_None)
+      throw InputError(path + ": cannot read row " + std::to_string(y) + " (" + gdal_last_error() +
+                       "); the file may be truncated or corrupt");
+    for (double v : row)
+      if (std::isfinite(v) && !(nodata && v == *nodata)) {
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+      }
+  }
+  mm[0] = std::isfinite(lo) ? lo : std::numeric_limits<double>::quiet_NaN();
+  mm[1] = std::isfinite(hi) ? hi : std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace
@@ -58,6 +82,8 @@ DemPlan plan_terrain(const TerrainSettings& s) {
     double mm[2] = {0, 0};
     CPLErrorReset();
     CPLErr err = GDALComputeRasterMinMax(band, TRUE, mm);
+    if (err == CE_None && (std::isinf(mm[0]) || std::isinf(mm[1])))
+      finite_min_max(band, src.nodata, path, mm);  // infinite heights are holes, like NaN
     if (err != CE_None || !std::isfinite(mm[0]) || !std::isfinite(mm[1])) {
       const std::string why = gdal_last_error();
       if (!why.empty() && why.find("no valid") == std::string::npos &&

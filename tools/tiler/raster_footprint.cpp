@@ -63,8 +63,11 @@ double source_resolution(const RasterSource& src, const SpatialRef& crs, const S
   const double cx = gt[0] + gt[1] * src.width / 2.0, cy = gt[3] + gt[5] * src.height / 2.0;
   std::vector<double> xs = {cx, cx + gt[1], cx}, ys = {cy, cy, cy + gt[5]};
   if (crs.is_geographic()) {
-    for (auto& x : xs)
-      x = std::remainder(x, 360.0);
+    // Into [-180, 180], the neighbour on the same side of the antimeridian
+    // (a DEM centred on it would otherwise measure a 360-degree pixel).
+    xs[0] = xs[2] = std::remainder(cx, 360.0);
+    xs[1] = xs[0] + gt[1];
+    if (std::abs(xs[1]) > 180.0) xs[1] = xs[0] - gt[1];
     for (auto& y : ys)
       y = std::clamp(y, -kMercatorMaxLat + 1, kMercatorMaxLat - 1);
   }

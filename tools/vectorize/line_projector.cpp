@@ -38,6 +38,17 @@ XY LineProjector::frame_to_lonlat(TargetFrame frame, XY p) {
               std::numbers::pi};
 }
 
+namespace {
+
+// Longitude/latitude that exist: |lat| <= 90; longitudes wrap, but only
+// within one turn either side (as --bbox), beyond is a broken coordinate.
+bool on_the_globe(const std::vector<XY>& pts) {
+  return std::all_of(pts.begin(), pts.end(),
+                     [](XY p) { return std::abs(p.y) <= 90.0 && std::abs(p.x) <= 540.0; });
+}
+
+}  // namespace
+
 bool LineProjector::transform(std::vector<XY>& pts) const {
   std::vector<double> x(pts.size()), y(pts.size());
   for (size_t i = 0; i < pts.size(); ++i) {
@@ -56,7 +67,8 @@ void LineProjector::project_lines(const std::vector<std::vector<XY>>& in,
   for (const std::vector<XY>& src : in) {
     std::vector<XY> part = src;
     PartStatus st = clean_part(part);
-    if (st == PartStatus::kOk && !transform(part)) {
+    if (st == PartStatus::kOk &&
+        (!transform(part) || (frame_ != TargetFrame::kProjected && !on_the_globe(part)))) {
       ++counts.failed_parts;
       continue;
     }
@@ -83,6 +95,7 @@ bool LineProjector::project_point(XY in, XY& out) const {
   std::vector<XY> p{in};
   if (!std::isfinite(in.x) || !std::isfinite(in.y) || !transform(p)) return false;
   if (!std::isfinite(p[0].x) || !std::isfinite(p[0].y)) return false;
+  if (frame_ != TargetFrame::kProjected && !on_the_globe(p)) return false;
   if (frame_ != TargetFrame::kProjected)
     p[0] = lonlat_to_frame(frame_, split_antimeridian(p).front().front());  // wraps longitude
   out = p[0];
