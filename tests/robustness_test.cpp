@@ -1,0 +1,252 @@
+// Crash safety and failure handling of the package builders (docs/robustness.md):
+// kill -9 at random moments never leaves an incomplete package under the final
+// name and --resume then yields the uninterrupted run's bytes; a full disk is
+// a clear error with nothing left behind; a viewer keeps reading the package
+// it opened while another process replaces the file.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <sys/mount.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <random>
+#include <thread>
+
+#include "render_fixtures.hpp"
+#include "test_support.hpp"
+
+using namespace globe_test;
+
+namespace {
+
+// Starts `command` in `dir` with /bin/sh (exec'd, so the pid is the command's).
+pid_t spawn(const fs::path& dir, const std::string& command) {
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const std::string line = "cd '" + dir.string() + "' && exec " + command;
+    ::execl("/bin/sh", "sh", "-c", line.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  return pid;
+}
+
+bool same_bytes(const fs::path& a, const fs::path& b) {
+  return fs::exists(a) && fs::exists(b) && read_file(a) == read_file(b);
+}
+
+// No temporary or scratch file of the build of `out` is left in `dir`.
+void expect_no_leftovers(const fs::path& dir, const std::string& out) {
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    EXPECT_FALSE(name.rfind(out + ".", 0) == 0) << "left behind: " << name;
+  }
+}
+
+// Builds `build` (a command without -o) once uninterrupted with -j1, then
+// again with -j2 --resume, killing it (SIGKILL) after random delays until it
+// has been killed `min_kills` times. Every kill must leave either no file
+// under the final name or the complete package; every run that finishes, and
+// the last resumed run, must give the uninterrupted run's bytes.
+void kill_and_resume(const std::string& build, int min_kills, std::chrono::milliseconds max_delay) {
+  TempDir dir;
+  fs::create_directories(dir / "ref");
+  fs::create_directories(dir / "work");
+  const fs::path ref = dir / "ref" / "out.mbtiles", out = dir / "work" / "out.mbtiles";
+  const RunResult r =
+      run("cd " + (dir / "ref").string() + " && " + build + " -o out.mbtiles -j1", dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+
+  std::mt19937 rng(20261122);
+  std::uniform_int_distribution<int> delay_ms(20, static_cast<int>(max_delay.count()));
+  int kills = 0, finished = 0, resumed_with_tiles = 0;
+  for (int attempt = 0; kills < min_kills && attempt < 20 * min_kills; ++attempt) {
+    const pid_t pid = spawn(dir / "work", build + " -o out.mbtiles -j2 --resume >/dev/null 2>" +
+                                              (dir / "run.stderr").string());
+    ASSERT_GT(pid, 0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
+    int status = 0;
+    if (::waitpid(pid, &status, WNOHANG) == pid) {
+      ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << read_file(dir / "run.stderr");
+      ASSERT_TRUE(same_bytes(out, ref)) << "a resumed build differs from the uninterrupted one";
+      ++finished;
+      fs::remove(out);
+      continue;
+    }
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+    ++kills;
+    const std::string err = read_file(dir / "run.stderr");
+    if (err.find("resuming") != std::string::npos && err.find(": 0 tiles") == std::string::npos)
+      ++resumed_with_tiles;
+    if (fs::exists(out)) {  // killed after the rename: must be the whole package
+      ASSERT_TRUE(same_bytes(out, ref)) << "kill " << kills << " left a partial package";
+      ++finished;
+      fs::remove(out);
+    }
+  }
+  EXPECT_GE(kills, min_kills);
+  const RunResult last =
+      run("cd " + (dir / "work").string() + " && " + build + " -o out.mbtiles -j2 --resume",
+          dir.path());
+  ASSERT_EQ(last.exit_code, 0) << last.err;
+  EXPECT_TRUE(same_bytes(out, ref)) << "the resumed package differs from the uninterrupted one";
+  expect_no_leftovers(dir / "work", "out.mbtiles");
+  // The test must also have exercised continuing from committed tiles.
+  EXPECT_GT(resumed_with_tiles + finished, 0);
+  std::cerr << "kills " << kills << ", finished runs " << finished << ", kills after resuming "
+            << "committed tiles " << resumed_with_tiles << "\n";
+}
+
+std::string terrain_build() {
+  return tiler() + " terrain " + sample("etopo20.tif").string() + " --max-zoom 4";
+}
+std::string lines_build() {
+  return vectorize() + " lines " + sample("ne_admin1.shp").string();
+}
+
+}  // namespace
+
+TEST(CrashSafety, TerrainSurvivesRandomKillsAndResumesToTheSameBytes) {
+  kill_and_resume(terrain_build(), 20, std::chrono::milliseconds(1500));
+}
+
+TEST(CrashSafety, LinesSurviveRandomKillsAndResumeToTheSameBytes) {
+  kill_and_resume(lines_build(), 20, std::chrono::milliseconds(2500));
+}
+
+TEST(CrashSafety, ImageryResumesToTheSameBytes) {
+  // Image builds resume by level: the finest takes about 5 s here.
+  kill_and_resume(tiler() + " imagery " + sample("bluemarble.tif").string() + " --max-zoom 4", 5,
+                  std::chrono::milliseconds(8000));
+}
+
+TEST(CrashSafety, ResumeRefusesAnotherBuildsTemporaryFile) {
+  TempDir dir;
+  const std::string cd = "cd " + dir.path().string() + " && ";
+  const pid_t pid = spawn(dir.path(), terrain_build() + " -o out.mbtiles -q -j1 2>/dev/null");
+  // Wait until the build has committed something, then kill it.
+  for (int i = 0; i < 300 && !fs::exists(dir / "out.mbtiles.tmp"); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ::kill(pid, SIGKILL);
+  ::waitpid(pid, nullptr, 0);
+  ASSERT_TRUE(fs::exists(dir / "out.mbtiles.tmp"));
+
+  const RunResult other =
+      run(cd + terrain_build() + " --precision 0.5 -o out.mbtiles --resume", dir.path());
+  EXPECT_EQ(other.exit_code, 3) << other.err;
+  EXPECT_NE(other.err.find("out.mbtiles.tmp"), std::string::npos) << other.err;
+  EXPECT_NE(other.err.find("without --resume"), std::string::npos) << other.err;
+  EXPECT_TRUE(fs::exists(dir / "out.mbtiles.tmp")) << "a refused resume must keep the file";
+  EXPECT_FALSE(fs::exists(dir / "out.mbtiles"));
+
+  // Without --resume, the stale file is replaced and the user told so.
+  const RunResult fresh = run(cd + terrain_build() + " -o out.mbtiles", dir.path());
+  EXPECT_EQ(fresh.exit_code, 0) << fresh.err;
+  EXPECT_NE(fresh.err.find("left by an interrupted build"), std::string::npos) << fresh.err;
+  expect_no_leftovers(dir.path(), "out.mbtiles");
+
+  // --resume with nothing to resume starts a new build.
+  const RunResult none = run(cd + terrain_build() + " -o new.mbtiles --resume", dir.path());
+  EXPECT_EQ(none.exit_code, 0) << none.err;
+  EXPECT_NE(none.err.find("nothing to resume"), std::string::npos) << none.err;
+}
+
+// An injected write failure: RLIMIT_FSIZE makes writes past the limit fail
+// (EFBIG; SIGXFSZ ignored), like a disk that fills up during the build.
+TEST(DiskFull, WriteFailureIsAClearErrorAndLeavesNothing) {
+  TempDir dir;
+  const std::string limit = "cd " + dir.path().string() + " && trap '' XFSZ && ulimit -f 1024 && ";
+  for (const std::string& build : {terrain_build(), lines_build()}) {
+    const RunResult r = run(limit + build + " -o out.mbtiles -q", dir.path());
+    EXPECT_EQ(r.exit_code, 3) << build << "\n" << r.err;
+    EXPECT_NE(r.err.find("out.mbtiles"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("check free space"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("nothing was written to out.mbtiles"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "out.mbtiles"));
+    expect_no_leftovers(dir.path(), "out.mbtiles");
+  }
+}
+
+// A real full file system: a 2 MiB tmpfs (needs the right to mount; CI runs
+// as root, elsewhere the test is skipped and the injected failure above
+// stands in).
+TEST(DiskFull, FullFileSystemIsAClearErrorAndLeavesNothing) {
+  TempDir dir;
+  const fs::path mnt = dir / "small";
+  fs::create_directories(mnt);
+  if (::mount("tmpfs", mnt.c_str(), "tmpfs", 0, "size=2m") != 0)
+    GTEST_SKIP() << "cannot mount a tmpfs here (not root?)";
+  for (const std::string& build : {terrain_build(), lines_build()}) {
+    const RunResult r =
+        run("cd " + mnt.string() + " && " + build + " -o out.mbtiles -q", dir.path());
+    EXPECT_EQ(r.exit_code, 3) << build << "\n" << r.err;
+    EXPECT_TRUE(r.err.find("disk is full") != std::string::npos ||
+                r.err.find("No space left on device") != std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("nothing was written to out.mbtiles"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(mnt / "out.mbtiles"));
+    expect_no_leftovers(mnt, "out.mbtiles");
+  }
+  ::umount(mnt.c_str());
+}
+
+// The viewer flies over a package while another process keeps replacing the
+// file (the other of two packages written next to it, then renamed over it).
+// The viewer reads the file it opened: the picture is exactly that of one of
+// the two packages viewed alone, no tile of the other one, no crash.
+TEST(ViewerRobustness, PackageReplacedWhileReadingIsNeverTorn) {
+  TempDir dir;
+  const std::string dem = sample("jacksboro.tif").string();
+  const fs::path a = dir / "a.mbtiles", b = dir / "b.mbtiles", live = dir / "live.mbtiles";
+  ASSERT_EQ(run(tiler() + " terrain " + dem + " -o " + a.string() + " -q", dir.path()).exit_code,
+            0);
+  // Another block size: any tile of b read as a's is a decoding error.
+  ASSERT_EQ(
+      run(tiler() + " terrain " + dem + " --block-size 65 -o " + b.string() + " -q", dir.path())
+          .exit_code,
+      0);
+  {
+    std::ofstream flight(dir / "flight.txt");
+    for (int i = 0; i <= 24; ++i)
+      flight << -84.42 + i * 0.015 << "," << 36.45 + i * 0.01 << ",900," << i * 15 << ",60\n";
+  }
+  const std::string view = viewer() + " " + live.string() +
+                           " --size 320x180 --cache-mb 4 --snapshot %s --camera-path " +
+                           (dir / "flight.txt").string();
+  auto view_to = [&](const std::string& png) {
+    std::string cmd = view;
+    cmd.replace(cmd.find("%s"), 2, (dir / png).string());
+    return cmd;
+  };
+  for (const fs::path& p : {a, b}) {
+    fs::copy_file(p, live, fs::copy_options::overwrite_existing);
+    const RunResult quiet = run(view_to(p.stem().string() + ".png"), dir.path());
+    ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
+  }
+
+  std::atomic<bool> done{false};
+  int replacements = 0;
+  std::thread replacer([&] {
+    for (int i = 0; !done; ++i) {
+      const fs::path next = dir / "next.mbtiles";
+      fs::copy_file(i % 2 ? a : b, next, fs::copy_options::overwrite_existing);
+      fs::rename(next, live);
+      ++replacements;
+    }
+  });
+  const RunResult busy = run(view_to("busy.png"), dir.path());
+  done = true;
+  replacer.join();
+  ASSERT_EQ(busy.exit_code, 0) << busy.err;
+  EXPECT_EQ(busy.err.find("warning"), std::string::npos) << busy.err;
+  EXPECT_GT(replacements, 10);
+  int w, h;
+  const auto picture = read_rgb((dir / "busy.png").string(), w, h);
+  EXPECT_TRUE(picture == read_rgb((dir / "a.png").string(), w, h) ||
+              picture == read_rgb((dir / "b.png").string(), w, h))
+      << "the picture mixes the packages (" << replacements << " replacements)";
+}
