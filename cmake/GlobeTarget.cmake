@@ -12,4 +12,7 @@ function(globe_target name)
                                            -fno-sanitize-recover=all)
     target_link_options(${name} PRIVATE -fsanitize=${GLOBE_SANITIZE})
   endif()
+  if(GLOBE_FUZZ)  # coverage feedback for libFuzzer in every library it links
+    target_compile_options(${name} PRIVATE -fsanitize=fuzzer-no-link)
+  endif()
 endfunction()

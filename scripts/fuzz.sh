@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# Fuzzes the tile decoders and package opening with libFuzzer under ASan +
+# UBSan: builds the targets of tests/fuzz/ with clang into build-fuzz/, writes
+# the seed corpus (valid blobs and packages), then runs each target for
+# SECONDS (default 60). Inputs that crash are saved under
+# build-fuzz/crashes/<target>/ and the script fails; copy each into
+# tests/data/fuzz/<target>/ and fix the decoder: the regression test
+# (FuzzRegression, label unit) replays every file there.
+# Usage: scripts/fuzz.sh [SECONDS] [TARGET...]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-60}
+shift || true
+targets=("$@")
+[ ${#targets[@]} -eq 0 ] && targets=(mblock image_tile line_tile package)
+
+CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DGLOBE_FUZZ=ON -DGLOBE_BUILD_TESTS=OFF -DGLOBE_SANITIZE=address,undefined >/dev/null
+cmake --build build-fuzz --target make_fuzz_seeds "${targets[@]/#/fuzz_}"
+rm -rf build-fuzz/seeds
+build-fuzz/tests/fuzz/make_fuzz_seeds build-fuzz/seeds
+
+failed=()
+for t in "${targets[@]}"; do
+  mkdir -p "build-fuzz/corpus/$t" "build-fuzz/crashes/$t"
+  dirs=("build-fuzz/corpus/$t" "build-fuzz/seeds/$t")
+  [ -d "tests/data/fuzz/$t" ] && dirs+=("tests/data/fuzz/$t")
+  echo "fuzz: $t for ${seconds}s" >&2
+  if ! UBSAN_OPTIONS=print_stacktrace=1 "build-fuzz/tests/fuzz/fuzz_$t" \
+      -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+      -artifact_prefix="build-fuzz/crashes/$t/" "${dirs[@]}" 2> "build-fuzz/fuzz_$t.log"; then
+    tail -40 "build-fuzz/fuzz_$t.log" >&2
+    failed+=("$t")
+  else
+    grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "build-fuzz/fuzz_$t.log" |
+      sed "s/^/fuzz: $t /" >&2
+  fi
+done
+if [ ${#failed[@]} -gt 0 ]; then
+  echo "fuzz: crashes in ${failed[*]}; inputs under build-fuzz/crashes/" >&2
+  exit 1
+fi
+echo "fuzz: no crash in ${targets[*]}" >&2

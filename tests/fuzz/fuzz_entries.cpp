@@ -1,0 +1,111 @@
+// Fuzz entries (see fuzz_entries.hpp).
+#include "fuzz_entries.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+
+#include "tileformat/error.hpp"
+#include "tileformat/image_tile.hpp"
+#include "tileformat/line_tile.hpp"
+#include "tileformat/mblock.hpp"
+#include "tileformat/package.hpp"
+
+namespace globe_fuzz {
+namespace {
+
+[[noreturn]] void fail(const char* what) {
+  std::fprintf(stderr, "fuzz: %s\n", what);
+  std::abort();
+}
+
+template <class Fn>
+void rejecting_cleanly(Fn&& fn) {
+  try {
+    fn();
+  } catch (const tileformat::FormatError&) {
+  } catch (const tileformat::PackageError&) {
+  }
+}
+
+bool same(const tileformat::MBlock& a, const tileformat::MBlock& b) {
+  return a.size == b.size && a.lattice == b.lattice && a.step == b.step && a.q == b.q &&
+         a.valid == b.valid && a.vertex_error == b.vertex_error;
+}
+
+bool same(const tileformat::LineTile& a, const tileformat::LineTile& b) {
+  auto runs = [](const tileformat::LineTile& t) {
+    std::vector<uint32_t> v;
+    for (const auto& r : t.runs)
+      v.insert(v.end(), {r.feature, r.class_id, r.first_vertex, r.vertex_count});
+    return v;
+  };
+  auto vertices = [](const tileformat::LineTile& t) {
+    std::vector<int64_t> v;
+    for (const auto& p : t.vertices)
+      v.insert(v.end(), {p.x, p.y});
+    for (const auto& p : t.points)
+      v.insert(v.end(), {p.feature, p.class_id, p.at.x, p.at.y});
+    return v;
+  };
+  return a.extent == b.extent && a.grid == b.grid && a.reach == b.reach &&
+         a.feature_ids == b.feature_ids && runs(a) == runs(b) && vertices(a) == vertices(b) &&
+         a.cell_offsets == b.cell_offsets && a.cell_segments == b.cell_segments;
+}
+
+}  // namespace
+
+void mblock(std::span<const uint8_t> data) {
+  rejecting_cleanly([&] {
+    const tileformat::MBlock m = tileformat::decode_mblock(data);
+    tileformat::mblock_stats(m);
+    if (!same(tileformat::decode_mblock(tileformat::encode_mblock(m, 1, false)), m))
+      fail("an MBlock does not survive re-encoding");
+  });
+}
+
+void image_tile(std::span<const uint8_t> data) {
+  rejecting_cleanly([&] {
+    const tileformat::ImageHeader h = tileformat::inspect_image_tile(data);
+    if (h.width <= 0 || h.height <= 0 || h.channels < 0 || h.channels > 4)
+      fail("inspect_image_tile accepted impossible dimensions");
+  });
+}
+
+void line_tile(std::span<const uint8_t> data) {
+  rejecting_cleanly([&] {
+    const tileformat::LineTileCounts c = tileformat::peek_line_tile_counts(data);
+    const tileformat::LineTile t = tileformat::decode_line_tile(data);
+    if (c.segments != t.segment_count() || c.runs != t.runs.size() || c.points != t.points.size() ||
+        c.features != t.feature_ids.size())
+      fail("peeked line tile counts differ from the decoded tile");
+    if (!same(tileformat::decode_line_tile(tileformat::encode_line_tile(t, 1)), t))
+      fail("a line tile does not survive re-encoding");
+  });
+}
+
+void package(std::span<const uint8_t> data, const std::string& scratch_path) {
+  {
+    std::ofstream out(scratch_path, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(data.data()),
+              static_cast<std::streamsize>(data.size()));
+  }
+  rejecting_cleanly([&] {
+    tileformat::PackageReader r(scratch_path);
+    const std::string format = r.meta("format").value_or("");
+    r.zoom_summaries();
+    r.unique_blobs();
+    r.tile({0, 0, 0});
+    r.for_each_tile([&](tileformat::TileId, std::span<const uint8_t> blob) {
+      if (format == tileformat::kMBlockFormat)
+        mblock(blob);
+      else if (format == tileformat::kLineClustersFormat)
+        line_tile(blob);
+      else
+        image_tile(blob);
+    });
+  });
+  std::remove(scratch_path.c_str());
+}
+
+}  // namespace globe_fuzz

@@ -1,0 +1,27 @@
+// What each fuzz target does with one input, shared by the libFuzzer targets
+// (tests/fuzz/fuzz_*.cpp, scripts/fuzz.sh) and the regression test that
+// replays every saved input (tests/fuzz_regression_test.cpp). Each entry
+// feeds the bytes to a decoder; a clean rejection (tileformat::FormatError or
+// PackageError) is fine, anything else (another exception, a crash, a
+// sanitizer report, a decoded value that does not survive re-encoding)
+// aborts.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+
+namespace globe_fuzz {
+
+// decode_mblock; what decodes must re-encode and decode to the same block.
+void mblock(std::span<const uint8_t> data);
+// inspect_image_tile (the image blob's header).
+void image_tile(std::span<const uint8_t> data);
+// decode_line_tile and peek_line_tile_counts; decoded tiles must re-encode
+// and decode to the same tile, and the peeked counts must match.
+void line_tile(std::span<const uint8_t> data);
+// The bytes as a package file at `scratch_path`: open, read the metadata,
+// summaries, and every tile, decoding it by the package's format.
+void package(std::span<const uint8_t> data, const std::string& scratch_path);
+
+}  // namespace globe_fuzz
