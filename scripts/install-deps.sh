@@ -7,6 +7,8 @@ set -euo pipefail
 packages=(
   # build
   build-essential cmake ninja-build pkg-config clang-format
+  # fuzzing (scripts/fuzz.sh): clang and its libFuzzer runtime
+  clang libclang-rt-14-dev
   # libraries (see README "Dependencies")
   libgdal-dev libproj-dev libtiff-dev libzstd-dev libsqlite3-dev
   googletest libgtest-dev
@@ -14,6 +16,8 @@ packages=(
   libglm-dev libglfw3-dev libosmesa6-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   # command-line tools used by samples/fetch.sh, tests and benchmarks
   gdal-bin sqlite3 unzip ca-certificates time bc
+  # tests/data/hostile/make_hostile.sh
+  python3
   # gdal2tiles.py (imagery benchmark peer)
   python3-gdal
   # window tests under a virtual X server
