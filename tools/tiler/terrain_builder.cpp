@@ -90,18 +90,25 @@ class Builder {
     try {
       StagingStore stage(s_.output + ".staging", tileformat::build_key_hash(build_key(s_)),
                          writer->resumed());
-      // Without the stage's checkpoint (none kept), every level is computed
-      // again and only the package's committed tiles are skipped.
-      const std::optional<StageCheckpoint> resume_at =
-          writer->resumed() ? stage.checkpoint() : std::nullopt;
+      // Where to start. Without the stage's checkpoint (none kept), every
+      // level is computed again and only the package's committed tiles are
+      // skipped.
+      StageCheckpoint start{plan_.max_zoom, kPassRaw, 0};
+      if (writer->resumed())
+        if (const std::optional<StageCheckpoint> at = stage.checkpoint()) {
+          start = *at;
+          static const char* const kPassNames[] = {"samples", "errors", "encoding"};
+          progress_.note("continuing at zoom " + std::to_string(start.z) + ", " +
+                         kPassNames[std::clamp(start.pass, 0, 2)] + " pass, after " +
+                         std::to_string(start.done) + " items");
+        }
       warpers_.resize(threads_);
       for (int z = plan_.max_zoom; z >= plan_.min_zoom; --z) {
-        if (resume_at && z > resume_at->z) {  // finished before the interruption
+        if (z > start.z) {  // finished before the interruption
           if (writer->tiles_at_zoom(z) > 0) coarsest_written_ = z;
           continue;
         }
-        const StageCheckpoint from =
-            resume_at && resume_at->z == z ? *resume_at : StageCheckpoint{z, kPassRaw, 0};
+        const StageCheckpoint from = z == start.z ? start : StageCheckpoint{z, kPassRaw, 0};
         if (from.pass <= kPassRaw) pass_raw(stage, z, from.pass == kPassRaw ? from.done : 0);
         if (from.pass <= kPassFinal) {
           pass_final(stage, z, from.pass == kPassFinal ? from.done : 0);
