@@ -46,27 +46,25 @@ class Builder {
     const auto start = std::chrono::steady_clock::now();
     std::unique_ptr<tileformat::PackageWriter> writer = create_package(s_, progress_);
     try {
-      // Resume works by level: the stage's checkpoint names the next level
-      // to build; that level is built again and the tiles the package
-      // already holds are not put twice.
       StagingStore stage(s_.output + ".staging", tileformat::build_key_hash(build_key(s_)),
                          writer->resumed());
-      const std::optional<StageCheckpoint> resume_at =
-          writer->resumed() ? stage.checkpoint() : std::nullopt;
+      const StageCheckpoint start = resume_point(stage, *writer);
       warpers_.resize(threads_);
       for (int z = plan_.max_zoom; z >= plan_.min_zoom; --z) {
-        if (resume_at && z > resume_at->z) {  // finished before the interruption
+        if (z > start.z) {  // finished before the interruption
           if (writer->tiles_at_zoom(z) > 0) coarsest_written_ = z;
           continue;
         }
-        skip_puts_ = writer->resumed() ? writer->tiles_at_zoom(z) : 0;
+        const StageCheckpoint from = z == start.z ? start : StageCheckpoint{z, 0, 0, 0};
+        level_puts_ = from.puts;
+        skip_puts_ = writer->resumed() ? writer->tiles_at_zoom(z) - from.puts : 0;
         if (z == plan_.max_zoom)
-          pass_warp(stage, *writer, z);
+          pass_warp(stage, *writer, z, from.done);
         else
-          pass_pyramid(stage, *writer, z);
+          pass_pyramid(stage, *writer, z, from.done);
         writer->checkpoint();  // the package holds level z before the stage forgets z + 1
         stage.drop(Stage::kRaw, z + 1);
-        stage.commit({z - 1, 0, 0});
+        stage.commit({z - 1, 0, 0, 0});
       }
       warpers_.clear();
     } catch (const tileformat::PackageError& e) {
@@ -87,6 +85,36 @@ class Builder {
   }
 
  private:
+  // Where a resumed build starts: in the level the stage was working on, at
+  // its last checkpoint whose tiles the package had all committed (stage
+  // and package commit independently; the package's commits fall where the
+  // tile sequence puts them, so that the file's bytes never depend on when
+  // a build was killed). A new build, or one without a stage, starts at the
+  // finest zoom from the first item.
+  StageCheckpoint resume_point(StagingStore& stage, tileformat::PackageWriter& writer) {
+    StageCheckpoint start{plan_.max_zoom, 0, 0, 0};
+    if (!writer.resumed()) return start;
+    const std::optional<StageCheckpoint> last = stage.checkpoint();
+    if (!last) return start;
+    start = {last->z, 0, 0, 0};
+    const uint64_t committed = writer.tiles_at_zoom(last->z);
+    for (const StageCheckpoint& c : stage.checkpoints(last->z))
+      if (c.puts <= committed) start = c;
+    if (start.z < plan_.max_zoom || start.done > 0)
+      progress_.note("continuing at zoom " + std::to_string(start.z) + " after " +
+                     std::to_string(start.done) + " items");
+    return start;
+  }
+
+  // Commits the stage now and then inside a level (at most every second):
+  // items before `done` are stored and put `level_puts_` tiles.
+  void maybe_commit(StagingStore& stage, int z, size_t done) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_stage_commit_ < std::chrono::seconds(1)) return;
+    stage.commit({z, 0, done, level_puts_});
+    last_stage_commit_ = now;
+  }
+
   // Encodes a tile and, unless it is the coarsest zoom, keeps its pixels.
   std::optional<TileOut> finish(TileId id, const TilePixels& px) const {
     if (px.empty()) return std::nullopt;
@@ -98,6 +126,7 @@ class Builder {
 
   void store(StagingStore& stage, tileformat::PackageWriter& writer, const TileOut& out) {
     if (!out.stage.empty()) stage.put(Stage::kRaw, out.id, out.stage);
+    ++level_puts_;
     if (skip_puts_ > 0)
       --skip_puts_;  // committed before an interruption
     else
@@ -116,19 +145,24 @@ class Builder {
     }
   }
 
-  void pass_warp(StagingStore& stage, tileformat::PackageWriter& writer, int z) {
+  // From group `first` on (a resumed build).
+  void pass_warp(StagingStore& stage, tileformat::PackageWriter& writer, int z, size_t first) {
     const std::vector<TileId> tiles = tiles_in_areas(plan_.tiling, plan_.data_areas, z);
     const int g = plan_.tiling.tiles_x(z) >= 16 ? ImageWarper::kMaxGroup : 1;
     const std::vector<TileGroup> groups = group_tiles(tiles, g);
     progress_.begin("z" + std::to_string(z) + " warp", tiles.size());
+    for (size_t i = 0; i < first && i < groups.size(); ++i)
+      progress_.advance(groups[i].members.size());
     parallel_batches<std::vector<TileOut>>(
-        groups.size(), threads_, std::max<size_t>(2, size_t(2 * threads_)), [](size_t, size_t) {},
+        groups.size(), threads_, std::max<size_t>(2, size_t(2 * threads_)),
+        [&](size_t begin, size_t) { maybe_commit(stage, z, begin); },
         [&](size_t i, int worker) { return warp_group(groups[i], worker); },
         [&](size_t i, std::vector<TileOut>&& outs) {
           for (const TileOut& out : outs)
             store(stage, writer, out);
           progress_.advance(groups[i].members.size());
-        });
+        },
+        first);
     progress_.end();
   }
 
@@ -150,7 +184,8 @@ class Builder {
     return outs;
   }
 
-  void pass_pyramid(StagingStore& stage, tileformat::PackageWriter& writer, int z) {
+  // From tile `first` on (a resumed build).
+  void pass_pyramid(StagingStore& stage, tileformat::PackageWriter& writer, int z, size_t first) {
     std::vector<TileId> tiles;
     for (const TileId& c : stage.list(Stage::kRaw, z + 1))
       tiles.push_back(c.parent());
@@ -158,9 +193,11 @@ class Builder {
     std::map<TileId, std::vector<uint8_t>> cache;
     const size_t planes_bytes = size_t(plan_.colour + 1) * s_.tile_size * s_.tile_size;
     progress_.begin("z" + std::to_string(z) + " pyramid", tiles.size());
+    progress_.advance(first);
     parallel_batches<std::optional<TileOut>>(
         tiles.size(), threads_, size_t(8 * threads_),
         [&](size_t begin, size_t end) {
+          maybe_commit(stage, z, begin);
           cache.clear();
           for (size_t i = begin; i < end; ++i)
             for (const TileId& c : tiles[i].children())
@@ -183,7 +220,8 @@ class Builder {
         [&](size_t, std::optional<TileOut>&& out) {
           if (out) store(stage, writer, *out);
           progress_.advance();
-        });
+        },
+        first);
     progress_.end();
   }
 
@@ -245,7 +283,9 @@ class Builder {
   const int threads_;
   std::vector<std::unique_ptr<ImageWarper>> warpers_;
   int coarsest_written_ = 0;
-  uint64_t skip_puts_ = 0;  // tiles of this level a resumed package already holds
+  uint64_t level_puts_ = 0;  // tiles of this level stored so far (put or skipped)
+  uint64_t skip_puts_ = 0;   // of the next ones, how many a resumed package already holds
+  std::chrono::steady_clock::time_point last_stage_commit_ = std::chrono::steady_clock::now();
   ImageSummary sum_;
 };
 

@@ -45,7 +45,8 @@ StagingStore::StagingStore(std::string path, int32_t key, bool resume) : path_(s
     db_->exec(
         "CREATE TABLE stage (kind INTEGER, z INTEGER, x INTEGER, y INTEGER, data BLOB, PRIMARY "
         "KEY (kind, z, y, x));"
-        "CREATE TABLE progress (id INTEGER PRIMARY KEY, z INTEGER, pass INTEGER, done INTEGER)");
+        "CREATE TABLE progress (seq INTEGER PRIMARY KEY, z INTEGER, pass INTEGER, done INTEGER, "
+        "puts INTEGER)");
   }
   put_ = std::make_unique<SqliteStatement>(*db_,
                                            "INSERT OR REPLACE INTO stage VALUES (?, ?, ?, ?, ?)");
@@ -61,11 +62,29 @@ StagingStore::~StagingStore() {
   remove_store(path_);
 }
 
-std::optional<StageCheckpoint> StagingStore::checkpoint() {
-  SqliteStatement st(*db_, "SELECT z, pass, done FROM progress WHERE id = 0");
-  if (!st.step()) return std::nullopt;
+namespace {
+
+StageCheckpoint checkpoint_row(const SqliteStatement& st) {
   return StageCheckpoint{static_cast<int>(st.column_int(0)), static_cast<int>(st.column_int(1)),
-                         static_cast<uint64_t>(st.column_int(2))};
+                         static_cast<uint64_t>(st.column_int(2)),
+                         static_cast<uint64_t>(st.column_int(3))};
+}
+
+}  // namespace
+
+std::optional<StageCheckpoint> StagingStore::checkpoint() {
+  SqliteStatement st(*db_, "SELECT z, pass, done, puts FROM progress ORDER BY seq DESC LIMIT 1");
+  if (!st.step()) return std::nullopt;
+  return checkpoint_row(st);
+}
+
+std::vector<StageCheckpoint> StagingStore::checkpoints(int z) {
+  SqliteStatement st(*db_, "SELECT z, pass, done, puts FROM progress WHERE z = ? ORDER BY seq");
+  st.bind(1, z);
+  std::vector<StageCheckpoint> out;
+  while (st.step())
+    out.push_back(checkpoint_row(st));
+  return out;
 }
 
 void StagingStore::put(Stage stage, tileformat::TileId id, const std::vector<uint8_t>& data) {
@@ -106,8 +125,9 @@ void StagingStore::commit() {
 }
 
 void StagingStore::commit(const StageCheckpoint& at) {
-  SqliteStatement st(*db_, "INSERT OR REPLACE INTO progress VALUES (0, ?, ?, ?)");
+  SqliteStatement st(*db_, "INSERT INTO progress (z, pass, done, puts) VALUES (?, ?, ?, ?)");
   st.bind(1, at.z).bind(2, at.pass).bind(3, static_cast<int64_t>(at.done));
+  st.bind(4, static_cast<int64_t>(at.puts));
   st.step();
   commit();
 }

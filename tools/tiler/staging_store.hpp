@@ -21,11 +21,13 @@ namespace globe {
 enum class Stage : int { kRaw = 1, kFinal = 2, kNodeErrors = 3, kEdges = 4 };
 
 // How far a build got: pass `pass` of zoom `z` has consumed its first `done`
-// work items (the meaning of passes and items is the builder's).
+// work items, which put `puts` tiles of zoom z into the package (the meaning
+// of passes and items is the builder's).
 struct StageCheckpoint {
   int z = 0;
   int pass = 0;
   uint64_t done = 0;
+  uint64_t puts = 0;
 };
 
 class StagingStore {
@@ -38,6 +40,8 @@ class StagingStore {
 
   // The last committed checkpoint of a kept store; nullopt for a new one.
   std::optional<StageCheckpoint> checkpoint();
+  // Every committed checkpoint of zoom z, oldest first.
+  std::vector<StageCheckpoint> checkpoints(int z);
 
   void put(Stage stage, tileformat::TileId id, const std::vector<uint8_t>& data);
   std::optional<std::vector<uint8_t>> get(Stage stage, tileformat::TileId id);

@@ -13,7 +13,11 @@
 namespace tileformat {
 namespace {
 
+// A batch ends after this many tiles or bytes, whichever comes first: what a
+// killed build loses at most. Both depend only on the tiles put, so commits
+// fall at the same places in every run (the file's bytes depend on them).
 constexpr uint64_t kBatchTiles = 512;
+constexpr uint64_t kBatchBytes = uint64_t{4} << 20;
 
 int64_t fnv1a(std::span<const uint8_t> bytes) {
   uint64_t h = 1469598103934665603ull;
@@ -159,12 +163,14 @@ void PackageWriter::put_tile(TileId id, std::span<const uint8_t> blob) {
   insert_map_->step();
   insert_map_->reset();
   ++tiles_;
-  if (++in_batch_ >= kBatchTiles) flush_batch();
+  in_batch_bytes_ += blob.size();
+  if (++in_batch_ >= kBatchTiles || in_batch_bytes_ >= kBatchBytes) flush_batch();
 }
 
 void PackageWriter::flush_batch() {
   db_->exec("COMMIT; BEGIN");
   in_batch_ = 0;
+  in_batch_bytes_ = 0;
 }
 
 void PackageWriter::checkpoint() {

@@ -6,7 +6,7 @@
 // complete package. Identical blobs are stored once.
 //
 // Crash safety and resume (docs/robustness.md): tiles are committed in
-// batches of kBatchTiles through a rollback journal, so a killed build leaves
+// batches (512 tiles or 4 MiB) through a rollback journal, so a killed build leaves
 // <final>.tmp holding every batch committed before the kill. A writer opened
 // with `resume` keeps that file (its header's user_version holds a hash of
 // the build key, so a build with other inputs or options cannot continue
@@ -82,7 +82,7 @@ class PackageWriter {
   std::unique_ptr<SqliteDb> db_;
   std::unique_ptr<SqliteStatement> find_blob_, insert_blob_, insert_map_;
   std::map<std::string, std::string> metadata_;
-  uint64_t tiles_ = 0, unique_ = 0, blob_bytes_ = 0, in_batch_ = 0;
+  uint64_t tiles_ = 0, unique_ = 0, blob_bytes_ = 0, in_batch_ = 0, in_batch_bytes_ = 0;
   bool committed_ = false, resumed_ = false, finished_ = false;
 };
 
