@@ -98,9 +98,10 @@ class Builder {
         if (const std::optional<StageCheckpoint> at = stage.checkpoint()) {
           start = *at;
           static const char* const kPassNames[] = {"samples", "errors", "encoding"};
-          progress_.note("continuing at zoom " + std::to_string(start.z) + ", " +
-                         kPassNames[std::clamp(start.pass, 0, 2)] + " pass, after " +
-                         std::to_string(start.done) + " items");
+          if (start.z < plan_.max_zoom || start.pass > kPassRaw || start.done > 0)
+            progress_.note("continuing at zoom " + std::to_string(start.z) + ", " +
+                           kPassNames[std::clamp(start.pass, 0, 2)] + " pass, after " +
+                           std::to_string(start.done) + " items");
         }
       warpers_.resize(threads_);
       for (int z = plan_.max_zoom; z >= plan_.min_zoom; --z) {
