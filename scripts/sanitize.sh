@@ -9,5 +9,14 @@ cd "$(dirname "$0")/.."
 BUILD_DIR=build-asan scripts/build.sh -DGLOBE_SANITIZE=address,undefined
 supp=$(pwd)/scripts/lsan.supp
 cd build-asan
-ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$supp:print_suppressions=0 \
-  UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j "$(nproc)" --timeout 1500 "$@"
+export LSAN_OPTIONS=suppressions=$supp:print_suppressions=0 UBSAN_OPTIONS=print_stacktrace=1
+# The one test that forces --platform egl runs without leak detection (ASan
+# and UBSan still on): Mesa's EGL driver leaks 112 bytes and is unloaded
+# (dlclose) before the leak check runs, so its frames can no longer be named
+# and suppressed as Mesa's like the others.
+egl_test='ViewerRender.OsMesaAndEglGiveTheSameImage'
+status=0
+ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j "$(nproc)" --timeout 1500 \
+  -E "$egl_test" "$@" || status=1
+ASAN_OPTIONS=detect_leaks=0 ctest --output-on-failure --timeout 1500 -R "$egl_test" || status=1
+exit $status
