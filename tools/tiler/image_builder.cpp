@@ -106,15 +106,6 @@ class Builder {
     return start;
   }
 
-  // Commits the stage now and then inside a level (at most every second):
-  // items before `done` are stored and put `level_puts_` tiles.
-  void maybe_commit(StagingStore& stage, int z, size_t done) {
-    const auto now = std::chrono::steady_clock::now();
-    if (now - last_stage_commit_ < std::chrono::seconds(1)) return;
-    stage.commit({z, 0, done, level_puts_});
-    last_stage_commit_ = now;
-  }
-
   // Encodes a tile and, unless it is the coarsest zoom, keeps its pixels.
   std::optional<TileOut> finish(TileId id, const TilePixels& px) const {
     if (px.empty()) return std::nullopt;
@@ -155,7 +146,9 @@ class Builder {
       progress_.advance(groups[i].members.size());
     parallel_batches<std::vector<TileOut>>(
         groups.size(), threads_, std::max<size_t>(2, size_t(2 * threads_)),
-        [&](size_t begin, size_t) { maybe_commit(stage, z, begin); },
+        [&](size_t begin, size_t) {
+          stage.commit_if_due({z, 0, begin, level_puts_});
+        },
         [&](size_t i, int worker) { return warp_group(groups[i], worker); },
         [&](size_t i, std::vector<TileOut>&& outs) {
           for (const TileOut& out : outs)
@@ -197,7 +190,7 @@ class Builder {
     parallel_batches<std::optional<TileOut>>(
         tiles.size(), threads_, size_t(8 * threads_),
         [&](size_t begin, size_t end) {
-          maybe_commit(stage, z, begin);
+          stage.commit_if_due({z, 0, begin, level_puts_});
           cache.clear();
           for (size_t i = begin; i < end; ++i)
             for (const TileId& c : tiles[i].children())
@@ -285,7 +278,6 @@ class Builder {
   int coarsest_written_ = 0;
   uint64_t level_puts_ = 0;  // tiles of this level stored so far (put or skipped)
   uint64_t skip_puts_ = 0;   // of the next ones, how many a resumed package already holds
-  std::chrono::steady_clock::time_point last_stage_commit_ = std::chrono::steady_clock::now();
   ImageSummary sum_;
 };
 

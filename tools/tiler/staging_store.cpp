@@ -122,6 +122,11 @@ void StagingStore::drop(Stage stage, int z) {
 
 void StagingStore::commit() {
   db_->exec("COMMIT; BEGIN");
+  last_commit_ = std::chrono::steady_clock::now();
+}
+
+void StagingStore::commit_if_due(const StageCheckpoint& at) {
+  if (std::chrono::steady_clock::now() - last_commit_ >= std::chrono::seconds(1)) commit(at);
 }
 
 void StagingStore::commit(const StageCheckpoint& at) {

@@ -5,6 +5,7 @@
 // journal), with a checkpoint saying how far the build had got, for --resume.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -51,11 +52,16 @@ class StagingStore {
   void commit();  // ends the current write transaction
   // Commits together with a checkpoint (atomically).
   void commit(const StageCheckpoint& at);
+  // The same, unless the store committed less than a second ago: called
+  // where a batch of work begins, so a killed build loses little work and a
+  // running one little time.
+  void commit_if_due(const StageCheckpoint& at);
 
  private:
   std::string path_;
   std::unique_ptr<tileformat::SqliteDb> db_;
   std::unique_ptr<tileformat::SqliteStatement> put_, get_;
+  std::chrono::steady_clock::time_point last_commit_ = std::chrono::steady_clock::now();
 };
 
 std::vector<uint8_t> pack_u32(const std::vector<uint32_t>& v);

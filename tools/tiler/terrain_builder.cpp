@@ -38,9 +38,6 @@ constexpr int kFinalZstdLevel = 9;
 // warp groups (finest zoom) or tiles; kPassEncode's progress is the tiles in
 // the package itself.
 enum Pass : int { kPassRaw = 0, kPassFinal = 1, kPassEncode = 2 };
-// The stage commits (with its checkpoint) at most this often, so a killed
-// build loses little work and a running one little time.
-constexpr auto kStageCommitInterval = std::chrono::seconds(1);
 
 struct Block {
   std::vector<int32_t> q;
@@ -182,15 +179,6 @@ class Builder {
     std::vector<uint8_t> block, edges;  // both empty: no valid sample
   };
 
-  // Commits the stage now and then inside a pass: items before `done` are
-  // stored. Called where a batch begins.
-  void maybe_commit(StagingStore& stage, int z, Pass pass, size_t done) {
-    const auto now = std::chrono::steady_clock::now();
-    if (now - last_stage_commit_ < kStageCommitInterval) return;
-    stage.commit({z, pass, done});
-    last_stage_commit_ = now;
-  }
-
   // Pass 1: raw samples of every tile of zoom z, from item `first` on.
   void pass_raw(StagingStore& stage, int z, size_t first) {
     if (z == plan_.max_zoom) return pass_warp(stage, z, first);
@@ -204,7 +192,7 @@ class Builder {
     parallel_batches<RawOut>(
         tiles.size(), threads_, batch_size(),
         [&](size_t begin, size_t end) {
-          maybe_commit(stage, z, kPassRaw, begin);
+          stage.commit_if_due({z, kPassRaw, begin});
           cache.clear();
           for (size_t i = begin; i < end; ++i)
             for (const TileId& c : tiles[i].children())
@@ -230,7 +218,9 @@ class Builder {
       progress_.advance(groups[i].members.size());
     parallel_batches<std::vector<RawOut>>(
         groups.size(), threads_, std::max<size_t>(1, batch_size() / 4),
-        [&](size_t begin, size_t) { maybe_commit(stage, z, kPassRaw, begin); },
+        [&](size_t begin, size_t) {
+          stage.commit_if_due({z, kPassRaw, begin});
+        },
         [&](size_t i, int worker) {
           return warp_group(groups[i].first, groups[i].cols, groups[i].rows, groups[i].members,
                             worker);
@@ -329,7 +319,7 @@ class Builder {
     parallel_batches<FinalOut>(
         tiles.size(), threads_, batch_size(),
         [&](size_t begin, size_t end) {
-          maybe_commit(stage, z, kPassFinal, begin);
+          stage.commit_if_due({z, kPassFinal, begin});
           raw.clear();
           edges.clear();
           child_err.clear();
@@ -472,7 +462,6 @@ class Builder {
   const bool global_;
   std::vector<std::unique_ptr<TileWarper>> warpers_;
   int coarsest_written_ = 0;
-  std::chrono::steady_clock::time_point last_stage_commit_ = std::chrono::steady_clock::now();
 };
 
 }  // namespace
