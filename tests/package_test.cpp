@@ -1,6 +1,9 @@
 // Package writer/reader: MBTiles schema, TMS rows, deduplication, atomic
-// commit (temporary name, rollback), refusal to overwrite.
+// commit (temporary name, rollback), refusal to overwrite, resuming a
+// killed writer.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "test_support.hpp"
 #include "tileformat/error.hpp"
@@ -63,4 +66,48 @@ TEST(Package, ReaderRejectsNonPackages) {
   std::ofstream(path) << "not a database at all, just text\n";
   EXPECT_THROW(PackageReader r(path), tileformat::PackageError);
   EXPECT_THROW(PackageReader r((dir / "missing.mbtiles").string()), tileformat::PackageError);
+}
+
+namespace {
+
+// Puts tiles 0..n-1 of zoom 10 (distinct blobs), as a build would.
+void put_tiles(PackageWriter& w, uint32_t from, uint32_t n) {
+  for (uint32_t i = from; i < n; ++i)
+    w.put_tile({10, i, 7}, std::vector<uint8_t>{uint8_t(i), uint8_t(i >> 8), 42});
+}
+
+}  // namespace
+
+TEST(Package, ResumeContinuesAKilledWriterToTheSameBytes) {
+  TempDir dir;
+  const auto ref = (dir / "ref.mbtiles").string(), out = (dir / "out.mbtiles").string();
+  {
+    PackageWriter w(ref, false, "key", false);
+    put_tiles(w, 0, 700);
+    w.set_metadata("name", "p");
+    w.commit();
+  }
+  // A child process puts 700 tiles and dies without unwinding: the first
+  // batch of 512 is committed, the rest is in a hot journal.
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    PackageWriter w(out, false, "key", false);
+    put_tiles(w, 0, 700);
+    ::_exit(0);
+  }
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(std::filesystem::exists(out + ".tmp"));
+  EXPECT_THROW(PackageWriter(out, false, "another key", true), tileformat::PackageError);
+  {
+    PackageWriter w(out, false, "key", true);
+    ASSERT_TRUE(w.resumed());
+    EXPECT_EQ(w.tiles_at_zoom(10), 512u);
+    put_tiles(w, static_cast<uint32_t>(w.tiles_at_zoom(10)), 700);
+    w.set_metadata("name", "p");
+    w.commit();
+  }
+  // The resumed file is the uninterrupted one, byte for byte.
+  EXPECT_EQ(globe_test::read_file(out), globe_test::read_file(ref));
+  EXPECT_FALSE(std::filesystem::exists(out + ".tmp-journal"));
 }

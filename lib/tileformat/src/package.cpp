@@ -102,9 +102,9 @@ bool PackageWriter::open_existing(const std::string& build_key) {
     if (db_->query_int("PRAGMA application_id").value_or(0) != kApplicationId) return false;
     const int64_t version = db_->query_int("PRAGMA user_version").value_or(0);
     const bool has_metadata = db_->query_int("SELECT COUNT(*) FROM metadata").value_or(0) > 0;
-    // A build killed between its final commit and the rename: finished.
-    finished_ = version == 0 && has_metadata;
-    if (!finished_ && version != build_key_hash(build_key)) return false;
+    if (version != build_key_hash(build_key)) return false;
+    // A build killed after its final commit (metadata written): finished.
+    finished_ = has_metadata;
     tiles_ = static_cast<uint64_t>(db_->query_int("SELECT COUNT(*) FROM map").value_or(0));
     unique_ = static_cast<uint64_t>(db_->query_int("SELECT COUNT(*) FROM blobs").value_or(0));
     blob_bytes_ = static_cast<uint64_t>(
@@ -194,12 +194,13 @@ void PackageWriter::commit() {
     db_->exec(
         "CREATE UNIQUE INDEX map_index ON map (zoom_level, tile_column, tile_row);"
         "CREATE UNIQUE INDEX metadata_name ON metadata (name);"
-        "PRAGMA user_version = 0;"
         "COMMIT;");
   } else {
     db_->exec("COMMIT");
   }
-  db_->exec("PRAGMA journal_mode = DELETE");
+  // The build key goes only now: a build killed before this point is still
+  // recognised by --resume as finished (and as its own).
+  db_->exec("PRAGMA user_version = 0; PRAGMA journal_mode = DELETE");
   find_blob_.reset();
   insert_blob_.reset();
   insert_map_.reset();
