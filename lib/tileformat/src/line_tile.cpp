@@ -58,7 +58,12 @@ uint32_t checked_u32(detail::ByteReader& r, uint64_t below, const char* what) {
 }
 
 int32_t checked_coord(detail::ByteReader& r, int64_t& prev, int64_t extent) {
-  prev += r.svarint();
+  // prev is in range, so a valid delta is within 3 extents; checking it
+  // first keeps the sum from overflowing (found by fuzz_line_tile).
+  const int64_t delta = r.svarint();
+  if (delta < -3 * extent || delta > 3 * extent)
+    r.fail("vertex delta " + std::to_string(delta) + " reaches outside -extent..2*extent");
+  prev += delta;
   if (prev < -extent || prev > 2 * extent)
     r.fail("vertex coordinate " + std::to_string(prev) + " outside -extent..2*extent");
   return static_cast<int32_t>(prev);
