@@ -85,8 +85,7 @@ class Builder {
     const auto start = std::chrono::steady_clock::now();
     std::unique_ptr<tileformat::PackageWriter> writer = create_package(s_, progress_);
     try {
-      StagingStore stage(s_.output + ".staging", tileformat::build_key_hash(build_key(s_)),
-                         writer->resumed());
+      StagingStore stage(s_.output + ".staging", writer->key_hash(), writer->resumed());
       // Where to start. Without the stage's checkpoint (none kept), every
       // level is computed again and only the package's committed tiles are
       // skipped.

@@ -162,19 +162,19 @@ class Builder {
     std::unique_ptr<tileformat::PackageWriter> writer = create_package(s_, progress_);
     try {
       // A resumed build reads and cuts the input again (that state is not
-      // kept) but keeps the committed features table and tiles.
-      const bool have_features =
-          writer->resumed() && writer->db()
-                                       .query_int(
-                                           "SELECT COUNT(*) FROM sqlite_master WHERE "
-                                           "type = 'table' AND name = 'features'")
-                                       .value_or(0) > 0;
-      if (!have_features)
+      // kept) but keeps the committed features table and tiles. The table
+      // is created and filled in one transaction (committed below), so it
+      // is either there and complete or not there at all.
+      store_features_ = !writer->resumed() ||
+                        writer->db()
+                                .query_int(
+                                    "SELECT COUNT(*) FROM sqlite_master WHERE type = 'table' AND "
+                                    "name = 'features'")
+                                .value_or(0) == 0;
+      if (store_features_)
         writer->db().exec(
             "CREATE TABLE features (id INTEGER PRIMARY KEY, layer TEXT NOT NULL, properties TEXT "
             "NOT NULL)");
-      store_features_ =
-          !have_features || writer->db().query_int("SELECT COUNT(*) FROM features") == 0;
       GeometryScratch scratch(s_.output + ".scratch-geometry");
       pass_read(reader, *writer, scratch);
       writer->checkpoint();  // the features table is committed before any tile

@@ -53,13 +53,15 @@ PackageWriter::PackageWriter(std::string final_path, bool overwrite)
 
 PackageWriter::PackageWriter(std::string final_path, bool overwrite, const std::string& build_key,
                              bool resume)
-    : final_path_(std::move(final_path)), temp_path_(final_path_ + ".tmp") {
+    : final_path_(std::move(final_path)),
+      temp_path_(final_path_ + ".tmp"),
+      key_hash_(build_key_hash(build_key)) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (fs::exists(final_path_, ec) && !overwrite)
     throw PackageError(final_path_ + ": output exists; pass --force to replace it");
   if (resume && fs::exists(temp_path_, ec)) {
-    resumed_ = open_existing(build_key);
+    resumed_ = open_existing();
     if (!resumed_)
       throw PackageError(temp_path_ +
                          ": this unfinished build was started with other inputs or options, so "
@@ -67,20 +69,20 @@ PackageWriter::PackageWriter(std::string final_path, bool overwrite, const std::
   } else {
     remove_temp(temp_path_);  // a stale temporary file from a killed run
     db_ = std::make_unique<SqliteDb>(temp_path_, SqliteDb::Mode::kReadWriteCreate);
-    create_schema(build_key);
+    create_schema();
   }
   prepare_statements();
   db_->exec("BEGIN");
 }
 
-void PackageWriter::create_schema(const std::string& build_key) {
+void PackageWriter::create_schema() {
   // page_size must come first: any write fixes it. Small pages waste less
   // space at the end of each blob's overflow chain. A rollback journal (not
   // fsynced) keeps the file consistent at its last commit when the process
   // is killed; it is not there to survive power loss.
   db_->exec("PRAGMA page_size = 1024; PRAGMA journal_mode = TRUNCATE; PRAGMA synchronous = OFF;");
   db_->exec("PRAGMA application_id = " + std::to_string(kApplicationId));
-  db_->exec("PRAGMA user_version = " + std::to_string(build_key_hash(build_key)));
+  db_->exec("PRAGMA user_version = " + std::to_string(key_hash_));
   db_->exec(
       "CREATE TABLE metadata (name TEXT NOT NULL, value TEXT);"
       "CREATE TABLE blobs (blob_id INTEGER PRIMARY KEY, hash INTEGER NOT NULL, tile_data BLOB "
@@ -95,14 +97,14 @@ void PackageWriter::create_schema(const std::string& build_key) {
 
 // Opens an interrupted build's file (SQLite rolls a hot journal back on the
 // first read). False if it belongs to another build.
-bool PackageWriter::open_existing(const std::string& build_key) {
+bool PackageWriter::open_existing() {
   db_ = std::make_unique<SqliteDb>(temp_path_, SqliteDb::Mode::kReadWriteCreate);
   try {
     db_->exec("PRAGMA journal_mode = TRUNCATE; PRAGMA synchronous = OFF;");
     if (db_->query_int("PRAGMA application_id").value_or(0) != kApplicationId) return false;
     const int64_t version = db_->query_int("PRAGMA user_version").value_or(0);
     const bool has_metadata = db_->query_int("SELECT COUNT(*) FROM metadata").value_or(0) > 0;
-    if (version != build_key_hash(build_key)) return false;
+    if (version != key_hash_) return false;
     // A build killed after its final commit (metadata written): finished.
     finished_ = has_metadata;
     tiles_ = static_cast<uint64_t>(db_->query_int("SELECT COUNT(*) FROM map").value_or(0));

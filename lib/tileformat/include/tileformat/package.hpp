@@ -62,6 +62,8 @@ class PackageWriter {
 
   // Whether an interrupted build's temporary file was continued.
   bool resumed() const { return resumed_; }
+  // build_key_hash of this build's key (for scratch files that belong to it).
+  int32_t key_hash() const { return key_hash_; }
   // Tiles of zoom z committed before this writer was opened plus those put since.
   uint64_t tiles_at_zoom(int z);
 
@@ -74,8 +76,8 @@ class PackageWriter {
   uint64_t blob_bytes() const { return blob_bytes_; }
 
  private:
-  void create_schema(const std::string& build_key);
-  bool open_existing(const std::string& build_key);
+  void create_schema();
+  bool open_existing();
   void prepare_statements();
   void flush_batch();
   std::string final_path_, temp_path_;
@@ -83,6 +85,7 @@ class PackageWriter {
   std::unique_ptr<SqliteStatement> find_blob_, insert_blob_, insert_map_;
   std::map<std::string, std::string> metadata_;
   uint64_t tiles_ = 0, unique_ = 0, blob_bytes_ = 0, in_batch_ = 0, in_batch_bytes_ = 0;
+  int32_t key_hash_ = 0;
   bool committed_ = false, resumed_ = false, finished_ = false;
 };
 
