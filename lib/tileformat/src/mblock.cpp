@@ -73,6 +73,74 @@ bool valid_size(int size, int lattice) {
          lattice > 0 && std::has_single_bit(static_cast<unsigned>(lattice)) && steps >= 2 * lattice;
 }
 
+void put_u32(std::vector<uint8_t>& out, size_t at, uint32_t v) {
+  out[at] = static_cast<uint8_t>(v);
+  out[at + 1] = static_cast<uint8_t>(v >> 8);
+  out[at + 2] = static_cast<uint8_t>(v >> 16);
+  out[at + 3] = static_cast<uint8_t>(v >> 24);
+}
+uint32_t get_u32(const uint8_t* p) {
+  return uint32_t{p[0]} | uint32_t{p[1]} << 8 | uint32_t{p[2]} << 16 | uint32_t{p[3]} << 24;
+}
+
+// Packs min(z, 2^W - 1) in W bits, least significant first; the escaped
+// samples' z - (2^W - 1) go to `exceptions` (u32 each). Returns the count.
+template <int W>
+uint32_t pack(const std::vector<uint32_t>& residual, std::vector<uint8_t>& packed,
+              std::vector<uint8_t>& exceptions) {
+  constexpr uint32_t kEsc = (1u << W) - 1;
+  constexpr size_t kPerByte = 8 / W;
+  const size_t n = residual.size();
+  packed.assign((n + kPerByte - 1) / kPerByte, 0);
+  uint32_t count = 0;
+  for (size_t i = 0; i < n; ++i)
+    count += residual[i] >= kEsc;
+  exceptions.resize(size_t{count} * 4);
+  size_t e = 0;
+  for (size_t b = 0; b < packed.size(); ++b) {
+    uint8_t byte = 0;
+    const size_t base = b * kPerByte;
+    for (size_t k = 0; k < kPerByte && base + k < n; ++k) {
+      const uint32_t r = residual[base + k];
+      if (r >= kEsc) {
+        byte |= static_cast<uint8_t>(kEsc << (W * k));
+        put_u32(exceptions, e, r - kEsc);
+        e += 4;
+      } else {
+        byte |= static_cast<uint8_t>(r << (W * k));
+      }
+    }
+    packed[b] = byte;
+  }
+  return count;
+}
+
+// Inverse of pack; false if the exceptions do not match the escapes.
+template <int W>
+bool unpack(std::span<const uint8_t> packed, std::span<const uint8_t> exceptions,
+            std::vector<uint32_t>& residual) {
+  constexpr uint32_t kEsc = (1u << W) - 1;
+  constexpr size_t kPerByte = 8 / W;
+  const size_t n = residual.size();
+  size_t e = 0;
+  for (size_t b = 0; b < packed.size(); ++b) {
+    const uint8_t byte = packed[b];
+    const size_t base = b * kPerByte;
+    for (size_t k = 0; k < kPerByte && base + k < n; ++k) {
+      uint32_t v = (byte >> (W * k)) & kEsc;
+      if (v == kEsc) {
+        if (e + 4 > exceptions.size()) return false;
+        const uint32_t extra = get_u32(exceptions.data() + e);
+        if (extra > UINT32_MAX - kEsc) return false;
+        v += extra;
+        e += 4;
+      }
+      residual[base + k] = v;
+    }
+  }
+  return e == exceptions.size();
+}
+
 // §5.2: residuals as byte planes (coding 0) or packed in w bits (coding w =
 // 1, 2, 4) with the value 2^w - 1 escaping to an exception stream. Packing
 // helps zstd, whose entropy stage cannot go below one bit per byte: small
@@ -90,34 +158,27 @@ std::vector<uint8_t> residual_section(const std::vector<uint32_t>& residual, int
       max_z = std::max(max_z, r);
     const int planes = std::max(1, static_cast<int>((std::bit_width(max_z) + 7) / 8));
     std::vector<uint8_t> plane_bytes(n * planes);
-    for (int p = 0; p < planes; ++p)
+    for (int p = 0; p < planes; ++p) {
+      uint8_t* out = plane_bytes.data() + p * n;
       for (size_t i = 0; i < n; ++i)
-        plane_bytes[p * n + i] = static_cast<uint8_t>(residual[i] >> (8 * p));
+        out[i] = static_cast<uint8_t>(residual[i] >> (8 * p));
+    }
     w.u8(static_cast<uint8_t>(planes));
     auto data = detail::zstd_compress(plane_bytes, level);
     w.u32(static_cast<uint32_t>(data.size()));
     w.bytes(data);
     return w.take();
   }
-  const uint32_t esc = (1u << coding) - 1;
-  const size_t per_byte = 8 / coding;
-  std::vector<uint8_t> packed((n + per_byte - 1) / per_byte, 0);
-  detail::ByteWriter exceptions;
-  uint32_t count = 0;
-  for (size_t i = 0; i < n; ++i) {
-    const uint32_t v = std::min(residual[i], esc);
-    packed[i / per_byte] |= static_cast<uint8_t>(v << (coding * (i % per_byte)));
-    if (v == esc) {
-      exceptions.u32(residual[i] - esc);
-      ++count;
-    }
-  }
+  std::vector<uint8_t> packed, exceptions;
+  const uint32_t count = coding == 1   ? pack<1>(residual, packed, exceptions)
+                         : coding == 2 ? pack<2>(residual, packed, exceptions)
+                                       : pack<4>(residual, packed, exceptions);
   if (count > n / 8) return {};  // mostly escapes: a wider coding wins
   w.u32(count);
   auto main = detail::zstd_compress(packed, level);
   w.u32(static_cast<uint32_t>(main.size()));
   w.bytes(main);
-  auto exc = detail::zstd_compress(exceptions.take(), level);
+  auto exc = detail::zstd_compress(exceptions, level);
   w.u32(static_cast<uint32_t>(exc.size()));
   w.bytes(exc);
   return w.take();
@@ -146,15 +207,28 @@ std::vector<uint8_t> encode_residuals(const std::vector<uint32_t>& residual, int
 std::vector<uint32_t> decode_residuals(detail::ByteReader& r, size_t n) {
   r.set_section("5.2");
   const int coding = r.u8();
-  std::vector<uint32_t> residual(n, 0);
+  std::vector<uint32_t> residual(n);
   if (coding == 0) {
     const int planes = r.u8();
     if (planes < 1 || planes > 4) r.fail("invalid byte-plane count " + std::to_string(planes));
     auto bytes = detail::zstd_decompress(r.bytes(r.u32()), n * planes, "MBlock heights", "5.2");
-    for (int p = 0; p < planes; ++p) {
-      const uint8_t* plane = bytes.data() + p * n;
-      for (size_t i = 0; i < n; ++i)
-        residual[i] |= uint32_t{plane[i]} << (8 * p);
+    const uint8_t* b = bytes.data();
+    switch (planes) {  // unrolled per plane count: this loop runs for every scratch block
+      case 1:
+        for (size_t i = 0; i < n; ++i)
+          residual[i] = b[i];
+        break;
+      case 2:
+        for (size_t i = 0; i < n; ++i)
+          residual[i] = uint32_t{b[i]} | uint32_t{b[n + i]} << 8;
+        break;
+      default:
+        std::fill(residual.begin(), residual.end(), 0u);
+        for (int p = 0; p < planes; ++p) {
+          const uint8_t* plane = b + p * n;
+          for (size_t i = 0; i < n; ++i)
+            residual[i] |= uint32_t{plane[i]} << (8 * p);
+        }
     }
     return residual;
   }
@@ -167,19 +241,10 @@ std::vector<uint32_t> decode_residuals(detail::ByteReader& r, size_t n) {
                                         "MBlock heights", "5.2");
   auto exc_bytes = detail::zstd_decompress(r.bytes(r.u32()), size_t{count} * 4,
                                            "MBlock height exceptions", "5.2");
-  detail::ByteReader exc(exc_bytes, "MBlock height exceptions", "5.2");
-  const uint32_t esc = (1u << coding) - 1;
-  for (size_t i = 0; i < n; ++i) {
-    uint32_t v = (packed[i / per_byte] >> (coding * (i % per_byte))) & esc;
-    if (v == esc) {
-      if (exc.remaining() == 0) r.fail("fewer exceptions than escaped samples");
-      const uint32_t extra = exc.u32();
-      if (extra > UINT32_MAX - esc) r.fail("exception value out of range");
-      v += extra;
-    }
-    residual[i] = v;
-  }
-  if (exc.remaining() != 0) r.fail("more exceptions than escaped samples");
+  const bool ok = coding == 1   ? unpack<1>(packed, exc_bytes, residual)
+                  : coding == 2 ? unpack<2>(packed, exc_bytes, residual)
+                                : unpack<4>(packed, exc_bytes, residual);
+  if (!ok) r.fail("the exceptions do not match the escaped samples");
   return residual;
 }
 
@@ -199,12 +264,12 @@ void skip_residuals(detail::ByteReader& r) {
 
 // §5.4
 std::vector<uint8_t> encode_error_tree(int depth, const std::vector<uint32_t>& errors, int level) {
-  detail::ByteWriter raw;
-  for (uint32_t e : errors)
-    raw.u32(e);
+  std::vector<uint8_t> raw(errors.size() * 4);
+  for (size_t i = 0; i < errors.size(); ++i)
+    put_u32(raw, 4 * i, errors[i]);
   detail::ByteWriter w;
   w.u8(static_cast<uint8_t>(depth));
-  auto z = detail::zstd_compress(raw.take(), level);
+  auto z = detail::zstd_compress(raw, level);
   w.u32(static_cast<uint32_t>(z.size()));
   w.bytes(z);
   return w.take();
@@ -303,10 +368,10 @@ MBlock decode_mblock(std::span<const uint8_t> blob) {
     r.fail("error tree depth " + std::to_string(depth) + " does not match the block shape");
   const size_t count = kpatch_vertex_count(depth);
   auto err_bytes = detail::zstd_decompress(r.bytes(r.u32()), count * 4, "MBlock error tree", "5.4");
-  detail::ByteReader er(err_bytes, "MBlock error tree", "5.4");
+  if (err_bytes.size() != count * 4) r.fail("error tree of the wrong length");
   b.vertex_error.resize(count);
-  for (auto& e : b.vertex_error)
-    e = er.u32();
+  for (size_t i = 0; i < count; ++i)
+    b.vertex_error[i] = get_u32(err_bytes.data() + 4 * i);
   r.expect_end();
   const MBlockStats s = mblock_stats(b);
   if (s.qmin != qmin || s.qmax != qmax) r.fail("stored min/max do not match the heights");
