@@ -3,12 +3,92 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 
 namespace globe {
 
 using tileformat::KPatchLayout;
 using tileformat::KPatchNode;
 using tileformat::Point;
+
+namespace {
+
+// The samples of one half-open lattice cell {apex + fa*wu + fb*wv, 0 <= fa,
+// fb < 1} with their interpolation weights, split into the cell's lower
+// triangle (fa + fb <= 1, from vertex 00) and upper one (from vertex 11); the
+// same pattern repeats in every cell of every node with the same lattice step
+// vectors. Weights are kept as integer numerators over ww = |wu|^2, so the
+// deviation is exact: z * ww = corner * ww + a * (A - corner) + b * (B - corner).
+struct LatticePattern {
+  struct Sample {
+    ptrdiff_t offset;
+    int64_t a, b;  // lower: weights of 10 and 01 (from 00); upper: of 01 and 10 (from 11)
+  };
+  Point wu, wv;
+  int size;
+  int64_t ww = 1;
+  std::vector<Sample> lower, upper;
+
+  LatticePattern(Point u, Point v, int stride) : wu(u), wv(v), size(stride) {
+    ww = int64_t{wu.x} * wu.x + int64_t{wu.y} * wu.y;
+    const int reach = std::abs(wu.x) + std::abs(wu.y);
+    for (int dy = -reach; dy <= reach; ++dy)
+      for (int dx = -reach; dx <= reach; ++dx) {
+        const int64_t a = int64_t{dx} * wu.x + int64_t{dy} * wu.y,
+                      b = int64_t{dx} * wv.x + int64_t{dy} * wv.y;
+        if (!(a >= 0 && a < ww && b >= 0 && b < ww) || (a == 0 && b == 0))
+          continue;  // (0, 0) is a vertex
+        const ptrdiff_t offset = static_cast<ptrdiff_t>(dy) * size + dx;
+        if (a + b > ww)
+          upper.push_back({offset, ww - a, ww - b});
+        else
+          lower.push_back({offset, a, b});
+      }
+  }
+};
+
+// Patterns by lattice step vectors and row stride (a handful per block
+// shape), built once per thread. A deque: references stay valid as it grows.
+const LatticePattern& pattern(Point wu, Point wv, int size) {
+  thread_local std::deque<LatticePattern> cache;  // offsets depend on the row stride too
+  for (const auto& p : cache)
+    if (p.wu == wu && p.wv == wv && p.size == size) return p;
+  cache.emplace_back(wu, wv, size);
+  return cache.back();
+}
+
+// Max over the valid samples under node `n` of |lattice surface - sample|,
+// times ww (integer).
+template <bool kMasked>
+int64_t scaled_deviation(const KPatchNode& n, const LatticePattern& p, int L, int size,
+                         const int32_t* h, const uint8_t* ok) {
+  const ptrdiff_t du = static_cast<ptrdiff_t>(p.wu.y) * size + p.wu.x,
+                  dv = static_cast<ptrdiff_t>(p.wv.y) * size + p.wv.x;
+  const ptrdiff_t apex = static_cast<ptrdiff_t>(n.apex.y) * size + n.apex.x;
+  const int64_t ww = p.ww;
+  int64_t worst = 0;
+  auto scan = [&](const std::vector<LatticePattern::Sample>& samples, ptrdiff_t base,
+                  int64_t corner, int64_t a, int64_t b) {
+    const int64_t c = corner * ww, da = a - corner, db = b - corner;
+    for (const auto& s : samples) {
+      const ptrdiff_t idx = base + s.offset;
+      if (kMasked && !ok[idx]) continue;
+      const int64_t d = c + s.a * da + s.b * db - int64_t{h[idx]} * ww;
+      worst = std::max(worst, d < 0 ? -d : d);
+    }
+  };
+  for (int i = 0; i < L; ++i)
+    for (int j = 0; i + j < L; ++j) {
+      const ptrdiff_t base = apex + i * du + j * dv;
+      const int64_t h10 = h[base + du], h01 = h[base + dv];
+      scan(p.lower, base, h[base], h10, h01);
+      // Cells on the hypotenuse have only their lower half inside the node.
+      if (i + j < L - 1) scan(p.upper, base, h[base + du + dv], h01, h10);
+    }
+  return worst;
+}
+
+}  // namespace
 
 double lattice_deviation(const KPatchLayout& layout, size_t index, const std::vector<int32_t>& q,
                          const std::vector<uint8_t>& valid) {
@@ -17,53 +97,10 @@ double lattice_deviation(const KPatchLayout& layout, size_t index, const std::ve
   // Lattice step vectors along the two legs (integers for every depth <= D).
   const Point wu{(n.b.x - n.apex.x) / L, (n.b.y - n.apex.y) / L};
   const Point wv{(n.c.x - n.apex.x) / L, (n.c.y - n.apex.y) / L};
-  // The samples of one half-open lattice cell {apex + fa*wu + fb*wv, 0 <= fa, fb < 1}
-  // with their interpolation weights, split into the cell's lower triangle
-  // (fa + fb <= 1, from vertex 00) and upper one (from vertex 11); the same
-  // pattern repeats in every cell.
-  struct Sample {
-    ptrdiff_t offset;
-    double fa, fb;  // lower: weights of 10 and 01 (from 00); upper: of 01 and 10 (from 11)
-  };
-  std::vector<Sample> lower, upper;
-  const double ww = static_cast<double>(wu.x * wu.x + wu.y * wu.y);
-  const int reach = std::abs(wu.x) + std::abs(wu.y);
-  for (int dy = -reach; dy <= reach; ++dy)
-    for (int dx = -reach; dx <= reach; ++dx) {
-      const double fa = (dx * wu.x + dy * wu.y) / ww, fb = (dx * wv.x + dy * wv.y) / ww;
-      if (!(fa >= 0 && fa < 1 && fb >= 0 && fb < 1) || (fa == 0 && fb == 0))
-        continue;  // (0, 0) is a vertex
-      const ptrdiff_t offset = static_cast<ptrdiff_t>(dy) * size + dx;
-      if (fa + fb > 1)
-        upper.push_back({offset, 1 - fa, 1 - fb});
-      else
-        lower.push_back({offset, fa, fb});
-    }
-  const ptrdiff_t du = static_cast<ptrdiff_t>(wu.y) * size + wu.x,
-                  dv = static_cast<ptrdiff_t>(wv.y) * size + wv.x;
-  const ptrdiff_t apex = static_cast<ptrdiff_t>(n.apex.y) * size + n.apex.x;
-  const int32_t* h = q.data();
-  const uint8_t* ok = valid.empty() ? nullptr : valid.data();
-  double worst = 0;
-  // z = corner + wa * (a - corner) + wb * (b - corner) over the listed samples.
-  auto scan = [&](const std::vector<Sample>& samples, ptrdiff_t base, double corner, double a,
-                  double b) {
-    for (const Sample& s : samples) {
-      const ptrdiff_t idx = base + s.offset;
-      if (ok && !ok[idx]) continue;
-      const double z = corner + s.fa * (a - corner) + s.fb * (b - corner);
-      worst = std::max(worst, std::abs(z - h[idx]));
-    }
-  };
-  for (int i = 0; i < L; ++i)
-    for (int j = 0; i + j < L; ++j) {
-      const ptrdiff_t base = apex + i * du + j * dv;
-      const double h10 = h[base + du], h01 = h[base + dv];
-      scan(lower, base, h[base], h10, h01);
-      // Cells on the hypotenuse have only their lower half inside the node.
-      if (i + j < L - 1) scan(upper, base, h[base + du + dv], h01, h10);
-    }
-  return worst;
+  const LatticePattern& p = pattern(wu, wv, size);
+  const int64_t d = valid.empty() ? scaled_deviation<false>(n, p, L, size, q.data(), nullptr)
+                                  : scaled_deviation<true>(n, p, L, size, q.data(), valid.data());
+  return static_cast<double>(d) / static_cast<double>(p.ww);
 }
 
 namespace {

@@ -143,16 +143,17 @@ class Builder {
     progress_.begin("z" + std::to_string(z) + " warp", tiles.size());
     for (size_t i = 0; i < first && i < groups.size(); ++i)
       progress_.advance(groups[i].members.size());
-    parallel_batches<std::vector<TileOut>>(
+    parallel_batches<NoInputs, std::vector<TileOut>>(
         groups.size(), threads_, std::max<size_t>(2, size_t(2 * threads_)),
-        [&](size_t begin, size_t) {
-          stage.commit_if_due({z, 0, begin, level_puts_});
-        },
-        [&](size_t i, int worker) { return warp_group(groups[i], worker); },
+        [](size_t, size_t) { return NoInputs{}; },
+        [&](size_t i, int worker, const NoInputs&) { return warp_group(groups[i], worker); },
         [&](size_t i, std::vector<TileOut>&& outs) {
           for (const TileOut& out : outs)
             store(stage, writer, out);
           progress_.advance(groups[i].members.size());
+        },
+        [&](size_t done) {
+          stage.commit_if_due({z, 0, done, level_puts_});
         },
         first);
     progress_.end();
@@ -182,26 +183,26 @@ class Builder {
     for (const TileId& c : stage.list(Stage::kRaw, z + 1))
       tiles.push_back(c.parent());
     sort_tiles(tiles);
-    std::map<TileId, std::vector<uint8_t>> cache;
+    using Blobs = std::map<TileId, std::vector<uint8_t>>;
     const size_t planes_bytes = size_t(plan_.colour + 1) * s_.tile_size * s_.tile_size;
     progress_.begin("z" + std::to_string(z) + " pyramid", tiles.size());
     progress_.advance(first);
-    parallel_batches<std::optional<TileOut>>(
+    parallel_batches<Blobs, std::optional<TileOut>>(
         tiles.size(), threads_, size_t(8 * threads_),
         [&](size_t begin, size_t end) {
-          stage.commit_if_due({z, 0, begin, level_puts_});
-          cache.clear();
+          Blobs children;
           for (size_t i = begin; i < end; ++i)
             for (const TileId& c : tiles[i].children())
-              if (auto b = stage.get(Stage::kRaw, c)) cache.emplace(c, std::move(*b));
+              if (auto b = stage.get(Stage::kRaw, c)) children.emplace(c, std::move(*b));
+          return children;
         },
-        [&](size_t i, int) {
+        [&](size_t i, int, const Blobs& children) {
           std::array<std::optional<TilePixels>, 4> kids;
           std::array<const TilePixels*, 4> ptrs{};
-          const auto children = tiles[i].children();
+          const auto ids = tiles[i].children();
           for (int c = 0; c < 4; ++c) {
-            auto it = cache.find(children[c]);
-            if (it == cache.end()) continue;
+            auto it = children.find(ids[c]);
+            if (it == children.end()) continue;
             kids[c].emplace(s_.tile_size, plan_.colour);
             kids[c]->planes = tileformat::detail::zstd_decompress(it->second, planes_bytes,
                                                                   "staged pixels", "3.1");
@@ -212,6 +213,9 @@ class Builder {
         [&](size_t, std::optional<TileOut>&& out) {
           if (out) store(stage, writer, *out);
           progress_.advance();
+        },
+        [&](size_t done) {
+          stage.commit_if_due({z, 0, done, level_puts_});
         },
         first);
     progress_.end();

@@ -1,6 +1,8 @@
 // globe-tiler: DEMs -> terrain packages, imagery -> image packages, and tools
 // to inspect them.
 // Dispatch and error reporting: tools/common/command_tool.
+#include <malloc.h>
+
 #include "command_tool.hpp"
 #include "commands.hpp"
 
@@ -23,6 +25,12 @@ const char* kUsage =
 }  // namespace
 
 int main(int argc, char** argv) {
+  // The builders' working buffers (blocks of 257^2 samples, warp windows)
+  // are a few hundred KiB each, allocated and freed per tile: served from
+  // mmap by default, every one of them page-faults afresh. Kept in the heap
+  // (and the heap not trimmed after each), they are reused.
+  mallopt(M_MMAP_THRESHOLD, 64 << 20);
+  mallopt(M_TRIM_THRESHOLD, 256 << 20);
   return globe::run_command_tool("globe-tiler", GLOBE_VERSION, kUsage,
                                  {{"terrain", globe::run_terrain},
                                   {"imagery", globe::run_imagery},

@@ -185,22 +185,25 @@ class Builder {
     for (const TileId& c : stage.list(Stage::kFinal, z + 1))
       tiles.push_back(c.parent());
     sort_tiles(tiles);
-    std::map<TileId, std::vector<uint8_t>> cache;
+    using Blobs = std::map<TileId, std::vector<uint8_t>>;
     progress_.begin("z" + std::to_string(z) + " pyramid", tiles.size());
     progress_.advance(first);
-    parallel_batches<RawOut>(
+    parallel_batches<Blobs, RawOut>(
         tiles.size(), threads_, batch_size(),
         [&](size_t begin, size_t end) {
-          stage.commit_if_due({z, kPassRaw, begin});
-          cache.clear();
+          Blobs children;
           for (size_t i = begin; i < end; ++i)
             for (const TileId& c : tiles[i].children())
-              if (auto b = stage.get(Stage::kFinal, c)) cache.emplace(c, std::move(*b));
+              if (auto b = stage.get(Stage::kFinal, c)) children.emplace(c, std::move(*b));
+          return children;
         },
-        [&](size_t i, int) { return decimate(tiles[i], cache); },
+        [&](size_t i, int, const Blobs& children) { return decimate(tiles[i], children); },
         [&](size_t i, RawOut&& out) {
           store_raw(stage, tiles[i], out);
           progress_.advance();
+        },
+        [&](size_t done) {
+          stage.commit_if_due({z, kPassRaw, done});
         },
         first);
     progress_.end();
@@ -215,12 +218,10 @@ class Builder {
     progress_.begin("z" + std::to_string(z) + " warp", tiles.size());
     for (size_t i = 0; i < first && i < groups.size(); ++i)
       progress_.advance(groups[i].members.size());
-    parallel_batches<std::vector<RawOut>>(
+    parallel_batches<NoInputs, std::vector<RawOut>>(
         groups.size(), threads_, std::max<size_t>(1, batch_size() / 4),
-        [&](size_t begin, size_t) {
-          stage.commit_if_due({z, kPassRaw, begin});
-        },
-        [&](size_t i, int worker) {
+        [](size_t, size_t) { return NoInputs{}; },
+        [&](size_t i, int worker, const NoInputs&) {
           return warp_group(groups[i].first, groups[i].cols, groups[i].rows, groups[i].members,
                             worker);
         },
@@ -229,6 +230,9 @@ class Builder {
             store_raw(stage, groups[i].members[k], outs[k]);
             progress_.advance();
           }
+        },
+        [&](size_t done) {
+          stage.commit_if_due({z, kPassRaw, done});
         },
         first);
     progress_.end();
@@ -312,33 +316,39 @@ class Builder {
   // Pass 2: shared edges from the owners, hole filling, node errors.
   void pass_final(StagingStore& stage, int z, size_t first) {
     const std::vector<TileId> tiles = stage.list(Stage::kRaw, z);
-    std::map<TileId, std::vector<uint8_t>> raw, edges, child_err;
+    struct Inputs {
+      std::map<TileId, std::vector<uint8_t>> raw, edges, child_err;
+    };
     progress_.begin("z" + std::to_string(z) + " errors", tiles.size());
     progress_.advance(first);
-    parallel_batches<FinalOut>(
+    parallel_batches<Inputs, FinalOut>(
         tiles.size(), threads_, batch_size(),
         [&](size_t begin, size_t end) {
-          stage.commit_if_due({z, kPassFinal, begin});
-          raw.clear();
-          edges.clear();
-          child_err.clear();
+          Inputs in;
           for (size_t i = begin; i < end; ++i) {
-            if (auto b = stage.get(Stage::kRaw, tiles[i])) raw.emplace(tiles[i], std::move(*b));
+            if (auto b = stage.get(Stage::kRaw, tiles[i])) in.raw.emplace(tiles[i], std::move(*b));
             for (auto [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}, std::pair{1, 1}})
-              if (auto nb = neighbour(tiles[i], dx, dy); nb && !edges.count(*nb))
-                if (auto e = stage.get(Stage::kEdges, *nb)) edges.emplace(*nb, std::move(*e));
+              if (auto nb = neighbour(tiles[i], dx, dy); nb && !in.edges.count(*nb))
+                if (auto e = stage.get(Stage::kEdges, *nb)) in.edges.emplace(*nb, std::move(*e));
             if (z < plan_.max_zoom)
               for (const TileId& c : tiles[i].children())
-                if (auto e = stage.get(Stage::kNodeErrors, c)) child_err.emplace(c, std::move(*e));
+                if (auto e = stage.get(Stage::kNodeErrors, c))
+                  in.child_err.emplace(c, std::move(*e));
           }
+          return in;
         },
-        [&](size_t i, int) { return finalize(tiles[i], raw.at(tiles[i]), edges, child_err); },
+        [&](size_t i, int, const Inputs& in) {
+          return finalize(tiles[i], in.raw.at(tiles[i]), in.edges, in.child_err);
+        },
         [&](size_t i, FinalOut&& out) {
           if (!out.block.empty()) {
             stage.put(Stage::kFinal, tiles[i], out.block);
             stage.put(Stage::kNodeErrors, tiles[i], out.errors);
           }
           progress_.advance();
+        },
+        [&](size_t done) {
+          stage.commit_if_due({z, kPassFinal, done});
         },
         first);
     progress_.end();
@@ -388,43 +398,46 @@ class Builder {
   // so those a resumed package already holds are the first ones.
   void pass_encode(StagingStore& stage, tileformat::PackageWriter& writer, int z) {
     const std::vector<TileId> tiles = stage.list(Stage::kFinal, z);
-    std::map<TileId, std::vector<uint8_t>> finals;
-    std::map<TileId, std::vector<uint32_t>> errs;
+    struct Inputs {
+      std::map<TileId, std::vector<uint8_t>> finals;
+      std::map<TileId, std::vector<uint32_t>> errs;
+    };
     const size_t first = writer.resumed() ? writer.tiles_at_zoom(z) : 0;
     if (first > 0) coarsest_written_ = z;
     progress_.begin("z" + std::to_string(z) + " encode", tiles.size());
     progress_.advance(first);
-    parallel_batches<std::vector<uint8_t>>(
+    parallel_batches<Inputs, std::vector<uint8_t>>(
         tiles.size(), threads_, batch_size(),
         [&](size_t begin, size_t end) {
-          finals.clear();
-          errs.clear();
+          Inputs in;
           for (size_t i = begin; i < end; ++i) {
             if (auto b = stage.get(Stage::kFinal, tiles[i]))
-              finals.emplace(tiles[i], std::move(*b));
+              in.finals.emplace(tiles[i], std::move(*b));
             for (int dy = -1; dy <= 1; ++dy)
               for (int dx = -1; dx <= 1; ++dx)
-                if (auto nb = neighbour(tiles[i], dx, dy); nb && !errs.count(*nb))
+                if (auto nb = neighbour(tiles[i], dx, dy); nb && !in.errs.count(*nb))
                   if (auto e = stage.get(Stage::kNodeErrors, *nb))
-                    errs.emplace(*nb, unpack_u32(*e));
+                    in.errs.emplace(*nb, unpack_u32(*e));
           }
+          return in;
         },
-        [&](size_t i, int) {
+        [&](size_t i, int, const Inputs& in) {
           const TileId id = tiles[i];
           Neighbourhood nb{};
           for (int dy = -1; dy <= 1; ++dy)
             for (int dx = -1; dx <= 1; ++dx)
               if (auto t = neighbour(id, dx, dy))
-                if (auto it = errs.find(*t); it != errs.end()) nb[dy + 1][dx + 1] = &it->second;
+                if (auto it = in.errs.find(*t); it != in.errs.end())
+                  nb[dy + 1][dx + 1] = &it->second;
           return tileformat::replace_vertex_errors(
-              finals.at(id), vertex_errors(layouts_[id.diagonal()], nb), kFinalZstdLevel);
+              in.finals.at(id), vertex_errors(layouts_[id.diagonal()], nb), kFinalZstdLevel);
         },
         [&](size_t i, std::vector<uint8_t>&& blob) {
           writer.put_tile(tiles[i], blob);
           coarsest_written_ = z;
           progress_.advance();
         },
-        first);
+        [](size_t) {}, first);
     progress_.end();
   }
 

@@ -390,9 +390,9 @@ class Builder {
           vertices += p.size();
         batch.push_back(std::move(f));
       }
-      parallel_batches<Result>(
-          batch.size(), threads_, batch.size(), [](size_t, size_t) {},
-          [&](size_t i, int) {
+      parallel_batches<NoInputs, Result>(
+          batch.size(), threads_, batch.size(), [](size_t, size_t) { return NoInputs{}; },
+          [&](size_t i, int, const NoInputs&) {
             Result r;
             uint32_t sub = 0;
             for (int z = min_zoom_; z <= max_zoom_; ++z)
@@ -405,7 +405,8 @@ class Builder {
             cut_.runs += r.stats.runs;
             cut_.collapsed_runs += r.stats.collapsed_runs;
             progress_.advance();
-          });
+          },
+          [](size_t) {});
     }
     progress_.end();
     sorter.finish();
@@ -463,9 +464,9 @@ class Builder {
         bytes += g.bytes.size() + g.records.size() * sizeof(TileRecord);
         groups.push_back(std::move(g));
       }
-      parallel_batches<Encoded>(
-          groups.size(), threads_, groups.size(), [](size_t, size_t) {},
-          [&](size_t i, int) {
+      parallel_batches<NoInputs, Encoded>(
+          groups.size(), threads_, groups.size(), [](size_t, size_t) { return NoInputs{}; },
+          [&](size_t i, int, const NoInputs&) {
             Encoded e;
             e.blob = encode_tile(groups[i], e.segments, e.points);
             return e;
@@ -476,7 +477,8 @@ class Builder {
             sum_.points += e.points;
             if (key_tile(groups[i].key).z == max_zoom_) sum_.max_zoom_segments += e.segments;
             progress_.advance(groups[i].records.size());
-          });
+          },
+          [](size_t) {});
     }
     progress_.end();
   }
