@@ -1,6 +1,11 @@
 // Spatial reference and transformation wrappers (see spatial_ref.hpp).
 #include "spatial_ref.hpp"
 
+#include <cpl_error.h>
+
+#include <algorithm>
+#include <cmath>
+
 #include <cpl_conv.h>
 
 #include "errors.hpp"
@@ -58,11 +63,20 @@ CoordTransform::~CoordTransform() {
 }
 
 bool CoordTransform::transform(std::vector<double>& x, std::vector<double>& y) const {
-  std::vector<int> ok(x.size(), 0);
+  std::vector<int> ok;
+  transform(x, y, ok);
+  return std::all_of(ok.begin(), ok.end(), [](int v) { return v != 0; });
+}
+
+void CoordTransform::transform(std::vector<double>& x, std::vector<double>& y,
+                               std::vector<int>& ok) const {
+  ok.assign(x.size(), 0);
+  // Points that fail are reported in `ok`; PROJ's message for them is noise.
+  CPLPushErrorHandler(CPLQuietErrorHandler);
   OCTTransformEx(h_, static_cast<int>(x.size()), x.data(), y.data(), nullptr, ok.data());
-  for (int v : ok)
-    if (!v) return false;
-  return true;
+  CPLPopErrorHandler();
+  for (size_t i = 0; i < x.size(); ++i)
+    ok[i] = ok[i] && std::isfinite(x[i]) && std::isfinite(y[i]);
 }
 
 bool CoordTransform::transform_bounds(const tileformat::Bounds& in, tileformat::Bounds& out) const {

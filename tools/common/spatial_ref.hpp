@@ -43,6 +43,8 @@ class CoordTransform {
 
   // Transforms points in place; returns false for any point that failed.
   bool transform(std::vector<double>& x, std::vector<double>& y) const;
+  // The same, with each point's success in `ok` (1 = transformed).
+  void transform(std::vector<double>& x, std::vector<double>& y, std::vector<int>& ok) const;
   // Bounds of a densified rectangle; nullopt-like empty bounds on failure.
   bool transform_bounds(const tileformat::Bounds& in, tileformat::Bounds& out) const;
 

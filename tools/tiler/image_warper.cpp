@@ -61,7 +61,7 @@ ImageWarper::ImageWarper(const ImagePlan& plan, const ImageSettings& s)
   for (const auto& src : plan.sources) {
     opened_.push_back(GdalDataset::open_raster(src.path));
     const GDALDatasetH in = opened_.back().get();
-    for (double shift : src.x_shifts) {
+    for (double shift : warp_shifts(src)) {
       // Inner wrapper: georeferencing and nodata (never written back to the file).
       GDALDatasetH copy = GDALCreateCopy(vrt, "", in, FALSE, nullptr, nullptr, nullptr);
       if (!copy)
@@ -80,18 +80,13 @@ ImageWarper::ImageWarper(const ImagePlan& plan, const ImageSettings& s)
     }
   }
   WarpSpec spec;
-  spec.tiling = plan.tiling;
+  spec.target_crs = plan.tiling.crs;
   spec.resampling = s.resampling;
   spec.bands = plan.colour + 1;
   spec.alpha = true;
   spec.type = GDT_Byte;
   spec.max_width = spec.max_height = size_ * kMaxGroup;
-  spec.error_threshold = s.transform_error;
-  const auto range = plan.tiling.tiles_covering(plan.data_areas.front(), plan.max_zoom);
-  const auto b = plan.tiling.tile_bounds(
-      {plan.max_zoom, (range.min_x + range.max_x) / 2, (range.min_y + range.max_y) / 2});
-  const double px = plan.tiling.sample_spacing(plan.max_zoom, size_);
-  spec.initial_gt = {b.min_x, px, 0, b.max_y, 0, -px};
+  spec.tolerance_px = s.transform_error;
   warper_ = std::make_unique<RasterWarper>(
       std::move(sources), std::move(spec),
       plan.sources[0].path + (plan.sources.size() > 1 ? " (or another input)" : ""));

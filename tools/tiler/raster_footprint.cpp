@@ -56,29 +56,68 @@ Tiling tiling_of_package(const std::string& like) {
   }
 }
 
-// The source pixel at the data centre, measured in the target CRS.
+// The finest source pixel in tiling units: at 9 x 9 points over the source,
+// the local mapping J (tiling units per source pixel) is measured and the
+// pixel's size taken along its worst axis (1 / the largest entry of J^-1:
+// the most source pixels one tiling unit crosses in either source axis).
+// The minimum over the points makes the finest zoom upsample everywhere, so
+// warping never widens its kernel (what a measure at the data centre missed
+// for data around a pole or far from the equator in webmercator).
 double source_resolution(const RasterSource& src, const SpatialRef& crs, const SpatialRef& target) {
   const auto& gt = src.geotransform;
   CoordTransform to_target(crs, target);
-  const double cx = gt[0] + gt[1] * src.width / 2.0, cy = gt[3] + gt[5] * src.height / 2.0;
-  std::vector<double> xs = {cx, cx + gt[1], cx}, ys = {cy, cy, cy + gt[5]};
-  if (crs.is_geographic()) {
-    // Into [-180, 180], the neighbour on the same side of the antimeridian
-    // (a DEM centred on it would otherwise measure a 360-degree pixel).
-    xs[0] = xs[2] = std::remainder(cx, 360.0);
-    xs[1] = xs[0] + gt[1];
-    if (std::abs(xs[1]) > 180.0) xs[1] = xs[0] - gt[1];
-    for (auto& y : ys)
-      y = std::clamp(y, -kMercatorMaxLat + 1, kMercatorMaxLat - 1);
+  const bool geographic_target = target.is_geographic();
+  constexpr int kPoints = 9;
+  std::vector<double> xs, ys;
+  for (int j = 0; j < kPoints; ++j)
+    for (int i = 0; i < kPoints; ++i) {
+      const double c = (i + 0.5) * src.width / kPoints, r = (j + 0.5) * src.height / kPoints;
+      for (auto [dc, dr] : {std::pair{0.0, 0.0}, std::pair{1.0, 0.0}, std::pair{0.0, 1.0}}) {
+        double x = gt[0] + (c + dc) * gt[1], y = gt[3] + (r + dr) * gt[5];
+        if (crs.is_geographic()) {
+          x = std::remainder(x, 360.0);  // into -180..180, the antimeridian side kept per point
+          y = std::clamp(y, -89.999, 89.999);
+        }
+        xs.push_back(x);
+        ys.push_back(y);
+      }
+    }
+  std::vector<int> ok;
+  to_target.transform(xs, ys, ok);
+  double finest = HUGE_VAL;
+  for (size_t p = 0; p + 2 < xs.size(); p += 3) {
+    if (!ok[p] || !ok[p + 1] || !ok[p + 2]) continue;
+    auto diff = [&](size_t a, double& dx, double& dy) {
+      dx = xs[a] - xs[p];
+      dy = ys[a] - ys[p];
+      if (geographic_target) dx = std::remainder(dx, 360.0);
+    };
+    double j00, j10, j01, j11;  // J columns: per source column, per source row
+    diff(p + 1, j00, j10);
+    diff(p + 2, j01, j11);
+    const double det = j00 * j11 - j01 * j10;
+    if (!(std::abs(det) > 0) || !std::isfinite(det)) continue;
+    // J^-1 = [j11 -j01; -j10 j00] / det
+    const double worst =
+        std::max({std::abs(j11), std::abs(j01), std::abs(j10), std::abs(j00)}) / std::abs(det);
+    finest = std::min(finest, 1 / worst);
   }
-  if (!to_target.transform(xs, ys))
-    throw InputError(src.path + ": its centre cannot be transformed to the tiling CRS");
-  const double dx = std::hypot(xs[1] - xs[0], ys[1] - ys[0]),
-               dy = std::hypot(xs[2] - xs[0], ys[2] - ys[0]);
-  return std::sqrt(dx * dy);
+  if (!std::isfinite(finest))
+    throw InputError(src.path + ": its pixels cannot be transformed to the tiling CRS");
+  return finest;
 }
 
 }  // namespace
+
+std::vector<double> warp_shifts(const RasterSource& src) {
+  const double span = std::abs(src.width * src.geotransform[1]);
+  if (src.x_shifts.size() <= 1 || span <= 360.0) return {0.0};
+  std::vector<double> shifts;
+  for (double s : src.x_shifts)
+    if (s != 0) shifts.push_back(s);
+  shifts.push_back(0.0);
+  return shifts;
+}
 
 void check_tiling_options(const BuildOptions& s, const std::string& like) {
   if (s.tiling != "webmercator" && s.tiling != "geodetic" && s.tiling != "local")

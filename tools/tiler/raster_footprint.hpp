@@ -27,6 +27,14 @@ struct RasterSource {
   unsigned long long file_bytes = 0;
 };
 
+// The longitude shifts at which a warp draws a source, in drawing order. A
+// geographic source spanning at most 360 degrees is drawn once: GDAL wraps
+// longitudes around its centre (gdalwarp's CENTER_LONG). A wider one (a
+// 0..360 grid with an overlapping column, a grid-registered global grid)
+// gets its +-360 copies first and the source itself last, so that where
+// they overlap the source's own pixels win, as in gdalwarp of the source.
+std::vector<double> warp_shifts(const RasterSource& src);
+
 // --tiling, --t_srs and --like together; throws UsageError. (plan_footprint
 // checks again; commands call this before opening any input.)
 void check_tiling_options(const BuildOptions& s, const std::string& like);

@@ -1,10 +1,19 @@
 // Warps a mosaic of raster sources onto windows of a pixel grid in the tiling
-// CRS, for the terrain and the imagery builders. One RasterWarper per worker
-// thread: GDAL handles are not shared between threads. GDAL's warp operation
-// (the engine behind gdalwarp) is created once per source and reused for
-// every window: only the destination geotransform changes, and GDAL reads
-// only the source window it needs, so memory does not depend on input size.
+// CRS, for the terrain and the imagery builders: what `gdalwarp -et 0` would
+// write into the same pixels of a grid that holds the window (docs/terrain.md
+// "Warping"). One RasterWarper per worker thread: GDAL handles are not shared
+// between threads.
 //
+// GDAL's warp kernel (the engine behind gdalwarp) does the resampling, with
+// three things decided here instead of by GDAL's per-window heuristics, which
+// go wrong for global data (a window at the antimeridian or a pole made GDAL
+// read the whole source row and widen the resampling kernel as if
+// downsampling):
+//   - the source coordinates of every destination pixel centre, exact to
+//     within `tolerance_px` (WindowCoordinates);
+//   - the source window: exactly the pixels the kernel can reach;
+//   - the kernel's scale: source pixels per destination pixel around the
+//     window, not the ratio of the two windows' sizes.
 // Sources come wrapped (VRTs) by the caller, carrying their resolved CRS,
 // nodata values, +-360 degree shifts and, for imagery, an alpha band (the
 // last band, colour interpretation alpha). Later sources are drawn on top.
@@ -18,8 +27,6 @@
 #include <vector>
 
 #include "gdal_dataset.hpp"
-#include "spatial_ref.hpp"
-#include "tileformat/tiling.hpp"
 
 namespace globe {
 
@@ -27,18 +34,19 @@ namespace globe {
 extern const char* const kResamplingNames;
 bool is_resampling(const std::string& name);
 
+// Largest error of the interpolated reprojection, in source pixels: heights
+// move by at most this times the steepest step between two source samples
+// (1e-5 px x 3 km = 3 cm), at a cost far below one PROJ call per pixel.
+inline constexpr double kDefaultTransformTolerancePx = 1e-5;
+
 struct WarpSpec {
-  tileformat::Tiling tiling;
+  std::string target_crs;  // CRS of the destination grid (WKT)
   std::string resampling = "bilinear";
   int bands = 1;                    // destination bands, the alpha band (if any) last
   bool alpha = false;               // the last band receives coverage (0 none .. 255 full)
   GDALDataType type = GDT_Float64;  // destination and working type
-  bool nan_nodata = false;          // float destination: NaN marks pixels without data
   int max_width = 0, max_height = 0;
-  double error_threshold = 0.125;  // approximation error in pixels (gdalwarp -et)
-  // A real window of the finest zoom: GDAL derives transformer settings (e.g.
-  // longitude wrapping) from the destination extent when they are created.
-  std::array<double, 6> initial_gt{};
+  double tolerance_px = kDefaultTransformTolerancePx;
 };
 
 class RasterWarper {
@@ -52,22 +60,19 @@ class RasterWarper {
   // Warps onto the w x h window with geotransform `gt`. `data` holds
   // spec.bands planes of w * h values of spec.type (band-sequential, rows from
   // the north); what it holds on entry is the background that sources cover.
-  // Windows at the antimeridian of webmercator are warped in a Mercator
-  // centred on them (GDAL's source window computation breaks at the wrap).
-  // Throws InputError naming the inputs and `what` (e.g. the tile).
+  // Throws InputError naming the inputs and `what` (e.g. the tile) when a
+  // source cannot be read.
   void warp(const std::array<double, 6>& gt, int w, int h, const std::string& what, void* data);
 
-  struct Operation;  // one source's transformer + warp operation
+  struct Source;  // one source's transformer and warp options
 
  private:
-  std::vector<std::unique_ptr<Operation>> make_operations();
-  void io(GDALRWFlag flag, int w, int h, void* data, const std::string& what);
+  void warp_source(Source& src, int w, int h, const std::string& what, void* data);
 
-  std::vector<GdalDataset> sources_;
+  std::vector<GdalDataset> datasets_;
+  std::vector<std::unique_ptr<Source>> sources_;
   WarpSpec spec_;
   std::string inputs_;
-  SpatialRef target_;  // the tiling CRS
-  GdalDataset dest_;
 };
 
 }  // namespace globe

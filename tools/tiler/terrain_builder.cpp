@@ -44,25 +44,25 @@ struct Block {
   std::vector<uint8_t> valid;  // always size*size here
 };
 
-// First row and first column of a block (x or y = 0 .. steps - 1): heights
-// then validity, packed as 5 bytes per sample.
+// First row and first column of a block (x or y = 0 .. steps): heights then
+// validity, packed as 5 bytes per sample. Samples the block does not own are
+// invalid in it.
 std::vector<uint8_t> pack_edges(const Block& b, int size) {
-  const int n = size - 1;
   std::vector<uint8_t> out;
-  out.reserve(size_t(n) * 10);
+  out.reserve(size_t(size) * 10);
   auto put = [&](size_t i) {
     for (int k = 0; k < 4; ++k)
       out.push_back(static_cast<uint8_t>(static_cast<uint32_t>(b.q[i]) >> (8 * k)));
     out.push_back(b.valid[i]);
   };
-  for (int x = 0; x < n; ++x)
+  for (int x = 0; x < size; ++x)
     put(size_t(x));
-  for (int y = 0; y < n; ++y)
+  for (int y = 0; y < size; ++y)
     put(size_t(y) * size);
   return out;
 }
 
-// Sample k of packed edges: k < steps is row 0 at x = k, else column 0 at y = k - steps.
+// Sample k of packed edges: k < size is row 0 at x = k, else column 0 at y = k - size.
 std::pair<int32_t, uint8_t> edge_sample(const std::vector<uint8_t>& e, size_t k) {
   const uint8_t* p = e.data() + 5 * k;
   const uint32_t v =
@@ -247,19 +247,22 @@ class Builder {
   std::vector<RawOut> warp_group(TileId first, int cols, int rows,
                                  const std::vector<TileId>& members, int worker) {
     if (!warpers_[worker]) warpers_[worker] = std::make_unique<TileWarper>(plan_, s_.resampling);
-    std::vector<double> h;
-    warpers_[worker]->warp(first, cols, rows, h);
-    const int n = plan_.steps, stride = cols * n;
+    TileWarper::Window win;
+    warpers_[worker]->warp(first, cols, rows, win);
+    const int n = plan_.steps;
+    const std::vector<double>& h = win.heights;
+    const size_t stride = size_t(win.width);
     std::vector<RawOut> outs;
     for (const TileId& id : members) {
-      // Each tile owns steps x steps samples; its last column and row stay
-      // invalid here and come from the neighbours in pass 2.
+      // Samples a tile does not own (the last column and row, where a
+      // neighbour exists) stay invalid here and come from it in pass 2.
+      const OwnedSamples own = owned_samples(plan_.tiling, id, n);
       const size_t ox = size_t(id.x - first.x) * n, oy = size_t(id.y - first.y) * n;
       Block b{std::vector<int32_t>(size_t(size_) * size_, 0),
               std::vector<uint8_t>(size_t(size_) * size_, 0)};
       size_t valid = 0;
-      for (int y = 0; y < n; ++y)
-        for (int x = 0; x < n; ++x) {
+      for (int y = 0; y < own.rows; ++y)
+        for (int x = 0; x < own.cols; ++x) {
           const double v = h[(oy + y) * stride + ox + x];
           if (!std::isfinite(v)) continue;  // nodata, and infinite heights: holes
           const double qv = std::round(v / plan_.step_m);
@@ -363,22 +366,24 @@ class Builder {
     const int n = plan_.steps;
     Block b = decode_stage(raw);
     // The last column and row belong to the east / south neighbours (first
-    // column / row there), the far corner to the south-east one.
+    // column / row there), the far corner to the first of the south-east,
+    // east and south neighbours that exists; at the tiling's edges, where
+    // none exists, the block owns them.
     auto take = [&](int dx, int dy, size_t k, int x, int y) {
+      auto nb = neighbour(id, dx, dy);
+      if (!nb) return false;
       const size_t dst = size_t(y) * size_ + x;
       b.q[dst] = 0;
       b.valid[dst] = 0;
-      auto nb = neighbour(id, dx, dy);
-      if (!nb) return;
-      auto it = edges.find(*nb);
-      if (it == edges.end()) return;
-      std::tie(b.q[dst], b.valid[dst]) = edge_sample(it->second, k);
+      if (auto it = edges.find(*nb); it != edges.end())
+        std::tie(b.q[dst], b.valid[dst]) = edge_sample(it->second, k);
+      return true;
     };
     for (int y = 0; y < n; ++y)
-      take(1, 0, size_t(n) + y, n, y);
+      take(1, 0, size_t(size_) + y, n, y);
     for (int x = 0; x < n; ++x)
       take(0, 1, size_t(x), x, n);
-    take(1, 1, 0, n, n);
+    take(1, 1, 0, n, n) || take(1, 0, size_t(size_) + n, n, n) || take(0, 1, size_t(n), n, n);
     if (std::none_of(b.valid.begin(), b.valid.end(), [](uint8_t v) { return v != 0; })) return {};
     fill_holes(b.q, b.valid, size_, plan_.fill_q);
 

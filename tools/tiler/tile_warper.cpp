@@ -15,7 +15,7 @@ TileWarper::TileWarper(const DemPlan& plan, const std::string& resampling) : pla
   for (const auto& src : plan.sources) {
     opened_.push_back(GdalDataset::open_raster(src.path));
     const GdalDataset& in = opened_.back();
-    for (double shift : src.x_shifts) {
+    for (double shift : warp_shifts(src)) {
       GDALDatasetH copy = GDALCreateCopy(vrt, "", in.get(), FALSE, nullptr, nullptr, nullptr);
       if (!copy)
         throw InputError(src.path + ": cannot wrap the raster (" + gdal_last_error() + ")");
@@ -30,34 +30,37 @@ TileWarper::TileWarper(const DemPlan& plan, const std::string& resampling) : pla
     }
   }
   WarpSpec spec;
-  spec.tiling = plan.tiling;
+  spec.target_crs = plan.tiling.crs;
   spec.resampling = resampling;
   spec.bands = 1;
   spec.type = GDT_Float64;
-  spec.nan_nodata = true;
-  spec.max_width = spec.max_height = plan.steps * kMaxGroup;
-  // A real tile of the finest zoom, in the data.
-  const auto range = plan.tiling.tiles_covering(plan.data_areas.front(), plan.max_zoom);
-  const auto b = plan.tiling.tile_bounds(
-      {plan.max_zoom, (range.min_x + range.max_x) / 2, (range.min_y + range.max_y) / 2});
-  const double sp = plan.tiling.sample_spacing(plan.max_zoom, plan.steps);
-  spec.initial_gt = {b.min_x - sp / 2, sp, 0, b.max_y + sp / 2, 0, -sp};
+  spec.max_width = spec.max_height = plan.steps * kMaxGroup + 1;
   warper_ = std::make_unique<RasterWarper>(
       std::move(sources), std::move(spec),
       plan.sources[0].path + (plan.sources.size() > 1 ? " (or another input)" : ""));
 }
 
-void TileWarper::warp(tileformat::TileId id, int cols, int rows, std::vector<double>& heights) {
+OwnedSamples owned_samples(const tileformat::Tiling& tiling, tileformat::TileId id, int steps) {
+  const bool last_x = id.x + 1 == tiling.tiles_x(id.z) && !tiling.wraps_x();
+  const bool last_y = id.y + 1 == tiling.tiles_y(id.z);
+  return {steps + (last_x ? 1 : 0), steps + (last_y ? 1 : 0)};
+}
+
+void TileWarper::warp(tileformat::TileId first, int cols, int rows, Window& out) {
   if (cols < 1 || rows < 1 || cols > kMaxGroup || rows > kMaxGroup)
     throw std::invalid_argument("TileWarper: group of " + std::to_string(cols) + " x " +
                                 std::to_string(rows) + " tiles");
-  const int w = plan_.steps * cols, h = plan_.steps * rows;
-  const double sp = plan_.tiling.sample_spacing(id.z, plan_.steps);
-  const tileformat::Bounds first = plan_.tiling.tile_bounds(id);
+  const int n = plan_.steps;
+  const tileformat::TileId last{first.z, first.x + cols - 1, first.y + rows - 1};
+  const OwnedSamples corner = owned_samples(plan_.tiling, last, n);
+  out.width = n * (cols - 1) + corner.cols;
+  out.height = n * (rows - 1) + corner.rows;
+  const double sp = plan_.tiling.sample_spacing(first.z, n);
+  const tileformat::Bounds b = plan_.tiling.tile_bounds(first);
   // Pixel centres on the samples: the first centre is the tile's corner.
-  const std::array<double, 6> gt = {first.min_x - sp / 2, sp, 0, first.max_y + sp / 2, 0, -sp};
-  heights.assign(static_cast<size_t>(w) * h, std::numeric_limits<double>::quiet_NaN());
-  warper_->warp(gt, w, h, "tile " + id.str(), heights.data());
+  const std::array<double, 6> gt = {b.min_x - sp / 2, sp, 0, b.max_y + sp / 2, 0, -sp};
+  out.heights.assign(size_t(out.width) * out.height, std::numeric_limits<double>::quiet_NaN());
+  warper_->warp(gt, out.width, out.height, "tile " + first.str(), out.heights.data());
 }
 
 }  // namespace globe

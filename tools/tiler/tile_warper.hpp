@@ -14,20 +14,30 @@
 
 namespace globe {
 
+// The samples a tile warps itself: steps x steps from its north-west
+// corner, plus the last column / row where no east / south neighbour in the
+// tiling owns them (the south edge of every scheme, the east edge of a local
+// tiling; global tilings wrap around in x).
+struct OwnedSamples {
+  int cols = 0, rows = 0;
+};
+OwnedSamples owned_samples(const tileformat::Tiling& tiling, tileformat::TileId id, int steps);
+
 class TileWarper {
  public:
   TileWarper(const DemPlan& plan, const std::string& resampling);
 
-  // Heights of the steps^2 samples the tile owns (its last column and row
-  // belong to the east/south neighbours), row-major from the north-west
-  // corner; NaN where no input has data. Not warping the shared samples also
-  // keeps the destination window off the antimeridian, where GDAL's source
-  // window computation wraps. Throws InputError on read failures.
-  // The same for a block of cols x rows tiles whose north-west tile is
-  // `first`, in one warp call (less per-call overhead): the result is
-  // (cols * steps) x (rows * steps) samples. cols, rows <= kMaxGroup.
-  void warp(tileformat::TileId first, int cols, int rows, std::vector<double>& heights);
-  void warp(tileformat::TileId id, std::vector<double>& heights) { warp(id, 1, 1, heights); }
+  // The heights a block of cols x rows tiles (north-west tile `first`)
+  // owns, warped in one call (less per-call overhead): row-major from the
+  // north-west corner, `width` x `height` samples; NaN where no input has
+  // data. Each sample is warped by exactly one tile, so samples shared by
+  // neighbours cannot round to two different quanta. cols, rows <=
+  // kMaxGroup. Throws InputError on read failures.
+  struct Window {
+    int width = 0, height = 0;
+    std::vector<double> heights;
+  };
+  void warp(tileformat::TileId first, int cols, int rows, Window& out);
   static constexpr int kMaxGroup = 4;
 
  private:

@@ -43,6 +43,9 @@ struct Tiling {
   double tile_size(int z) const { return root_size / static_cast<double>(uint64_t{1} << z); }
   uint64_t tiles_x(int z) const { return uint64_t(roots_x) << z; }
   uint64_t tiles_y(int z) const { return uint64_t(roots_y) << z; }
+  // Whether column 0 is the east neighbour of the last column (the global
+  // schemes span 360 degrees of longitude).
+  bool wraps_x() const { return scheme != "local"; }
   Bounds tile_bounds(TileId id) const;
   // Distance between neighbouring block samples at zoom z.
   double sample_spacing(int z, int steps) const { return tile_size(z) / steps; }
