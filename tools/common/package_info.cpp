@@ -17,6 +17,8 @@ void print_package_info(tileformat::PackageReader& reader, const std::string& pa
     if (value.size() > 100) value = value.substr(0, 97) + "...";
     std::printf("  %-22s %s\n", k.c_str(), value.c_str());
   }
+  if (auto it = reader.metadata().find("globe:left_out"); it != reader.metadata().end())
+    std::printf("left out: %s\n", it->second.c_str());
   std::printf("zoom levels:\n  %4s %10s %14s %12s  %s\n", "zoom", "tiles", "bytes", "bytes/tile",
               "x range, y range");
   uint64_t tiles = 0, bytes = 0;

@@ -259,7 +259,8 @@ class Builder {
     m.max_zoom = plan_.max_zoom;
     m.resampling = s_.resampling;
     m.command_line = s_.command_line;
-    m.bounds_digits = 17;  // snapped bounds must survive the round trip
+    m.left_out = plan_.left_out;
+    m.bounds_digits = 0;  // snapped bounds must survive the round trip
     std::map<std::string, std::string> meta = raster_metadata(m);
     meta["globe:tile_size"] = std::to_string(s_.tile_size);
     meta["globe:colour_bands"] = std::to_string(plan_.colour);

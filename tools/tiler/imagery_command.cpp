@@ -94,6 +94,7 @@ int run_imagery(const std::vector<std::string>& args) {
       << tileformat::image_format_name(s.format) << " tiles, "
       << (plan.colour == 1 ? "gray" : "RGB") << " + alpha, source pixel " << plan.source_resolution
       << " (tiling units)";
+    if (!plan.left_out.empty()) o << "\nglobe-tiler: left out: " << plan.left_out;
     if (plan.scale_derived)
       o << "\nglobe-tiler: inputs are not 8-bit: values " << plan.scale->first << ".."
         << plan.scale->second << " map to 0..255 (set with --scale)";

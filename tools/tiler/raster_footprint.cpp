@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "errors.hpp"
@@ -176,6 +177,8 @@ Footprint plan_footprint(std::vector<RasterSource>& sources, const BuildOptions&
   if (like.empty() && s.tiling != "local") f.tiling.crs = target->wkt2();  // metadata records WKT2
 
   Bounds ll_all{1e300, 1e300, -1e300, -1e300};
+  const double lat_limit = scheme == "webmercator" ? kMercatorMaxLat : 90.0;
+  double north = -90, south = 90;  // pixel centres of the global schemes' data
   double resolution = 1e300;
   std::vector<Bounds> local_areas;
   for (auto& src : sources) {
@@ -203,6 +206,9 @@ Footprint plan_footprint(std::vector<RasterSource>& sources, const BuildOptions&
       continue;
     }
     std::vector<Bounds> ll_parts;
+    // Latitudes of the northern- and southernmost pixel centres (pixel
+    // areas reaching past a limit by half a pixel lose no sample).
+    const double half_y = crs.is_geographic() ? std::abs(gt[5]) / 2 : 0.0;
     if (crs.is_geographic()) {
       for (double shift : src.x_shifts)
         ll_parts.push_back(
@@ -225,12 +231,29 @@ Footprint plan_footprint(std::vector<RasterSource>& sources, const BuildOptions&
         ll = {std::max(ll.min_x, b[0]), std::max(ll.min_y, b[1]), std::min(ll.max_x, b[2]),
               std::min(ll.max_y, b[3])};
       }
+      if (ll.min_x < ll.max_x && ll.min_y < ll.max_y) {
+        north = std::max(north, std::min(ll.max_y - half_y, 90.0));
+        south = std::min(south, std::max(ll.min_y + half_y, -90.0));
+      }
       auto area = lonlat_to_global(scheme, ll);
       if (!area) continue;
       f.data_areas.push_back(*area);
-      ll_all = unite(ll_all, {std::max(ll.min_x, -180.0), std::max(ll.min_y, -90.0),
-                              std::min(ll.max_x, 180.0), std::min(ll.max_y, 90.0)});
+      ll_all = unite(ll_all, {std::max(ll.min_x, -180.0), std::max(ll.min_y, -lat_limit),
+                              std::min(ll.max_x, 180.0), std::min(ll.max_y, lat_limit)});
     }
+  }
+  if (scheme != "local") {
+    std::string out;
+    char buf[160];
+    if (north > lat_limit + 1e-9) {
+      std::snprintf(buf, sizeof buf, "latitudes %.7g..%.7g", lat_limit, north);
+      out = buf;
+    }
+    if (south < -lat_limit - 1e-9) {
+      std::snprintf(buf, sizeof buf, "%.7g..%.7g", south, -lat_limit);
+      out += (out.empty() ? "latitudes " : " and ") + std::string(buf);
+    }
+    if (!out.empty()) f.left_out = out + " (outside the " + scheme + " tiling)";
   }
   f.source_resolution = resolution;
   if (!(resolution > 0) || !std::isfinite(resolution))

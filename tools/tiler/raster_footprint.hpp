@@ -61,6 +61,9 @@ struct Footprint {
   double source_resolution = 0;                // finest source pixel, tiling units
   int natural_max_zoom = 0;                    // first zoom whose pixels reach it
   int min_zoom = 0, max_zoom = 0;              // --min-zoom/--max-zoom or the defaults
+  // What part of the inputs the tiling cannot hold (webmercator ends at
+  // +-85.0511 degrees), in words; "" if none. Goes to metadata and `info`.
+  std::string left_out;
 };
 
 // Checks --tiling/--t_srs, fills each source's x_shifts, places the data and

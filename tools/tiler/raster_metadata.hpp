@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "metadata_text.hpp"
 #include "tileformat/tiling.hpp"
 
 namespace globe {
@@ -22,11 +23,10 @@ struct RasterMetadata {
   tileformat::Bounds lonlat;
   int min_zoom = 0, max_zoom = 0;
   std::string resampling, command_line;
-  int bounds_digits = 10;  // significant digits of bounds and center
+  std::string left_out;    // Footprint::left_out
+  int bounds_digits = 10;  // significant digits of `bounds` (0: exact)
 };
 
 std::map<std::string, std::string> raster_metadata(const RasterMetadata& m);
-// A number with `digits` significant digits, as metadata writes it.
-std::string metadata_number(double v, int digits = 10);
 
 }  // namespace globe

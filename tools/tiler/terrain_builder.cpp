@@ -459,6 +459,7 @@ class Builder {
     m.max_zoom = plan_.max_zoom;
     m.resampling = s_.resampling;
     m.command_line = s_.command_line;
+    m.left_out = plan_.left_out;
     std::map<std::string, std::string> meta = raster_metadata(m);
     meta["globe:block_size"] = std::to_string(size_);
     meta["globe:kpatch_lattice"] = std::to_string(s_.lattice);

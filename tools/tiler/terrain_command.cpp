@@ -45,6 +45,7 @@ int run_terrain(const std::vector<std::string>& args) {
       << ", zoom " << plan.min_zoom << ".." << plan.max_zoom << ", block " << s.block_size
       << ", height step " << plan.step_m << " m, source pixel " << plan.source_resolution
       << " (tiling units)";
+    if (!plan.left_out.empty()) o << "\nglobe-tiler: left out: " << plan.left_out;
     progress.note(o.str());
   }
   const BuildSummary sum = build_terrain(plan, s, progress);

@@ -19,6 +19,7 @@
 #include "json_escape.hpp"
 #include "line_classes.hpp"
 #include "line_projector.hpp"
+#include "metadata_text.hpp"
 #include "package_output.hpp"
 #include "parallel_batches.hpp"
 #include "tile_cutter.hpp"
@@ -140,10 +141,7 @@ class LengthHistogram {
 };
 
 std::string num(double v) {
-  std::ostringstream o;
-  o.precision(10);
-  o << v;
-  return o.str();
+  return metadata_number(v, 10);
 }
 
 class Builder {
@@ -498,6 +496,9 @@ class Builder {
       const XY hi = LineProjector::frame_to_lonlat(frame_, {b.max_x, b.max_y});
       ll = {lo.x, lo.y, hi.x, hi.y};
     }
+    const Bounds lim = tiling_.lonlat_limits();  // as readers accept them
+    ll = {std::clamp(ll.min_x, lim.min_x, lim.max_x), std::clamp(ll.min_y, lim.min_y, lim.max_y),
+          std::clamp(ll.max_x, lim.min_x, lim.max_x), std::clamp(ll.max_y, lim.min_y, lim.max_y)};
     meta["name"] = std::filesystem::path(s_.output).stem().string();
     meta["format"] = tileformat::kLineClustersFormat;
     meta["type"] = "overlay";
@@ -506,8 +507,7 @@ class Builder {
         "Line clusters built by globe-vectorize from " +
         std::filesystem::path(s_.inputs[0]).filename().string() +
         (s_.inputs.size() > 1 ? " and " + std::to_string(s_.inputs.size() - 1) + " more" : "");
-    meta["bounds"] =
-        num(ll.min_x) + "," + num(ll.min_y) + "," + num(ll.max_x) + "," + num(ll.max_y);
+    meta["bounds"] = metadata_bounds(ll, lim, 10);
     meta["center"] = num((ll.min_x + ll.max_x) / 2) + "," + num((ll.min_y + ll.max_y) / 2) + "," +
                      std::to_string(min_zoom_);
     meta["minzoom"] = std::to_string(min_zoom_);

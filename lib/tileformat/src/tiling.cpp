@@ -86,4 +86,9 @@ Tiling Tiling::from_metadata(const std::map<std::string, std::string>& meta) {
   return t;
 }
 
+Bounds Tiling::lonlat_limits() const {
+  const double lat = scheme == "webmercator" ? kWebMercatorMaxLat : 90.0;
+  return {-180.0, -lat, 180.0, lat};
+}
+
 }  // namespace tileformat

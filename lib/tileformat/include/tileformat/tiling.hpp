@@ -54,6 +54,9 @@ struct Tiling {
   Bounds extent() const {
     return {origin_x, origin_y - roots_y * root_size, origin_x + roots_x * root_size, origin_y};
   }
+  // The longitude/latitude range a package's `bounds` may take: webmercator
+  // ends at +-85.0511 degrees (readers such as GDAL reject bounds past it).
+  Bounds lonlat_limits() const;
   bool contains(TileId id) const {
     return id.z >= 0 && id.z <= kMaxZoom && id.x < tiles_x(id.z) && id.y < tiles_y(id.z);
   }
@@ -65,5 +68,6 @@ struct Tiling {
 };
 
 inline constexpr double kWebMercatorHalf = 20037508.342789244;
+inline constexpr double kWebMercatorMaxLat = 85.051128779806589;  // atan(sinh(pi)), degrees
 
 }  // namespace tileformat
