@@ -7,7 +7,11 @@
 #include <gdal_utils.h>
 #include <ogr_srs_api.h>
 
+#include "test_support.hpp"
+
+#include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <string>
 #include <vector>
@@ -99,29 +103,55 @@ inline Raster read_raster(const std::string& path) {
 }
 
 // gdalwarp (the library call) of `src` onto exactly the grid of `like`.
-inline Raster warp_like(const std::string& src, const Raster& like, const std::string& resampling,
-                        const std::string& out_path) {
-  gdal_setup();
-  CPLStringList args;
-  for (const char* a : {"-of", "GTiff", "-ot", "Float64", "-dstnodata", "nan", "-r"})
-    args.AddString(a);
-  args.AddString(resampling.c_str());
-  args.AddString("-t_srs");
-  args.AddString(like.wkt.c_str());
-  args.AddString("-te");
+// The independent reference for heights: the gdalwarp program, run as a
+// user runs it, with exact reprojection (-et 0) and the same resampling,
+// onto exactly the grid of `like` (an extracted zoom: pixel centres on the
+// samples). `sources` in drawing order (later on top); `extra`: more
+// gdalwarp options. Files go to `dir`.
+inline Raster gdalwarp_reference(const std::vector<std::string>& sources, const Raster& like,
+                                 const std::string& resampling, const fs::path& dir,
+                                 const std::string& extra = "") {
+  const fs::path crs = dir / "reference_crs.wkt", out = dir / "reference.tif";
+  std::ofstream(crs) << like.wkt;
+  std::string cmd = "gdalwarp -q -overwrite -et 0 -r " + resampling + " -t_srs " + crs.string() +
+                    " -ot Float64 -dstnodata nan -te";
   for (double v : {like.gt[0], like.gt[3] + like.height * like.gt[5],
                    like.gt[0] + like.width * like.gt[1], like.gt[3]})
-    args.AddString(CPLSPrintf("%.17g", v));
-  args.AddString("-ts");
-  args.AddString(CPLSPrintf("%d", like.width));
-  args.AddString(CPLSPrintf("%d", like.height));
-  GDALWarpAppOptions* opts = GDALWarpAppOptionsNew(args.List(), nullptr);
-  GDALDatasetH in = GDALOpen(src.c_str(), GA_ReadOnly);
-  GDALDatasetH out = GDALWarp(out_path.c_str(), nullptr, 1, &in, opts, nullptr);
-  GDALWarpAppOptionsFree(opts);
-  if (out) GDALClose(out);
-  GDALClose(in);
-  return read_raster(out_path);
+    cmd += CPLSPrintf(" %.17g", v);
+  cmd += CPLSPrintf(" -ts %d %d ", like.width, like.height) + extra;
+  for (const auto& s : sources)
+    cmd += " " + s;
+  const RunResult r = run(cmd + " " + out.string(), dir);
+  EXPECT_EQ(r.exit_code, 0) << cmd << "\n" << r.err;
+  return read_raster(out.string());
+}
+
+// Our heights against a reference where both have data.
+struct HeightComparison {
+  size_t compared = 0, reference_valid = 0, only_ours = 0, only_reference = 0;
+  double max_diff = 0, p999 = 0;  // metres
+};
+
+inline HeightComparison compare_heights(const Raster& ours, const Raster& ref) {
+  HeightComparison c;
+  std::vector<double> diffs;
+  for (size_t i = 0; i < ours.data.size() && i < ref.data.size(); ++i) {
+    const double a = ours.data[i], b = ref.data[i];
+    if (!std::isnan(b)) ++c.reference_valid;
+    if (std::isnan(a) || std::isnan(b)) {
+      c.only_ours += !std::isnan(a) && std::isnan(b);
+      c.only_reference += std::isnan(a) && !std::isnan(b);
+      continue;
+    }
+    diffs.push_back(std::abs(a - b));
+  }
+  c.compared = diffs.size();
+  if (diffs.empty()) return c;
+  const size_t k = std::min(diffs.size() - 1, static_cast<size_t>(0.999 * diffs.size()));
+  std::nth_element(diffs.begin(), diffs.begin() + static_cast<ptrdiff_t>(k), diffs.end());
+  c.p999 = diffs[k];
+  c.max_diff = *std::max_element(diffs.begin(), diffs.end());
+  return c;
 }
 
 }  // namespace globe_test
