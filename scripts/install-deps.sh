@@ -10,7 +10,7 @@ packages=(
   # fuzzing (scripts/fuzz.sh): clang and its libFuzzer runtime
   clang libclang-rt-14-dev
   # libraries (see README "Dependencies")
-  libgdal-dev libproj-dev libtiff-dev libzstd-dev libsqlite3-dev
+  libgdal-dev libproj-dev libtiff-dev libzstd-dev libsqlite3-dev libpng-dev
   googletest libgtest-dev
   # viewer: GLM, GLFW window, OSMesa and EGL (Mesa llvmpipe) headless contexts
   libglm-dev libglfw3-dev libosmesa6-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri

@@ -202,24 +202,29 @@ const char* kTrueScale = "-wo XSCALE=1 -wo YSCALE=1";
 INSTANTIATE_TEST_SUITE_P(
     Etopo20, GlobalDem,
     ::testing::Values(
-        GlobalCase{"grid_registered_geodetic", "global_grid.tif", "--tiling geodetic"},
+        GlobalCase{
+            "grid_registered_geodetic", "global_grid.tif", "--tiling geodetic", {}, "", false},
         GlobalCase{"grid_registered_webmercator", "global_grid.tif", "", {}, "", true},
-        GlobalCase{"exact_extent_geodetic", "global_exact.tif", "--tiling geodetic"},
+        GlobalCase{"exact_extent_geodetic", "global_exact.tif", "--tiling geodetic", {}, "", false},
         GlobalCase{"exact_extent_webmercator", "global_exact.tif", "", {}, "", true},
         GlobalCase{"lon_0_360_geodetic",
                    (samples() / "etopo20.tif").string(),
                    "--tiling geodetic",
-                   {"etopo20_west.vrt"}},
+                   {"etopo20_west.vrt"},
+                   "",
+                   false},
         GlobalCase{"lon_0_360_webmercator",
                    (samples() / "etopo20.tif").string(),
                    "",
                    {"etopo20_west.vrt"},
                    "",
                    true},
-        GlobalCase{"antimeridian_geodetic", "antimeridian.tif", "--tiling geodetic"},
-        GlobalCase{"antimeridian_webmercator", "antimeridian.tif", ""},
-        GlobalCase{"south_pole_strip_geodetic", "south_strip.tif", "--tiling geodetic"},
-        GlobalCase{"polar_stereographic_geodetic", "polar_3031.tif", "--tiling geodetic"},
+        GlobalCase{"antimeridian_geodetic", "antimeridian.tif", "--tiling geodetic", {}, "", false},
+        GlobalCase{"antimeridian_webmercator", "antimeridian.tif", "", {}, "", false},
+        GlobalCase{
+            "south_pole_strip_geodetic", "south_strip.tif", "--tiling geodetic", {}, "", false},
+        GlobalCase{
+            "polar_stereographic_geodetic", "polar_3031.tif", "--tiling geodetic", {}, "", false},
         GlobalCase{"polar_stereographic_webmercator", "polar_3031.tif", "", {}, kTrueScale, true}),
     [](const auto& info) { return info.param.name; });
 

@@ -47,6 +47,22 @@ TEST(ImageTile, TransparentJpegTilesBecomePng) {
   EXPECT_EQ(globe::decode_image_tile(blob, 256, 3).planes, px.planes);
 }
 
+// PNG tiles are lossless at every effort, with and without alpha (GDAL
+// decodes what libpng wrote).
+TEST(ImageTile, PngRoundTripsAtEveryEffort) {
+  for (int effort : {1, 2, 6, 9})
+    for (int colour : {1, 3})
+      for (uint8_t alpha : {uint8_t{255}, uint8_t{128}}) {
+        TilePixels px = gradient(256, colour, alpha);
+        px.plane(colour)[7] = 0;  // one transparent pixel: an alpha channel is written
+        if (alpha == 255) std::fill_n(px.plane(colour), px.plane_size(), uint8_t{255});
+        const auto blob = globe::encode_image_tile(px, {ImageFormat::kPng, 85, effort});
+        EXPECT_EQ(tileformat::inspect_image_tile(blob).channels, colour + (alpha == 255 ? 0 : 1));
+        EXPECT_EQ(globe::decode_image_tile(blob, 256, colour).planes, px.planes)
+            << "effort " << effort << ", colour " << colour << ", alpha " << int(alpha);
+      }
+}
+
 TEST(ImageTile, RejectsDamagedHeadersWithTheSection) {
   const auto blob = globe::encode_image_tile(gradient(256, 3, 255), {ImageFormat::kPng, 90});
   for (size_t n : {size_t(0), size_t(3), size_t(8), size_t(20), size_t(32)}) {

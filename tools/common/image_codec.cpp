@@ -1,4 +1,5 @@
-// Image tile encoding and decoding through GDAL (see image_codec.hpp).
+// Image tile encoding (PNG through libpng, JPEG and WebP through GDAL) and
+// decoding through GDAL (see image_codec.hpp).
 #include "image_codec.hpp"
 
 #include <cpl_string.h>
@@ -11,6 +12,7 @@
 #include <string>
 
 #include "gdal_dataset.hpp"
+#include "png_encoder.hpp"
 #include "tileformat/error.hpp"
 
 namespace globe {
@@ -52,6 +54,17 @@ std::vector<uint8_t> encode_image_tile(const TilePixels& px, const EncodeOptions
   if (format == ImageFormat::kWebp && px.colour == 1) planes = {0, 0, 0};
   if (!opaque) planes.push_back(px.colour);
 
+  if (format == ImageFormat::kPng) {
+    const int channels = static_cast<int>(planes.size());
+    std::vector<uint8_t> interleaved(px.plane_size() * channels);
+    for (int c = 0; c < channels; ++c) {
+      const uint8_t* src = px.plane(planes[c]);
+      for (size_t i = 0; i < px.plane_size(); ++i)
+        interleaved[i * channels + c] = src[i];
+    }
+    return encode_png(interleaved.data(), px.size, px.size, channels, options.png_level);
+  }
+
   GDALDriverH mem = GDALGetDriverByName("MEM");
   GdalDataset ds(
       GDALCreate(mem, "", px.size, px.size, static_cast<int>(planes.size()), GDT_Byte, nullptr),
@@ -66,9 +79,7 @@ std::vector<uint8_t> encode_image_tile(const TilePixels& px, const EncodeOptions
   if (!opaque)
     GDALSetRasterColorInterpretation(ds.band(static_cast<int>(planes.size())), GCI_AlphaBand);
 
-  const char* driver = format == ImageFormat::kPng    ? "PNG"
-                       : format == ImageFormat::kJpeg ? "JPEG"
-                                                      : "WEBP";
+  const char* driver = format == ImageFormat::kJpeg ? "JPEG" : "WEBP";
   char** opts = nullptr;
   const std::string quality = std::to_string(options.quality);
   if (format == ImageFormat::kJpeg) opts = CSLSetNameValue(opts, "QUALITY", quality.c_str());
@@ -79,8 +90,6 @@ std::vector<uint8_t> encode_image_tile(const TilePixels& px, const EncodeOptions
       opts = CSLSetNameValue(opts, "QUALITY", quality.c_str());
   }
   opts = CSLSetNameValue(opts, "WRITE_METADATA_AS_TEXT", "NO");
-  if (format == ImageFormat::kPng)
-    opts = CSLSetNameValue(opts, "ZLEVEL", std::to_string(options.png_level).c_str());
   MemoryFile file{memory_file_name(tileformat::image_format_name(format))};
   CPLErrorReset();
   GDALDatasetH out = GDALCreateCopy(GDALGetDriverByName(driver), file.name.c_str(), ds.get(), FALSE,

@@ -1,6 +1,7 @@
-// Image tile pixels and their PNG / JPEG / WebP encoding, through GDAL's
-// drivers on in-memory files (docs/tileformat.md §8). Thread-safe: every
-// call uses its own /vsimem/ file.
+// Image tile pixels and their PNG / JPEG / WebP encoding (PNG through
+// libpng, the others through GDAL's drivers on in-memory files; decoding
+// through GDAL) (docs/tileformat.md §8). Thread-safe: every call uses its own
+// /vsimem/ file.
 #pragma once
 
 #include <cstdint>
@@ -32,7 +33,7 @@ struct TilePixels {
 struct EncodeOptions {
   tileformat::ImageFormat format = tileformat::ImageFormat::kPng;
   int quality = 85;   // JPEG / WebP; WebP 100 = lossless
-  int png_level = 3;  // deflate level of PNG tiles (docs/imagery.md "Encoding")
+  int png_level = 1;  // PNG effort, see encode_png (docs/imagery.md "Encoding")
 };
 
 // Encodes a non-empty tile. Opaque tiles drop the alpha channel. JPEG has no

@@ -17,7 +17,7 @@ struct ImageSettings : BuildOptions {
   int tile_size = 256;  // 256 or 512 pixels
   tileformat::ImageFormat format = tileformat::ImageFormat::kPng;
   int quality = 85;
-  int png_level = 3;
+  int png_level = 1;
   std::vector<int> bands;  // source bands: 1 or 3 colour, optionally + alpha
   std::optional<double> nodata;
   std::optional<std::pair<double, double>> scale;  // source range mapped to 0..255

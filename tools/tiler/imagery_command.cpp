@@ -54,8 +54,9 @@ int run_imagery(const std::vector<std::string>& args) {
   cli.option("--quality", "Q", "JPEG/WebP quality 1..100 (default 85; WebP 100 = lossless)",
              [&](const std::string& v) { s.quality = CliArgs::to_int("--quality", v, 1, 100); });
   cli.option("--png-level", "N",
-             "deflate level of PNG tiles, 1 (fastest) .. 9 (smallest); default 3: level 6 "
-             "costs 1.6x the CPU for 10 % smaller tiles",
+             "PNG effort: 1 (default) = Paeth prediction and run-length deflate, the fastest "
+             "and on photographs the smallest; 2..9 = adaptive filters and deflate at that "
+             "level, smaller for graphics with repeated patterns (maps, scans)",
              [&](const std::string& v) { s.png_level = CliArgs::to_int("--png-level", v, 1, 9); });
   cli.option("--bands", "LIST",
              "source bands: 1 (gray) or 3 (RGB), then optionally an alpha band; e.g. 3,2,1 "
