@@ -7,6 +7,8 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <optional>
 
 #include "tileformat/error.hpp"
 
@@ -33,10 +35,24 @@ void fsync_path(const std::string& path) {
   ::close(fd);
 }
 
+// Beside a finished temporary file while it loses its build key and is
+// renamed: the key, so --resume still knows the file as its own.
+std::string key_path(const std::string& temp_path) {
+  return temp_path + "-key";
+}
+
 void remove_temp(const std::string& temp_path) {
   std::error_code ec;
   std::filesystem::remove(temp_path, ec);
   std::filesystem::remove(temp_path + "-journal", ec);
+  std::filesystem::remove(key_path(temp_path), ec);
+}
+
+std::optional<int32_t> read_key_file(const std::string& temp_path) {
+  std::ifstream in(key_path(temp_path));
+  int64_t key = 0;
+  if (!(in >> key)) return std::nullopt;
+  return static_cast<int32_t>(key);
 }
 
 }  // namespace
@@ -60,7 +76,7 @@ PackageWriter::PackageWriter(std::string final_path, bool overwrite, const std::
   std::error_code ec;
   if (fs::exists(final_path_, ec) && !overwrite)
     throw PackageError(final_path_ + ": output exists; pass --force to replace it");
-  if (resume && fs::exists(temp_path_, ec)) {
+  if (resume && fs::exists(temp_path_, ec) && !is_empty_database(temp_path_)) {
     resumed_ = open_existing();
     if (!resumed_)
       throw PackageError(temp_path_ +
@@ -81,6 +97,10 @@ void PackageWriter::create_schema() {
   // fsynced) keeps the file consistent at its last commit when the process
   // is killed; it is not there to survive power loss.
   db_->exec("PRAGMA page_size = 1024; PRAGMA journal_mode = TRUNCATE; PRAGMA synchronous = OFF;");
+  // One transaction: a build killed while creating the file leaves either
+  // nothing (an empty database, which --resume starts afresh) or the whole
+  // schema with its build key, never the identity without the key.
+  db_->exec("BEGIN");
   db_->exec("PRAGMA application_id = " + std::to_string(kApplicationId));
   db_->exec("PRAGMA user_version = " + std::to_string(key_hash_));
   db_->exec(
@@ -93,6 +113,18 @@ void PackageWriter::create_schema() {
       "CREATE VIEW tiles AS SELECT map.zoom_level AS zoom_level, map.tile_column AS tile_column, "
       "map.tile_row AS tile_row, blobs.tile_data AS tile_data FROM map JOIN blobs ON "
       "map.blob_id = blobs.blob_id;");
+  db_->exec("COMMIT");
+}
+
+// Whether `path` is a database without any table (a build killed before its
+// first commit; SQLite rolls its hot journal back on opening).
+bool PackageWriter::is_empty_database(const std::string& path) {
+  try {
+    SqliteDb db(path, SqliteDb::Mode::kReadWriteCreate);
+    return db.query_int("SELECT COUNT(*) FROM sqlite_master").value_or(0) == 0;
+  } catch (const PackageError&) {
+    return false;  // unreadable: open_existing says so
+  }
 }
 
 // Opens an interrupted build's file (SQLite rolls a hot journal back on the
@@ -104,7 +136,10 @@ bool PackageWriter::open_existing() {
     if (db_->query_int("PRAGMA application_id").value_or(0) != kApplicationId) return false;
     const int64_t version = db_->query_int("PRAGMA user_version").value_or(0);
     const bool has_metadata = db_->query_int("SELECT COUNT(*) FROM metadata").value_or(0) > 0;
-    if (version != key_hash_) return false;
+    // Killed while being renamed: finished, without the key in its header,
+    // the key beside it (commit()).
+    const bool renaming = version == 0 && has_metadata && read_key_file(temp_path_) == key_hash_;
+    if (version != key_hash_ && !renaming) return false;
     // A build killed after its final commit (metadata written): finished.
     finished_ = has_metadata;
     tiles_ = static_cast<uint64_t>(db_->query_int("SELECT COUNT(*) FROM map").value_or(0));
@@ -200,9 +235,18 @@ void PackageWriter::commit() {
   } else {
     db_->exec("COMMIT");
   }
-  // The build key goes only now: a build killed before this point is still
-  // recognised by --resume as finished (and as its own).
-  db_->exec("PRAGMA user_version = 0; PRAGMA journal_mode = DELETE");
+  // The build key goes only now, and stays in a file beside it until the
+  // rename: a build killed before that is still recognised by --resume as
+  // finished (and as its own).
+  // (A build killed after this step has it done already: doing it again
+  // would add a write to the file's change counter, and different bytes.)
+  if (db_->query_int("PRAGMA user_version").value_or(0) != 0) {
+    std::ofstream key(key_path(temp_path_));
+    key << key_hash_ << "\n";
+    if (!key.flush()) throw PackageError(temp_path_ + ": cannot write " + key_path(temp_path_));
+    db_->exec("PRAGMA user_version = 0");
+  }
+  db_->exec("PRAGMA journal_mode = DELETE");
   find_blob_.reset();
   insert_blob_.reset();
   insert_map_.reset();
@@ -216,6 +260,7 @@ void PackageWriter::commit() {
                        ": cannot rename the finished package into place: " + ec.message());
   const auto dir = std::filesystem::absolute(final_path_).parent_path();
   fsync_path(dir.string());
+  std::filesystem::remove(key_path(temp_path_), ec);
   committed_ = true;
 }
 

@@ -78,6 +78,7 @@ class PackageWriter {
  private:
   void create_schema();
   bool open_existing();
+  static bool is_empty_database(const std::string& path);
   void prepare_statements();
   void flush_batch();
   std::string final_path_, temp_path_;
