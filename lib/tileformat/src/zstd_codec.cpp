@@ -24,11 +24,21 @@ Contexts& contexts() {
 }
 }  // namespace
 
-std::vector<uint8_t> zstd_compress(std::span<const uint8_t> in, int level) {
+std::vector<uint8_t> zstd_compress(std::span<const uint8_t> in, int level, ZstdSearch search) {
   std::vector<uint8_t> out(ZSTD_compressBound(in.size()));
-  size_t n = ZSTD_compressCCtx(contexts().c, out.data(), out.size(), in.data(), in.size(), level);
-  if (ZSTD_isError(n))
-    throw std::runtime_error(std::string("zstd compression failed: ") + ZSTD_getErrorName(n));
+  ZSTD_CCtx* c = contexts().c;
+  auto check = [](size_t r) {
+    if (ZSTD_isError(r))
+      throw std::runtime_error(std::string("zstd compression failed: ") + ZSTD_getErrorName(r));
+  };
+  check(ZSTD_CCtx_reset(c, ZSTD_reset_session_and_parameters));
+  check(ZSTD_CCtx_setParameter(c, ZSTD_c_compressionLevel, level));
+  if (search == ZstdSearch::kLazy) {
+    check(ZSTD_CCtx_setParameter(c, ZSTD_c_strategy, ZSTD_lazy));
+    check(ZSTD_CCtx_setParameter(c, ZSTD_c_minMatch, 4));
+  }
+  const size_t n = ZSTD_compress2(c, out.data(), out.size(), in.data(), in.size());
+  check(n);
   out.resize(n);
   return out;
 }

@@ -9,7 +9,14 @@
 
 namespace tileformat::detail {
 
-std::vector<uint8_t> zstd_compress(std::span<const uint8_t> in, int level);
+// How hard zstd searches for matches: its own choice for the level, or its
+// "lazy" strategy with 4-byte matches, which on MBlock byte planes at level 9
+// gives the same size (within 0.01 %) in 25 % less time than the level's own
+// "lazy2" (measured on etopo20 and a 5' global grid).
+enum class ZstdSearch { kLevelDefault, kLazy };
+
+std::vector<uint8_t> zstd_compress(std::span<const uint8_t> in, int level,
+                                   ZstdSearch search = ZstdSearch::kLevelDefault);
 
 // Throws FormatError(section) unless `in` is one complete zstd frame that
 // decompresses to exactly `expected_size` bytes.
