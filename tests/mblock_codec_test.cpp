@@ -128,3 +128,26 @@ TEST(MBlockCodec, GoldenVersion1BlobStillDecodes) {
   std::vector<uint8_t> blob((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   expect_same(decode_mblock(blob), golden_block());
 }
+
+// Builders' scratch grids: any size, both codings, with and without holes,
+// round trip exactly; every truncated prefix is rejected.
+TEST(HeightGrid, RoundTripsAnySizeAndRejectsTruncation) {
+  using tileformat::HeightCoding;
+  for (int size : {1, 2, 129, 257})
+    for (HeightCoding coding : {HeightCoding::kBytePlanes, HeightCoding::kBestPacking})
+      for (bool holes : {false, true}) {
+        const MBlock m = random_block(std::max(size, 33), 7u + size, holes, size == 129 ? 3 : 900);
+        tileformat::HeightGrid g{size, std::vector<int32_t>(m.q.begin(), m.q.begin() + size * size),
+                                 std::vector<uint8_t>(size_t(size) * size, 1)};
+        if (holes)
+          for (size_t i = 0; i < g.valid.size(); i += 3)
+            g.valid[i] = 0;
+        const auto bytes = tileformat::encode_height_grid(g, 1, coding);
+        const tileformat::HeightGrid back = tileformat::decode_height_grid(bytes);
+        EXPECT_EQ(back.size, size);
+        EXPECT_EQ(back.q, g.q);
+        EXPECT_EQ(back.valid, g.valid);
+        for (size_t n = 0; n < bytes.size(); n += std::max<size_t>(1, bytes.size() / 50))
+          EXPECT_THROW(tileformat::decode_height_grid({bytes.data(), n}), FormatError) << n;
+      }
+}

@@ -43,23 +43,44 @@ StagingStore::StagingStore(std::string path, int32_t key, bool resume) : path_(s
   if (fresh) {
     db_->exec("PRAGMA user_version = " + std::to_string(key));
     db_->exec(
-        "CREATE TABLE stage (kind INTEGER, z INTEGER, x INTEGER, y INTEGER, data BLOB, PRIMARY "
-        "KEY (kind, z, y, x));"
         "CREATE TABLE progress (seq INTEGER PRIMARY KEY, z INTEGER, pass INTEGER, done INTEGER, "
         "puts INTEGER)");
   }
-  put_ = std::make_unique<SqliteStatement>(*db_,
-                                           "INSERT OR REPLACE INTO stage VALUES (?, ?, ?, ?, ?)");
-  get_ = std::make_unique<SqliteStatement>(
-      *db_, "SELECT data FROM stage WHERE kind = ? AND z = ? AND x = ? AND y = ?");
   db_->exec("BEGIN");
 }
 
 StagingStore::~StagingStore() {
-  put_.reset();
-  get_.reset();
+  tables_.clear();
   db_.reset();
   remove_store(path_);
+}
+
+namespace {
+
+// One table per stage and zoom, keyed by (y, x) packed into the rowid (so
+// rows are stored in list order, with no separate index): dropping a level
+// is DROP TABLE, which frees its pages without journaling their content
+// (DELETE copied every deleted page into the rollback journal).
+std::string table_name(Stage stage, int z) {
+  return "s" + std::to_string(static_cast<int>(stage)) + "_" + std::to_string(z);
+}
+int64_t row_key(tileformat::TileId id) {
+  return (static_cast<int64_t>(id.y) << 32) | id.x;
+}
+
+}  // namespace
+
+StagingStore::Table& StagingStore::table(Stage stage, int z) {
+  const auto key = std::make_pair(static_cast<int>(stage), z);
+  auto it = tables_.find(key);
+  if (it != tables_.end()) return it->second;
+  const std::string name = table_name(stage, z);
+  db_->exec("CREATE TABLE IF NOT EXISTS " + name + " (key INTEGER PRIMARY KEY, data BLOB)");
+  Table t;
+  t.put =
+      std::make_unique<SqliteStatement>(*db_, "INSERT OR REPLACE INTO " + name + " VALUES (?, ?)");
+  t.get = std::make_unique<SqliteStatement>(*db_, "SELECT data FROM " + name + " WHERE key = ?");
+  return tables_.emplace(key, std::move(t)).first->second;
 }
 
 namespace {
@@ -88,36 +109,38 @@ std::vector<StageCheckpoint> StagingStore::checkpoints(int z) {
 }
 
 void StagingStore::put(Stage stage, tileformat::TileId id, const std::vector<uint8_t>& data) {
-  put_->bind(1, static_cast<int>(stage)).bind(2, id.z).bind(3, id.x).bind(4, id.y).bind(5, data);
-  put_->step();
-  put_->reset();
+  Table& t = table(stage, id.z);
+  t.put->bind(1, row_key(id)).bind(2, data);
+  t.put->step();
+  t.put->reset();
 }
 
 std::optional<std::vector<uint8_t>> StagingStore::get(Stage stage, tileformat::TileId id) {
-  get_->bind(1, static_cast<int>(stage)).bind(2, id.z).bind(3, id.x).bind(4, id.y);
+  Table& t = table(stage, id.z);
+  t.get->bind(1, row_key(id));
   std::optional<std::vector<uint8_t>> out;
-  if (get_->step()) {
-    auto b = get_->column_blob(0);
+  if (t.get->step()) {
+    auto b = t.get->column_blob(0);
     out.emplace(b.begin(), b.end());
   }
-  get_->reset();
+  t.get->reset();
   return out;
 }
 
 std::vector<tileformat::TileId> StagingStore::list(Stage stage, int z) {
-  SqliteStatement st(*db_, "SELECT x, y FROM stage WHERE kind = ? AND z = ? ORDER BY y, x");
-  st.bind(1, static_cast<int>(stage)).bind(2, z);
+  table(stage, z);  // exists (empty) even if nothing was put
+  SqliteStatement st(*db_, "SELECT key FROM " + table_name(stage, z) + " ORDER BY key");
   std::vector<tileformat::TileId> out;
-  while (st.step())
-    out.push_back(
-        {z, static_cast<uint32_t>(st.column_int(0)), static_cast<uint32_t>(st.column_int(1))});
+  while (st.step()) {
+    const int64_t key = st.column_int(0);
+    out.push_back({z, static_cast<uint32_t>(key & 0xffffffff), static_cast<uint32_t>(key >> 32)});
+  }
   return out;
 }
 
 void StagingStore::drop(Stage stage, int z) {
-  SqliteStatement st(*db_, "DELETE FROM stage WHERE kind = ? AND z = ?");
-  st.bind(1, static_cast<int>(stage)).bind(2, z);
-  st.step();
+  tables_.erase({static_cast<int>(stage), z});
+  db_->exec("DROP TABLE IF EXISTS " + table_name(stage, z));
 }
 
 void StagingStore::commit() {

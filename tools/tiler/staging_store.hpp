@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -18,8 +19,9 @@
 namespace globe {
 
 // kRaw: a block's own samples; kEdges: just its first row and column (what
-// its west/north neighbours take from it); kFinal / kNodeErrors: after pass 2.
-enum class Stage : int { kRaw = 1, kFinal = 2, kNodeErrors = 3, kEdges = 4 };
+// its west/north neighbours take from it); kFinal / kNodeErrors / kQuarter
+// (every other sample, for the parent): after pass 2.
+enum class Stage : int { kRaw = 1, kFinal = 2, kNodeErrors = 3, kEdges = 4, kQuarter = 5 };
 
 // How far a build got: pass `pass` of zoom `z` has consumed its first `done`
 // work items, which put `puts` tiles of zoom z into the package (the meaning
@@ -58,9 +60,14 @@ class StagingStore {
   void commit_if_due(const StageCheckpoint& at);
 
  private:
+  struct Table {
+    std::unique_ptr<tileformat::SqliteStatement> put, get;
+  };
+  Table& table(Stage stage, int z);  // created on first use
+
   std::string path_;
   std::unique_ptr<tileformat::SqliteDb> db_;
-  std::unique_ptr<tileformat::SqliteStatement> put_, get_;
+  std::map<std::pair<int, int>, Table> tables_;  // (stage, z)
   std::chrono::steady_clock::time_point last_commit_ = std::chrono::steady_clock::now();
 };
 

@@ -113,6 +113,7 @@ class Builder {
           stage.drop(Stage::kEdges, z);
           stage.drop(Stage::kFinal, z + 1);
           stage.drop(Stage::kNodeErrors, z + 1);
+          stage.drop(Stage::kQuarter, z + 1);
           stage.commit({z, kPassEncode, 0});
         }
         pass_encode(stage, *writer, z);
@@ -141,9 +142,19 @@ class Builder {
   }
 
  private:
-  // Scratch blocks: fast byte planes. Final blocks: the best height coding,
-  // encoded once here (pass 3 only swaps in the error tree).
-  std::vector<uint8_t> encode_stage(const Block& b, bool final = false) const {
+  // Scratch blocks (raw samples, a final block's every other sample): the
+  // MBlock height coding at zstd level 1, without header or error tree.
+  static std::vector<uint8_t> encode_scratch(const Block& b, int size) {
+    return tileformat::encode_height_grid({size, b.q, b.valid}, kStageZstdLevel,
+                                          tileformat::HeightCoding::kBestPacking);
+  }
+  static Block decode_scratch(const std::vector<uint8_t>& bytes) {
+    tileformat::HeightGrid g = tileformat::decode_height_grid(bytes);
+    return Block{std::move(g.q), std::move(g.valid)};
+  }
+  // Final blocks: the best height coding, encoded once here (pass 3 only
+  // swaps in the error tree).
+  std::vector<uint8_t> encode_final(const Block& b) const {
     MBlock m;
     m.size = size_;
     m.lattice = s_.lattice;
@@ -152,14 +163,20 @@ class Builder {
     if (std::any_of(b.valid.begin(), b.valid.end(), [](uint8_t v) { return v == 0; }))
       m.valid = b.valid;
     m.vertex_error.assign(layouts_[0].vertex_count(), 0);
-    return final ? tileformat::encode_mblock(m, kFinalZstdLevel, true)
-                 : tileformat::encode_mblock(m, kStageZstdLevel, false);
+    return tileformat::encode_mblock(m, kFinalZstdLevel, true);
   }
-  Block decode_stage(const std::vector<uint8_t>& bytes) const {
-    MBlock m = tileformat::decode_mblock(bytes);
-    Block b{std::move(m.q), std::move(m.valid)};
-    if (b.valid.empty()) b.valid.assign(b.q.size(), 1);
-    return b;
+  // Every other sample of a final block: what its parent takes (pass 1 of
+  // the next coarser zoom), a quarter of the samples to store and read back.
+  std::vector<uint8_t> encode_quarter(const Block& b) const {
+    const int half = plan_.steps / 2 + 1;
+    Block qb{std::vector<int32_t>(size_t(half) * half), std::vector<uint8_t>(size_t(half) * half)};
+    for (int y = 0; y < half; ++y)
+      for (int x = 0; x < half; ++x) {
+        const size_t src = size_t(2 * y) * size_ + 2 * x, dst = size_t(y) * half + x;
+        qb.q[dst] = b.q[src];
+        qb.valid[dst] = b.valid[src];
+      }
+    return encode_scratch(qb, half);
   }
 
   std::optional<TileId> neighbour(TileId id, int dx, int dy) const {
@@ -194,7 +211,7 @@ class Builder {
           Blobs children;
           for (size_t i = begin; i < end; ++i)
             for (const TileId& c : tiles[i].children())
-              if (auto b = stage.get(Stage::kFinal, c)) children.emplace(c, std::move(*b));
+              if (auto b = stage.get(Stage::kQuarter, c)) children.emplace(c, std::move(*b));
           return children;
         },
         [&](size_t i, int, const Blobs& children) { return decimate(tiles[i], children); },
@@ -274,32 +291,34 @@ class Builder {
           b.valid[size_t(y) * size_ + x] = 1;
           ++valid;
         }
-      outs.push_back(valid == 0 ? RawOut{} : RawOut{encode_stage(b), pack_edges(b, size_)});
+      outs.push_back(valid == 0 ? RawOut{}
+                                : RawOut{encode_scratch(b, size_), pack_edges(b, size_)});
     }
     return outs;
   }
 
   RawOut decimate(TileId id, const std::map<TileId, std::vector<uint8_t>>& cache) const {
-    std::array<std::optional<Block>, 4> kids;
+    std::array<std::optional<Block>, 4> kids;  // every other sample of each child
     const auto children = id.children();
     for (int c = 0; c < 4; ++c)
-      if (auto it = cache.find(children[c]); it != cache.end()) kids[c] = decode_stage(it->second);
-    const int n = plan_.steps;
+      if (auto it = cache.find(children[c]); it != cache.end())
+        kids[c] = decode_scratch(it->second);
+    const int n = plan_.steps, h = n / 2, half = h + 1;
     Block b{std::vector<int32_t>(size_t(size_) * size_, 0),
             std::vector<uint8_t>(size_t(size_) * size_, 0)};
     size_t valid = 0;
     for (int y = 0; y <= n; ++y)
       for (int x = 0; x <= n; ++x) {
-        const int fx = 2 * x, fy = 2 * y;
-        // Children holding the fine sample (several on the middle lines).
+        // Children holding the sample (several on the middle lines): the
+        // first one present gives it.
         for (int cy : {0, 1}) {
-          if ((cy == 0 && fy > n) || (cy == 1 && fy < n)) continue;
+          if ((cy == 0 && y > h) || (cy == 1 && y < h)) continue;
           bool done = false;
           for (int cx : {0, 1}) {
-            if ((cx == 0 && fx > n) || (cx == 1 && fx < n)) continue;
+            if ((cx == 0 && x > h) || (cx == 1 && x < h)) continue;
             const auto& k = kids[cx + 2 * cy];
             if (!k) continue;
-            const size_t src = size_t(fy - cy * n) * size_ + (fx - cx * n),
+            const size_t src = size_t(y - cy * h) * half + (x - cx * h),
                          dst = size_t(y) * size_ + x;
             if (k->valid[src]) {
               b.q[dst] = k->q[src];
@@ -313,7 +332,7 @@ class Builder {
         }
       }
     if (valid == 0) return {};
-    return RawOut{encode_stage(b), pack_edges(b, size_)};
+    return RawOut{encode_scratch(b, size_), pack_edges(b, size_)};
   }
 
   // Pass 2: shared edges from the owners, hole filling, node errors.
@@ -347,6 +366,7 @@ class Builder {
           if (!out.block.empty()) {
             stage.put(Stage::kFinal, tiles[i], out.block);
             stage.put(Stage::kNodeErrors, tiles[i], out.errors);
+            if (!out.quarter.empty()) stage.put(Stage::kQuarter, tiles[i], out.quarter);
           }
           progress_.advance();
         },
@@ -359,12 +379,13 @@ class Builder {
 
   struct FinalOut {
     std::vector<uint8_t> block, errors;  // both empty: the tile holds no data
+    std::vector<uint8_t> quarter;        // for the parent; empty at the coarsest zoom
   };
   FinalOut finalize(TileId id, const std::vector<uint8_t>& raw,
                     const std::map<TileId, std::vector<uint8_t>>& edges,
                     const std::map<TileId, std::vector<uint8_t>>& child_err) const {
     const int n = plan_.steps;
-    Block b = decode_stage(raw);
+    Block b = decode_scratch(raw);
     // The last column and row belong to the east / south neighbours (first
     // column / row there), the far corner to the first of the south-east,
     // east and south neighbours that exists; at the tiling's edges, where
@@ -396,7 +417,8 @@ class Builder {
         kid_ptrs[c] = &kids[c];
       }
     const auto errors = node_errors(layouts_[id.diagonal()], b.q, b.valid, kid_ptrs);
-    return FinalOut{encode_stage(b, true), pack_u32(errors)};
+    return FinalOut{encode_final(b), pack_u32(errors),
+                    id.z > plan_.min_zoom ? encode_quarter(b) : std::vector<uint8_t>{}};
   }
 
   // Pass 3: vertex errors and the final MBlock. Tiles are put in list order,

@@ -341,6 +341,53 @@ std::vector<uint8_t> encode_mblock(const MBlock& b, int zstd_level, bool best_pa
   return wrap_blob(BlobKind::kMBlock, body);
 }
 
+std::vector<uint8_t> encode_height_grid(const HeightGrid& g, int zstd_level, HeightCoding coding) {
+  const size_t n = static_cast<size_t>(g.size) * g.size;
+  if (g.size < 1 || g.size > 65535 || g.q.size() != n || g.valid.size() != n)
+    throw std::invalid_argument("height grid: array sizes do not match the grid size");
+  for (int32_t v : g.q)
+    if (v > kMaxQuantum || v < -kMaxQuantum)
+      throw std::invalid_argument("height grid: quantized height out of range");
+  std::vector<uint32_t> residual(n);
+  predict_residuals(g.q.data(), g.size, residual.data());
+  const bool all_valid = std::all_of(g.valid.begin(), g.valid.end(), [](uint8_t v) { return v; });
+  detail::ByteWriter w;
+  w.u16(static_cast<uint16_t>(g.size));
+  w.u8(all_valid ? 0 : kFlagMask);
+  w.bytes(encode_residuals(residual, zstd_level, coding == HeightCoding::kBestPacking));
+  if (!all_valid) {
+    std::vector<uint8_t> bits((n + 7) / 8, 0);
+    for (size_t i = 0; i < n; ++i)
+      if (g.valid[i]) bits[i / 8] |= static_cast<uint8_t>(1u << (i % 8));
+    auto mask = detail::zstd_compress(bits, zstd_level);
+    w.u32(static_cast<uint32_t>(mask.size()));
+    w.bytes(mask);
+  }
+  return w.take();
+}
+
+HeightGrid decode_height_grid(std::span<const uint8_t> bytes) {
+  detail::ByteReader r(bytes, "height grid", "5.2");
+  HeightGrid g;
+  g.size = r.u16();
+  const uint8_t flags = r.u8();
+  if (g.size < 1 || (flags & ~kFlagMask)) r.fail("invalid grid header");
+  const size_t n = static_cast<size_t>(g.size) * g.size;
+  const std::vector<uint32_t> residual = decode_residuals(r, n);
+  g.q.resize(n);
+  if (!reconstruct(residual.data(), g.size, g.q.data()))
+    r.fail("a height is outside the quantization range");
+  g.valid.assign(n, 1);
+  if (flags & kFlagMask) {
+    r.set_section("5.3");
+    auto bits = detail::zstd_decompress(r.bytes(r.u32()), (n + 7) / 8, "height grid mask", "5.3");
+    for (size_t i = 0; i < n; ++i)
+      g.valid[i] = (bits[i / 8] >> (i % 8)) & 1;
+  }
+  r.expect_end();
+  return g;
+}
+
 MBlock decode_mblock(std::span<const uint8_t> blob) {
   auto body = read_blob_header(blob, BlobKind::kMBlock);
   detail::ByteReader r(body, "MBlock header", "5.1");

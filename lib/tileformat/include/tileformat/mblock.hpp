@@ -46,6 +46,21 @@ std::vector<uint8_t> replace_vertex_errors(std::span<const uint8_t> blob,
 MBlock decode_mblock(std::span<const uint8_t> blob);
 MBlockStats mblock_stats(const MBlock& block);
 
+// A square grid of quantized heights with its validity, coded like an
+// MBlock's heights (§5.2) and mask (§5.3) but without header, error tree or
+// blob wrapper: builders' intermediate blocks (any size 1..65535), never a
+// package tile.
+struct HeightGrid {
+  int size = 0;
+  std::vector<int32_t> q;      // size * size
+  std::vector<uint8_t> valid;  // size * size, 1 = data
+};
+enum class HeightCoding { kBytePlanes, kBestPacking };  // see encode_mblock's best_packing
+std::vector<uint8_t> encode_height_grid(const HeightGrid& grid, int zstd_level,
+                                        HeightCoding coding);
+// Throws FormatError for malformed bytes.
+HeightGrid decode_height_grid(std::span<const uint8_t> bytes);
+
 // Largest |q| the format accepts (heights beyond it need a larger step).
 // Bound so that every 2D-predictor residual fits an int32 (|r| <= 4 * kMaxQuantum).
 inline constexpr int32_t kMaxQuantum = (int32_t{1} << 29) - 1;
