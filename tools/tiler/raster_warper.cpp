@@ -231,9 +231,14 @@ void RasterWarper::warp_source(Source& src, int w, int h, const std::string& wha
   GDALDestroyWarpOperation(op);
   src.window = nullptr;
   o->hDstDS = nullptr;
-  if (err != CE_None)
-    throw InputError(inputs_ + ": reading data for " + what + " failed (" + why +
-                     "); the file may be truncated or corrupt");
+  if (err != CE_None) {
+    // A failure that names PROJ is a coordinate operation, not the file.
+    const bool projection = why.find("PROJ") != std::string::npos;
+    throw InputError(inputs_ + ": " + (projection ? "reprojecting" : "reading") + " data for " +
+                     what + " failed (" + why + ")" +
+                     (projection ? "; check the input's CRS (or --s_srs)"
+                                 : "; the file may be truncated or corrupt"));
+  }
 }
 
 }  // namespace globe
