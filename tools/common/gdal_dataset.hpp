@@ -13,7 +13,7 @@ namespace globe {
 
 // Registers drivers, silences GDAL's own stderr printing and bounds its block
 // cache (cache_mb). Idempotent.
-void gdal_init(int cache_mb = 64);
+void gdal_init(int cache_mb = 32);
 // GDAL's last error message on this thread ("" if none).
 std::string gdal_last_error();
 
