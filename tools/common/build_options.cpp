@@ -12,9 +12,15 @@ void declare_area_options(CliArgs& cli, BuildOptions& o, const std::string& s_sr
   cli.option("-o,--output", "OUT.mbtiles",
              "output package (written as OUT.mbtiles.tmp, renamed when complete)",
              [&o](const std::string& v) { o.output = v; });
-  cli.option("--tiling", "SCHEME",
-             "webmercator (default, EPSG:3857), geodetic (EPSG:4326, 2x1 roots) or local",
-             [&o](const std::string& v) { o.tiling = v; });
+  cli.option(
+      "--tiling", "SCHEME",
+      "webmercator (default, EPSG:3857), geodetic (EPSG:4326, 2x1 roots) or local",
+      [&o](const std::string& v) {
+        const auto scheme = tileformat::parse_scheme(v);
+        if (!scheme)
+          throw UsageError("--tiling: '" + v + "' is not one of webmercator, geodetic, local");
+        o.tiling = *scheme;
+      });
   cli.option("--t_srs", "CRS", "CRS of the local tiling (default: the first input's CRS)",
              [&o](const std::string& v) { o.t_srs = v; });
   cli.option("--s_srs", "CRS", s_srs_help, [&o](const std::string& v) { o.s_srs = v; });

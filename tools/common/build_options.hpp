@@ -11,15 +11,16 @@
 
 #include "cli_args.hpp"
 #include "progress.hpp"
+#include "tileformat/tiling.hpp"
 
 namespace globe {
 
 struct BuildOptions {
   std::vector<std::string> inputs;
   std::string output;
-  std::string tiling = "webmercator";  // webmercator | geodetic | local
-  std::string t_srs;                   // local tiling only
-  std::string s_srs;                   // overrides/assigns the inputs' CRS
+  tileformat::Scheme tiling = tileformat::Scheme::kWebMercator;
+  std::string t_srs;  // local tiling only
+  std::string s_srs;  // overrides/assigns the inputs' CRS
   std::optional<int> min_zoom, max_zoom;
   std::optional<std::vector<double>> bbox;  // lon/lat: west,south,east,north
   int threads = 0;                          // 0 = all cores

@@ -227,7 +227,7 @@ class Builder {
   // unsnapped bounds would shift its georeferencing by up to half a pixel.
   tileformat::Bounds metadata_bounds() const {
     const auto& t = plan_.tiling;
-    if (t.scheme == "local") return plan_.lonlat;
+    if (t.scheme == tileformat::Scheme::kLocal) return plan_.lonlat;
     tileformat::Bounds u = plan_.data_areas[0];
     for (const auto& a : plan_.data_areas)
       u = {std::min(u.min_x, a.min_x), std::min(u.min_y, a.min_y), std::max(u.max_x, a.max_x),
@@ -239,7 +239,7 @@ class Builder {
     u = {std::max(ext.min_x, down(u.min_x, ext.min_x)),
          std::max(ext.min_y, down(u.min_y, ext.min_y)), std::min(ext.max_x, up(u.max_x, ext.min_x)),
          std::min(ext.max_y, up(u.max_y, ext.min_y))};
-    if (t.scheme == "geodetic") return u;
+    if (t.scheme == tileformat::Scheme::kGeodetic) return u;
     constexpr double kPi = 3.14159265358979323846, kR = 6378137.0;
     auto lon = [&](double x) { return x / kR * 180.0 / kPi; };
     auto lat = [&](double y) { return std::atan(std::sinh(y / kR)) * 180.0 / kPi; };

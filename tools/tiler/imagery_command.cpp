@@ -90,11 +90,11 @@ int run_imagery(const std::vector<std::string>& args) {
   ImagePlan plan = plan_imagery(s);
   {
     std::ostringstream o;
-    o << "globe-tiler: " << plan.sources.size() << " input(s), tiling " << plan.tiling.scheme
-      << ", zoom " << plan.min_zoom << ".." << plan.max_zoom << ", " << s.tile_size << " px "
-      << tileformat::image_format_name(s.format) << " tiles, "
-      << (plan.colour == 1 ? "gray" : "RGB") << " + alpha, source pixel " << plan.source_resolution
-      << " (tiling units)";
+    o << "globe-tiler: " << plan.sources.size() << " input(s), tiling "
+      << tileformat::scheme_name(plan.tiling.scheme) << ", zoom " << plan.min_zoom << ".."
+      << plan.max_zoom << ", " << s.tile_size << " px " << tileformat::image_format_name(s.format)
+      << " tiles, " << (plan.colour == 1 ? "gray" : "RGB") << " + alpha, source pixel "
+      << plan.source_resolution << " (tiling units)";
     if (!plan.left_out.empty()) o << "\nglobe-tiler: left out: " << plan.left_out;
     if (plan.scale_derived)
       o << "\nglobe-tiler: inputs are not 8-bit: values " << plan.scale->first << ".."

@@ -14,6 +14,7 @@ namespace globe {
 namespace {
 
 using tileformat::Bounds;
+using tileformat::Scheme;
 using tileformat::Tiling;
 
 constexpr double kMercatorMaxLat = 85.05112877980659;
@@ -29,14 +30,14 @@ double mercator_x(double lon_deg) {
 }
 
 // Lon/lat rectangle -> tiling CRS for the global schemes; empty if outside.
-std::optional<Bounds> lonlat_to_global(const std::string& scheme, Bounds ll) {
+std::optional<Bounds> lonlat_to_global(Scheme scheme, Bounds ll) {
   ll.min_x = std::max(ll.min_x, -180.0);
   ll.max_x = std::min(ll.max_x, 180.0);
-  const double lat_limit = scheme == "webmercator" ? kMercatorMaxLat : 90.0;
+  const double lat_limit = scheme == Scheme::kWebMercator ? kMercatorMaxLat : 90.0;
   ll.min_y = std::max(ll.min_y, -lat_limit);
   ll.max_y = std::min(ll.max_y, lat_limit);
   if (!(ll.min_x < ll.max_x && ll.min_y < ll.max_y)) return std::nullopt;
-  if (scheme == "geodetic") return ll;
+  if (scheme == Scheme::kGeodetic) return ll;
   return Bounds{mercator_x(ll.min_x), mercator_y(ll.min_y), mercator_x(ll.max_x),
                 mercator_y(ll.max_y)};
 }
@@ -121,11 +122,10 @@ std::vector<double> warp_shifts(const RasterSource& src) {
 }
 
 void check_tiling_options(const BuildOptions& s, const std::string& like) {
-  if (s.tiling != "webmercator" && s.tiling != "geodetic" && s.tiling != "local")
-    throw UsageError("--tiling: '" + s.tiling + "' is not one of webmercator, geodetic, local");
-  if (!s.t_srs.empty() && s.tiling != "local")
-    throw UsageError("--t_srs applies to --tiling local only (" + s.tiling + " has a fixed CRS)");
-  if (!like.empty() && (s.tiling != "webmercator" || !s.t_srs.empty()))
+  if (!s.t_srs.empty() && s.tiling != Scheme::kLocal)
+    throw UsageError(std::string("--t_srs applies to --tiling local only (") +
+                     scheme_name(s.tiling) + " has a fixed CRS)");
+  if (!like.empty() && (s.tiling != Scheme::kWebMercator || !s.t_srs.empty()))
     throw UsageError("--like takes the tiling from the package; drop --tiling/--t_srs");
 }
 
@@ -157,16 +157,16 @@ Footprint plan_footprint(std::vector<RasterSource>& sources, const BuildOptions&
   Footprint f;
   const SpatialRef wgs84 = SpatialRef::from_user_input("EPSG:4326", "internal");
   std::optional<SpatialRef> target;
-  std::string scheme = s.tiling;
+  Scheme scheme = s.tiling;
   bool tiling_fixed = true;
   if (!like.empty()) {
     f.tiling = tiling_of_package(like);
     scheme = f.tiling.scheme;
     target = SpatialRef::from_wkt(f.tiling.crs, like);
-  } else if (s.tiling == "webmercator") {
+  } else if (s.tiling == Scheme::kWebMercator) {
     f.tiling = Tiling::webmercator();
     target = SpatialRef::from_user_input("EPSG:3857", "internal");
-  } else if (s.tiling == "geodetic") {
+  } else if (s.tiling == Scheme::kGeodetic) {
     f.tiling = Tiling::geodetic();
     target = wgs84;
   } else {
@@ -174,10 +174,11 @@ Footprint plan_footprint(std::vector<RasterSource>& sources, const BuildOptions&
     target = s.t_srs.empty() ? SpatialRef::from_wkt(sources[0].crs_wkt, sources[0].path)
                              : SpatialRef::from_user_input(s.t_srs, "--t_srs");
   }
-  if (like.empty() && s.tiling != "local") f.tiling.crs = target->wkt2();  // metadata records WKT2
+  if (like.empty() && s.tiling != Scheme::kLocal)
+    f.tiling.crs = target->wkt2();  // metadata records WKT2
 
   Bounds ll_all{1e300, 1e300, -1e300, -1e300};
-  const double lat_limit = scheme == "webmercator" ? kMercatorMaxLat : 90.0;
+  const double lat_limit = scheme == Scheme::kWebMercator ? kMercatorMaxLat : 90.0;
   double north = -90, south = 90;  // pixel centres of the global schemes' data
   double resolution = 1e300;
   std::vector<Bounds> local_areas;
@@ -194,7 +195,7 @@ Footprint plan_footprint(std::vector<RasterSource>& sources, const BuildOptions&
         std::min(gt[0], gt[0] + src.width * gt[1]), std::min(gt[3], gt[3] + src.height * gt[5]),
         std::max(gt[0], gt[0] + src.width * gt[1]), std::max(gt[3], gt[3] + src.height * gt[5])};
     resolution = std::min(resolution, source_resolution(src, crs, *target));
-    if (scheme == "local") {
+    if (scheme == Scheme::kLocal) {
       Bounds out;
       CoordTransform to_target(crs, *target);
       if (!to_target.transform_bounds(native, out))
@@ -242,7 +243,7 @@ Footprint plan_footprint(std::vector<RasterSource>& sources, const BuildOptions&
                               std::min(ll.max_x, 180.0), std::min(ll.max_y, lat_limit)});
     }
   }
-  if (scheme != "local") {
+  if (scheme != Scheme::kLocal) {
     std::string out;
     char buf[160];
     if (north > lat_limit + 1e-9) {
@@ -253,13 +254,13 @@ Footprint plan_footprint(std::vector<RasterSource>& sources, const BuildOptions&
       std::snprintf(buf, sizeof buf, "%.7g..%.7g", south, -lat_limit);
       out += (out.empty() ? "latitudes " : " and ") + std::string(buf);
     }
-    if (!out.empty()) f.left_out = out + " (outside the " + scheme + " tiling)";
+    if (!out.empty()) f.left_out = out + " (outside the " + scheme_name(scheme) + " tiling)";
   }
   f.source_resolution = resolution;
   if (!(resolution > 0) || !std::isfinite(resolution))
     throw InputError(sources[0].path + ": cannot determine the pixel size in the tiling CRS");
 
-  if (scheme == "local") {
+  if (scheme == Scheme::kLocal) {
     Bounds u = local_areas[0];
     for (const auto& a : local_areas)
       u = unite(u, a);
@@ -297,8 +298,10 @@ Footprint plan_footprint(std::vector<RasterSource>& sources, const BuildOptions&
       throw InputError("--bbox does not intersect the data of " + sources[0].path +
                        (sources.size() > 1 ? " (and the other inputs)" : "") +
                        "; check the bbox (west,south,east,north in degrees)");
-    throw InputError(sources[0].path + ": the data lies outside the " +
-                     (like.empty() ? s.tiling + " tiling's" : like + " package's") + " extent");
+    throw InputError(
+        sources[0].path + ": the data lies outside the " +
+        (like.empty() ? std::string(scheme_name(s.tiling)) + " tiling's" : like + " package's") +
+        " extent");
   }
   while (f.natural_max_zoom < 24 &&
          f.tiling.sample_spacing(f.natural_max_zoom, grid.pixels) > resolution * (1 + 1e-9))

@@ -79,7 +79,7 @@ class Builder {
         size_(plan.steps + 1),
         layouts_{KPatchLayout(plan.steps, s.lattice, 0), KPatchLayout(plan.steps, s.lattice, 1)},
         threads_(s.worker_threads()),
-        global_(plan.tiling.scheme != "local") {}
+        global_(plan.tiling.scheme != tileformat::Scheme::kLocal) {}
 
   BuildSummary run() {
     const auto start = std::chrono::steady_clock::now();

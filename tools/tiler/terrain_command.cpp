@@ -41,10 +41,10 @@ int run_terrain(const std::vector<std::string>& args) {
   DemPlan plan = plan_terrain(s);
   {
     std::ostringstream o;
-    o << "globe-tiler: " << plan.sources.size() << " input(s), tiling " << plan.tiling.scheme
-      << ", zoom " << plan.min_zoom << ".." << plan.max_zoom << ", block " << s.block_size
-      << ", height step " << plan.step_m << " m, source pixel " << plan.source_resolution
-      << " (tiling units)";
+    o << "globe-tiler: " << plan.sources.size() << " input(s), tiling "
+      << tileformat::scheme_name(plan.tiling.scheme) << ", zoom " << plan.min_zoom << ".."
+      << plan.max_zoom << ", block " << s.block_size << ", height step " << plan.step_m
+      << " m, source pixel " << plan.source_resolution << " (tiling units)";
     if (!plan.left_out.empty()) o << "\nglobe-tiler: left out: " << plan.left_out;
     progress.note(o.str());
   }

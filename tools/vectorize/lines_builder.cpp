@@ -204,27 +204,26 @@ class Builder {
       tileformat::PackageReader like(s_.like);
       tiling_ = Tiling::from_metadata(like.metadata());
       tiling_known_ = true;
-      if (tiling_.scheme == "local") {
+      if (tiling_.scheme == tileformat::Scheme::kLocal) {
         frame_ = TargetFrame::kProjected;
         target_ = SpatialRef::from_wkt(tiling_.crs, s_.like);
       } else {
-        frame_ = tiling_.scheme == "geodetic" ? TargetFrame::kGeodetic : TargetFrame::kWebMercator;
+        frame_ = tiling_.scheme == tileformat::Scheme::kGeodetic ? TargetFrame::kGeodetic
+                                                                 : TargetFrame::kWebMercator;
       }
       return;
     }
-    if (s_.tiling == "webmercator") {
+    if (s_.tiling == tileformat::Scheme::kWebMercator) {
       frame_ = TargetFrame::kWebMercator;
       tiling_ = Tiling::webmercator();
       tiling_known_ = true;
-    } else if (s_.tiling == "geodetic") {
+    } else if (s_.tiling == tileformat::Scheme::kGeodetic) {
       frame_ = TargetFrame::kGeodetic;
       tiling_ = Tiling::geodetic();
       tiling_known_ = true;
-    } else if (s_.tiling == "local") {
+    } else {
       frame_ = TargetFrame::kProjected;
       if (!s_.t_srs.empty()) target_ = SpatialRef::from_user_input(s_.t_srs, "--t_srs");
-    } else {
-      throw UsageError("--tiling: '" + s_.tiling + "' is not webmercator, geodetic or local");
     }
     if (!s_.t_srs.empty() && frame_ != TargetFrame::kProjected)
       throw UsageError("--t_srs applies to --tiling local only");

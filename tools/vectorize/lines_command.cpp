@@ -56,7 +56,7 @@ int run_lines(const std::vector<std::string>& args) {
   declare_run_options(cli, s);
   if (!parse_build_command(cli, s, args, "globe-vectorize lines", "input vector file (see --help)"))
     return kExitOk;
-  if (!s.like.empty() && (s.tiling != "webmercator" || !s.t_srs.empty()))
+  if (!s.like.empty() && (s.tiling != tileformat::Scheme::kWebMercator || !s.t_srs.empty()))
     throw UsageError("--like takes the tiling from the package; drop --tiling/--t_srs");
 
   Progress progress(s.progress);

@@ -44,9 +44,9 @@ void write_mesh_ply(const std::string& path, const std::vector<float>& tris, con
                   "comment globe max_error_px %.17g\n"
                   "element vertex %zu\nproperty double x\nproperty double y\nproperty double z\n"
                   "element face %zu\nproperty list uchar uint vertex_indices\nend_header\n",
-                  frame.tiling().scheme.c_str(), frame.metres_per_crs_x(), frame.metres_per_crs_y(),
-                  zs, eye_crs.x, eye_crs.y, view.eye.z / zs, view.pixels_per_radian, max_error_px,
-                  verts.size(), faces.size() / 3);
+                  tileformat::scheme_name(frame.tiling().scheme), frame.metres_per_crs_x(),
+                  frame.metres_per_crs_y(), zs, eye_crs.x, eye_crs.y, view.eye.z / zs,
+                  view.pixels_per_radian, max_error_px, verts.size(), faces.size() / 3);
     out << header;
     for (const auto& v : verts) {
       const glm::dvec2 k = frame.world_to_key(v[0], v[1], view.origin);

@@ -48,14 +48,15 @@ void check_same_tiling(const tileformat::Tiling& t, const std::string& terrain_p
   bool same = t.scheme == o.scheme && close(t.origin_x, o.origin_x) &&
               close(t.origin_y, o.origin_y) && close(t.root_size, o.root_size) &&
               t.roots_x == o.roots_x && t.roots_y == o.roots_y;
-  if (same && t.scheme == "local" && t.crs != o.crs)
+  if (same && t.scheme == tileformat::Scheme::kLocal && t.crs != o.crs)
     same = SpatialRef::from_user_input(t.crs, terrain_path)
                .is_same(SpatialRef::from_user_input(o.crs, other_path));
   if (!same)
-    throw InputError(other_path + ": its tiling (" + o.scheme + ", root " +
-                     std::to_string(o.root_size) + ") differs from the terrain's (" + terrain_path +
-                     ": " + t.scheme + ", root " + std::to_string(t.root_size) +
-                     "); rebuild it with the terrain's --tiling (and --like for local tilings)");
+    throw InputError(
+        other_path + ": its tiling (" + std::string(tileformat::scheme_name(o.scheme)) + ", root " +
+        std::to_string(o.root_size) + ") differs from the terrain's (" + terrain_path + ": " +
+        tileformat::scheme_name(t.scheme) + ", root " + std::to_string(t.root_size) +
+        "); rebuild it with the terrain's --tiling (and --like for local tilings)");
 }
 
 }  // namespace globe::viewer

@@ -33,7 +33,7 @@ WorldFrame::~WorldFrame() = default;
 
 void WorldFrame::set_view_latitude(double lat_deg) {
   const double c = std::cos(std::clamp(lat_deg, -85.0, 85.0) * std::numbers::pi / 180);
-  if (tiling_.scheme == "webmercator") {
+  if (tiling_.scheme == tileformat::Scheme::kWebMercator) {
     mx_ = my_ = 1;
     hz_ = 1 / c;  // Mercator metres are stretched by 1/cos(lat); heights follow
   } else if (geographic_) {

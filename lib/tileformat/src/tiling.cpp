@@ -17,17 +17,40 @@ std::string fmt(double v) {
 }
 }  // namespace
 
+const char* scheme_name(Scheme scheme) {
+  switch (scheme) {
+    case Scheme::kWebMercator:
+      return "webmercator";
+    case Scheme::kGeodetic:
+      return "geodetic";
+    case Scheme::kLocal:
+      return "local";
+  }
+  return "?";
+}
+
+std::optional<Scheme> parse_scheme(std::string_view name) {
+  for (Scheme s : {Scheme::kWebMercator, Scheme::kGeodetic, Scheme::kLocal})
+    if (name == scheme_name(s)) return s;
+  return std::nullopt;
+}
+
 Tiling Tiling::webmercator() {
-  return {
-      "webmercator", "EPSG:3857", -kWebMercatorHalf, kWebMercatorHalf, 2 * kWebMercatorHalf, 1, 1};
+  return {Scheme::kWebMercator,
+          "EPSG:3857",
+          -kWebMercatorHalf,
+          kWebMercatorHalf,
+          2 * kWebMercatorHalf,
+          1,
+          1};
 }
 
 Tiling Tiling::geodetic() {
-  return {"geodetic", "EPSG:4326", -180.0, 90.0, 180.0, 2, 1};
+  return {Scheme::kGeodetic, "EPSG:4326", -180.0, 90.0, 180.0, 2, 1};
 }
 
 Tiling Tiling::local(std::string crs_wkt, double x, double y, double size) {
-  return {"local", std::move(crs_wkt), x, y, size, 1, 1};
+  return {Scheme::kLocal, std::move(crs_wkt), x, y, size, 1, 1};
 }
 
 Bounds Tiling::tile_bounds(TileId id) const {
@@ -53,7 +76,7 @@ TileRange Tiling::tiles_covering(const Bounds& b, int z) const {
 }
 
 void Tiling::to_metadata(std::map<std::string, std::string>& meta) const {
-  meta["globe:scheme"] = scheme;
+  meta["globe:scheme"] = scheme_name(scheme);
   meta["globe:crs"] = crs;
   meta["globe:origin"] = fmt(origin_x) + "," + fmt(origin_y);
   meta["globe:root_size"] = fmt(root_size);
@@ -68,7 +91,12 @@ Tiling Tiling::from_metadata(const std::map<std::string, std::string>& meta) {
     return it->second;
   };
   Tiling t;
-  t.scheme = get("globe:scheme");
+  const std::string scheme = get("globe:scheme");
+  const auto parsed = parse_scheme(scheme);
+  if (!parsed)
+    throw FormatError(
+        "3.2", "metadata globe:scheme '" + scheme + "' is not one of webmercator, geodetic, local");
+  t.scheme = *parsed;
   t.crs = get("globe:crs");
   char comma = 0;
   std::istringstream origin(get("globe:origin")), roots(get("globe:roots"));
@@ -87,7 +115,7 @@ Tiling Tiling::from_metadata(const std::map<std::string, std::string>& meta) {
 }
 
 Bounds Tiling::lonlat_limits() const {
-  const double lat = scheme == "webmercator" ? kWebMercatorMaxLat : 90.0;
+  const double lat = scheme == Scheme::kWebMercator ? kWebMercatorMaxLat : 90.0;
   return {-180.0, -lat, 180.0, lat};
 }
 

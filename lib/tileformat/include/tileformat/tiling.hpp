@@ -7,6 +7,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "tileformat/tile_id.hpp"
 
@@ -27,8 +28,16 @@ struct TileRange {  // inclusive XYZ ranges; empty if min > max
   uint64_t count() const { return empty() ? 0 : uint64_t{max_x - min_x + 1} * (max_y - min_y + 1); }
 };
 
+// The tiling schemes (§2); their names are the `globe:scheme` values.
+enum class Scheme { kWebMercator, kGeodetic, kLocal };
+
+// "webmercator", "geodetic" or "local".
+const char* scheme_name(Scheme scheme);
+// The scheme of that name, or nullopt.
+std::optional<Scheme> parse_scheme(std::string_view name);
+
 struct Tiling {
-  std::string scheme;   // "webmercator", "geodetic" or "local"
+  Scheme scheme = Scheme::kLocal;
   std::string crs;      // CRS as WKT2 (or an authority code such as EPSG:3857)
   double origin_x = 0;  // top-left corner of root (0, 0) in CRS units
   double origin_y = 0;
@@ -45,7 +54,7 @@ struct Tiling {
   uint64_t tiles_y(int z) const { return uint64_t(roots_y) << z; }
   // Whether column 0 is the east neighbour of the last column (the global
   // schemes span 360 degrees of longitude).
-  bool wraps_x() const { return scheme != "local"; }
+  bool wraps_x() const { return scheme != Scheme::kLocal; }
   Bounds tile_bounds(TileId id) const;
   // Distance between neighbouring block samples at zoom z.
   double sample_spacing(int z, int steps) const { return tile_size(z) / steps; }
