@@ -5,6 +5,7 @@
 #include "test_support.hpp"
 #include "tileformat/kpatch.hpp"
 #include "tileformat/mblock.hpp"
+#include "tileformat/metadata.hpp"
 #include "tileformat/package.hpp"
 #include "tileformat/tiling.hpp"
 

@@ -9,6 +9,7 @@
 #include "tileformat/image_tile.hpp"
 #include "tileformat/line_tile.hpp"
 #include "tileformat/mblock.hpp"
+#include "tileformat/metadata.hpp"
 #include "tileformat/package.hpp"
 
 namespace globe_fuzz {

@@ -12,6 +12,7 @@
 #include "tileformat/line_clusters.hpp"
 #include "tileformat/line_tile.hpp"
 #include "tileformat/mblock.hpp"
+#include "tileformat/metadata.hpp"
 #include "tileformat/package.hpp"
 
 namespace fs = std::filesystem;

@@ -7,30 +7,21 @@
 
 namespace globe {
 
-bool is_image_format(const std::string& format) {
-  return format == "png" || format == "jpg" || format == "webp";
-}
-
 ImagePackage open_image_package(const std::string& path) {
   ImagePackage p;
-  p.reader = open_package(path);
-  const std::string fmt = package_format(*p.reader, path);
-  if (!is_image_format(fmt))
-    throw InputError(path + ": a '" + fmt + "' package, not an image package (png, jpg, webp)");
-  p.format = *tileformat::parse_image_format(fmt);
-  const bool ours = p.reader->meta("globe:scheme").has_value();
-  p.tiling = ours ? meta_tiling(*p.reader, path) : tileformat::Tiling::webmercator();
-  p.min_zoom = static_cast<int>(meta_number(*p.reader, path, "minzoom"));
-  p.max_zoom = static_cast<int>(meta_number(*p.reader, path, "maxzoom"));
-  if (ours) {
-    p.tile_size = static_cast<int>(meta_number(*p.reader, path, "globe:tile_size"));
-    p.colour = static_cast<int>(meta_number(*p.reader, path, "globe:colour_bands"));
-    if ((p.tile_size != 256 && p.tile_size != 512) || (p.colour != 1 && p.colour != 3))
-      throw InputError(path +
-                       ": globe:tile_size must be 256 or 512 and globe:colour_bands 1 or 3 "
-                       "(tileformat §8)");
-    return p;
-  }
+  p.reader = open_package_of_kind(path, tileformat::PackageKind::kImage);
+  p.meta =
+      read_metadata(path, [&] { return tileformat::read_image_metadata(p.reader->metadata()); });
+  p.format = p.meta.format;
+  p.tiling = p.meta.common.tiling;
+  p.min_zoom = p.meta.common.min_zoom;
+  p.max_zoom = p.meta.common.max_zoom;
+  p.tile_size = p.meta.tile_size;
+  p.colour = p.meta.colour_bands;
+  if (p.meta.common.has_tiling) return p;
+  // Another tool's MBTiles: the first tile that decodes says.
+  p.tile_size = 256;
+  p.colour = 3;
   bool found = false;
   p.reader->for_each_tile([&](tileformat::TileId, std::span<const uint8_t> blob) {
     if (found) return;

@@ -4,6 +4,8 @@
 // tile size and colour taken from their first tile.
 #pragma once
 
+#include "tileformat/metadata.hpp"
+
 #include <memory>
 #include <string>
 
@@ -15,13 +17,12 @@ namespace globe {
 
 struct ImagePackage {
   std::unique_ptr<tileformat::PackageReader> reader;
-  tileformat::Tiling tiling;
+  tileformat::ImageMetadata meta;  // every key, as lib/tileformat reads it
+  tileformat::Tiling tiling;       // the fields below repeat meta for brevity
   tileformat::ImageFormat format = tileformat::ImageFormat::kPng;
   int tile_size = 256, colour = 3, min_zoom = 0, max_zoom = 0;
 };
 
-// True if the package's `format` is png, jpg or webp.
-bool is_image_format(const std::string& format);
 // Throws InputError naming the file if it is missing, not a package, or not
 // an image package.
 ImagePackage open_image_package(const std::string& path);

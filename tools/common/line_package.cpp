@@ -9,15 +9,16 @@ namespace globe {
 
 LinePackage open_line_package(const std::string& path) {
   LinePackage p;
-  p.reader = open_package_of_format(path, tileformat::kLineClustersFormat, "line-cluster");
-  p.tiling = meta_tiling(*p.reader, path);
-  p.extent = static_cast<int>(meta_number(*p.reader, path, "globe:extent"));
-  p.cluster_grid = static_cast<int>(meta_number(*p.reader, path, "globe:cluster_grid"));
-  p.min_zoom = static_cast<int>(meta_number(*p.reader, path, "minzoom"));
-  p.max_zoom = static_cast<int>(meta_number(*p.reader, path, "maxzoom"));
-  const auto classes = p.reader->meta("globe:classes");
-  if (!classes) throw InputError(path + ": metadata globe:classes is missing (tileformat §7.4)");
-  p.classes = parse_classes_json(*classes, path + ": metadata globe:classes (tileformat §7.4)");
+  p.reader = open_package_of_kind(path, tileformat::PackageKind::kLines);
+  p.meta =
+      read_metadata(path, [&] { return tileformat::read_line_metadata(p.reader->metadata()); });
+  p.tiling = p.meta.common.tiling;
+  p.extent = p.meta.extent;
+  p.cluster_grid = p.meta.cluster_grid;
+  p.min_zoom = p.meta.common.min_zoom;
+  p.max_zoom = p.meta.common.max_zoom;
+  p.classes =
+      parse_classes_json(p.meta.classes_json, path + ": metadata globe:classes (tileformat §7.4)");
   return p;
 }
 

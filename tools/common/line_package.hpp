@@ -2,6 +2,8 @@
 // the metadata every inspection command needs, checked once.
 #pragma once
 
+#include "tileformat/metadata.hpp"
+
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,7 +16,8 @@ namespace globe {
 
 struct LinePackage {
   std::unique_ptr<tileformat::PackageReader> reader;
-  tileformat::Tiling tiling;
+  tileformat::LineMetadata meta;  // every key, as lib/tileformat reads it
+  tileformat::Tiling tiling;      // the fields below repeat meta for brevity
   int extent = 0, cluster_grid = 0, min_zoom = 0, max_zoom = 0;
   std::vector<NamedLineStyle> classes;  // by class id (metadata globe:classes)
 };

@@ -1,9 +1,6 @@
 // Opening packages for inspection (see package_open.hpp).
 #include "package_open.hpp"
 
-#include "errors.hpp"
-#include "tileformat/error.hpp"
-
 namespace globe {
 
 std::unique_ptr<tileformat::PackageReader> open_package(const std::string& path) {
@@ -20,34 +17,25 @@ std::string package_format(const tileformat::PackageReader& reader, const std::s
   return *fmt;
 }
 
-std::unique_ptr<tileformat::PackageReader> open_package_of_format(const std::string& path,
-                                                                  const std::string& format,
-                                                                  const std::string& kind) {
+std::optional<tileformat::PackageKind> package_kind(const std::string& path) {
+  return tileformat::package_kind_of_format(package_format(*open_package(path), path));
+}
+
+std::unique_ptr<tileformat::PackageReader> open_package_of_kind(const std::string& path,
+                                                                tileformat::PackageKind kind) {
   std::unique_ptr<tileformat::PackageReader> reader = open_package(path);
   const std::string fmt = package_format(*reader, path);
-  if (fmt != format)
-    throw InputError(path + ": a '" + fmt + "' package, not a " + kind + " package (" + format +
-                     ")");
+  if (tileformat::package_kind_of_format(fmt) != kind) {
+    const std::string expected =
+        kind == tileformat::PackageKind::kTerrain ? tileformat::kMBlockFormat
+        : kind == tileformat::PackageKind::kLines ? std::string(tileformat::kLineClustersFormat)
+                                                  : std::string("png, jpg, webp");
+    const std::string name = tileformat::package_kind_name(kind);
+    throw InputError(path + ": a '" + fmt + "' package, not " +
+                     (kind == tileformat::PackageKind::kImage ? "an " : "a ") + name +
+                     " package (" + expected + ")");
+  }
   return reader;
-}
-
-double meta_number(const tileformat::PackageReader& reader, const std::string& path,
-                   const std::string& key) {
-  auto v = reader.meta(key);
-  if (!v) throw InputError(path + ": metadata key " + key + " is missing (tileformat §3.2)");
-  try {
-    return std::stod(*v);
-  } catch (const std::exception&) {
-    throw InputError(path + ": metadata key " + key + " is not a number (tileformat §3.2)");
-  }
-}
-
-tileformat::Tiling meta_tiling(const tileformat::PackageReader& reader, const std::string& path) {
-  try {
-    return tileformat::Tiling::from_metadata(reader.metadata());
-  } catch (const tileformat::FormatError& e) {
-    throw InputError(path + ": " + e.what());
-  }
 }
 
 }  // namespace globe

@@ -1,12 +1,16 @@
 // Opening an existing package of one kind for inspection: errors name the
-// file and say what the package is instead (tileformat §3.2).
+// file and say what the package is instead (tileformat §3.2). The keys
+// themselves are read by lib/tileformat (metadata.hpp).
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 
+#include "errors.hpp"
+#include "tileformat/error.hpp"
+#include "tileformat/metadata.hpp"
 #include "tileformat/package.hpp"
-#include "tileformat/tiling.hpp"
 
 namespace globe {
 
@@ -14,15 +18,22 @@ namespace globe {
 std::unique_ptr<tileformat::PackageReader> open_package(const std::string& path);
 // The package's `format` metadata value; throws InputError if it has none.
 std::string package_format(const tileformat::PackageReader& reader, const std::string& path);
-// Throws InputError if `path` is missing, not a package, or its `format` is
-// not `format`.
-std::unique_ptr<tileformat::PackageReader> open_package_of_format(const std::string& path,
-                                                                  const std::string& format,
-                                                                  const std::string& kind);
-// A numeric metadata value; throws InputError if missing or not a number.
-double meta_number(const tileformat::PackageReader& reader, const std::string& path,
-                   const std::string& key);
-// The package's tiling; throws InputError.
-tileformat::Tiling meta_tiling(const tileformat::PackageReader& reader, const std::string& path);
+// The kind of the package at `path` (nullopt: a format none of our kinds
+// has); throws InputError if it is missing, not a package or has no format.
+std::optional<tileformat::PackageKind> package_kind(const std::string& path);
+// Throws InputError if `path` is missing, not a package, or not of `kind`.
+std::unique_ptr<tileformat::PackageReader> open_package_of_kind(const std::string& path,
+                                                                tileformat::PackageKind kind);
+
+// read(): one of tileformat's read_*_metadata on the package at `path`; its
+// FormatError becomes an InputError naming the file.
+template <typename Read>
+auto read_metadata(const std::string& path, Read read) -> decltype(read()) {
+  try {
+    return read();
+  } catch (const tileformat::FormatError& e) {
+    throw InputError(path + ": " + e.what());
+  }
+}
 
 }  // namespace globe

@@ -1,7 +1,7 @@
 // Progress reporting (see progress.hpp).
 #include "progress.hpp"
 
-#include "json_escape.hpp"
+#include "tileformat/json.hpp"
 
 #include <unistd.h>
 
@@ -36,7 +36,7 @@ void Progress::end() {
 void Progress::note(const std::string& message) {
   if (mode_ == ProgressMode::kQuiet) return;
   if (mode_ == ProgressMode::kJson)
-    std::fprintf(stderr, "{\"message\":\"%s\"}\n", json_escape(message).c_str());
+    std::fprintf(stderr, "{\"message\":\"%s\"}\n", tileformat::json_escape(message).c_str());
   else
     std::fprintf(stderr, "%s\n", message.c_str());
 }
@@ -51,7 +51,7 @@ void Progress::print(bool final) {
     std::fprintf(stderr,
                  "{\"phase\":\"%s\",\"done\":%llu,\"total\":%llu,\"rate\":%.1f,\"eta_s\":%.1f,"
                  "\"final\":%s}\n",
-                 json_escape(phase_).c_str(), static_cast<unsigned long long>(done_),
+                 tileformat::json_escape(phase_).c_str(), static_cast<unsigned long long>(done_),
                  static_cast<unsigned long long>(total_), rate, eta, final ? "true" : "false");
     return;
   }

@@ -7,13 +7,15 @@ namespace globe {
 
 TerrainPackage open_terrain_package(const std::string& path) {
   TerrainPackage p;
-  p.reader = open_package_of_format(path, tileformat::kMBlockFormat, "terrain");
-  p.tiling = meta_tiling(*p.reader, path);
-  p.block_size = static_cast<int>(meta_number(*p.reader, path, "globe:block_size"));
-  p.lattice = static_cast<int>(meta_number(*p.reader, path, "globe:kpatch_lattice"));
-  p.step_m = meta_number(*p.reader, path, "globe:height_step");
-  p.min_zoom = static_cast<int>(meta_number(*p.reader, path, "minzoom"));
-  p.max_zoom = static_cast<int>(meta_number(*p.reader, path, "maxzoom"));
+  p.reader = open_package_of_kind(path, tileformat::PackageKind::kTerrain);
+  p.meta =
+      read_metadata(path, [&] { return tileformat::read_terrain_metadata(p.reader->metadata()); });
+  p.tiling = p.meta.common.tiling;
+  p.block_size = p.meta.block_size;
+  p.lattice = p.meta.lattice;
+  p.step_m = p.meta.height_step;
+  p.min_zoom = p.meta.common.min_zoom;
+  p.max_zoom = p.meta.common.max_zoom;
   return p;
 }
 

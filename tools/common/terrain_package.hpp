@@ -2,6 +2,8 @@
 // metadata every inspection command needs, checked once.
 #pragma once
 
+#include "tileformat/metadata.hpp"
+
 #include <memory>
 #include <string>
 
@@ -12,7 +14,8 @@ namespace globe {
 
 struct TerrainPackage {
   std::unique_ptr<tileformat::PackageReader> reader;
-  tileformat::Tiling tiling;
+  tileformat::TerrainMetadata meta;  // every key, as lib/tileformat reads it
+  tileformat::Tiling tiling;         // the fields below repeat meta for brevity
   int block_size = 0, lattice = 0, min_zoom = 0, max_zoom = 0;
   double step_m = 0;
 };

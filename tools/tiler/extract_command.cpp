@@ -171,8 +171,8 @@ int run_extract(const std::vector<std::string>& args) {
   if (std::filesystem::exists(rq.output, ec) && !rq.force)
     throw OutputError(rq.output + ": output exists; pass --force to replace it");
   gdal_init();
-  const std::string format = package_format(*open_package(rq.package), rq.package);
-  return is_image_format(format) ? extract_image(rq) : extract_terrain(rq);
+  return package_kind(rq.package) == tileformat::PackageKind::kImage ? extract_image(rq)
+                                                                     : extract_terrain(rq);
 }
 
 }  // namespace globe

@@ -247,31 +247,24 @@ class Builder {
   }
 
   void write_metadata(tileformat::PackageWriter& w) const {
-    RasterMetadata m;
-    m.output = s_.output;
-    m.format = tileformat::image_format_name(s_.format);
-    m.description = "Imagery";
+    std::vector<tileformat::InputFile> inputs;
     for (const auto& src : plan_.sources)
-      m.inputs.emplace_back(src.path, src.file_bytes);
-    m.tiling = plan_.tiling;
-    m.lonlat = metadata_bounds();
-    m.min_zoom = coarsest_written_;
-    m.max_zoom = plan_.max_zoom;
+      inputs.push_back({src.path, src.file_bytes});
+    tileformat::ImageMetadata m;
+    m.common =
+        raster_common_metadata({s_.output, tileformat::image_format_name(s_.format), "Imagery",
+                                s_.command_line, coarsest_written_, plan_.max_zoom},
+                               std::move(inputs), plan_);
+    m.common.lonlat = metadata_bounds();
+    m.common.bounds_digits = 0;  // snapped bounds must survive the round trip
+    m.format = s_.format;
     m.resampling = s_.resampling;
-    m.command_line = s_.command_line;
-    m.left_out = plan_.left_out;
-    m.bounds_digits = 0;  // snapped bounds must survive the round trip
-    std::map<std::string, std::string> meta = raster_metadata(m);
-    meta["globe:tile_size"] = std::to_string(s_.tile_size);
-    meta["globe:colour_bands"] = std::to_string(plan_.colour);
-    if (s_.format != tileformat::ImageFormat::kPng)
-      meta["globe:quality"] = std::to_string(s_.quality);
-    if (sum_.png) meta["globe:png_level"] = std::to_string(s_.png_level);
-    if (plan_.scale)
-      meta["globe:scale"] =
-          metadata_number(plan_.scale->first) + "," + metadata_number(plan_.scale->second);
-    for (const auto& [k, v] : meta)
-      w.set_metadata(k, v);
+    m.tile_size = s_.tile_size;
+    m.colour_bands = plan_.colour;
+    if (s_.format != tileformat::ImageFormat::kPng) m.quality = s_.quality;
+    if (sum_.png) m.png_level = s_.png_level;
+    m.scale = plan_.scale;
+    w.set_metadata(tileformat::to_metadata(m));
   }
 
   const ImagePlan& plan_;

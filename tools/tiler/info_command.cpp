@@ -41,7 +41,7 @@ int run_info(const std::vector<std::string>& args) {
   auto positional = cli.parse_command(args, 1, 1, "PACKAGE");
   if (!positional) return kExitOk;
   const std::string& path = (*positional)[0];
-  if (is_image_format(package_format(*open_package(path), path))) {
+  if (package_kind(path) == tileformat::PackageKind::kImage) {
     print_image_info(path);
     return kExitOk;
   }

@@ -1,32 +1,29 @@
-// The metadata every raster package (terrain, imagery) carries
-// (docs/tileformat.md §3.2): the MBTiles 1.3 keys, the tiling, the format
-// version, generator, command line and inputs. Builders add their own keys.
+// The keys every raster package (terrain, imagery) shares, from a raster
+// plan: the package name from the output path, the inputs with their sizes,
+// the description globe-tiler writes. Builders add their kind's keys to the
+// typed metadata of lib/tileformat (metadata.hpp), which writes them.
 #pragma once
 
-#include <map>
 #include <string>
-#include <utility>
 #include <vector>
 
-#include "metadata_text.hpp"
-#include "tileformat/tiling.hpp"
+#include "raster_footprint.hpp"
+#include "tileformat/metadata.hpp"
 
 namespace globe {
 
-struct RasterMetadata {
+struct RasterPackageFacts {
   std::string output;  // package path: `name` is its stem
   std::string format;  // MBTiles `format`
-  std::string
-      description;  // e.g. "Terrain (MBlock/KPatch)"; " built by globe-tiler from ..." follows
-  std::vector<std::pair<std::string, unsigned long long>> inputs;  // path, bytes
-  tileformat::Tiling tiling;
-  tileformat::Bounds lonlat;
+  std::string what;    // e.g. "Terrain (MBlock/KPatch)", the start of `description`
+  std::string command_line;
   int min_zoom = 0, max_zoom = 0;
-  std::string resampling, command_line;
-  std::string left_out;    // Footprint::left_out
-  int bounds_digits = 10;  // significant digits of `bounds` (0: exact)
 };
 
-std::map<std::string, std::string> raster_metadata(const RasterMetadata& m);
+// The common metadata of a package built from `inputs` placed by
+// `footprint` (its tiling, lon/lat bounds and what it left out).
+tileformat::CommonMetadata raster_common_metadata(const RasterPackageFacts& facts,
+                                                  std::vector<tileformat::InputFile> inputs,
+                                                  const Footprint& footprint);
 
 }  // namespace globe

@@ -22,6 +22,7 @@
 #include "tileformat/error.hpp"
 #include "tileformat/kpatch.hpp"
 #include "tileformat/mblock.hpp"
+#include "tileformat/metadata.hpp"
 #include "tileformat/package.hpp"
 
 namespace globe {
@@ -469,26 +470,20 @@ class Builder {
   }
 
   void write_metadata(tileformat::PackageWriter& w) const {
-    RasterMetadata m;
-    m.output = s_.output;
-    m.format = tileformat::kMBlockFormat;
-    m.description = "Terrain (MBlock/KPatch)";
+    std::vector<tileformat::InputFile> inputs;
     for (const auto& src : plan_.sources)
-      m.inputs.emplace_back(src.path, src.file_bytes);
-    m.tiling = plan_.tiling;
-    m.lonlat = plan_.lonlat;
-    m.min_zoom = coarsest_written_;
-    m.max_zoom = plan_.max_zoom;
+      inputs.push_back({src.path, src.file_bytes});
+    tileformat::TerrainMetadata m;
+    m.common =
+        raster_common_metadata({s_.output, tileformat::kMBlockFormat, "Terrain (MBlock/KPatch)",
+                                s_.command_line, coarsest_written_, plan_.max_zoom},
+                               std::move(inputs), plan_);
     m.resampling = s_.resampling;
-    m.command_line = s_.command_line;
-    m.left_out = plan_.left_out;
-    std::map<std::string, std::string> meta = raster_metadata(m);
-    meta["globe:block_size"] = std::to_string(size_);
-    meta["globe:kpatch_lattice"] = std::to_string(s_.lattice);
-    meta["globe:height_step"] = metadata_number(plan_.step_m);
-    meta["globe:fill_height"] = metadata_number(plan_.fill_q * plan_.step_m);
-    for (const auto& [k, v] : meta)
-      w.set_metadata(k, v);
+    m.block_size = size_;
+    m.lattice = s_.lattice;
+    m.height_step = plan_.step_m;
+    m.fill_height = plan_.fill_q * plan_.step_m;
+    w.set_metadata(tileformat::to_metadata(m));
   }
 
   size_t batch_size() const { return static_cast<size_t>(8 * threads_); }

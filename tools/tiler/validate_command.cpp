@@ -71,8 +71,7 @@ int run_validate(const std::vector<std::string>& args) {
   auto positional = cli.parse_command(args, 1, 1, "PACKAGE");
   if (!positional) return kExitOk;
   const std::string& path = (*positional)[0];
-  if (is_image_format(package_format(*open_package(path), path)))
-    return validate_image_package(path);
+  if (package_kind(path) == tileformat::PackageKind::kImage) return validate_image_package(path);
   TerrainPackage p = open_terrain_package(path);
   ValidationReport r;
   if (p.reader->application_id() != tileformat::kApplicationId)

@@ -6,7 +6,7 @@
 
 #include "cli_args.hpp"
 #include "errors.hpp"
-#include "json_escape.hpp"
+#include "tileformat/json.hpp"
 
 namespace globe {
 namespace {
@@ -135,7 +135,7 @@ std::string LineClasses::json() const {
     const LineClass& c = classes_[i];
     const LineStyle& s = c.style;
     out += (i ? "," : "") + std::string("{\"id\":") + std::to_string(i) + ",\"name\":\"" +
-           json_escape(c.name) + "\",\"layer\":\"" + json_escape(c.layer) +
+           tileformat::json_escape(c.name) + "\",\"layer\":\"" + tileformat::json_escape(c.layer) +
            "\",\"features\":" + std::to_string(c.features) + ",\"color\":\"" + s.color +
            "\",\"width\":" + number(s.width) + ",\"unit\":\"" + (s.width_in_m ? "m" : "px") +
            "\",\"casing_color\":\"" + s.casing_color +

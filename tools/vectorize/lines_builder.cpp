@@ -16,18 +16,18 @@
 #include <thread>
 
 #include "errors.hpp"
-#include "json_escape.hpp"
 #include "line_classes.hpp"
 #include "line_projector.hpp"
-#include "metadata_text.hpp"
 #include "package_output.hpp"
 #include "parallel_batches.hpp"
 #include "tile_cutter.hpp"
 #include "tile_sorter.hpp"
 #include "tileformat/blob_header.hpp"
 #include "tileformat/error.hpp"
+#include "tileformat/json.hpp"
 #include "tileformat/line_clusters.hpp"
 #include "tileformat/line_tile.hpp"
+#include "tileformat/metadata.hpp"
 #include "tileformat/package.hpp"
 #include "vector_reader.hpp"
 
@@ -139,10 +139,6 @@ class LengthHistogram {
   std::array<uint64_t, 401> bins_{};
   uint64_t count_ = 0;
 };
-
-std::string num(double v) {
-  return metadata_number(v, 10);
-}
 
 class Builder {
  public:
@@ -481,8 +477,6 @@ class Builder {
   }
 
   void write_metadata(tileformat::PackageWriter& w) const {
-    std::map<std::string, std::string> meta;
-    tiling_.to_metadata(meta);
     // Longitude/latitude bounds of the data (clipped to the area).
     const Bounds b{std::max(extent_.min_x, area_.min_x), std::max(extent_.min_y, area_.min_y),
                    std::min(extent_.max_x, area_.max_x), std::min(extent_.max_y, area_.max_y)};
@@ -495,47 +489,33 @@ class Builder {
       const XY hi = LineProjector::frame_to_lonlat(frame_, {b.max_x, b.max_y});
       ll = {lo.x, lo.y, hi.x, hi.y};
     }
-    const Bounds lim = tiling_.lonlat_limits();  // as readers accept them
-    ll = {std::clamp(ll.min_x, lim.min_x, lim.max_x), std::clamp(ll.min_y, lim.min_y, lim.max_y),
-          std::clamp(ll.max_x, lim.min_x, lim.max_x), std::clamp(ll.max_y, lim.min_y, lim.max_y)};
-    meta["name"] = std::filesystem::path(s_.output).stem().string();
-    meta["format"] = tileformat::kLineClustersFormat;
-    meta["type"] = "overlay";
-    meta["version"] = "1";
-    meta["description"] =
-        "Line clusters built by globe-vectorize from " +
-        std::filesystem::path(s_.inputs[0]).filename().string() +
-        (s_.inputs.size() > 1 ? " and " + std::to_string(s_.inputs.size() - 1) + " more" : "");
-    meta["bounds"] = metadata_bounds(ll, lim, 10);
-    meta["center"] = num((ll.min_x + ll.max_x) / 2) + "," + num((ll.min_y + ll.max_y) / 2) + "," +
-                     std::to_string(min_zoom_);
-    meta["minzoom"] = std::to_string(min_zoom_);
-    meta["maxzoom"] = std::to_string(max_zoom_);
-    meta["globe:format_version"] = std::to_string(tileformat::kFormatVersion);
-    meta["globe:extent"] = std::to_string(s_.extent);
-    meta["globe:cluster_grid"] = std::to_string(s_.cluster_grid);
-    meta["globe:simplify_px"] = num(s_.simplify_px);
-    meta["globe:tile_px"] = num(kTilePx);
-    meta["globe:features"] = std::to_string(sum_.features_kept);
-    meta["globe:classes"] = classes_.json();
-    std::string layers = "[";
-    for (size_t i = 0; i < layers_.size(); ++i)
-      layers += (i ? "," : "") + std::string("{\"name\":\"") + json_escape(layers_[i].name) +
-                "\",\"source\":\"" + json_escape(layers_[i].source) +
-                "\",\"features\":" + std::to_string(layer_kept_[i]) + "}";
-    meta["globe:layers"] = layers + "]";
-    meta["globe:generator"] = "globe-vectorize " GLOBE_VERSION;
-    meta["globe:command_line"] = s_.command_line;
-    std::string inputs = "[";
-    for (size_t i = 0; i < s_.inputs.size(); ++i) {
+    tileformat::LineMetadata m;
+    tileformat::CommonMetadata& c = m.common;
+    for (const auto& input : s_.inputs) {
       std::error_code ec;
-      const auto bytes = std::filesystem::file_size(s_.inputs[i], ec);
-      inputs += (i ? "," : "") + std::string("{\"name\":\"") + json_escape(s_.inputs[i]) +
-                "\",\"bytes\":" + std::to_string(ec ? 0 : bytes) + "}";
+      const auto bytes = std::filesystem::file_size(input, ec);
+      c.inputs.push_back({input, ec ? 0 : static_cast<uint64_t>(bytes)});
     }
-    meta["globe:inputs"] = inputs + "]";
-    for (const auto& [k, v] : meta)
-      w.set_metadata(k, v);
+    c.name = std::filesystem::path(s_.output).stem().string();
+    c.format = tileformat::kLineClustersFormat;
+    c.type = "overlay";
+    c.description = tileformat::build_description("Line clusters", "globe-vectorize", c.inputs);
+    c.lonlat = ll;
+    c.min_zoom = min_zoom_;
+    c.max_zoom = max_zoom_;
+    c.center_zoom = min_zoom_;
+    c.tiling = tiling_;
+    c.generator = "globe-vectorize " GLOBE_VERSION;
+    c.command_line = s_.command_line;
+    m.extent = s_.extent;
+    m.cluster_grid = s_.cluster_grid;
+    m.simplify_px = s_.simplify_px;
+    m.tile_px = kTilePx;
+    m.features = sum_.features_kept;
+    m.classes_json = classes_.json();
+    for (size_t i = 0; i < layers_.size(); ++i)
+      m.layers.push_back({layers_[i].name, layers_[i].source, layer_kept_[i]});
+    w.set_metadata(tileformat::to_metadata(m));
   }
 
   const LinesSettings& s_;

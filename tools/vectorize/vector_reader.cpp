@@ -8,7 +8,7 @@
 #include <cstdio>
 
 #include "errors.hpp"
-#include "json_escape.hpp"
+#include "tileformat/json.hpp"
 
 namespace globe {
 
@@ -75,7 +75,7 @@ std::string field_json(OGRFeatureH feat, int i, OGRFieldType type) {
       return buf;
     }
     default:
-      return "\"" + json_escape(OGR_F_GetFieldAsString(feat, i)) + "\"";
+      return "\"" + tileformat::json_escape(OGR_F_GetFieldAsString(feat, i)) + "\"";
   }
 }
 
@@ -171,7 +171,7 @@ bool VectorReader::next(VectorFeature& out) {
     for (size_t i = 0; i < h.field_names.size(); ++i) {
       const int fi = static_cast<int>(i);
       if (!OGR_F_IsFieldSetAndNotNull(feat, fi)) continue;
-      out.properties_json += (first ? "\"" : ",\"") + json_escape(h.field_names[i]) +
+      out.properties_json += (first ? "\"" : ",\"") + tileformat::json_escape(h.field_names[i]) +
                              "\":" + field_json(feat, fi, h.field_types[i]);
       first = false;
     }

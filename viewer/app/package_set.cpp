@@ -16,17 +16,18 @@ PackageSet sort_packages(const std::vector<std::string>& paths) {
   PackageSet set;
   for (const std::string& path : paths) {
     const std::string format = package_format(*open_package(path), path);
-    if (format == tileformat::kMBlockFormat) {
+    const auto kind = tileformat::package_kind_of_format(format);
+    if (kind == tileformat::PackageKind::kTerrain) {
       if (!set.terrain.empty())
         throw UsageError("two terrain packages (" + set.terrain + ", " + path +
                          "); globe-view draws one terrain per view");
       set.terrain = path;
-    } else if (format == tileformat::kLineClustersFormat) {
+    } else if (kind == tileformat::PackageKind::kLines) {
       if (set.lines)
         throw UsageError("two line packages (" + *set.lines + ", " + path +
                          "); globe-view draws one line package per view");
       set.lines = path;
-    } else if (is_image_format(format)) {
+    } else if (kind == tileformat::PackageKind::kImage) {
       throw InputError(path +
                        ": an image package; draping imagery is not supported by this version "
                        "of globe-view (docs/viewer.md)");

@@ -21,15 +21,9 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 
 tileformat::Bounds data_bounds_crs(const TerrainPackage& p, const WorldFrame& world) {
   // MBTiles "bounds" is lon/lat; project its corners and edge midpoints.
-  const auto text = p.reader->meta("bounds");
-  std::vector<double> v;
-  if (text) {
-    std::stringstream ss(*text);
-    std::string item;
-    while (std::getline(ss, item, ','))
-      v.push_back(std::stod(item));
-  }
-  if (v.size() != 4) return p.tiling.extent();
+  if (!p.meta.common.has_bounds) return p.tiling.extent();
+  const tileformat::Bounds& ll = p.meta.common.lonlat;
+  const double v[4] = {ll.min_x, ll.min_y, ll.max_x, ll.max_y};
   tileformat::Bounds b{1e300, 1e300, -1e300, -1e300};
   for (double fx : {0.0, 0.5, 1.0})
     for (double fy : {0.0, 0.5, 1.0}) {

@@ -171,6 +171,11 @@ PackageWriter::~PackageWriter() {
   remove_temp(temp_path_);
 }
 
+void PackageWriter::set_metadata(const std::map<std::string, std::string>& meta) {
+  for (const auto& [k, v] : meta)
+    set_metadata(k, v);
+}
+
 void PackageWriter::set_metadata(const std::string& name, const std::string& value) {
   metadata_[name] = value;
 }

@@ -12,8 +12,6 @@
 
 namespace tileformat {
 
-inline constexpr const char* kLineClustersFormat = "application/vnd.globe.lineclusters";
-
 struct LineVertex {
   int32_t x = 0, y = 0;
   bool operator==(const LineVertex&) const = default;

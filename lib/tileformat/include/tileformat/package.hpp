@@ -36,7 +36,6 @@
 namespace tileformat {
 
 inline constexpr int64_t kApplicationId = 0x4d504258;  // "MPBX"
-inline constexpr const char* kMBlockFormat = "application/vnd.globe.mblock";
 
 class PackageWriter {
  public:
@@ -52,6 +51,8 @@ class PackageWriter {
   PackageWriter& operator=(const PackageWriter&) = delete;
 
   void set_metadata(const std::string& name, const std::string& value);
+  // Every key of `meta` (tileformat::to_metadata of a kind's metadata).
+  void set_metadata(const std::map<std::string, std::string>& meta);
   // Stores the tile; a blob identical to one stored before is shared.
   void put_tile(TileId id, std::span<const uint8_t> blob);
   // Commits the tiles put so far now (e.g. at the end of a build stage whose

@@ -1,0 +1,324 @@
+// Package metadata (see metadata.hpp).
+#include "tileformat/metadata.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <sstream>
+
+#include "tileformat/blob_header.hpp"
+#include "tileformat/error.hpp"
+#include "tileformat/json.hpp"
+#include "tileformat/line_tile.hpp"
+#include "tileformat/package.hpp"
+
+namespace tileformat {
+
+std::optional<PackageKind> package_kind_of_format(const std::string& format) {
+  if (format == kMBlockFormat) return PackageKind::kTerrain;
+  if (format == kLineClustersFormat) return PackageKind::kLines;
+  if (parse_image_format(format)) return PackageKind::kImage;
+  return std::nullopt;
+}
+
+const char* package_kind_name(PackageKind kind) {
+  switch (kind) {
+    case PackageKind::kTerrain:
+      return "terrain";
+    case PackageKind::kImage:
+      return "image";
+    case PackageKind::kLines:
+      return "line-cluster";
+  }
+  return "?";
+}
+
+std::string build_description(const std::string& what, const std::string& program,
+                              const std::vector<InputFile>& inputs) {
+  std::string first = inputs.empty() ? std::string() : inputs[0].name;
+  if (const auto slash = first.rfind('/'); slash != std::string::npos) first.erase(0, slash + 1);
+  return what + " built by " + program + " from " + first +
+         (inputs.size() > 1 ? " and " + std::to_string(inputs.size() - 1) + " more" : "");
+}
+
+std::string metadata_number(double v, int digits) {
+  if (digits == 0) {
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, r.ptr);
+  }
+  std::ostringstream o;
+  o.precision(digits);
+  o << v;
+  return o.str();
+}
+
+namespace {
+
+// ---- writing ----
+
+// "west,south,east,north", each number rounded, then clamped to `lim`, so
+// that rounding never takes it past what readers accept.
+std::string bounds_text(const Bounds& ll, const Bounds& lim, int digits) {
+  auto one = [&](double v, double lo, double hi) {
+    const std::string text = metadata_number(v, digits);
+    const double back = std::stod(text);
+    if (back < lo) return metadata_number(lo, 0);
+    if (back > hi) return metadata_number(hi, 0);
+    return text;
+  };
+  return one(ll.min_x, lim.min_x, lim.max_x) + "," + one(ll.min_y, lim.min_y, lim.max_y) + "," +
+         one(ll.max_x, lim.min_x, lim.max_x) + "," + one(ll.max_y, lim.min_y, lim.max_y);
+}
+
+MetadataMap common_keys(const CommonMetadata& m) {
+  MetadataMap meta;
+  if (m.has_tiling) m.tiling.to_metadata(meta);
+  // The data's bounds computed from the tiling's extent can overshoot it by
+  // a rounding error (-180.00000000000003): clamp to the tiling's range.
+  const Bounds lim = m.tiling.lonlat_limits();
+  const Bounds ll{std::clamp(m.lonlat.min_x, lim.min_x, lim.max_x),
+                  std::clamp(m.lonlat.min_y, lim.min_y, lim.max_y),
+                  std::clamp(m.lonlat.max_x, lim.min_x, lim.max_x),
+                  std::clamp(m.lonlat.max_y, lim.min_y, lim.max_y)};
+  meta["name"] = m.name;
+  meta["format"] = m.format;
+  meta["type"] = m.type;
+  meta["version"] = "1";
+  meta["description"] = m.description;
+  meta["bounds"] = bounds_text(ll, lim, m.bounds_digits);
+  meta["center"] = metadata_number((ll.min_x + ll.max_x) / 2) + "," +
+                   metadata_number((ll.min_y + ll.max_y) / 2) + "," + std::to_string(m.center_zoom);
+  meta["minzoom"] = std::to_string(m.min_zoom);
+  meta["maxzoom"] = std::to_string(m.max_zoom);
+  meta["globe:format_version"] = std::to_string(kFormatVersion);
+  meta["globe:generator"] = m.generator;
+  meta["globe:command_line"] = m.command_line;
+  std::string inputs = "[";
+  for (size_t i = 0; i < m.inputs.size(); ++i)
+    inputs += (i ? "," : "") + std::string("{\"name\":\"") + json_escape(m.inputs[i].name) +
+              "\",\"bytes\":" + std::to_string(m.inputs[i].bytes) + "}";
+  meta["globe:inputs"] = inputs + "]";
+  if (!m.left_out.empty()) meta["globe:left_out"] = m.left_out;
+  return meta;
+}
+
+// ---- reading ----
+
+class Keys {
+ public:
+  Keys(const MetadataMap& meta, const char* section) : meta_(meta), section_(section) {}
+
+  std::optional<std::string> find(const std::string& key) const {
+    auto it = meta_.find(key);
+    if (it == meta_.end()) return std::nullopt;
+    return it->second;
+  }
+  std::string text(const std::string& key) const {
+    auto v = find(key);
+    if (!v) throw FormatError(section_, "metadata key " + key + " is missing");
+    return *v;
+  }
+  double number(const std::string& key) const {
+    const std::string v = text(key);
+    try {
+      return std::stod(v);
+    } catch (const std::exception&) {
+      throw FormatError(section_, "metadata key " + key + " is not a number");
+    }
+  }
+  int integer(const std::string& key) const { return static_cast<int>(number(key)); }
+  JsonValue json(const std::string& key) const {
+    try {
+      return JsonValue::parse(text(key));
+    } catch (const JsonError& e) {
+      throw FormatError(section_, "metadata " + key + " is not valid JSON (" + e.what() + ")");
+    }
+  }
+  const char* section() const { return section_; }
+
+ private:
+  const MetadataMap& meta_;
+  const char* section_;
+};
+
+std::optional<Bounds> parse_bounds(const std::string& text) {
+  std::vector<double> v;
+  std::stringstream ss(text);
+  std::string item;
+  try {
+    while (std::getline(ss, item, ','))
+      v.push_back(std::stod(item));
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  if (v.size() != 4) return std::nullopt;
+  return Bounds{v[0], v[1], v[2], v[3]};
+}
+
+// A JSON member of an array element: what `field` holds, as a string or a
+// non-negative integer; throws FormatError.
+const JsonValue& member(const JsonValue& o, const char* field, const std::string& key,
+                        const char* section) {
+  const JsonValue* v = o.is_object() ? o.find(field) : nullptr;
+  if (!v) throw FormatError(section, "metadata " + key + ": an entry lacks \"" + field + "\"");
+  return *v;
+}
+
+template <typename T, typename Fn>
+std::vector<T> read_array(const Keys& keys, const std::string& key, Fn one) {
+  std::vector<T> out;
+  const JsonValue doc = keys.json(key);
+  try {
+    for (const JsonValue& e : doc.array())
+      out.push_back(one(e));
+  } catch (const JsonError& e) {
+    throw FormatError(keys.section(), "metadata " + key + ": " + e.what());
+  }
+  return out;
+}
+
+void read_common(const Keys& k, const MetadataMap& meta, CommonMetadata& m) {
+  m.format = k.text("format");
+  m.name = k.find("name").value_or("");
+  m.type = k.find("type").value_or("");
+  m.description = k.find("description").value_or("");
+  m.has_tiling = k.find("globe:scheme").has_value();
+  m.tiling = m.has_tiling ? Tiling::from_metadata(meta) : Tiling::webmercator();
+  m.min_zoom = k.integer("minzoom");
+  m.max_zoom = k.integer("maxzoom");
+  const auto bounds = k.find("bounds");
+  const auto parsed = bounds ? parse_bounds(*bounds) : std::nullopt;
+  m.has_bounds = parsed.has_value();
+  m.lonlat = parsed.value_or(m.tiling.lonlat_limits());
+  if (auto center = k.find("center")) {
+    const auto comma = center->rfind(',');
+    try {
+      if (comma != std::string::npos) m.center_zoom = std::stoi(center->substr(comma + 1));
+    } catch (const std::exception&) {
+    }
+  }
+  m.generator = k.find("globe:generator").value_or("");
+  m.command_line = k.find("globe:command_line").value_or("");
+  m.left_out = k.find("globe:left_out").value_or("");
+  if (k.find("globe:inputs"))
+    m.inputs = read_array<InputFile>(k, "globe:inputs", [&](const JsonValue& e) {
+      return InputFile{
+          member(e, "name", "globe:inputs", k.section()).string(),
+          static_cast<uint64_t>(member(e, "bytes", "globe:inputs", k.section()).number())};
+    });
+}
+
+}  // namespace
+
+MetadataMap to_metadata(const TerrainMetadata& m) {
+  MetadataMap meta = common_keys(m.common);
+  meta["globe:resampling"] = m.resampling;
+  meta["globe:block_size"] = std::to_string(m.block_size);
+  meta["globe:kpatch_lattice"] = std::to_string(m.lattice);
+  meta["globe:height_step"] = metadata_number(m.height_step);
+  meta["globe:fill_height"] = metadata_number(m.fill_height);
+  return meta;
+}
+
+MetadataMap to_metadata(const ImageMetadata& m) {
+  MetadataMap meta = common_keys(m.common);
+  meta["globe:resampling"] = m.resampling;
+  meta["globe:tile_size"] = std::to_string(m.tile_size);
+  meta["globe:colour_bands"] = std::to_string(m.colour_bands);
+  if (m.quality) meta["globe:quality"] = std::to_string(*m.quality);
+  if (m.png_level) meta["globe:png_level"] = std::to_string(*m.png_level);
+  if (m.scale)
+    meta["globe:scale"] = metadata_number(m.scale->first) + "," + metadata_number(m.scale->second);
+  return meta;
+}
+
+MetadataMap to_metadata(const LineMetadata& m) {
+  MetadataMap meta = common_keys(m.common);
+  meta["globe:extent"] = std::to_string(m.extent);
+  meta["globe:cluster_grid"] = std::to_string(m.cluster_grid);
+  meta["globe:simplify_px"] = metadata_number(m.simplify_px);
+  meta["globe:tile_px"] = metadata_number(m.tile_px);
+  meta["globe:features"] = std::to_string(m.features);
+  meta["globe:classes"] = m.classes_json;
+  std::string layers = "[";
+  for (size_t i = 0; i < m.layers.size(); ++i)
+    layers += (i ? "," : "") + std::string("{\"name\":\"") + json_escape(m.layers[i].name) +
+              "\",\"source\":\"" + json_escape(m.layers[i].source) +
+              "\",\"features\":" + std::to_string(m.layers[i].features) + "}";
+  meta["globe:layers"] = layers + "]";
+  return meta;
+}
+
+CommonMetadata read_common_metadata(const MetadataMap& meta) {
+  CommonMetadata m;
+  read_common(Keys(meta, "3.2"), meta, m);
+  return m;
+}
+
+TerrainMetadata read_terrain_metadata(const MetadataMap& meta) {
+  const Keys k(meta, "3.2");
+  TerrainMetadata m;
+  read_common(k, meta, m.common);
+  if (!m.common.has_tiling) Tiling::from_metadata(meta);  // names the missing key
+  m.resampling = k.find("globe:resampling").value_or("");
+  m.block_size = k.integer("globe:block_size");
+  m.lattice = k.integer("globe:kpatch_lattice");
+  m.height_step = k.number("globe:height_step");
+  m.fill_height = k.find("globe:fill_height") ? k.number("globe:fill_height") : 0.0;
+  return m;
+}
+
+ImageMetadata read_image_metadata(const MetadataMap& meta) {
+  const Keys k(meta, "8");
+  ImageMetadata m;
+  read_common(Keys(meta, "3.2"), meta, m.common);
+  const auto format = parse_image_format(m.common.format);
+  if (!format) throw FormatError("8", "format '" + m.common.format + "' is not png, jpg or webp");
+  m.format = *format;
+  m.resampling = k.find("globe:resampling").value_or("");
+  if (!m.common.has_tiling) {  // another tool's MBTiles: the tiles say
+    m.tile_size = 0;
+    m.colour_bands = 0;
+    return m;
+  }
+  m.tile_size = k.integer("globe:tile_size");
+  m.colour_bands = k.integer("globe:colour_bands");
+  if ((m.tile_size != 256 && m.tile_size != 512) || (m.colour_bands != 1 && m.colour_bands != 3))
+    throw FormatError("8", "globe:tile_size must be 256 or 512 and globe:colour_bands 1 or 3");
+  if (k.find("globe:quality")) m.quality = k.integer("globe:quality");
+  if (k.find("globe:png_level")) m.png_level = k.integer("globe:png_level");
+  if (auto scale = k.find("globe:scale")) {
+    const auto comma = scale->find(',');
+    try {
+      m.scale =
+          std::make_pair(std::stod(scale->substr(0, comma)), std::stod(scale->substr(comma + 1)));
+    } catch (const std::exception&) {
+      throw FormatError("8", "metadata globe:scale is not 'min,max'");
+    }
+  }
+  return m;
+}
+
+LineMetadata read_line_metadata(const MetadataMap& meta) {
+  const Keys k(meta, "3.2");
+  LineMetadata m;
+  read_common(k, meta, m.common);
+  if (!m.common.has_tiling) Tiling::from_metadata(meta);  // names the missing key
+  m.extent = k.integer("globe:extent");
+  m.cluster_grid = k.integer("globe:cluster_grid");
+  m.simplify_px = k.find("globe:simplify_px") ? k.number("globe:simplify_px") : 0.0;
+  m.tile_px = k.find("globe:tile_px") ? k.number("globe:tile_px") : 0.0;
+  m.features = k.find("globe:features") ? static_cast<uint64_t>(k.number("globe:features")) : 0;
+  const Keys k74(meta, "7.4");
+  m.classes_json = k74.text("globe:classes");
+  if (k.find("globe:layers"))
+    m.layers = read_array<LineLayerInfo>(k74, "globe:layers", [&](const JsonValue& e) {
+      return LineLayerInfo{
+          member(e, "name", "globe:layers", "7.4").string(),
+          member(e, "source", "globe:layers", "7.4").string(),
+          static_cast<uint64_t>(member(e, "features", "globe:layers", "7.4").number())};
+    });
+  return m;
+}
+
+}  // namespace tileformat
