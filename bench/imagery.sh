@@ -25,11 +25,16 @@ printf '|---|---|---|---|---|---|---|---|\n'
 
 row() { # name input [our options...]   (input already has the bands to tile)
   local name=$1 input=$2; shift 2
+  row_from "$name" "$input" "$input" "$@"
+}
+
+row_from() { # name input gdal_translate_input [our options...]
+  local name=$1 input=$2 gt_input=$3; shift 3
   local ours="$scratch/$name.globe.mbtiles" g2t="$scratch/$name.g2t" gt="$scratch/$name.gt.mbtiles"
   # gdal_translate picks its own finest zoom (the closest to the source
   # resolution); the others are given the same range.
   rm -f "$gt"
-  read -r c_gt w_gt _ <<<"$(cpu gdal_translate -q -of MBTILES -co TILE_FORMAT=PNG -co RESAMPLING=BILINEAR "$input" "$gt")"
+  read -r c_gt w_gt _ <<<"$(cpu gdal_translate -q -of MBTILES -co TILE_FORMAT=PNG -co RESAMPLING=BILINEAR "$gt_input" "$gt")"
   local zmax factors=() f=2
   zmax=$(sqlite3 "$gt" "select max(zoom_level) from tiles")
   for ((z = zmax - 1; z >= 0; z--)); do factors+=("$f"); f=$((f * 2)); done
@@ -51,3 +56,10 @@ gdal_translate -q -of VRT -b 3 -b 2 -b 1 "$data/landsat.tif" "$scratch/landsat32
 row cbers20 "$data/cbers20.tif"
 row landsat321 "$scratch/landsat321.vrt"
 row bluemarble "$data/bluemarble.tif"
+# The same global image at z0-4, the zoom where its pixels are upsampled (our
+# default). gdal_translate cannot be asked for z4: it reads a warped VRT on
+# the z4 grid instead, so the warp is still charged to it.
+gdalwarp -q -overwrite -of VRT -t_srs EPSG:3857 -te -20037508.342789244 -20037508.342789244 \
+  20037508.342789244 20037508.342789244 -ts 4096 4096 -r bilinear -dstalpha \
+  "$data/bluemarble.tif" "$scratch/bluemarble_z4.vrt" 2>/dev/null
+row_from bluemarble_z4 "$data/bluemarble.tif" "$scratch/bluemarble_z4.vrt"
