@@ -1,6 +1,6 @@
 // globe-tiler: DEMs -> terrain packages, imagery -> image packages, and tools
 // to inspect them.
-// Dispatch and error reporting: tools/common/command_tool.
+// Dispatch and error reporting: tools/common/kit/command_tool.
 #include <malloc.h>
 
 #include "command_tool.hpp"

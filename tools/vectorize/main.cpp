@@ -1,5 +1,5 @@
 // globe-vectorize: vector data (any OGR source) -> line-cluster packages, and
-// tools to inspect them. Dispatch and error reporting: tools/common/command_tool.
+// tools to inspect them. Dispatch and error reporting: tools/common/kit/command_tool.
 #include "command_tool.hpp"
 #include "commands.hpp"
 

@@ -1,37 +1,42 @@
 // PNG output (see image_file.hpp).
 #include "app/image_file.hpp"
 
-#include <gdal.h>
-
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <stdexcept>
 
 #include "errors.hpp"
-#include "gdal_dataset.hpp"
+#include "png_encoder.hpp"
 
 namespace globe::viewer {
+namespace {
+constexpr int kPngEffort = 6;  // snapshots are small; adaptive filters make them smaller
+}
 
 void write_png(const std::string& path, const std::vector<uint8_t>& rgba, int width, int height) {
-  gdal_init();
-  const std::string tmp = path + ".tmp.png";
-  GdalDataset mem(GDALCreate(GDALGetDriverByName("MEM"), "", width, height, 3, GDT_Byte, nullptr),
-                  "in-memory image");
-  if (!mem.get()) throw OutputError(path + ": cannot create an in-memory image");
-  for (int b = 0; b < 3; ++b)
-    if (GDALRasterIO(mem.band(b + 1), GF_Write, 0, 0, width, height,
-                     const_cast<uint8_t*>(rgba.data()) + b, width, height, GDT_Byte, 4,
-                     width * 4) != CE_None)
-      throw OutputError(path + ": cannot fill the in-memory image");
-  {
-    GdalDataset png(GDALCreateCopy(GDALGetDriverByName("PNG"), tmp.c_str(), mem.get(), FALSE,
-                                   nullptr, nullptr, nullptr),
-                    tmp);
-    if (!png.get()) {
-      std::remove(tmp.c_str());
-      throw OutputError(path + ": cannot write PNG (" + CPLGetLastErrorMsg() + ")");
-    }
+  std::vector<uint8_t> rgb(size_t(width) * height * 3);
+  for (size_t i = 0, n = size_t(width) * height; i < n; ++i)
+    std::memcpy(&rgb[3 * i], &rgba[4 * i], 3);
+  std::vector<uint8_t> png;
+  try {
+    png = encode_png(rgb.data(), width, height, 3, kPngEffort);
+  } catch (const std::runtime_error& e) {
+    throw OutputError(path + ": cannot encode PNG (" + e.what() + ")");
   }
-  std::remove((tmp + ".aux.xml").c_str());
+  const std::string tmp = path + ".tmp.png";
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (!f)
+    throw OutputError(path + ": cannot create " + tmp + " (" + std::strerror(errno) +
+                      "); check the folder exists and is writable");
+  const bool written = std::fwrite(png.data(), 1, png.size(), f) == png.size();
+  const int write_errno = errno;
+  if (std::fclose(f) != 0 || !written) {
+    std::remove(tmp.c_str());
+    throw OutputError(path + ": cannot write the image (" + std::strerror(write_errno) +
+                      "); check free space");
+  }
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
   if (ec) {

@@ -1,5 +1,6 @@
-// Writing RGBA pixels as a PNG (through GDAL's PNG driver), under a temporary
-// name renamed on success so the final name never holds a partial image.
+// Writing RGBA pixels as an RGB PNG (through the kit's libpng encoder), under
+// a temporary name renamed on success so the final name never holds a
+// partial image.
 #pragma once
 
 #include <cstdint>

@@ -3,10 +3,10 @@
 
 #include <cmath>
 
+#include "camera/proj_crs.hpp"
 #include "errors.hpp"
 #include "image_package.hpp"
 #include "package_open.hpp"
-#include "spatial_ref.hpp"
 #include "tileformat/line_tile.hpp"
 #include "tileformat/package.hpp"
 
@@ -50,8 +50,7 @@ void check_same_tiling(const tileformat::Tiling& t, const std::string& terrain_p
               close(t.origin_y, o.origin_y) && close(t.root_size, o.root_size) &&
               t.roots_x == o.roots_x && t.roots_y == o.roots_y;
   if (same && t.scheme == tileformat::Scheme::kLocal && t.crs != o.crs)
-    same = SpatialRef::from_user_input(t.crs, terrain_path)
-               .is_same(SpatialRef::from_user_input(o.crs, other_path));
+    same = crs_equivalent(t.crs, terrain_path, o.crs, other_path);
   if (!same)
     throw InputError(
         other_path + ": its tiling (" + std::string(tileformat::scheme_name(o.scheme)) + ", root " +

@@ -5,9 +5,8 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
-#include <vector>
 
-#include "spatial_ref.hpp"
+#include "camera/proj_crs.hpp"
 
 namespace globe::viewer {
 
@@ -21,11 +20,9 @@ WorldFrame::WorldFrame(const tileformat::Tiling& tiling, int steps, int key_zoom
       steps_(steps),
       key_zoom_(key_zoom),
       crs_per_key_(tiling.sample_spacing(key_zoom, steps)) {
-  const SpatialRef crs = SpatialRef::from_user_input(tiling.crs, "package CRS");
-  const SpatialRef wgs84 = SpatialRef::from_user_input("EPSG:4326", "WGS 84");
-  geographic_ = crs.is_geographic();
-  to_crs_ = std::make_unique<CoordTransform>(wgs84, crs);
-  to_lonlat_ = std::make_unique<CoordTransform>(crs, wgs84);
+  geographic_ = crs_is_geographic(tiling.crs, "package CRS");
+  to_crs_ = std::make_unique<ProjTransform>("EPSG:4326", tiling.crs, "package CRS");
+  to_lonlat_ = std::make_unique<ProjTransform>(tiling.crs, "EPSG:4326", "package CRS");
   set_view_latitude(0);
 }
 
@@ -54,18 +51,16 @@ glm::dvec2 WorldFrame::crs_to_key(double cx, double cy) const {
 }
 
 glm::dvec2 WorldFrame::lonlat_to_crs(double lon, double lat) const {
-  std::vector<double> x{lon}, y{lat};
+  double x = lon, y = lat;
   if (!to_crs_->transform(x, y))
     throw std::runtime_error("cannot project lon/lat " + std::to_string(lon) + "," +
                              std::to_string(lat) + " to the package CRS");
-  return {x[0], y[0]};
+  return {x, y};
 }
 
 glm::dvec2 WorldFrame::crs_to_lonlat(double x, double y) const {
-  std::vector<double> vx{x}, vy{y};
-  if (!to_lonlat_->transform(vx, vy))
-    throw std::runtime_error("cannot convert CRS point to lon/lat");
-  return {vx[0], vy[0]};
+  if (!to_lonlat_->transform(x, y)) throw std::runtime_error("cannot convert CRS point to lon/lat");
+  return {x, y};
 }
 
 }  // namespace globe::viewer

@@ -18,11 +18,9 @@
 
 #include "tileformat/tiling.hpp"
 
-namespace globe {
-class CoordTransform;
-}
-
 namespace globe::viewer {
+
+class ProjTransform;
 
 struct KeyPoint {
   int64_t x = 0, y = 0;
@@ -69,7 +67,7 @@ class WorldFrame {
   double crs_per_key_;
   bool geographic_ = false;
   double mx_ = 1, my_ = 1, hz_ = 1;
-  std::unique_ptr<CoordTransform> to_crs_, to_lonlat_;
+  std::unique_ptr<ProjTransform> to_crs_, to_lonlat_;
 };
 
 }  // namespace globe::viewer

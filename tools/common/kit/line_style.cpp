@@ -1,11 +1,11 @@
 // Line class styles in JSON (see line_style.hpp).
 #include "line_style.hpp"
 
-#include <cpl_json.h>
 #include <cctype>
 #include <iterator>
 
 #include "errors.hpp"
+#include "tileformat/json.hpp"
 
 namespace globe {
 namespace {
@@ -14,42 +14,45 @@ namespace {
 const char* const kPalette[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e",
                                 "#e6ab02", "#a6761d", "#377eb8", "#e41a1c", "#4daf4a"};
 
-CPLJSONObject load_json(const std::string& json, const std::string& context,
-                        CPLJSONObject::Type type, const char* what) {
-  CPLJSONDocument doc;
-  if (!doc.LoadMemory(json)) throw InputError(context + ": not valid JSON (" + what + ")");
-  if (doc.GetRoot().GetType() != type) throw InputError(context + ": expected " + what);
-  return doc.GetRoot();
+using tileformat::JsonValue;
+
+JsonValue load_json(const std::string& json, const std::string& context, JsonValue::Type type,
+                    const char* what) {
+  JsonValue root;
+  try {
+    root = JsonValue::parse(json);
+  } catch (const tileformat::JsonError& e) {
+    throw InputError(context + ": not valid JSON (" + what + "; " + e.what() + ")");
+  }
+  if (root.type() != type) throw InputError(context + ": expected " + what);
+  return root;
 }
 
-double length_of(const CPLJSONObject& v, const std::string& where) {
-  const auto t = v.GetType();
-  if (t != CPLJSONObject::Type::Integer && t != CPLJSONObject::Type::Long &&
-      t != CPLJSONObject::Type::Double)
-    throw InputError(where + ": expected a number");
-  const double d = v.ToDouble();
+double length_of(const JsonValue& v, const std::string& where) {
+  if (!v.is_number()) throw InputError(where + ": expected a number");
+  const double d = v.number();
   if (!(d >= 0) || d > 10000) throw InputError(where + ": " + std::to_string(d) + " out of range");
   return d;
 }
 
-std::string color_of(const CPLJSONObject& v, const std::string& where, bool allow_empty) {
-  if (v.GetType() != CPLJSONObject::Type::String) throw InputError(where + ": expected a string");
-  const std::string c = v.ToString();
+std::string color_of(const JsonValue& v, const std::string& where, bool allow_empty) {
+  if (!v.is_string()) throw InputError(where + ": expected a string");
+  const std::string& c = v.string();
   if ((c.empty() && allow_empty) || is_hex_color(c)) return c;
   throw InputError(where + ": '" + c + "' is not #rrggbb");
 }
 
 // Reads the keys present in `o` onto `s`.
-void read_style(const CPLJSONObject& o, const std::string& where, LineStyle& s) {
-  for (const CPLJSONObject& v : o.GetChildren()) {
-    const std::string key = v.GetName(), at = where + " \"" + key + "\"";
+void read_style(const JsonValue& o, const std::string& where, LineStyle& s) {
+  for (const auto& [key, v] : o.members()) {
+    const std::string at = where + " \"" + key + "\"";
     if (key == "color") {
       s.color = color_of(v, at, true);
     } else if (key == "width") {
       s.width = length_of(v, at);
       if (s.width <= 0) throw InputError(at + ": must be positive");
     } else if (key == "unit") {
-      const std::string u = v.ToString();
+      const std::string u = v.is_string() ? v.string() : "";
       if (u != "px" && u != "m") throw InputError(at + ": '" + u + "' is not px or m");
       s.width_in_m = u == "m";
     } else if (key == "casing_color") {
@@ -57,12 +60,10 @@ void read_style(const CPLJSONObject& o, const std::string& where, LineStyle& s) 
     } else if (key == "casing_width") {
       s.casing_width = length_of(v, at);
     } else if (key == "dash") {
-      if (v.GetType() != CPLJSONObject::Type::Array)
-        throw InputError(at + ": expected an array of on/off lengths");
+      if (!v.is_array()) throw InputError(at + ": expected an array of on/off lengths");
       s.dash.clear();
-      const CPLJSONArray a = v.ToArray();
-      for (int i = 0; i < a.Size(); ++i)
-        s.dash.push_back(length_of(a[i], at));
+      for (const JsonValue& d : v.array())
+        s.dash.push_back(length_of(d, at));
       if (s.dash.size() % 2 != 0 || s.dash.size() > 8)
         throw InputError(at + ": needs 1 to 4 on/off pairs");
       double sum = 0;
@@ -70,9 +71,8 @@ void read_style(const CPLJSONObject& o, const std::string& where, LineStyle& s) 
         sum += d;
       if (!s.dash.empty() && sum <= 0) throw InputError(at + ": the pattern has zero length");
     } else if (key == "visible") {
-      if (v.GetType() != CPLJSONObject::Type::Boolean)
-        throw InputError(at + ": expected true/false");
-      s.visible = v.ToBool();
+      if (!v.is_bool()) throw InputError(at + ": expected true/false");
+      s.visible = v.boolean();
     } else if (key != "id" && key != "name" && key != "layer" && key != "features") {
       throw InputError(at +
                        ": unknown key (color, width, unit, casing_color, casing_width, dash, "
@@ -96,14 +96,16 @@ bool is_hex_color(const std::string& c) {
 
 std::vector<NamedLineStyle> parse_classes_json(const std::string& json,
                                                const std::string& context) {
-  const CPLJSONArray arr =
-      load_json(json, context, CPLJSONObject::Type::Array, "a JSON array of classes").ToArray();
+  const JsonValue root =
+      load_json(json, context, JsonValue::Type::kArray, "a JSON array of classes");
+  const std::vector<JsonValue>& arr = root.array();
   std::vector<NamedLineStyle> out;
-  for (int i = 0; i < arr.Size(); ++i) {
-    if (arr[i].GetType() != CPLJSONObject::Type::Object)
+  for (size_t i = 0; i < arr.size(); ++i) {
+    if (!arr[i].is_object())
       throw InputError(context + ": class " + std::to_string(i) + " is not an object");
     NamedLineStyle c;
-    c.name = arr[i].GetString("name");
+    if (const JsonValue* name = arr[i].find("name"); name && name->is_string())
+      c.name = name->string();
     read_style(arr[i], context + " class " + std::to_string(i), c.style);
     if (c.style.color.empty()) c.style.color = palette_color(out.size());
     out.push_back(std::move(c));
@@ -113,14 +115,12 @@ std::vector<NamedLineStyle> parse_classes_json(const std::string& json,
 
 void apply_style_json(const std::string& json, const std::string& context,
                       std::vector<NamedLineStyle>& classes) {
-  const CPLJSONObject root =
-      load_json(json, context, CPLJSONObject::Type::Object, "a JSON object of class name -> style");
+  const JsonValue root =
+      load_json(json, context, JsonValue::Type::kObject, "a JSON object of class name -> style");
   std::vector<bool> named(classes.size(), false);
-  const CPLJSONObject* all = nullptr;
-  const auto children = root.GetChildren();
-  for (const CPLJSONObject& v : children) {
-    const std::string name = v.GetName();
-    if (v.GetType() != CPLJSONObject::Type::Object)
+  const JsonValue* all = nullptr;
+  for (const auto& [name, v] : root.members()) {
+    if (!v.is_object())
       throw InputError(context + ": \"" + name + "\" is not an object of style keys");
     if (name == "*") {
       all = &v;
