@@ -18,7 +18,7 @@
 #include "package_output.hpp"
 #include "parallel_batches.hpp"
 #include "raster_metadata.hpp"
-#include "staging_store.hpp"
+#include "raster_stages.hpp"
 #include "tile_groups.hpp"
 #include "tileformat/detail/zstd_codec.hpp"
 #include "tileformat/error.hpp"
@@ -139,7 +139,7 @@ class Builder {
   void pass_warp(StagingStore& stage, tileformat::PackageWriter& writer, int z, size_t first) {
     const std::vector<TileId> tiles = tiles_in_areas(plan_.tiling, plan_.data_areas, z);
     const int g = plan_.tiling.tiles_x(z) >= 16 ? ImageWarper::kMaxGroup : 1;
-    const std::vector<TileGroup> groups = group_tiles(tiles, g);
+    const std::vector<WarpGroup> groups = group_tiles(tiles, g);
     progress_.begin("z" + std::to_string(z) + " warp", tiles.size());
     for (size_t i = 0; i < first && i < groups.size(); ++i)
       progress_.advance(groups[i].members.size());
@@ -159,7 +159,7 @@ class Builder {
     progress_.end();
   }
 
-  std::vector<TileOut> warp_group(const TileGroup& grp, int worker) {
+  std::vector<TileOut> warp_group(const WarpGroup& grp, int worker) {
     if (!warpers_[worker]) warpers_[worker] = std::make_unique<ImageWarper>(plan_, s_);
     std::vector<uint8_t> planes;
     warpers_[worker]->warp(grp.first, grp.cols, grp.rows, planes);

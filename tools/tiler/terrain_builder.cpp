@@ -15,10 +15,11 @@
 #include "package_output.hpp"
 #include "parallel_batches.hpp"
 #include "raster_metadata.hpp"
-#include "staging_store.hpp"
+#include "raster_stages.hpp"
 #include "tile_groups.hpp"
 #include "tile_warper.hpp"
 #include "tileformat/blob_header.hpp"
+#include "tileformat/byte_io.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/kpatch.hpp"
 #include "tileformat/mblock.hpp"
@@ -45,30 +46,53 @@ struct Block {
   std::vector<uint8_t> valid;  // always size*size here
 };
 
-// First row and first column of a block (x or y = 0 .. steps): heights then
-// validity, packed as 5 bytes per sample. Samples the block does not own are
-// invalid in it.
+// Staged data in the project's one byte codec (tileformat/byte_io.hpp).
+
+// First row and first column of a block (x or y = 0 .. steps), what its
+// west/north neighbours take from it: per sample, the height quantum (i32)
+// then validity (u8). Samples the block does not own are invalid in it.
 std::vector<uint8_t> pack_edges(const Block& b, int size) {
-  std::vector<uint8_t> out;
-  out.reserve(size_t(size) * 10);
+  tileformat::ByteWriter w;
   auto put = [&](size_t i) {
-    for (int k = 0; k < 4; ++k)
-      out.push_back(static_cast<uint8_t>(static_cast<uint32_t>(b.q[i]) >> (8 * k)));
-    out.push_back(b.valid[i]);
+    w.i32(b.q[i]);
+    w.u8(b.valid[i]);
   };
   for (int x = 0; x < size; ++x)
     put(size_t(x));
   for (int y = 0; y < size; ++y)
     put(size_t(y) * size);
-  return out;
+  return w.take();
 }
 
-// Sample k of packed edges: k < size is row 0 at x = k, else column 0 at y = k - size.
-std::pair<int32_t, uint8_t> edge_sample(const std::vector<uint8_t>& e, size_t k) {
-  const uint8_t* p = e.data() + 5 * k;
-  const uint32_t v =
-      uint32_t{p[0]} | uint32_t{p[1]} << 8 | uint32_t{p[2]} << 16 | uint32_t{p[3]} << 24;
-  return {static_cast<int32_t>(v), p[4]};
+// Unpacked edges: sample k < size is row 0 at x = k, else column 0 at y = k - size.
+Block unpack_edges(std::span<const uint8_t> bytes, int size) {
+  tileformat::ByteReader r(bytes, "staged block edges", "scratch");
+  Block e;
+  e.q.resize(2 * size_t(size));
+  e.valid.resize(2 * size_t(size));
+  for (size_t k = 0; k < e.q.size(); ++k) {
+    e.q[k] = r.i32();
+    e.valid[k] = r.u8();
+  }
+  r.expect_end();
+  return e;
+}
+
+// A block's node errors (error_tree.hpp), u32 each.
+std::vector<uint8_t> pack_errors(const std::vector<uint32_t>& errors) {
+  tileformat::ByteWriter w;
+  for (uint32_t e : errors)
+    w.u32(e);
+  return w.take();
+}
+
+std::vector<uint32_t> unpack_errors(std::span<const uint8_t> bytes) {
+  tileformat::ByteReader r(bytes, "staged node errors", "scratch");
+  std::vector<uint32_t> out(bytes.size() / 4);
+  for (uint32_t& e : out)
+    e = r.u32();
+  r.expect_end();
+  return out;
 }
 
 class Builder {
@@ -232,7 +256,7 @@ class Builder {
   void pass_warp(StagingStore& stage, int z, size_t first) {
     const std::vector<TileId> tiles = tiles_in_areas(plan_.tiling, plan_.data_areas, z);
     const int g = plan_.tiling.tiles_x(z) >= 16 ? TileWarper::kMaxGroup : 1;
-    const std::vector<TileGroup> groups = group_tiles(tiles, g);
+    const std::vector<WarpGroup> groups = group_tiles(tiles, g);
     progress_.begin("z" + std::to_string(z) + " warp", tiles.size());
     for (size_t i = 0; i < first && i < groups.size(); ++i)
       progress_.advance(groups[i].members.size());
@@ -340,7 +364,8 @@ class Builder {
   void pass_final(StagingStore& stage, int z, size_t first) {
     const std::vector<TileId> tiles = stage.list(Stage::kRaw, z);
     struct Inputs {
-      std::map<TileId, std::vector<uint8_t>> raw, edges, child_err;
+      std::map<TileId, std::vector<uint8_t>> raw, child_err;
+      std::map<TileId, Block> edges;
     };
     progress_.begin("z" + std::to_string(z) + " errors", tiles.size());
     progress_.advance(first);
@@ -352,7 +377,8 @@ class Builder {
             if (auto b = stage.get(Stage::kRaw, tiles[i])) in.raw.emplace(tiles[i], std::move(*b));
             for (auto [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}, std::pair{1, 1}})
               if (auto nb = neighbour(tiles[i], dx, dy); nb && !in.edges.count(*nb))
-                if (auto e = stage.get(Stage::kEdges, *nb)) in.edges.emplace(*nb, std::move(*e));
+                if (auto e = stage.get(Stage::kEdges, *nb))
+                  in.edges.emplace(*nb, unpack_edges(*e, size_));
             if (z < plan_.max_zoom)
               for (const TileId& c : tiles[i].children())
                 if (auto e = stage.get(Stage::kNodeErrors, c))
@@ -383,7 +409,7 @@ class Builder {
     std::vector<uint8_t> quarter;        // for the parent; empty at the coarsest zoom
   };
   FinalOut finalize(TileId id, const std::vector<uint8_t>& raw,
-                    const std::map<TileId, std::vector<uint8_t>>& edges,
+                    const std::map<TileId, Block>& edges,
                     const std::map<TileId, std::vector<uint8_t>>& child_err) const {
     const int n = plan_.steps;
     Block b = decode_scratch(raw);
@@ -397,8 +423,10 @@ class Builder {
       const size_t dst = size_t(y) * size_ + x;
       b.q[dst] = 0;
       b.valid[dst] = 0;
-      if (auto it = edges.find(*nb); it != edges.end())
-        std::tie(b.q[dst], b.valid[dst]) = edge_sample(it->second, k);
+      if (auto it = edges.find(*nb); it != edges.end()) {
+        b.q[dst] = it->second.q[k];
+        b.valid[dst] = it->second.valid[k];
+      }
       return true;
     };
     for (int y = 0; y < n; ++y)
@@ -414,11 +442,11 @@ class Builder {
     const auto children = id.children();
     for (int c = 0; c < 4; ++c)
       if (auto it = child_err.find(children[c]); it != child_err.end()) {
-        kids[c] = unpack_u32(it->second);
+        kids[c] = unpack_errors(it->second);
         kid_ptrs[c] = &kids[c];
       }
     const auto errors = node_errors(layouts_[id.diagonal()], b.q, b.valid, kid_ptrs);
-    return FinalOut{encode_final(b), pack_u32(errors),
+    return FinalOut{encode_final(b), pack_errors(errors),
                     id.z > plan_.min_zoom ? encode_quarter(b) : std::vector<uint8_t>{}};
   }
 
@@ -445,7 +473,7 @@ class Builder {
               for (int dx = -1; dx <= 1; ++dx)
                 if (auto nb = neighbour(tiles[i], dx, dy); nb && !in.errs.count(*nb))
                   if (auto e = stage.get(Stage::kNodeErrors, *nb))
-                    in.errs.emplace(*nb, unpack_u32(*e));
+                    in.errs.emplace(*nb, unpack_errors(*e));
           }
           return in;
         },

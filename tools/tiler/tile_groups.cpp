@@ -28,11 +28,11 @@ std::vector<TileId> tiles_in_areas(const tileformat::Tiling& tiling,
   return out;
 }
 
-std::vector<TileGroup> group_tiles(const std::vector<TileId>& tiles, int g) {
-  std::map<std::pair<uint32_t, uint32_t>, TileGroup> by_key;  // (gy, gx): row-major order
+std::vector<WarpGroup> group_tiles(const std::vector<TileId>& tiles, int g) {
+  std::map<std::pair<uint32_t, uint32_t>, WarpGroup> by_key;  // (gy, gx): row-major order
   for (const TileId& t : tiles)
     by_key[{t.y / g, t.x / g}].members.push_back(t);
-  std::vector<TileGroup> groups;
+  std::vector<WarpGroup> groups;
   for (auto& [key, grp] : by_key) {
     uint32_t x0 = grp.members[0].x, x1 = x0, y0 = grp.members[0].y, y1 = y0;
     for (const TileId& t : grp.members) {

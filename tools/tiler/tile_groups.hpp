@@ -9,7 +9,7 @@
 
 namespace globe {
 
-struct TileGroup {
+struct WarpGroup {
   tileformat::TileId first;  // north-west corner of the block
   int cols = 1, rows = 1;
   std::vector<tileformat::TileId> members;  // in (y, x) order
@@ -21,6 +21,6 @@ std::vector<tileformat::TileId> tiles_in_areas(const tileformat::Tiling& tiling,
 // Sorts by (y, x) and removes duplicates.
 void sort_tiles(std::vector<tileformat::TileId>& tiles);
 // Groups tiles by aligned g x g blocks, in row-major block order.
-std::vector<TileGroup> group_tiles(const std::vector<tileformat::TileId>& tiles, int g);
+std::vector<WarpGroup> group_tiles(const std::vector<tileformat::TileId>& tiles, int g);
 
 }  // namespace globe

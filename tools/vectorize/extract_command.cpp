@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "errors.hpp"
 #include "line_package.hpp"
+#include "tileformat/feature_table.hpp"
 #include "tileformat/line_tile.hpp"
 #include "vector_writer.hpp"
 
@@ -38,15 +39,12 @@ int run_lines_extract(const std::vector<std::string>& args) {
                      std::to_string(p.min_zoom) + ".." + std::to_string(p.max_zoom));
 
   std::map<uint64_t, std::pair<std::string, std::string>> feature_cache;  // layer, properties
-  tileformat::SqliteStatement lookup(p.reader->db(),
-                                     "SELECT layer, properties FROM features WHERE id = ?");
+  tileformat::FeatureTableReader features(*p.reader);
   auto feature = [&](uint64_t id) -> const std::pair<std::string, std::string>& {
     auto it = feature_cache.find(id);
     if (it != feature_cache.end()) return it->second;
-    lookup.bind(1, static_cast<int64_t>(id));
     std::pair<std::string, std::string> v;
-    if (lookup.step()) v = {lookup.column_text(0), lookup.column_text(1)};
-    lookup.reset();
+    if (auto f = features.get(static_cast<int64_t>(id))) v = {f->layer, f->properties};
     if (feature_cache.size() > 100000) feature_cache.clear();
     return feature_cache.emplace(id, std::move(v)).first->second;
   };

@@ -8,6 +8,7 @@
 #include "errors.hpp"
 #include "line_package.hpp"
 #include "package_info.hpp"
+#include "tileformat/feature_table.hpp"
 #include "tileformat/line_tile.hpp"
 
 namespace globe {
@@ -24,8 +25,8 @@ int run_lines_info(const std::vector<std::string>& args) {
   std::printf("classes:\n");
   for (size_t i = 0; i < p.classes.size(); ++i)
     std::printf("  %4zu %s\n", i, p.classes[i].name.c_str());
-  const auto features = p.reader->db().query_int("SELECT count(*) FROM features");
-  std::printf("features: %lld\n", static_cast<long long>(features.value_or(0)));
+  std::printf("features: %lld\n",
+              static_cast<long long>(tileformat::FeatureTableReader(*p.reader).count()));
   std::map<int, tileformat::LineTileCounts> per_zoom;
   p.reader->for_each_tile([&](tileformat::TileId id, std::span<const uint8_t> blob) {
     const auto c = tileformat::peek_line_tile_counts(blob);
@@ -38,12 +39,12 @@ int run_lines_info(const std::vector<std::string>& args) {
   std::printf("lines per zoom:\n  %4s %12s %12s %10s %14s %10s\n", "zoom", "segments", "runs",
               "points", "cell entries", "per cell");
   const double cells = double(p.cluster_grid) * p.cluster_grid;
-  for (const auto& [z, c] : per_zoom) {
-    const auto tiles = p.reader->db().query_int("SELECT count(*) FROM map WHERE zoom_level = " +
-                                                std::to_string(z));
+  std::map<int, uint64_t> tiles;
+  for (const tileformat::ZoomSummary& s : p.reader->zoom_summaries())
+    tiles[s.zoom] = s.tiles;
+  for (const auto& [z, c] : per_zoom)
     std::printf("  %4d %12u %12u %10u %14u %10.2f\n", z, c.segments, c.runs, c.points,
-                c.cell_entries, c.cell_entries / (cells * double(tiles.value_or(1))));
-  }
+                c.cell_entries, c.cell_entries / (cells * double(tiles[z])));
   return kExitOk;
 }
 

@@ -23,7 +23,9 @@
 #include "tile_cutter.hpp"
 #include "tile_sorter.hpp"
 #include "tileformat/blob_header.hpp"
+#include "tileformat/byte_io.hpp"
 #include "tileformat/error.hpp"
+#include "tileformat/feature_table.hpp"
 #include "tileformat/json.hpp"
 #include "tileformat/line_clusters.hpp"
 #include "tileformat/line_tile.hpp"
@@ -58,16 +60,31 @@ class GeometryScratch {
     std::error_code ec;
     std::filesystem::remove(path_, ec);
   }
+  // One record per feature in the project's one byte codec
+  // (tileformat/byte_io.hpp): its byte length (u32), then id, class, the
+  // parts' vertex counts and coordinates (f64), then the points.
   void write(const ProjectedFeature& f) {
-    put(f.id);
-    put(f.class_id);
-    put(static_cast<uint32_t>(f.lines.size()));
-    put(static_cast<uint32_t>(f.points.size()));
+    tileformat::ByteWriter w;
+    w.u64(f.id);
+    w.u32(f.class_id);
+    w.u32(static_cast<uint32_t>(f.lines.size()));
+    w.u32(static_cast<uint32_t>(f.points.size()));
+    auto put_xy = [&](const XY& p) {
+      w.f64(p.x);
+      w.f64(p.y);
+    };
     for (const auto& part : f.lines) {
-      put(static_cast<uint32_t>(part.size()));
-      put_raw(part.data(), part.size() * sizeof(XY));
+      w.u32(static_cast<uint32_t>(part.size()));
+      for (const XY& p : part)
+        put_xy(p);
     }
-    put_raw(f.points.data(), f.points.size() * sizeof(XY));
+    for (const XY& p : f.points)
+      put_xy(p);
+    const std::vector<uint8_t> bytes = w.take();
+    tileformat::ByteWriter len;
+    len.u32(static_cast<uint32_t>(bytes.size()));
+    put_raw(len.take());
+    put_raw(bytes);
   }
   void rewind() {
     if (std::fflush(file_) != 0)
@@ -75,41 +92,38 @@ class GeometryScratch {
     std::rewind(file_);
   }
   bool read(ProjectedFeature& f) {
-    if (std::fread(&f.id, sizeof f.id, 1, file_) != 1) return false;
-    uint32_t nl = 0, np = 0;
-    get(f.class_id);
-    get(nl);
-    get(np);
-    f.lines.resize(nl);
+    uint8_t len_bytes[4];
+    if (std::fread(len_bytes, 1, 4, file_) != 4) return false;
+    buffer_.resize(tileformat::ByteReader(len_bytes, "scratch feature", "scratch").u32());
+    if (std::fread(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size())
+      throw OutputError(path_ + ": scratch file truncated while reading back");
+    tileformat::ByteReader r(buffer_, "scratch feature", "scratch");
+    f.id = r.u64();
+    f.class_id = r.u32();
+    f.lines.resize(r.u32());
+    f.points.resize(r.u32());
+    auto get_xy = [&](XY& p) {
+      p.x = r.f64();
+      p.y = r.f64();
+    };
     for (auto& part : f.lines) {
-      uint32_t n = 0;
-      get(n);
-      part.resize(n);
-      get_raw(part.data(), n * sizeof(XY));
+      part.resize(r.u32());
+      for (XY& p : part)
+        get_xy(p);
     }
-    f.points.resize(np);
-    get_raw(f.points.data(), np * sizeof(XY));
+    for (XY& p : f.points)
+      get_xy(p);
+    r.expect_end();
     return true;
   }
 
  private:
-  template <typename T>
-  void put(T v) {
-    put_raw(&v, sizeof v);
-  }
-  template <typename T>
-  void get(T& v) {
-    get_raw(&v, sizeof v);
-  }
-  void put_raw(const void* p, size_t n) {
-    if (n && std::fwrite(p, 1, n, file_) != n)
+  void put_raw(const std::vector<uint8_t>& b) {
+    if (!b.empty() && std::fwrite(b.data(), 1, b.size(), file_) != b.size())
       throw OutputError(path_ + ": cannot write scratch data (" + std::strerror(errno) +
                         "); check free space");
   }
-  void get_raw(void* p, size_t n) {
-    if (n && std::fread(p, 1, n, file_) != n)
-      throw OutputError(path_ + ": scratch file truncated while reading back");
-  }
+  std::vector<uint8_t> buffer_;
   std::string path_;
   std::FILE* file_ = nullptr;
 };
@@ -159,18 +173,9 @@ class Builder {
       // kept) but keeps the committed features table and tiles. The table
       // is created and filled in one transaction (committed below), so it
       // is either there and complete or not there at all.
-      store_features_ = !writer->resumed() ||
-                        writer->db()
-                                .query_int(
-                                    "SELECT COUNT(*) FROM sqlite_master WHERE type = 'table' AND "
-                                    "name = 'features'")
-                                .value_or(0) == 0;
-      if (store_features_)
-        writer->db().exec(
-            "CREATE TABLE features (id INTEGER PRIMARY KEY, layer TEXT NOT NULL, properties TEXT "
-            "NOT NULL)");
+      tileformat::FeatureTableWriter features(*writer);
       GeometryScratch scratch(s_.output + ".scratch-geometry");
-      pass_read(reader, *writer, scratch);
+      pass_read(reader, features, scratch);
       writer->checkpoint();  // the features table is committed before any tile
       plan();
       TileSorter sorter(s_.output + ".scratch-sort", s_.memory_mb << 20);
@@ -225,7 +230,7 @@ class Builder {
       throw UsageError("--t_srs applies to --tiling local only");
   }
 
-  void pass_read(VectorReader& reader, tileformat::PackageWriter& writer,
+  void pass_read(VectorReader& reader, tileformat::FeatureTableWriter& features,
                  GeometryScratch& scratch) {
     std::vector<LineProjector> projectors;
     for (const VectorLayerInfo& l : reader.layers())
@@ -234,8 +239,6 @@ class Builder {
     for (const VectorLayerInfo& l : reader.layers())
       total += std::max<int64_t>(0, l.feature_count);
     layer_kept_.assign(reader.layers().size(), 0);
-    tileformat::SqliteStatement insert(
-        writer.db(), "INSERT INTO features (id, layer, properties) VALUES (?, ?, ?)");
     progress_.begin("read features", static_cast<uint64_t>(total));
     VectorFeature vf;
     ProjectionCounts counts;
@@ -259,11 +262,8 @@ class Builder {
       pf.class_id = classes_.class_for(layer, vf.class_value);
       pf.id = ++sum_.features_kept;
       ++layer_kept_[vf.layer];
-      if (store_features_) {
-        insert.bind(1, static_cast<int64_t>(pf.id)).bind(2, layer).bind(3, vf.properties_json);
-        insert.step();
-        insert.reset();
-      }
+      if (!features.complete())
+        features.add(static_cast<int64_t>(pf.id), layer, vf.properties_json);
       for (const auto& part : pf.lines)
         for (size_t i = 0; i < part.size(); ++i) {
           extend(part[i]);
@@ -535,7 +535,6 @@ class Builder {
   std::vector<uint32_t> reach_;
   CutStats cut_;
   LinesSummary sum_;
-  bool store_features_ = true;  // false: a resumed package holds them already
 };
 
 }  // namespace

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <map>
 
-#include "tileformat/detail/byte_io.hpp"
+#include "tileformat/byte_io.hpp"
 
 namespace globe {
 
@@ -13,7 +13,7 @@ using tileformat::LineVertex;
 using tileformat::TileId;
 
 std::vector<uint8_t> TilePiece::to_bytes() const {
-  tileformat::detail::ByteWriter w;
+  tileformat::ByteWriter w;
   w.u8(point ? 1 : 0);
   w.u32(class_id);
   w.u32(static_cast<uint32_t>(vertices.size()));
@@ -25,7 +25,7 @@ std::vector<uint8_t> TilePiece::to_bytes() const {
 }
 
 TilePiece TilePiece::from_bytes(std::span<const uint8_t> bytes) {
-  tileformat::detail::ByteReader r(bytes, "scratch tile piece", "7");
+  tileformat::ByteReader r(bytes, "scratch tile piece", "7");
   TilePiece p;
   p.point = r.u8() != 0;
   p.class_id = r.u32();

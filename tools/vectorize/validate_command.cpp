@@ -15,6 +15,7 @@
 #include "errors.hpp"
 #include "line_package.hpp"
 #include "tileformat/error.hpp"
+#include "tileformat/feature_table.hpp"
 #include "tileformat/line_clusters.hpp"
 #include "tileformat/line_tile.hpp"
 #include "validation_report.hpp"
@@ -29,8 +30,9 @@ int run_lines_validate(const std::vector<std::string>& args) {
   const std::string& path = (*positional)[0];
   LinePackage p = open_line_package(path);
   ValidationReport r;
-  const int64_t max_id = p.reader->db().query_int("SELECT max(id) FROM features").value_or(0);
-  const int64_t count = p.reader->db().query_int("SELECT count(*) FROM features").value_or(0);
+  tileformat::FeatureTableReader features(*p.reader);
+  const int64_t max_id = features.max_id();
+  const int64_t count = features.count();
   if (count != max_id)
     r.warning("features table ids are not 1.." + std::to_string(count) + " (max id " +
               std::to_string(max_id) + ")");

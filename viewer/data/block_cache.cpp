@@ -54,9 +54,6 @@ BlockCache::BlockCache(const std::string& path, TerrainPackage package, uint64_t
   stats_.budget_bytes = budget_bytes;
   for (int s = static_cast<int>(slots_) - 1; s >= 0; --s)
     free_slots_.push_back(s);
-  exists_ = std::make_unique<tileformat::SqliteStatement>(
-      package_.reader->db(),
-      "SELECT 1 FROM map WHERE zoom_level = ? AND tile_column = ? AND tile_row = ?");
   loader_ = std::make_unique<Loader>(*package_.reader,
                                      decode_block(package_.block_size, package_.lattice));
 }
@@ -68,11 +65,8 @@ BlockState BlockCache::state(TileId id) {
     return BlockState::kAbsent;
   auto it = entries_.find(id);
   if (it != entries_.end()) return it->second.state;
-  exists_->reset();
-  exists_->bind(1, id.z).bind(2, id.x).bind(3,
-                                            TileId::flip_row(id.y, package_.tiling.tiles_y(id.z)));
   Entry e;
-  e.state = exists_->step() ? BlockState::kNotLoaded : BlockState::kAbsent;
+  e.state = package_.reader->has_tile(id) ? BlockState::kNotLoaded : BlockState::kAbsent;
   entries_.emplace(id, e);
   return e.state;
 }

@@ -106,7 +106,6 @@ class BlockCache {
 
   std::string path_;
   TerrainPackage package_;
-  std::unique_ptr<tileformat::SqliteStatement> exists_;
   size_t slots_ = 0;
   uint64_t bytes_per_slot_ = 0;
   uint64_t frame_ = 0;

@@ -49,9 +49,6 @@ DecodedLineTile line_tile_words(const tileformat::LineTile& t) {
 LineCache::LineCache(const std::string& path, LinePackage package, uint64_t budget_bytes)
     : path_(path), package_(std::move(package)), arena_(budget_bytes / 4) {
   stats_.budget_bytes = budget_bytes;
-  exists_ = std::make_unique<tileformat::SqliteStatement>(
-      package_.reader->db(),
-      "SELECT 1 FROM map WHERE zoom_level = ? AND tile_column = ? AND tile_row = ?");
   loader_ = std::make_unique<Loader>(*package_.reader, [](TileId, std::span<const uint8_t> blob) {
     return line_tile_words(tileformat::decode_line_tile(blob));
   });
@@ -94,10 +91,7 @@ void LineCache::request(TileId id) {
   auto [it, fresh] = entries_.try_emplace(id);
   it->second.last_used = frame_;
   if (!fresh) return;  // loading, resident or known empty
-  exists_->reset();
-  exists_->bind(1, id.z).bind(2, id.x).bind(3,
-                                            TileId::flip_row(id.y, package_.tiling.tiles_y(id.z)));
-  if (!exists_->step()) {
+  if (!package_.reader->has_tile(id)) {
     it->second.record = static_cast<int>(new_record(id));
     return;
   }

@@ -98,7 +98,6 @@ class LineCache {
 
   std::string path_;
   LinePackage package_;
-  std::unique_ptr<tileformat::SqliteStatement> exists_;
   ArenaAllocator arena_;
   uint64_t frame_ = 0;
   std::unordered_map<tileformat::TileId, Entry, TileKey> entries_;

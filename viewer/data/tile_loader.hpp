@@ -1,6 +1,6 @@
 // A loader thread for one package: reads the blobs of queued tiles through
 // the caller's reader (the only user of its tile(); the connection is
-// serialized, so the caller may query db() meanwhile, and both see the one
+// serialized, so the caller may call has_tile() meanwhile, and both see the one
 // file opened at start even if the path is replaced), decodes them with the
 // caller's function, and hands the results back to the render thread, which
 // never waits unless it asks to. Used by the terrain block cache and the line

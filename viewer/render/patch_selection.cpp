@@ -34,14 +34,7 @@ PatchSelector::PatchSelector(const TerrainPackage& package)
       step_m_(package.step_m) {
   extent_x_ = (int64_t{steps_} << max_zoom_) * package.tiling.roots_x;
   extent_y_ = (int64_t{steps_} << max_zoom_) * package.tiling.roots_y;
-  tileformat::SqliteStatement st(package.reader->db(),
-                                 "SELECT tile_column, tile_row FROM map WHERE zoom_level = ? "
-                                 "ORDER BY tile_row, tile_column");
-  st.bind(1, min_zoom_);
-  while (st.step())
-    roots_.push_back({min_zoom_, static_cast<uint32_t>(st.column_int(0)),
-                      TileId::flip_row(static_cast<uint32_t>(st.column_int(1)),
-                                       package.tiling.tiles_y(min_zoom_))});
+  roots_ = package.reader->tile_ids(min_zoom_);
 }
 
 int PatchSelector::canonical_zoom(int level) const {

@@ -1,7 +1,7 @@
 // Blob header (docs/tileformat.md §4).
 #include "tileformat/blob_header.hpp"
 
-#include "tileformat/detail/byte_io.hpp"
+#include "tileformat/byte_io.hpp"
 
 namespace tileformat {
 namespace {
@@ -13,7 +13,7 @@ struct Header {
   uint32_t body_size;
 };
 
-Header parse(std::span<const uint8_t> blob, detail::ByteReader& r) {
+Header parse(std::span<const uint8_t> blob, ByteReader& r) {
   auto magic = r.bytes(4);
   for (int i = 0; i < 4; ++i)
     if (magic[i] != kMagic[i]) r.fail("bad magic (not a GlobeEngine tile blob)");
@@ -45,7 +45,7 @@ std::string blob_kind_name(BlobKind kind) {
 }
 
 std::vector<uint8_t> wrap_blob(BlobKind kind, std::span<const uint8_t> body) {
-  detail::ByteWriter w;
+  ByteWriter w;
   for (uint8_t c : kMagic)
     w.u8(c);
   w.u16(kFormatVersion);
@@ -56,7 +56,7 @@ std::vector<uint8_t> wrap_blob(BlobKind kind, std::span<const uint8_t> body) {
 }
 
 std::span<const uint8_t> read_blob_header(std::span<const uint8_t> blob, BlobKind expected) {
-  detail::ByteReader r(blob, "blob header", "4");
+  ByteReader r(blob, "blob header", "4");
   Header h = parse(blob, r);
   if (h.kind != static_cast<uint16_t>(expected))
     r.fail("blob is a " + blob_kind_name(static_cast<BlobKind>(h.kind)) + " tile, expected " +
@@ -65,7 +65,7 @@ std::span<const uint8_t> read_blob_header(std::span<const uint8_t> blob, BlobKin
 }
 
 BlobKind peek_blob_kind(std::span<const uint8_t> blob) {
-  detail::ByteReader r(blob, "blob header", "4");
+  ByteReader r(blob, "blob header", "4");
   return static_cast<BlobKind>(parse(blob, r).kind);
 }
 

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "tileformat/blob_header.hpp"
-#include "tileformat/detail/byte_io.hpp"
+#include "tileformat/byte_io.hpp"
 #include "tileformat/detail/zstd_codec.hpp"
 #include "tileformat/error.hpp"
 
@@ -42,7 +42,7 @@ void check_header(const Header& h) {
   if (min_bytes > h.raw_size) fail("7.1", "counts do not fit the payload size");
 }
 
-Header read_header(detail::ByteReader& r) {
+Header read_header(ByteReader& r) {
   Header h{};
   for (uint32_t* f : {&h.extent, &h.grid, &h.reach, &h.features, &h.runs, &h.segments, &h.points,
                       &h.cell_entries, &h.raw_size, &h.compressed_size})
@@ -51,13 +51,13 @@ Header read_header(detail::ByteReader& r) {
   return h;
 }
 
-uint32_t checked_u32(detail::ByteReader& r, uint64_t below, const char* what) {
+uint32_t checked_u32(ByteReader& r, uint64_t below, const char* what) {
   const uint64_t v = r.varint();
   if (v >= below) r.fail(std::string(what) + " " + std::to_string(v) + " out of range");
   return static_cast<uint32_t>(v);
 }
 
-int32_t checked_coord(detail::ByteReader& r, int64_t& prev, int64_t extent) {
+int32_t checked_coord(ByteReader& r, int64_t& prev, int64_t extent) {
   // prev is in range, so a valid delta is within 3 extents; checking it
   // first keeps the sum from overflowing (found by fuzz_line_tile).
   const int64_t delta = r.svarint();
@@ -97,7 +97,7 @@ uint32_t LineTile::cell_of(double x, double y) const {
 }
 
 std::vector<uint8_t> encode_line_tile(const LineTile& t, int zstd_level) {
-  detail::ByteWriter p;  // §7.2 payload
+  ByteWriter p;  // §7.2 payload
   uint64_t prev_id = 0;
   for (size_t i = 0; i < t.feature_ids.size(); ++i) {
     if (i > 0 && t.feature_ids[i] <= prev_id) fail("7.2", "feature ids not strictly increasing");
@@ -154,7 +154,7 @@ std::vector<uint8_t> encode_line_tile(const LineTile& t, int zstd_level) {
            static_cast<uint32_t>(raw.size()),
            static_cast<uint32_t>(packed.size())};
   check_header(h);
-  detail::ByteWriter body;
+  ByteWriter body;
   for (uint32_t f : {h.extent, h.grid, h.reach, h.features, h.runs, h.segments, h.points,
                      h.cell_entries, h.raw_size, h.compressed_size})
     body.u32(f);
@@ -163,13 +163,13 @@ std::vector<uint8_t> encode_line_tile(const LineTile& t, int zstd_level) {
 }
 
 LineTileCounts peek_line_tile_counts(std::span<const uint8_t> blob) {
-  detail::ByteReader r(read_blob_header(blob, BlobKind::kLineClusters), "line tile header", "7.1");
+  ByteReader r(read_blob_header(blob, BlobKind::kLineClusters), "line tile header", "7.1");
   const Header h = read_header(r);
   return {h.features, h.runs, h.segments, h.points, h.cell_entries};
 }
 
 LineTile decode_line_tile(std::span<const uint8_t> blob) {
-  detail::ByteReader hr(read_blob_header(blob, BlobKind::kLineClusters), "line tile header", "7.1");
+  ByteReader hr(read_blob_header(blob, BlobKind::kLineClusters), "line tile header", "7.1");
   const Header h = read_header(hr);
   const auto raw =
       detail::zstd_decompress(hr.bytes(h.compressed_size), h.raw_size, "line tile payload", "7.2");
@@ -179,7 +179,7 @@ LineTile decode_line_tile(std::span<const uint8_t> blob) {
   t.extent = h.extent;
   t.grid = h.grid;
   t.reach = h.reach;
-  detail::ByteReader r(raw, "line tile payload", "7.2");
+  ByteReader r(raw, "line tile payload", "7.2");
   t.feature_ids.resize(h.features);
   uint64_t prev = 0;
   for (uint32_t i = 0; i < h.features; ++i) {

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "tileformat/blob_header.hpp"
-#include "tileformat/detail/byte_io.hpp"
+#include "tileformat/byte_io.hpp"
 #include "tileformat/detail/zstd_codec.hpp"
 #include "tileformat/kpatch.hpp"
 
@@ -159,7 +159,7 @@ bool unpack(std::span<const uint8_t> packed, std::span<const uint8_t> exceptions
 std::vector<uint8_t> residual_section(const std::vector<uint32_t>& residual, int coding,
                                       int level) {
   const size_t n = residual.size();
-  detail::ByteWriter w;
+  ByteWriter w;
   w.u8(static_cast<uint8_t>(coding));
   if (coding == 0) {
     uint32_t max_z = 0;
@@ -219,7 +219,7 @@ std::vector<uint8_t> encode_residuals(const std::vector<uint32_t>& residual, int
   return residual_section(residual, coding, level);
 }
 
-std::vector<uint32_t> decode_residuals(detail::ByteReader& r, size_t n) {
+std::vector<uint32_t> decode_residuals(ByteReader& r, size_t n) {
   r.set_section("5.2");
   const int coding = r.u8();
   std::vector<uint32_t> residual(n);
@@ -264,7 +264,7 @@ std::vector<uint32_t> decode_residuals(detail::ByteReader& r, size_t n) {
 }
 
 // Skips §5.2 without decompressing it.
-void skip_residuals(detail::ByteReader& r) {
+void skip_residuals(ByteReader& r) {
   r.set_section("5.2");
   const int coding = r.u8();
   if (coding == 0) {
@@ -282,7 +282,7 @@ std::vector<uint8_t> encode_error_tree(int depth, const std::vector<uint32_t>& e
   std::vector<uint8_t> raw(errors.size() * 4);
   for (size_t i = 0; i < errors.size(); ++i)
     put_u32(raw, 4 * i, errors[i]);
-  detail::ByteWriter w;
+  ByteWriter w;
   w.u8(static_cast<uint8_t>(depth));
   auto z = detail::zstd_compress(raw, level);
   w.u32(static_cast<uint32_t>(z.size()));
@@ -328,7 +328,7 @@ std::vector<uint8_t> encode_mblock(const MBlock& b, int zstd_level, bool best_pa
   predict_residuals(b.q.data(), b.size, residual.data());
 
   const MBlockStats stats = mblock_stats(b);
-  detail::ByteWriter w;
+  ByteWriter w;
   w.u16(static_cast<uint16_t>(b.size));
   w.u8(static_cast<uint8_t>(b.lattice));
   w.u8(b.valid.empty() ? 0 : kFlagMask);
@@ -359,7 +359,7 @@ std::vector<uint8_t> encode_height_grid(const HeightGrid& g, int zstd_level, Hei
   std::vector<uint32_t> residual(n);
   predict_residuals(g.q.data(), g.size, residual.data());
   const bool all_valid = std::all_of(g.valid.begin(), g.valid.end(), [](uint8_t v) { return v; });
-  detail::ByteWriter w;
+  ByteWriter w;
   w.u16(static_cast<uint16_t>(g.size));
   w.u8(all_valid ? 0 : kFlagMask);
   w.bytes(encode_residuals(residual, zstd_level, coding == HeightCoding::kBestPacking));
@@ -375,7 +375,7 @@ std::vector<uint8_t> encode_height_grid(const HeightGrid& g, int zstd_level, Hei
 }
 
 HeightGrid decode_height_grid(std::span<const uint8_t> bytes) {
-  detail::ByteReader r(bytes, "height grid", "5.2");
+  ByteReader r(bytes, "height grid", "5.2");
   HeightGrid g;
   g.size = r.u16();
   const uint8_t flags = r.u8();
@@ -398,7 +398,7 @@ HeightGrid decode_height_grid(std::span<const uint8_t> bytes) {
 
 MBlock decode_mblock(std::span<const uint8_t> blob) {
   auto body = read_blob_header(blob, BlobKind::kMBlock);
-  detail::ByteReader r(body, "MBlock header", "5.1");
+  ByteReader r(body, "MBlock header", "5.1");
   MBlock b;
   b.size = r.u16();
   b.lattice = r.u8();
@@ -443,7 +443,7 @@ MBlock decode_mblock(std::span<const uint8_t> blob) {
 std::vector<uint8_t> replace_vertex_errors(std::span<const uint8_t> blob,
                                            const std::vector<uint32_t>& errors, int zstd_level) {
   auto body = read_blob_header(blob, BlobKind::kMBlock);
-  detail::ByteReader r(body, "MBlock header", "5.1");
+  ByteReader r(body, "MBlock header", "5.1");
   const int size = r.u16();
   const int lattice = r.u8();
   const uint8_t flags = r.u8();

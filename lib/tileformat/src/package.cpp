@@ -317,19 +317,45 @@ void PackageReader::for_each_tile(const std::function<void(TileId, std::span<con
   if (zoom) sql += " WHERE zoom_level = " + std::to_string(*zoom);
   sql += " ORDER BY zoom_level, tile_row DESC, tile_column";
   SqliteStatement st(*db_, sql);
-  while (st.step()) {
-    const int64_t z = st.column_int(0), col = st.column_int(1), row = st.column_int(2);
-    if (z < 0 || z > kMaxZoom || col < 0 || row < 0 ||
-        static_cast<uint64_t>(col) >= 2 * TileId::tiles_per_axis(static_cast<int>(z)) ||
-        static_cast<uint64_t>(row) >= TileId::tiles_per_axis(static_cast<int>(z)))
-      throw FormatError("3", db_->path() + ": tile index out of range: zoom " + std::to_string(z) +
-                                 ", column " + std::to_string(col) + ", row " +
-                                 std::to_string(row));
-    TileId id{
-        static_cast<int>(z), static_cast<uint32_t>(col),
-        TileId::flip_row(static_cast<uint32_t>(row), TileId::tiles_per_axis(static_cast<int>(z)))};
-    fn(id, st.column_blob(3));
-  }
+  while (st.step())
+    fn(checked_id(st.column_int(0), st.column_int(1), st.column_int(2)), st.column_blob(3));
+}
+
+TileId PackageReader::checked_id(int64_t z, int64_t col, int64_t row) const {
+  if (z < 0 || z > kMaxZoom || col < 0 || row < 0 ||
+      static_cast<uint64_t>(col) >= 2 * TileId::tiles_per_axis(static_cast<int>(z)) ||
+      static_cast<uint64_t>(row) >= TileId::tiles_per_axis(static_cast<int>(z)))
+    throw FormatError("3", db_->path() + ": tile index out of range: zoom " + std::to_string(z) +
+                               ", column " + std::to_string(col) + ", row " + std::to_string(row));
+  return {
+      static_cast<int>(z), static_cast<uint32_t>(col),
+      TileId::flip_row(static_cast<uint32_t>(row), TileId::tiles_per_axis(static_cast<int>(z)))};
+}
+
+bool PackageReader::has_tile(TileId id) {
+  if (id.z < 0 || id.z > kMaxZoom || id.x >= 2 * TileId::tiles_per_axis(id.z) ||
+      id.y >= TileId::tiles_per_axis(id.z))
+    return false;
+  if (!has_tile_)  // the MBTiles view, so that packages of other tools answer too
+    has_tile_ = std::make_unique<SqliteStatement>(
+        *db_, "SELECT 1 FROM tiles WHERE zoom_level = ? AND tile_column = ? AND tile_row = ?");
+  has_tile_->reset();
+  has_tile_->bind(1, id.z).bind(2, id.x).bind(3,
+                                              TileId::flip_row(id.y, TileId::tiles_per_axis(id.z)));
+  const bool found = has_tile_->step();
+  has_tile_->reset();
+  return found;
+}
+
+std::vector<TileId> PackageReader::tile_ids(int zoom) {
+  SqliteStatement st(*db_,
+                     "SELECT tile_column, tile_row FROM tiles WHERE zoom_level = ? "
+                     "ORDER BY tile_row DESC, tile_column");
+  st.bind(1, zoom);
+  std::vector<TileId> out;
+  while (st.step())
+    out.push_back(checked_id(zoom, st.column_int(0), st.column_int(1)));
+  return out;
 }
 
 std::vector<ZoomSummary> PackageReader::zoom_summaries() {

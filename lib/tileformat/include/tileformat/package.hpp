@@ -114,13 +114,20 @@ class PackageReader {
   // Calls fn for every tile in (zoom, row, column) order of the TMS index.
   void for_each_tile(const std::function<void(TileId, std::span<const uint8_t>)>& fn,
                      std::optional<int> zoom = std::nullopt);
+  // Whether the package has a tile at `id` (without reading it). One thread
+  // at a time; it may run while another thread calls tile().
+  bool has_tile(TileId id);
+  // The tiles of one zoom, in (y, x) order; throws FormatError for an index
+  // outside the zoom's range.
+  std::vector<TileId> tile_ids(int zoom);
   std::vector<ZoomSummary> zoom_summaries();
   uint64_t unique_blobs();
   SqliteDb& db() { return *db_; }
 
  private:
+  TileId checked_id(int64_t z, int64_t column, int64_t row) const;
   std::unique_ptr<SqliteDb> db_;
-  std::unique_ptr<SqliteStatement> get_tile_;
+  std::unique_ptr<SqliteStatement> get_tile_, has_tile_;
   std::map<std::string, std::string> metadata_;
   int64_t application_id_ = 0;
 };

@@ -1,14 +1,11 @@
 // Scratch storage (see staging_store.hpp).
-#include "staging_store.hpp"
+#include "tileformat/staging_store.hpp"
 
 #include <filesystem>
 
 #include "tileformat/error.hpp"
 
-namespace globe {
-
-using tileformat::SqliteDb;
-using tileformat::SqliteStatement;
+namespace tileformat {
 
 namespace {
 
@@ -27,7 +24,7 @@ StagingStore::StagingStore(std::string path, int32_t key, bool resume) : path_(s
     db_ = std::make_unique<SqliteDb>(path_, SqliteDb::Mode::kReadWriteCreate);
     try {
       if (db_->query_int("PRAGMA user_version").value_or(0) != key) db_.reset();
-    } catch (const tileformat::PackageError&) {
+    } catch (const PackageError&) {
       db_.reset();  // unreadable: start over
     }
   }
@@ -61,17 +58,17 @@ namespace {
 // rows are stored in list order, with no separate index): dropping a level
 // is DROP TABLE, which frees its pages without journaling their content
 // (DELETE copied every deleted page into the rollback journal).
-std::string table_name(Stage stage, int z) {
-  return "s" + std::to_string(static_cast<int>(stage)) + "_" + std::to_string(z);
+std::string table_name(StageTag stage, int z) {
+  return "s" + std::to_string(stage) + "_" + std::to_string(z);
 }
-int64_t row_key(tileformat::TileId id) {
+int64_t row_key(TileId id) {
   return (static_cast<int64_t>(id.y) << 32) | id.x;
 }
 
 }  // namespace
 
-StagingStore::Table& StagingStore::table(Stage stage, int z) {
-  const auto key = std::make_pair(static_cast<int>(stage), z);
+StagingStore::Table& StagingStore::table(StageTag stage, int z) {
+  const auto key = std::make_pair(stage, z);
   auto it = tables_.find(key);
   if (it != tables_.end()) return it->second;
   const std::string name = table_name(stage, z);
@@ -108,14 +105,14 @@ std::vector<StageCheckpoint> StagingStore::checkpoints(int z) {
   return out;
 }
 
-void StagingStore::put(Stage stage, tileformat::TileId id, const std::vector<uint8_t>& data) {
+void StagingStore::put(StageTag stage, TileId id, const std::vector<uint8_t>& data) {
   Table& t = table(stage, id.z);
   t.put->bind(1, row_key(id)).bind(2, data);
   t.put->step();
   t.put->reset();
 }
 
-std::optional<std::vector<uint8_t>> StagingStore::get(Stage stage, tileformat::TileId id) {
+std::optional<std::vector<uint8_t>> StagingStore::get(StageTag stage, TileId id) {
   Table& t = table(stage, id.z);
   t.get->bind(1, row_key(id));
   std::optional<std::vector<uint8_t>> out;
@@ -127,10 +124,10 @@ std::optional<std::vector<uint8_t>> StagingStore::get(Stage stage, tileformat::T
   return out;
 }
 
-std::vector<tileformat::TileId> StagingStore::list(Stage stage, int z) {
+std::vector<TileId> StagingStore::list(StageTag stage, int z) {
   table(stage, z);  // exists (empty) even if nothing was put
   SqliteStatement st(*db_, "SELECT key FROM " + table_name(stage, z) + " ORDER BY key");
-  std::vector<tileformat::TileId> out;
+  std::vector<TileId> out;
   while (st.step()) {
     const int64_t key = st.column_int(0);
     out.push_back({z, static_cast<uint32_t>(key & 0xffffffff), static_cast<uint32_t>(key >> 32)});
@@ -138,8 +135,8 @@ std::vector<tileformat::TileId> StagingStore::list(Stage stage, int z) {
   return out;
 }
 
-void StagingStore::drop(Stage stage, int z) {
-  tables_.erase({static_cast<int>(stage), z});
+void StagingStore::drop(StageTag stage, int z) {
+  tables_.erase({stage, z});
   db_->exec("DROP TABLE IF EXISTS " + table_name(stage, z));
 }
 
@@ -160,20 +157,4 @@ void StagingStore::commit(const StageCheckpoint& at) {
   commit();
 }
 
-std::vector<uint8_t> pack_u32(const std::vector<uint32_t>& v) {
-  std::vector<uint8_t> out(v.size() * 4);
-  for (size_t i = 0; i < v.size(); ++i)
-    for (int b = 0; b < 4; ++b)
-      out[4 * i + b] = static_cast<uint8_t>(v[i] >> (8 * b));
-  return out;
-}
-
-std::vector<uint32_t> unpack_u32(const std::vector<uint8_t>& bytes) {
-  std::vector<uint32_t> out(bytes.size() / 4);
-  for (size_t i = 0; i < out.size(); ++i)
-    for (int b = 0; b < 4; ++b)
-      out[i] |= uint32_t{bytes[4 * i + b]} << (8 * b);
-  return out;
-}
-
-}  // namespace globe
+}  // namespace tileformat

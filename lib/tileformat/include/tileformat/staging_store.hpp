@@ -1,6 +1,7 @@
-// Scratch storage for a terrain or image build: per-level intermediate
-// blocks live in a temporary SQLite file (not in memory), so peak memory does
-// not grow with the input. Deleted when the build ends, successfully or not;
+// Scratch storage for a build (the staging/resume protocol every raster
+// builder shares, docs/robustness.md): per-level intermediate blocks live in
+// a temporary SQLite file (not in memory), so peak memory does not grow with
+// the input. Deleted when the build ends, successfully or not;
 // a killed build leaves it behind, consistent at its last commit (rollback
 // journal), with a checkpoint saying how far the build had got, for --resume.
 #pragma once
@@ -16,12 +17,11 @@
 #include "tileformat/sqlite_db.hpp"
 #include "tileformat/tile_id.hpp"
 
-namespace globe {
+namespace tileformat {
 
-// kRaw: a block's own samples; kEdges: just its first row and column (what
-// its west/north neighbours take from it); kFinal / kNodeErrors / kQuarter
-// (every other sample, for the parent): after pass 2.
-enum class Stage : int { kRaw = 1, kFinal = 2, kNodeErrors = 3, kEdges = 4, kQuarter = 5 };
+// A builder's name for one kind of intermediate data (a small integer, 0..255:
+// the builder's stage enum); each (stage, zoom) is its own table.
+using StageTag = int;
 
 // How far a build got: pass `pass` of zoom `z` has consumed its first `done`
 // work items, which put `puts` tiles of zoom z into the package (the meaning
@@ -46,11 +46,11 @@ class StagingStore {
   // Every committed checkpoint of zoom z, oldest first.
   std::vector<StageCheckpoint> checkpoints(int z);
 
-  void put(Stage stage, tileformat::TileId id, const std::vector<uint8_t>& data);
-  std::optional<std::vector<uint8_t>> get(Stage stage, tileformat::TileId id);
+  void put(StageTag stage, TileId id, const std::vector<uint8_t>& data);
+  std::optional<std::vector<uint8_t>> get(StageTag stage, TileId id);
   // Tiles of one stage and zoom, sorted by (y, x).
-  std::vector<tileformat::TileId> list(Stage stage, int z);
-  void drop(Stage stage, int z);
+  std::vector<TileId> list(StageTag stage, int z);
+  void drop(StageTag stage, int z);
   void commit();  // ends the current write transaction
   // Commits together with a checkpoint (atomically).
   void commit(const StageCheckpoint& at);
@@ -61,17 +61,14 @@ class StagingStore {
 
  private:
   struct Table {
-    std::unique_ptr<tileformat::SqliteStatement> put, get;
+    std::unique_ptr<SqliteStatement> put, get;
   };
-  Table& table(Stage stage, int z);  // created on first use
+  Table& table(StageTag stage, int z);  // created on first use
 
   std::string path_;
-  std::unique_ptr<tileformat::SqliteDb> db_;
+  std::unique_ptr<SqliteDb> db_;
   std::map<std::pair<int, int>, Table> tables_;  // (stage, z)
   std::chrono::steady_clock::time_point last_commit_ = std::chrono::steady_clock::now();
 };
 
-std::vector<uint8_t> pack_u32(const std::vector<uint32_t>& v);
-std::vector<uint32_t> unpack_u32(const std::vector<uint8_t>& bytes);
-
-}  // namespace globe
+}  // namespace tileformat

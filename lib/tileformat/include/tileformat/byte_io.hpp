@@ -1,6 +1,8 @@
-// Little-endian byte writer and bounds-checked reader. Readers never cast
-// structs onto bytes; every read checks the remaining length first and throws
-// FormatError citing the section the caller is decoding.
+// Little-endian byte writer and bounds-checked reader: the one byte codec of
+// the project, for the package's blobs and for every builder's scratch and
+// staging data (docs/architecture.md). Readers never cast structs onto bytes;
+// every read checks the remaining length first and throws FormatError citing
+// the section the caller is decoding.
 #pragma once
 
 #include <bit>
@@ -12,7 +14,7 @@
 
 #include "tileformat/error.hpp"
 
-namespace tileformat::detail {
+namespace tileformat {
 
 class ByteWriter {
  public:
@@ -20,6 +22,7 @@ class ByteWriter {
   void u16(uint16_t v) { put(v); }
   void u32(uint32_t v) { put(v); }
   void i32(int32_t v) { put(static_cast<uint32_t>(v)); }
+  void u64(uint64_t v) { put(v); }
   void f64(double v) { put(std::bit_cast<uint64_t>(v)); }
   // LEB128: 7 bits per byte, low bits first.
   void varint(uint64_t v) {
@@ -55,6 +58,7 @@ class ByteReader {
   uint16_t u16() { return get<uint16_t>(); }
   uint32_t u32() { return get<uint32_t>(); }
   int32_t i32() { return static_cast<int32_t>(get<uint32_t>()); }
+  uint64_t u64() { return get<uint64_t>(); }
   double f64() { return std::bit_cast<double>(get<uint64_t>()); }
   uint64_t varint() {
     uint64_t v = 0;
@@ -107,4 +111,4 @@ class ByteReader {
   std::string section_;
 };
 
-}  // namespace tileformat::detail
+}  // namespace tileformat
