@@ -73,3 +73,75 @@ TEST(KPatch, ChildBlockRootsAreDepthTwoNodesOfTheParent) {
     }
   }
 }
+
+TEST(KPatchHierarchy, VertexAtInvertsVertexPosition) {
+  const KPatchLayout l(64, 4, 1);
+  for (int d = 0; d < l.depth(); ++d)
+    for (size_t v = l.vertex_offset(d); v < l.vertex_offset(d + 1); ++v)
+      EXPECT_EQ(l.vertex_at(d, l.vertex_position(v)), v) << "depth " << d;
+}
+
+TEST(KPatchHierarchy, ChildrenAndParentsAreInverse) {
+  // Within one block (root = steps), every child a vertex names lists that
+  // vertex among its two parents, for either diagonal of the block.
+  for (int diagonal : {0, 1}) {
+    const KPatchLayout l(32, 4, diagonal);
+    auto parents_of = [&](Point p, int level) {
+      return tileformat::vertex_parents({p.x, p.y}, level, l.steps());
+    };
+    auto has_parent = [&](Point child, int level, Point parent) {
+      for (const auto& q : parents_of(child, level))
+        if (q.x == parent.x && q.y == parent.y) return true;
+      return false;
+    };
+    // A block of diagonal 1 is the root cell of a tiling whose roots alternate.
+    auto shifted = [&](Point p) { return Point{p.x + diagonal * l.steps(), p.y}; };
+    for (int m = 0; 2 * m + 2 <= l.depth(); ++m) {
+      const int cells = 1 << m;
+      for (int cy = 0; cy < cells; ++cy)
+        for (int cx = 0; cx < cells; ++cx) {
+          const Point centre = l.vertex_position(l.cell_vertex(m, cx, cy));
+          for (size_t c : l.centre_children(m, cx, cy))
+            EXPECT_TRUE(has_parent(l.vertex_position(c), 2 * m + 1, centre));
+        }
+      for (int row = 0; row <= cells; ++row)
+        for (int cx = 0; cx < cells; ++cx) {
+          const Point edge = shifted(l.vertex_position(l.hedge_vertex(m, row, cx)));
+          for (const tileformat::Cell& c : KPatchLayout::hedge_children(m, row, cx)) {
+            const int s = l.steps() >> c.m;
+            const Point centre = shifted({c.cx * s + s / 2, c.cy * s + s / 2});
+            if (centre.y < 0) continue;  // above the tiling
+            EXPECT_TRUE(has_parent(centre, 2 * m + 2, edge)) << "m " << m << " row " << row;
+          }
+        }
+    }
+  }
+}
+
+TEST(KPatchHierarchy, NodeInChildIsTheSameTriangle) {
+  const tileformat::TileId parent{4, 6, 3};
+  const KPatchLayout pl(64, 8, parent.diagonal());
+  const auto children = parent.children();
+  for (size_t i = pl.node_offset(2); i < pl.nodes().size(); ++i) {
+    const auto [c, ci] = pl.node_in_child(i);
+    const KPatchLayout cl(64, 8, children[c].diagonal());
+    const int ox = (c & 1) * 32, oy = (c >> 1) * 32;
+    auto up = [&](Point p) { return Point{ox + p.x / 2, oy + p.y / 2}; };
+    const auto& n = pl.nodes()[i];
+    const auto& m = cl.nodes()[ci];
+    EXPECT_EQ(m.depth, n.depth - 2);
+    EXPECT_EQ(up(m.apex), n.apex) << "node " << i;
+    EXPECT_TRUE((up(m.b) == n.b && up(m.c) == n.c) || (up(m.b) == n.c && up(m.c) == n.b));
+  }
+}
+
+TEST(KPatchHierarchy, LocateCellCrossesIntoNeighbours) {
+  const auto w = tileformat::locate_cell({2, -1, 3});
+  EXPECT_EQ(w.dx, -1);
+  EXPECT_EQ(w.dy, 0);
+  EXPECT_EQ(w.cell, (tileformat::Cell{2, 3, 3}));
+  const auto se = tileformat::locate_cell({2, 4, 4});
+  EXPECT_EQ(se.dx, 1);
+  EXPECT_EQ(se.dy, 1);
+  EXPECT_EQ(se.cell, (tileformat::Cell{2, 0, 0}));
+}

@@ -55,28 +55,10 @@ bool PatchSelector::in_extent(const KeyPoint& p) const {
 }
 
 void PatchSelector::parents(const KeyPoint& v, int level, KeyPoint out[2], int& count) const {
-  const int64_t root = int64_t{steps_} << max_zoom_;
-  const int64_t s = root >> (level >> 1), h = s / 2;
-  KeyPoint p[2];
-  if (level % 2 == 0) {  // centre of an s-square, split along its diagonal
-    const int64_t i = (v.x - h) / s, j = (v.y - h) / s;
-    if (((i + j) & 1) == 0) {  // top-left to bottom-right: parents are TR and BL
-      p[0] = {v.x + h, v.y - h};
-      p[1] = {v.x - h, v.y + h};
-    } else {
-      p[0] = {v.x - h, v.y - h};
-      p[1] = {v.x + h, v.y + h};
-    }
-  } else if (v.x % s == h) {  // midpoint of a horizontal edge: parents above and below
-    p[0] = {v.x, v.y - h};
-    p[1] = {v.x, v.y + h};
-  } else {
-    p[0] = {v.x - h, v.y};
-    p[1] = {v.x + h, v.y};
-  }
+  const auto p = tileformat::vertex_parents({v.x, v.y}, level, int64_t{steps_} << max_zoom_);
   count = 0;
-  for (const KeyPoint& q : p)
-    if (in_extent(q)) out[count++] = q;
+  for (const tileformat::LatticePoint& q : p)
+    if (in_extent({q.x, q.y})) out[count++] = {q.x, q.y};
 }
 
 bool PatchSelector::active(const KeyPoint& v, int level) {
@@ -114,14 +96,7 @@ bool PatchSelector::active(const KeyPoint& v, int level) {
     if (block) {
       const int lx = static_cast<int>((v.x - bx * t) >> shift);
       const int ly = static_cast<int>((v.y - by * t) >> shift);
-      const int m = d / 2, cs = steps_ >> m;
-      size_t index;
-      if (d % 2 == 0)
-        index = layout_.cell_vertex(m, (lx - cs / 2) / cs, (ly - cs / 2) / cs);
-      else if (lx % cs == cs / 2)
-        index = layout_.hedge_vertex(m, ly / cs, (lx - cs / 2) / cs);
-      else
-        index = layout_.vedge_vertex(m, (ly - cs / 2) / cs, lx / cs);
+      const size_t index = layout_.vertex_at(d, {lx, ly});
       const double error = block->vertex_error.at(index) * error_scale_;
       if (error > 0) {
         const glm::dvec3 w = frame_->key_to_world(double(v.x), double(v.y), 0, view_->origin);

@@ -106,4 +106,47 @@ KPatchLayout::KPatchLayout(int steps, int lattice, int diagonal)
   }
 }
 
+BlockCell locate_cell(const Cell& c) {
+  const int cells = 1 << c.m;
+  const int dx = c.cx < 0 ? -1 : (c.cx >= cells ? 1 : 0);
+  const int dy = c.cy < 0 ? -1 : (c.cy >= cells ? 1 : 0);
+  return {dx, dy, Cell{c.m, c.cx - dx * cells, c.cy - dy * cells}};
+}
+
+size_t KPatchLayout::vertex_at(int depth, Point p) const {
+  const int m = depth / 2, cs = steps_ >> m;
+  if (depth % 2 == 0) return cell_vertex(m, (p.x - cs / 2) / cs, (p.y - cs / 2) / cs);
+  if (p.x % cs == cs / 2) return hedge_vertex(m, p.y / cs, (p.x - cs / 2) / cs);
+  return vedge_vertex(m, (p.y - cs / 2) / cs, p.x / cs);
+}
+
+std::pair<int, size_t> KPatchLayout::node_in_child(size_t index) const {
+  const KPatchNode& n = nodes_[index];
+  const int d = n.depth, m = d / 2;
+  const size_t local = index - node_offset_[d];
+  const size_t per_cell = (d % 2 == 0) ? 2 : 4;
+  const int cells = 1 << m, cell = static_cast<int>(local / per_cell),
+            sub = static_cast<int>(local % per_cell);
+  const int cx = cell % cells, cy = cell / cells;
+  const int half = cells / 2;  // level-m cells per child block side, at level m - 1 in the child
+  const int qx = cx / half, qy = cy / half;
+  const int lx = cx % half, ly = cy % half;
+  const size_t child_index =
+      (d % 2 == 0) ? even_node(m - 1, lx, ly, sub) : odd_node(m - 1, lx, ly, sub);
+  return {qx + 2 * qy, child_index};
+}
+
+std::array<LatticePoint, 2> vertex_parents(LatticePoint v, int level, int64_t root) {
+  const int64_t s = root >> (level >> 1), h = s / 2;
+  if (level % 2 == 0) {  // centre of an s-square, split along its diagonal
+    const int64_t i = (v.x - h) / s, j = (v.y - h) / s;
+    if (((i + j) & 1) == 0)  // top-left to bottom-right: parents are TR and BL
+      return {LatticePoint{v.x + h, v.y - h}, LatticePoint{v.x - h, v.y + h}};
+    return {LatticePoint{v.x - h, v.y - h}, LatticePoint{v.x + h, v.y + h}};
+  }
+  if (v.x % s == h)  // midpoint of a horizontal edge: parents above and below
+    return {LatticePoint{v.x, v.y - h}, LatticePoint{v.x, v.y + h}};
+  return {LatticePoint{v.x - h, v.y}, LatticePoint{v.x + h, v.y}};
+}
+
 }  // namespace tileformat

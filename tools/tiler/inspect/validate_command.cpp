@@ -31,32 +31,31 @@ void check_saturation(const KPatchLayout& l, const MBlock& b, const std::string&
                       ValidationReport& r) {
   const auto& e = b.vertex_error;
   const int levels = l.depth() / 2;
+  // Every vertex's error is at least each of its 4-8 children's (those of
+  // this block; the others are checked from their own block).
+  auto inside = [](const tileformat::Cell& c) {
+    return c.cx >= 0 && c.cy >= 0 && c.cx < (1 << c.m) && c.cy < (1 << c.m);
+  };
+  auto centre = [&](const tileformat::Cell& c) { return e[l.cell_vertex(c.m, c.cx, c.cy)]; };
   for (int m = 0; m < levels; ++m) {
     const int cells = 1 << m;
     for (int cy = 0; cy < cells; ++cy)
-      for (int cx = 0; cx < cells; ++cx) {
-        const uint32_t v = e[l.cell_vertex(m, cx, cy)];
-        for (size_t child : {l.hedge_vertex(m, cy, cx), l.hedge_vertex(m, cy + 1, cx),
-                             l.vedge_vertex(m, cy, cx), l.vedge_vertex(m, cy, cx + 1)})
-          if (e[child] > v)
+      for (int cx = 0; cx < cells; ++cx)
+        for (size_t child : l.centre_children(m, cx, cy))
+          if (e[child] > e[l.cell_vertex(m, cx, cy)])
             return r.error(where + ": vertex error not saturated at level " + std::to_string(m));
-      }
     for (int row = 0; row <= cells; ++row)
       for (int cx = 0; cx < cells; ++cx)
-        for (int sy : {2 * row - 1, 2 * row})
-          for (int sx : {2 * cx, 2 * cx + 1})
-            if (sy >= 0 && sy < 2 * cells &&
-                e[l.cell_vertex(m + 1, sx, sy)] > e[l.hedge_vertex(m, row, cx)])
-              return r.error(where + ": edge vertex error not saturated at level " +
-                             std::to_string(m));
+        for (const tileformat::Cell& c : KPatchLayout::hedge_children(m, row, cx))
+          if (inside(c) && centre(c) > e[l.hedge_vertex(m, row, cx)])
+            return r.error(where + ": edge vertex error not saturated at level " +
+                           std::to_string(m));
     for (int cy = 0; cy < cells; ++cy)
       for (int col = 0; col <= cells; ++col)
-        for (int sx : {2 * col - 1, 2 * col})
-          for (int sy : {2 * cy, 2 * cy + 1})
-            if (sx >= 0 && sx < 2 * cells &&
-                e[l.cell_vertex(m + 1, sx, sy)] > e[l.vedge_vertex(m, cy, col)])
-              return r.error(where + ": edge vertex error not saturated at level " +
-                             std::to_string(m));
+        for (const tileformat::Cell& c : KPatchLayout::vedge_children(m, cy, col))
+          if (inside(c) && centre(c) > e[l.vedge_vertex(m, cy, col)])
+            return r.error(where + ": edge vertex error not saturated at level " +
+                           std::to_string(m));
   }
 }
 

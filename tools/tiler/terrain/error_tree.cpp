@@ -7,6 +7,7 @@
 
 namespace globe {
 
+using tileformat::Cell;
 using tileformat::KPatchLayout;
 using tileformat::KPatchNode;
 using tileformat::Point;
@@ -109,24 +110,6 @@ uint32_t quanta(double v) {
   return static_cast<uint32_t>(std::ceil(v - 1e-9));
 }
 
-// For node `index` of depth >= 2: the child block (0..3) holding it and the
-// index of the same triangle in that block (two depths shallower).
-std::pair<int, size_t> child_node(const KPatchLayout& layout, size_t index) {
-  const KPatchNode& n = layout.nodes()[index];
-  const int d = n.depth, m = d / 2;
-  const size_t local = index - layout.node_offset(d);
-  const size_t per_cell = (d % 2 == 0) ? 2 : 4;
-  const int cells = 1 << m, cell = static_cast<int>(local / per_cell),
-            sub = static_cast<int>(local % per_cell);
-  const int cx = cell % cells, cy = cell / cells;
-  const int half = cells / 2;  // level-m cells per child block side, at level m - 1 in the child
-  const int qx = cx / half, qy = cy / half;
-  const int lx = cx % half, ly = cy % half;
-  const size_t child_index =
-      (d % 2 == 0) ? layout.even_node(m - 1, lx, ly, sub) : layout.odd_node(m - 1, lx, ly, sub);
-  return {qx + 2 * qy, child_index};
-}
-
 }  // namespace
 
 std::vector<uint32_t> node_errors(const KPatchLayout& layout, const std::vector<int32_t>& q,
@@ -142,7 +125,7 @@ std::vector<uint32_t> node_errors(const KPatchLayout& layout, const std::vector<
       const uint32_t below =
           n.children[0] < 0 ? 0 : std::max(err[n.children[0]], err[n.children[1]]);
       if (d >= 2 && !finest) {
-        auto [c, ci] = child_node(layout, i);
+        auto [c, ci] = layout.node_in_child(i);
         if (children[c]) {
           err[i] = (*children[c])[ci];
           continue;
@@ -159,25 +142,24 @@ std::vector<uint32_t> node_errors(const KPatchLayout& layout, const std::vector<
 
 std::vector<uint32_t> vertex_errors(const KPatchLayout& layout, const Neighbourhood& nb) {
   std::vector<uint32_t> out(layout.vertex_count(), 0);
-  // Node error of node (m, gx, gy, sub) addressed in cell coordinates that may
-  // leave the block by one block in any direction.
-  auto locate = [&](int m, int gx, int gy, int& lx, int& ly) -> const std::vector<uint32_t>* {
-    const int cells = 1 << m;
-    const int bx = gx < 0 ? -1 : (gx >= cells ? 1 : 0), by = gy < 0 ? -1 : (gy >= cells ? 1 : 0);
-    lx = gx - bx * cells;
-    ly = gy - by * cells;
-    return nb[by + 1][bx + 1];
+  // Node errors of a cell given in coordinates that may leave the block by
+  // one block in any direction (tileformat::locate_cell).
+  auto errors_of = [&](const Cell& c, Cell& local) -> const std::vector<uint32_t>* {
+    const tileformat::BlockCell bc = tileformat::locate_cell(c);
+    local = bc.cell;
+    return nb[bc.dy + 1][bc.dx + 1];
   };
   auto cell_error = [&](int m, int gx, int gy) -> uint32_t {
-    int lx, ly;
-    const auto* e = locate(m, gx, gy, lx, ly);
+    Cell l;
+    const auto* e = errors_of({m, gx, gy}, l);
     if (!e) return 0;
-    return std::max((*e)[layout.even_node(m, lx, ly, 0)], (*e)[layout.even_node(m, lx, ly, 1)]);
+    return std::max((*e)[layout.even_node(m, l.cx, l.cy, 0)],
+                    (*e)[layout.even_node(m, l.cx, l.cy, 1)]);
   };
   auto odd_error = [&](int m, int gx, int gy, int k) -> uint32_t {
-    int lx, ly;
-    const auto* e = locate(m, gx, gy, lx, ly);
-    return e ? (*e)[layout.odd_node(m, lx, ly, k)] : 0;
+    Cell l;
+    const auto* e = errors_of({m, gx, gy}, l);
+    return e ? (*e)[layout.odd_node(m, l.cx, l.cy, k)] : 0;
   };
   auto n3 = [&](int m, int gx, int gy) {
     uint32_t v = 0;
@@ -197,18 +179,16 @@ std::vector<uint32_t> vertex_errors(const KPatchLayout& layout, const Neighbourh
     for (int row = 0; row <= cells; ++row)
       for (int cx = 0; cx < cells; ++cx) {
         uint32_t v = std::max(odd_error(m, cx, row - 1, 2), odd_error(m, cx, row, 0));
-        for (int sy : {2 * row - 1, 2 * row})
-          for (int sx : {2 * cx, 2 * cx + 1})
-            v = std::max(v, n3(m + 1, sx, sy));
+        for (const Cell& c : KPatchLayout::hedge_children(m, row, cx))
+          v = std::max(v, n3(c.m, c.cx, c.cy));
         out[layout.hedge_vertex(m, row, cx)] = v;
       }
     // Vertical edges: between cell (col-1, cy) on the left and (col, cy) on the right.
     for (int cy = 0; cy < cells; ++cy)
       for (int col = 0; col <= cells; ++col) {
         uint32_t v = std::max(odd_error(m, col - 1, cy, 1), odd_error(m, col, cy, 3));
-        for (int sx : {2 * col - 1, 2 * col})
-          for (int sy : {2 * cy, 2 * cy + 1})
-            v = std::max(v, n3(m + 1, sx, sy));
+        for (const Cell& c : KPatchLayout::vedge_children(m, cy, col))
+          v = std::max(v, n3(c.m, c.cx, c.cy));
         out[layout.vedge_vertex(m, cy, col)] = v;
       }
   }

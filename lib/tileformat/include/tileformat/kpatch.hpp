@@ -9,8 +9,10 @@
 // are the four triangles from a level-m cell's centre to one of its edges.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace tileformat {
@@ -20,6 +22,22 @@ struct Point {
   int y = 0;
   bool operator==(const Point&) const = default;
 };
+
+// A level-m cell given relative to one block; cx, cy may leave the block by
+// one block in any direction (-2^m .. 2^(m+1) - 1), where a neighbour's
+// cells continue the grid.
+struct Cell {
+  int m = 0, cx = 0, cy = 0;
+  bool operator==(const Cell&) const = default;
+};
+
+// A cell of the block at offset (dx, dy) (each -1, 0 or 1) from this one,
+// in that block's own coordinates.
+struct BlockCell {
+  int dx = 0, dy = 0;
+  Cell cell;
+};
+BlockCell locate_cell(const Cell& c);
 
 // One bintree node: right angle at `apex`, legs apex->b and apex->c; the
 // hypotenuse b-c is split at its midpoint (the node's split vertex).
@@ -72,6 +90,30 @@ class KPatchLayout {
     return m == 0 ? diagonal_ : static_cast<int>((cx + cy) & 1);
   }
 
+  // The 4-8 hierarchy of split vertices (§6.1): a cell centre's children
+  // are the midpoints of its four edges (top, bottom, left, right); an edge
+  // midpoint's children are the centres of the four level-(m+1) cells that
+  // touch it, two of which lie in the neighbour block across a block edge.
+  std::array<size_t, 4> centre_children(int m, int cx, int cy) const {
+    return {hedge_vertex(m, cy, cx), hedge_vertex(m, cy + 1, cx), vedge_vertex(m, cy, cx),
+            vedge_vertex(m, cy, cx + 1)};
+  }
+  static std::array<Cell, 4> hedge_children(int m, int row, int cx) {
+    return {Cell{m + 1, 2 * cx, 2 * row - 1}, Cell{m + 1, 2 * cx + 1, 2 * row - 1},
+            Cell{m + 1, 2 * cx, 2 * row}, Cell{m + 1, 2 * cx + 1, 2 * row}};
+  }
+  static std::array<Cell, 4> vedge_children(int m, int cy, int col) {
+    return {Cell{m + 1, 2 * col - 1, 2 * cy}, Cell{m + 1, 2 * col, 2 * cy},
+            Cell{m + 1, 2 * col - 1, 2 * cy + 1}, Cell{m + 1, 2 * col, 2 * cy + 1}};
+  }
+  // The split vertex of depth `depth` at sample position `p` (the inverse of
+  // vertex_position; p must be such a vertex).
+  size_t vertex_at(int depth, Point p) const;
+  // Across zooms: node `index` (depth >= 2) is the same triangle as a node two
+  // depths shallower in one of the block's four child blocks (§6.1). Returns
+  // the child (0..3 in TileId::children() order) and that node's index.
+  std::pair<int, size_t> node_in_child(size_t index) const;
+
  private:
   int steps_, lattice_, depth_, diagonal_;
   std::vector<KPatchNode> nodes_;
@@ -79,6 +121,16 @@ class KPatchLayout {
   std::vector<size_t> vertex_offset_;  // depth -> first vertex; size D + 2
   std::vector<Point> vertex_pos_;
 };
+
+// The 4-8 hierarchy over a whole tiling, in integer lattice units where a
+// root tile is `root` units wide (root >> (level / 2) must stay even):
+// the two parents of the split vertex `v` of level `level` (2 * zoom +
+// depth in the block). Parents may lie outside the tiling.
+struct LatticePoint {
+  int64_t x = 0, y = 0;
+  bool operator==(const LatticePoint&) const = default;
+};
+std::array<LatticePoint, 2> vertex_parents(LatticePoint v, int level, int64_t root);
 
 // D for a block of `steps` steps and patch lattice L: 2 * log2(steps / L).
 int kpatch_depth(int steps, int lattice);
