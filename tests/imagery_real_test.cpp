@@ -8,6 +8,8 @@
 //   - JPEG / WebP at quality 90: PSNR >= 35 dB.
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include "image_fixtures.hpp"
 #include "test_support.hpp"
 
@@ -26,6 +28,11 @@ struct ImageCase {
 };
 
 class RealImagery : public ::testing::TestWithParam<ImageCase> {};
+
+// ctest lists parameterised tests with their value: the case's name.
+[[maybe_unused]] void PrintTo(const ImageCase& c, std::ostream* os) {
+  *os << c.name;
+}
 
 TEST_P(RealImagery, ReadsBackThroughGdalLikeGdalwarp) {
   const ImageCase& c = GetParam();

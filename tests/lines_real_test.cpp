@@ -4,6 +4,7 @@
 // `extract` within the quantization step plus the simplification tolerance.
 #include <gtest/gtest.h>
 
+#include <ostream>
 #include <random>
 
 #include "line_fixtures.hpp"
@@ -22,6 +23,11 @@ struct RealSet {
 };
 
 class RealLines : public ::testing::TestWithParam<RealSet> {};
+
+// ctest lists parameterised tests with their value: the case's name.
+[[maybe_unused]] void PrintTo(const RealSet& c, std::ostream* os) {
+  *os << c.name;
+}
 
 // Random points within `reach` of random segments must find the segment in
 // their cell (tileformat §7.3), on every tile of the given zoom.
