@@ -19,7 +19,7 @@ TEST(Package, WritesReadsAndDeduplicates) {
   const auto path = (dir / "p.mbtiles").string();
   const std::vector<uint8_t> a{1, 2, 3}, b{4, 5};
   {
-    PackageWriter w(path, false);
+    PackageWriter w(path, tileformat::IfExists::kFail);
     w.put_tile({2, 1, 0}, a);
     w.put_tile({2, 2, 3}, a);
     w.put_tile({1, 1, 1}, b);
@@ -45,7 +45,7 @@ TEST(Package, UncommittedWriterLeavesNothing) {
   TempDir dir;
   const auto path = (dir / "p.mbtiles").string();
   {
-    PackageWriter w(path, false);
+    PackageWriter w(path, tileformat::IfExists::kFail);
     w.put_tile({0, 0, 0}, std::vector<uint8_t>{1});
   }
   EXPECT_FALSE(std::filesystem::exists(path));
@@ -56,7 +56,7 @@ TEST(Package, RefusesExistingOutputWithoutOverwrite) {
   TempDir dir;
   const auto path = (dir / "p.mbtiles").string();
   std::ofstream(path) << "precious";
-  EXPECT_THROW(PackageWriter(path, false), tileformat::PackageError);
+  EXPECT_THROW(PackageWriter(path, tileformat::IfExists::kFail), tileformat::PackageError);
   EXPECT_EQ(globe_test::read_file(path), "precious");
 }
 
@@ -82,7 +82,7 @@ TEST(Package, ResumeContinuesAKilledWriterToTheSameBytes) {
   TempDir dir;
   const auto ref = (dir / "ref.mbtiles").string(), out = (dir / "out.mbtiles").string();
   {
-    PackageWriter w(ref, false, "key", false);
+    PackageWriter w(ref, tileformat::IfExists::kFail, "key", tileformat::Resume::kStartAfresh);
     put_tiles(w, 0, 700);
     w.set_metadata("name", "p");
     w.commit();
@@ -91,16 +91,18 @@ TEST(Package, ResumeContinuesAKilledWriterToTheSameBytes) {
   // batch of 512 is committed, the rest is in a hot journal.
   const pid_t pid = ::fork();
   if (pid == 0) {
-    PackageWriter w(out, false, "key", false);
+    PackageWriter w(out, tileformat::IfExists::kFail, "key", tileformat::Resume::kStartAfresh);
     put_tiles(w, 0, 700);
     ::_exit(0);
   }
   int status = 0;
   ::waitpid(pid, &status, 0);
   ASSERT_TRUE(std::filesystem::exists(out + ".tmp"));
-  EXPECT_THROW(PackageWriter(out, false, "another key", true), tileformat::PackageError);
+  EXPECT_THROW(
+      PackageWriter(out, tileformat::IfExists::kFail, "another key", tileformat::Resume::kContinue),
+      tileformat::PackageError);
   {
-    PackageWriter w(out, false, "key", true);
+    PackageWriter w(out, tileformat::IfExists::kFail, "key", tileformat::Resume::kContinue);
     ASSERT_TRUE(w.resumed());
     EXPECT_EQ(w.tiles_at_zoom(10), 512u);
     put_tiles(w, static_cast<uint32_t>(w.tiles_at_zoom(10)), 700);

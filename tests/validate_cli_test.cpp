@@ -32,7 +32,7 @@ MBlock flat_block(int32_t height) {
 std::string write_package(const TempDir& dir, const MBlock& west, const MBlock& east,
                           const MBlock& parent, std::vector<uint8_t> corrupt = {}) {
   const auto path = (dir / "p.mbtiles").string();
-  tileformat::PackageWriter w(path, true);
+  tileformat::PackageWriter w(path, tileformat::IfExists::kOverwrite);
   std::map<std::string, std::string> meta;
   tileformat::Tiling::webmercator().to_metadata(meta);
   meta["format"] = tileformat::kMBlockFormat;

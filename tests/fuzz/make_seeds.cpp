@@ -37,7 +37,8 @@ std::vector<Bytes> mblocks() {
   for (int i = 0; i < 65 * 65; ++i)
     big.q.push_back(100000 + (i * 7919) % 4000 - (i / 65) * 3);
   big.vertex_error.assign(tileformat::kpatch_vertex_count(tileformat::kpatch_depth(64, 16)), 5);
-  return {tileformat::encode_mblock(golden_block()), tileformat::encode_mblock(full, 9, false),
+  return {tileformat::encode_mblock(golden_block()),
+          tileformat::encode_mblock(full, 9, tileformat::HeightCoding::kBytePlanes),
           tileformat::encode_mblock(big)};
 }
 
@@ -74,7 +75,7 @@ Bytes package(const fs::path& scratch, const char* format, const std::vector<Byt
   const std::string path = (scratch / "seed.mbtiles").string();
   fs::remove(path);
   {
-    tileformat::PackageWriter w(path, true);
+    tileformat::PackageWriter w(path, tileformat::IfExists::kOverwrite);
     w.set_metadata("name", "seed");
     w.set_metadata("format", format);
     w.set_metadata("minzoom", "0");

@@ -49,7 +49,8 @@ int run_lines_extract(const std::vector<std::string>& args) {
     return feature_cache.emplace(id, std::move(v)).first->second;
   };
 
-  VectorWriter out(output, force, p.tiling.crs);
+  VectorWriter out(output, force ? tileformat::IfExists::kOverwrite : tileformat::IfExists::kFail,
+                   p.tiling.crs);
   p.reader->for_each_tile(
       [&](tileformat::TileId id, std::span<const uint8_t> blob) {
         const tileformat::LineTile t = tileformat::decode_line_tile(blob);

@@ -7,14 +7,16 @@
 #include <filesystem>
 
 #include "errors.hpp"
+#include "spatial_ref.hpp"
 
 namespace globe {
 
-VectorWriter::VectorWriter(std::string path, bool overwrite, const std::string& crs_wkt)
+VectorWriter::VectorWriter(std::string path, tileformat::IfExists if_exists,
+                           const std::string& crs_wkt)
     : path_(std::move(path)), crs_wkt_(crs_wkt) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (fs::exists(path_, ec) && !overwrite)
+  if (fs::exists(path_, ec) && if_exists == tileformat::IfExists::kFail)
     throw OutputError(path_ + ": output exists; pass --force to replace it");
   const fs::path p(path_);
   temp_ = (p.parent_path() / (p.stem().string() + ".tmp" + p.extension().string())).string();
@@ -31,14 +33,13 @@ VectorWriter::~VectorWriter() {
   std::filesystem::remove(temp_, ec);
 }
 
-void* VectorWriter::layer(bool points) {
+void* VectorWriter::layer(Kind kind) {
+  const bool points = kind == Kind::kPoints;
   void*& l = points ? points_layer_ : lines_layer_;
   if (l) return l;
-  OGRSpatialReferenceH srs = OSRNewSpatialReference(nullptr);
-  OSRSetFromUserInput(srs, crs_wkt_.c_str());
-  OGRLayerH layer = GDALDatasetCreateLayer(ds_.get(), points ? "points" : "lines", srs,
+  const SpatialRef srs = SpatialRef::from_wkt(crs_wkt_, path_ + " (the package's CRS)");
+  OGRLayerH layer = GDALDatasetCreateLayer(ds_.get(), points ? "points" : "lines", srs.get(),
                                            points ? wkbPoint : wkbLineString, nullptr);
-  OSRRelease(srs);
   if (!layer) throw OutputError(temp_ + ": cannot create a layer (" + gdal_last_error() + ")");
   const std::pair<const char*, OGRFieldType> fields[] = {{"feature_id", OFTInteger64},
                                                          {"class", OFTString},
@@ -55,16 +56,20 @@ void* VectorWriter::layer(bool points) {
   return l;
 }
 
-void VectorWriter::add(void* geometry, bool points, const VectorAttributes& a) {
-  OGRLayerH l = static_cast<OGRLayerH>(layer(points));
+void VectorWriter::add(void* geometry, Kind kind, const VectorAttributes& a) {
+  OGRLayerH l = static_cast<OGRLayerH>(layer(kind));
   OGRFeatureH f = OGR_F_Create(OGR_L_GetLayerDefn(l));
+  if (!f) {
+    OGR_G_DestroyGeometry(static_cast<OGRGeometryH>(geometry));
+    throw OutputError(temp_ + ": cannot create a feature (out of memory?)");
+  }
   OGR_F_SetFieldInteger64(f, 0, a.feature_id);
   OGR_F_SetFieldString(f, 1, a.class_name.c_str());
   OGR_F_SetFieldString(f, 2, a.layer.c_str());
   OGR_F_SetFieldString(f, 3, a.tile.c_str());
   OGR_F_SetFieldString(f, 4, a.properties.c_str());
-  OGR_F_SetGeometryDirectly(f, static_cast<OGRGeometryH>(geometry));
-  const OGRErr err = OGR_L_CreateFeature(l, f);
+  OGRErr err = OGR_F_SetGeometryDirectly(f, static_cast<OGRGeometryH>(geometry));
+  if (err == OGRERR_NONE) err = OGR_L_CreateFeature(l, f);
   OGR_F_Destroy(f);
   if (err != OGRERR_NONE)
     throw OutputError(temp_ + ": cannot write a feature (" + gdal_last_error() +
@@ -75,14 +80,14 @@ void VectorWriter::add_line(const std::vector<XY>& pts, const VectorAttributes& 
   OGRGeometryH g = OGR_G_CreateGeometry(wkbLineString);
   for (const XY& p : pts)
     OGR_G_AddPoint_2D(g, p.x, p.y);
-  add(g, false, a);
+  add(g, Kind::kLines, a);
   ++lines_;
 }
 
 void VectorWriter::add_point(XY p, const VectorAttributes& a) {
   OGRGeometryH g = OGR_G_CreateGeometry(wkbPoint);
   OGR_G_SetPoint_2D(g, 0, p.x, p.y);
-  add(g, true, a);
+  add(g, Kind::kPoints, a);
   ++points_;
 }
 

@@ -9,6 +9,7 @@
 
 #include "gdal_dataset.hpp"
 #include "line_geometry.hpp"
+#include "tileformat/package.hpp"
 
 namespace globe {
 
@@ -19,8 +20,8 @@ struct VectorAttributes {
 
 class VectorWriter {
  public:
-  // Throws OutputError if `path` exists and !overwrite, or cannot be created.
-  VectorWriter(std::string path, bool overwrite, const std::string& crs_wkt);
+  // Throws OutputError if `path` exists and kFail, or cannot be created.
+  VectorWriter(std::string path, tileformat::IfExists if_exists, const std::string& crs_wkt);
   ~VectorWriter();  // deletes the temporary file unless committed
   VectorWriter(const VectorWriter&) = delete;
   VectorWriter& operator=(const VectorWriter&) = delete;
@@ -32,8 +33,9 @@ class VectorWriter {
   uint64_t points() const { return points_; }
 
  private:
-  void* layer(bool points);  // OGRLayerH
-  void add(void* geometry, bool points, const VectorAttributes& a);
+  enum class Kind { kLines, kPoints };  // one layer each
+  void* layer(Kind kind);               // OGRLayerH
+  void add(void* geometry, Kind kind, const VectorAttributes& a);
   std::string path_, temp_, crs_wkt_;
   GdalDataset ds_;
   void* lines_layer_ = nullptr;

@@ -205,9 +205,9 @@ std::vector<uint8_t> residual_section(const std::vector<uint32_t>& residual, int
 // qualifies (a 2 % limit left 1 m-step relief grids in byte planes, 0.7 %
 // larger and 25 % slower to compress).
 std::vector<uint8_t> encode_residuals(const std::vector<uint32_t>& residual, int level,
-                                      bool best_packing) {
+                                      HeightCoding height_coding) {
   int coding = 0;
-  if (best_packing) {
+  if (height_coding == HeightCoding::kBestPacking) {
     size_t over3 = 0, over15 = 0;
     for (uint32_t r : residual) {
       over3 += r >= 3;
@@ -309,7 +309,7 @@ MBlockStats mblock_stats(const MBlock& block) {
   return lo > hi ? MBlockStats{0, 0} : MBlockStats{lo, hi};
 }
 
-std::vector<uint8_t> encode_mblock(const MBlock& b, int zstd_level, bool best_packing) {
+std::vector<uint8_t> encode_mblock(const MBlock& b, int zstd_level, HeightCoding coding) {
   if (!valid_size(b.size, b.lattice))
     throw std::invalid_argument("mblock: size " + std::to_string(b.size) + " / lattice " +
                                 std::to_string(b.lattice) + " is not a valid block shape");
@@ -335,7 +335,7 @@ std::vector<uint8_t> encode_mblock(const MBlock& b, int zstd_level, bool best_pa
   w.f64(b.step);
   w.i32(stats.qmin);
   w.i32(stats.qmax);
-  w.bytes(encode_residuals(residual, zstd_level, best_packing));
+  w.bytes(encode_residuals(residual, zstd_level, coding));
   if (!b.valid.empty()) {
     std::vector<uint8_t> bits((n + 7) / 8, 0);
     for (size_t i = 0; i < n; ++i)
@@ -362,7 +362,7 @@ std::vector<uint8_t> encode_height_grid(const HeightGrid& g, int zstd_level, Hei
   ByteWriter w;
   w.u16(static_cast<uint16_t>(g.size));
   w.u8(all_valid ? 0 : kFlagMask);
-  w.bytes(encode_residuals(residual, zstd_level, coding == HeightCoding::kBestPacking));
+  w.bytes(encode_residuals(residual, zstd_level, coding));
   if (!all_valid) {
     std::vector<uint8_t> bits((n + 7) / 8, 0);
     for (size_t i = 0; i < n; ++i)

@@ -64,19 +64,19 @@ int32_t build_key_hash(const std::string& build_key) {
   return static_cast<int32_t>((h ^ (h >> 32)) & 0x7fffffff) | 1;
 }
 
-PackageWriter::PackageWriter(std::string final_path, bool overwrite)
-    : PackageWriter(std::move(final_path), overwrite, "", false) {}
+PackageWriter::PackageWriter(std::string final_path, IfExists if_exists)
+    : PackageWriter(std::move(final_path), if_exists, "", Resume::kStartAfresh) {}
 
-PackageWriter::PackageWriter(std::string final_path, bool overwrite, const std::string& build_key,
-                             bool resume)
+PackageWriter::PackageWriter(std::string final_path, IfExists if_exists,
+                             const std::string& build_key, Resume resume)
     : final_path_(std::move(final_path)),
       temp_path_(final_path_ + ".tmp"),
       key_hash_(build_key_hash(build_key)) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (fs::exists(final_path_, ec) && !overwrite)
+  if (fs::exists(final_path_, ec) && if_exists == IfExists::kFail)
     throw PackageError(final_path_ + ": output exists; pass --force to replace it");
-  if (resume && fs::exists(temp_path_, ec) && !is_empty_database(temp_path_)) {
+  if (resume == Resume::kContinue && fs::exists(temp_path_, ec) && !is_empty_database(temp_path_)) {
     resumed_ = open_existing();
     if (!resumed_)
       throw PackageError(temp_path_ +

@@ -17,9 +17,9 @@ void remove_store(const std::string& path) {
 
 }  // namespace
 
-StagingStore::StagingStore(std::string path, int32_t key, bool resume) : path_(std::move(path)) {
+StagingStore::StagingStore(std::string path, int32_t key, Resume resume) : path_(std::move(path)) {
   std::error_code ec;
-  if (resume && std::filesystem::exists(path_, ec)) {
+  if (resume == Resume::kContinue && std::filesystem::exists(path_, ec)) {
     // SQLite rolls a hot journal back on the first read.
     db_ = std::make_unique<SqliteDb>(path_, SqliteDb::Mode::kReadWriteCreate);
     try {

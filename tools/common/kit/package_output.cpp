@@ -16,7 +16,9 @@ std::unique_ptr<tileformat::PackageWriter> create_package(const BuildOptions& o,
   const bool stale = std::filesystem::exists(o.output + ".tmp", ec);
   std::unique_ptr<tileformat::PackageWriter> w;
   try {
-    w = std::make_unique<tileformat::PackageWriter>(o.output, o.force, build_key(o), o.resume);
+    w = std::make_unique<tileformat::PackageWriter>(
+        o.output, o.force ? tileformat::IfExists::kOverwrite : tileformat::IfExists::kFail,
+        build_key(o), o.resume ? tileformat::Resume::kContinue : tileformat::Resume::kStartAfresh);
   } catch (const tileformat::PackageError& e) {
     throw OutputError(e.what());
   }

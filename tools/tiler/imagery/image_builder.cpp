@@ -46,7 +46,9 @@ class Builder {
     const auto start = std::chrono::steady_clock::now();
     std::unique_ptr<tileformat::PackageWriter> writer = create_package(s_, progress_);
     try {
-      StagingStore stage(s_.output + ".staging", writer->key_hash(), writer->resumed());
+      StagingStore stage(
+          s_.output + ".staging", writer->key_hash(),
+          writer->resumed() ? tileformat::Resume::kContinue : tileformat::Resume::kStartAfresh);
       const StageCheckpoint start = resume_point(stage, *writer);
       warpers_.resize(threads_);
       for (int z = plan_.max_zoom; z >= plan_.min_zoom; --z) {

@@ -110,7 +110,9 @@ class Builder {
     const auto start = std::chrono::steady_clock::now();
     std::unique_ptr<tileformat::PackageWriter> writer = create_package(s_, progress_);
     try {
-      StagingStore stage(s_.output + ".staging", writer->key_hash(), writer->resumed());
+      StagingStore stage(
+          s_.output + ".staging", writer->key_hash(),
+          writer->resumed() ? tileformat::Resume::kContinue : tileformat::Resume::kStartAfresh);
       // Where to start. Without the stage's checkpoint (none kept), every
       // level is computed again and only the package's committed tiles are
       // skipped.
@@ -188,7 +190,7 @@ class Builder {
     if (std::any_of(b.valid.begin(), b.valid.end(), [](uint8_t v) { return v == 0; }))
       m.valid = b.valid;
     m.vertex_error.assign(layouts_[0].vertex_count(), 0);
-    return tileformat::encode_mblock(m, kFinalZstdLevel, true);
+    return tileformat::encode_mblock(m, kFinalZstdLevel, tileformat::HeightCoding::kBestPacking);
   }
   // Every other sample of a final block: what its parent takes (pass 1 of
   // the next coarser zoom), a quarter of the samples to store and read back.

@@ -32,10 +32,11 @@ struct MBlockStats {
 
 // Preconditions (checked, std::invalid_argument): size = 2^k+1 with
 // 2^k >= 2*lattice, q/valid/vertex_error sized as documented, step > 0.
-// best_packing tries every height coding of §5.2 and keeps the smallest;
-// without it byte planes are used (faster, for scratch data).
+// kBestPacking tries every height coding of §5.2 and keeps the smallest;
+// kBytePlanes always uses byte planes (faster, for scratch data).
+enum class HeightCoding { kBytePlanes, kBestPacking };
 std::vector<uint8_t> encode_mblock(const MBlock& block, int zstd_level = 9,
-                                   bool best_packing = true);
+                                   HeightCoding coding = HeightCoding::kBestPacking);
 
 // The same blob with another error tree (§5.4); heights and mask are copied,
 // not re-encoded. Throws FormatError for a malformed blob.
@@ -55,7 +56,6 @@ struct HeightGrid {
   std::vector<int32_t> q;      // size * size
   std::vector<uint8_t> valid;  // size * size, 1 = data
 };
-enum class HeightCoding { kBytePlanes, kBestPacking };  // see encode_mblock's best_packing
 std::vector<uint8_t> encode_height_grid(const HeightGrid& grid, int zstd_level,
                                         HeightCoding coding);
 // Throws FormatError for malformed bytes.

@@ -37,15 +37,21 @@ namespace tileformat {
 
 inline constexpr int64_t kApplicationId = 0x4d504258;  // "MPBX"
 
+// What a writer does with a file already under the final name.
+enum class IfExists { kFail, kOverwrite };
+// What a writer does with the temporary file of an interrupted build.
+enum class Resume { kStartAfresh, kContinue };
+
 class PackageWriter {
  public:
-  // Throws PackageError if `final_path` exists and !overwrite, or if the
+  // Throws PackageError if `final_path` exists and kFail, or if the
   // temporary file cannot be created. A stale temporary file is deleted.
-  PackageWriter(std::string final_path, bool overwrite);
-  // With `resume`, an existing temporary file started with the same
+  PackageWriter(std::string final_path, IfExists if_exists);
+  // With kContinue, an existing temporary file started with the same
   // `build_key` is continued (resumed() is then true); one started with
-  // another key throws PackageError. Without it, a stale one is deleted.
-  PackageWriter(std::string final_path, bool overwrite, const std::string& build_key, bool resume);
+  // another key throws PackageError. With kStartAfresh, a stale one is deleted.
+  PackageWriter(std::string final_path, IfExists if_exists, const std::string& build_key,
+                Resume resume);
   ~PackageWriter();  // rolls back (deletes the temporary file) unless committed
   PackageWriter(const PackageWriter&) = delete;
   PackageWriter& operator=(const PackageWriter&) = delete;

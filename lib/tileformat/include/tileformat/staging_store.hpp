@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "tileformat/package.hpp"
 #include "tileformat/sqlite_db.hpp"
 #include "tileformat/tile_id.hpp"
 
@@ -36,9 +37,9 @@ struct StageCheckpoint {
 class StagingStore {
  public:
   // `key` identifies the build (see tileformat::build_key_hash). With
-  // `resume`, an existing store made with the same key is kept; otherwise
+  // Resume::kContinue, an existing store made with the same key is kept; otherwise
   // the store starts empty.
-  StagingStore(std::string path, int32_t key, bool resume);
+  StagingStore(std::string path, int32_t key, Resume resume);
   ~StagingStore();
 
   // The last committed checkpoint of a kept store; nullopt for a new one.
