@@ -108,9 +108,13 @@ VectorReader::VectorReader(const std::vector<std::string>& inputs, const VectorR
         info.crs = assigned;
       } else if (OGRSpatialReferenceH srs = OGR_L_GetSpatialRef(layer)) {
         char* wkt = nullptr;
-        OSRExportToWkt(srs, &wkt);
-        info.crs = SpatialRef::from_wkt(wkt ? wkt : "", where);
+        const OGRErr err = OSRExportToWkt(srs, &wkt);
+        const std::string text = err == OGRERR_NONE && wkt ? wkt : "";
         CPLFree(wkt);
+        if (text.empty())
+          throw InputError(where + ": its CRS cannot be written as WKT (" + gdal_last_error() +
+                           "); pass --s_srs");
+        info.crs = SpatialRef::from_wkt(text, where);
       } else {
         throw InputError(where +
                          ": no CRS (a shapefile without .prj?); pass --s_srs, e.g. --s_srs "

@@ -23,6 +23,10 @@ void gdal_init(int cache_mb) {
   });
 }
 
+void gdal_check(int err, const std::string& what) {
+  if (err != 0) throw OutputError(what + " failed (" + gdal_last_error() + ")");
+}
+
 std::string gdal_last_error() {
   const char* msg = CPLGetLastErrorMsg();
   return msg ? msg : "";

@@ -16,6 +16,10 @@ namespace globe {
 void gdal_init(int cache_mb = 32);
 // GDAL's last error message on this thread ("" if none).
 std::string gdal_last_error();
+// Checks the result of a GDAL/OGR call that returns CPLErr or OGRErr (0 = none):
+// otherwise throws OutputError "`what` failed (GDAL's message)". Every call
+// whose result matters goes through it (docs/architecture.md rule 3).
+void gdal_check(int err, const std::string& what);
 
 class GdalDataset {
  public:

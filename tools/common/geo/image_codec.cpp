@@ -77,7 +77,9 @@ std::vector<uint8_t> encode_image_tile(const TilePixels& px, const EncodeOptions
       throw std::runtime_error("cannot fill an image buffer: " + gdal_last_error());
   }
   if (!opaque)
-    GDALSetRasterColorInterpretation(ds.band(static_cast<int>(planes.size())), GCI_AlphaBand);
+    gdal_check(
+        GDALSetRasterColorInterpretation(ds.band(static_cast<int>(planes.size())), GCI_AlphaBand),
+        "marking the tile's alpha band");
 
   const char* driver = format == ImageFormat::kJpeg ? "JPEG" : "WEBP";
   char** opts = nullptr;

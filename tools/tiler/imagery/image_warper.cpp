@@ -48,7 +48,8 @@ GdalDataset select_bands(const GdalDataset& in, const ImageSource& src, const Im
   GdalDataset wrapped(out, src.path);
   const int n = wrapped.bands();
   if (src.alpha_band || src.has_alpha_palette)
-    GDALSetRasterColorInterpretation(wrapped.band(n), GCI_AlphaBand);
+    gdal_check(GDALSetRasterColorInterpretation(wrapped.band(n), GCI_AlphaBand),
+               src.path + ": marking the alpha band");
   return wrapped;
 }
 
@@ -69,12 +70,13 @@ ImageWarper::ImageWarper(const ImagePlan& plan, const ImageSettings& s)
       GdalDataset inner(copy, src.path);
       auto gt = src.geotransform;
       gt[0] += shift;
-      GDALSetGeoTransform(copy, gt.data());
+      gdal_check(GDALSetGeoTransform(copy, gt.data()), src.path + ": setting the geotransform");
       const SpatialRef crs = SpatialRef::from_wkt(src.crs_wkt, src.path);
-      GDALSetSpatialRef(copy, crs.get());
+      gdal_check(GDALSetSpatialRef(copy, crs.get()), src.path + ": setting the CRS");
       if (s.nodata)
         for (int b : src.colour_bands)
-          GDALSetRasterNoDataValue(inner.band(b), *s.nodata);
+          gdal_check(GDALSetRasterNoDataValue(inner.band(b), *s.nodata),
+                     src.path + ": setting --nodata");
       sources.push_back(select_bands(inner, src, plan));
       opened_.push_back(std::move(inner));
     }

@@ -43,8 +43,8 @@ int extract_terrain(const ExtractRequest& rq) {
   ExtractTiff out(rq, static_cast<int>(w), static_cast<int>(h), 1, GDT_Float64, gt, p.tiling.crs);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   GDALRasterBandH band = GDALGetRasterBand(out.handle(), 1);
-  GDALSetRasterNoDataValue(band, nan);
-  GDALFillRaster(band, nan, 0);
+  gdal_check(GDALSetRasterNoDataValue(band, nan), rq.output + ": setting the nodata value");
+  gdal_check(GDALFillRaster(band, nan, 0), rq.output + ": filling with nodata");
   std::vector<double> buf(size_t(n + 1) * (n + 1));
   for (const auto& id : ids) {
     tileformat::MBlock b;
@@ -118,10 +118,18 @@ ExtractTiff::ExtractTiff(const ExtractRequest& rq, int width, int height, int ba
                                static_cast<GDALDataType>(gdal_type), opts);
   CSLDestroy(opts);
   if (!ds) throw OutputError(output_ + ": cannot create the GeoTIFF (" + gdal_last_error() + ")");
+  try {
+    gdal_check(GDALSetGeoTransform(ds, const_cast<double*>(gt)),
+               rq.output + ": setting the geotransform");
+    const SpatialRef crs = SpatialRef::from_user_input(crs_text, rq.package);
+    gdal_check(GDALSetSpatialRef(ds, crs.get()), rq.output + ": setting the CRS");
+  } catch (...) {  // the destructor does not run for a constructor that throws
+    GDALClose(ds);
+    std::error_code ec;
+    std::filesystem::remove(temp_, ec);
+    throw;
+  }
   ds_ = ds;
-  GDALSetGeoTransform(ds, const_cast<double*>(gt));
-  const SpatialRef crs = SpatialRef::from_user_input(crs_text, rq.package);
-  GDALSetSpatialRef(ds, crs.get());
 }
 
 ExtractTiff::~ExtractTiff() {

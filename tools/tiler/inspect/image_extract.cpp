@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "errors.hpp"
+#include "gdal_dataset.hpp"
 #include "image_codec.hpp"
 #include "image_package.hpp"
 #include "inspect_commands.hpp"
@@ -31,9 +32,11 @@ int extract_image(const ExtractRequest& rq) {
   auto ds = static_cast<GDALDatasetH>(out.handle());
   const GDALColorInterp colours[] = {GCI_RedBand, GCI_GreenBand, GCI_BlueBand};
   for (int b = 1; b <= p.colour; ++b)
-    GDALSetRasterColorInterpretation(GDALGetRasterBand(ds, b),
-                                     p.colour == 1 ? GCI_GrayIndex : colours[b - 1]);
-  GDALSetRasterColorInterpretation(GDALGetRasterBand(ds, bands), GCI_AlphaBand);
+    gdal_check(GDALSetRasterColorInterpretation(GDALGetRasterBand(ds, b),
+                                                p.colour == 1 ? GCI_GrayIndex : colours[b - 1]),
+               "setting band colours");
+  gdal_check(GDALSetRasterColorInterpretation(GDALGetRasterBand(ds, bands), GCI_AlphaBand),
+             "marking the alpha band");
   for (const auto& id : ids) {
     TilePixels tile;
     try {

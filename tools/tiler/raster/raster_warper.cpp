@@ -210,7 +210,8 @@ void RasterWarper::warp_source(Source& src, int w, int h, const std::string& wha
       if (GDALAddBand(window.get(), spec_.type, band_options.List()) != CE_None)
         throw std::runtime_error("cannot create the warp window: " + gdal_last_error());
     }
-    GDALSetRasterColorInterpretation(window.band(spec_.bands), GCI_AlphaBand);
+    gdal_check(GDALSetRasterColorInterpretation(window.band(spec_.bands), GCI_AlphaBand),
+               "marking the window's alpha band");
   }
   o->hDstDS = window.get();
 

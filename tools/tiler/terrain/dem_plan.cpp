@@ -78,7 +78,8 @@ DemPlan plan_terrain(const TerrainSettings& s) {
 
     GDALRasterBandH band = ds.band(1);
     if (s.nodata)
-      GDALSetRasterNoDataValue(band, *s.nodata);  // affects this handle's statistics only
+      gdal_check(GDALSetRasterNoDataValue(band, *s.nodata),  // this handle's statistics only
+                 path + ": setting --nodata");
     double mm[2] = {0, 0};
     CPLErrorReset();
     CPLErr err = GDALComputeRasterMinMax(band, TRUE, mm);

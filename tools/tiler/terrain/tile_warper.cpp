@@ -22,10 +22,12 @@ TileWarper::TileWarper(const DemPlan& plan, const std::string& resampling) : pla
       GdalDataset wrapped(copy, src.path);
       auto gt = src.geotransform;
       gt[0] += shift;
-      GDALSetGeoTransform(copy, gt.data());
+      gdal_check(GDALSetGeoTransform(copy, gt.data()), src.path + ": setting the geotransform");
       SpatialRef crs = SpatialRef::from_wkt(src.crs_wkt, src.path);
-      GDALSetSpatialRef(copy, crs.get());
-      if (src.nodata) GDALSetRasterNoDataValue(wrapped.band(1), *src.nodata);
+      gdal_check(GDALSetSpatialRef(copy, crs.get()), src.path + ": setting the CRS");
+      if (src.nodata)
+        gdal_check(GDALSetRasterNoDataValue(wrapped.band(1), *src.nodata),
+                   src.path + ": setting --nodata");
       sources.push_back(std::move(wrapped));
     }
   }
