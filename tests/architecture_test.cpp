@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <regex>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -16,8 +16,10 @@ using namespace globe_test;
 
 const fs::path kSource = GLOBE_SOURCE_DIR;
 
-// Lines of the C++ files under `dir` matching `pattern`, as "path:line: text".
-std::vector<std::string> matches(const fs::path& dir, const std::regex& pattern) {
+// Lines of the C++ files under `dir` for which `bad` holds, as "path:line: text".
+// (Plain string tests: GCC 12 warns inside std::regex in the sanitizer build.)
+std::vector<std::string> matches(const fs::path& dir,
+                                 const std::function<bool(const std::string&)>& bad) {
   std::vector<std::string> out;
   for (const auto& e : fs::recursive_directory_iterator(kSource / dir)) {
     const auto ext = e.path().extension();
@@ -25,7 +27,7 @@ std::vector<std::string> matches(const fs::path& dir, const std::regex& pattern)
     std::istringstream in(read_file(e.path()));
     std::string line;
     for (int n = 1; std::getline(in, line); ++n)
-      if (std::regex_search(line, pattern))
+      if (bad(line))
         out.push_back(fs::relative(e.path(), kSource).string() + ":" + std::to_string(n) + ": " +
                       line);
   }
@@ -39,23 +41,35 @@ std::string joined(const std::vector<std::string>& v) {
   return s;
 }
 
+bool has_any(const std::string& line, std::initializer_list<const char*> words) {
+  for (const char* w : words)
+    if (line.find(w) != std::string::npos) return true;
+  return false;
+}
+
 TEST(Architecture, NoSqlOutsideTheLibrary) {
-  const std::regex sql(
-      R"(SqliteDb|SqliteStatement|sqlite3|\bdb\(\)|"\s*(SELECT|INSERT|CREATE TABLE|DROP TABLE|DELETE FROM|UPDATE)\s)");
+  auto sql = [](const std::string& l) {
+    return has_any(l, {"SqliteDb", "SqliteStatement", "sqlite3", "db()", "\"SELECT ", "\"INSERT ",
+                       "\"CREATE TABLE", "\"DROP TABLE", "\"DELETE FROM", "\"UPDATE "});
+  };
   for (const char* dir : {"tools", "viewer"})
     EXPECT_EQ(joined(matches(dir, sql)), "") << dir << " talks SQL; add a query to lib/tileformat";
 }
 
 TEST(Architecture, ViewerIncludesNoGdal) {
-  const std::regex gdal(
-      R"(#include\s*[<"](gdal|ogr|cpl|gdal_dataset\.hpp|spatial_ref\.hpp|image_codec\.hpp))");
+  auto gdal = [](const std::string& l) {
+    return l.starts_with("#include") && has_any(l, {"<gdal", "<ogr", "<cpl", "gdal_dataset.hpp",
+                                                    "spatial_ref.hpp", "image_codec.hpp"});
+  };
   EXPECT_EQ(joined(matches("viewer", gdal)), "");
   EXPECT_EQ(joined(matches("tools/common/kit", gdal)), "") << "the kit is GDAL-free";
   EXPECT_EQ(joined(matches("lib", gdal)), "");
 }
 
 TEST(Architecture, LibraryIncludesNothingAbove) {
-  const std::regex above(R"(#include\s*"(?!tileformat/)[^"]+")");
+  auto above = [](const std::string& l) {
+    return l.starts_with("#include \"") && !l.starts_with("#include \"tileformat/");
+  };
   EXPECT_EQ(joined(matches("lib", above)), "");
 }
 
