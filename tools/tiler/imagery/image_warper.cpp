@@ -57,26 +57,13 @@ GdalDataset select_bands(const GdalDataset& in, const ImageSource& src, const Im
 
 ImageWarper::ImageWarper(const ImagePlan& plan, const ImageSettings& s)
     : plan_(plan), size_(s.tile_size) {
-  GDALDriverH vrt = GDALGetDriverByName("VRT");
   std::vector<GdalDataset> sources;
   for (const auto& src : plan.sources) {
     opened_.push_back(GdalDataset::open_raster(src.path));
     const GDALDatasetH in = opened_.back().get();
     for (double shift : warp_shifts(src)) {
       // Inner wrapper: georeferencing and nodata (never written back to the file).
-      GDALDatasetH copy = GDALCreateCopy(vrt, "", in, FALSE, nullptr, nullptr, nullptr);
-      if (!copy)
-        throw InputError(src.path + ": cannot wrap the raster (" + gdal_last_error() + ")");
-      GdalDataset inner(copy, src.path);
-      auto gt = src.geotransform;
-      gt[0] += shift;
-      gdal_check(GDALSetGeoTransform(copy, gt.data()), src.path + ": setting the geotransform");
-      const SpatialRef crs = SpatialRef::from_wkt(src.crs_wkt, src.path);
-      gdal_check(GDALSetSpatialRef(copy, crs.get()), src.path + ": setting the CRS");
-      if (s.nodata)
-        for (int b : src.colour_bands)
-          gdal_check(GDALSetRasterNoDataValue(inner.band(b), *s.nodata),
-                     src.path + ": setting --nodata");
+      GdalDataset inner = georeferenced_copy(in, src, shift, s.nodata, src.colour_bands);
       sources.push_back(select_bands(inner, src, plan));
       opened_.push_back(std::move(inner));
     }

@@ -35,6 +35,13 @@ struct RasterSource {
 // they overlap the source's own pixels win, as in gdalwarp of the source.
 std::vector<double> warp_shifts(const RasterSource& src);
 
+// A VRT copy of `in` (the opened `src`)
+// that carries the source's resolved georeferencing with its longitudes shifted by `shift`, and
+// `nodata` on `nodata_bands` — never written back to the file. What each warp source is built from.
+// Throws InputError (cannot wrap) or OutputError (GDAL refused a setting).
+GdalDataset georeferenced_copy(GDALDatasetH in, const RasterSource& src, double shift,
+                               std::optional<double> nodata, const std::vector<int>& nodata_bands);
+
 // --tiling, --t_srs and --like together; throws UsageError. (plan_footprint
 // checks again; commands call this before opening any input.)
 void check_tiling_options(const BuildOptions& s, const std::string& like);

@@ -10,26 +10,12 @@
 namespace globe {
 
 TileWarper::TileWarper(const DemPlan& plan, const std::string& resampling) : plan_(plan) {
-  GDALDriverH vrt = GDALGetDriverByName("VRT");
   std::vector<GdalDataset> sources;
   for (const auto& src : plan.sources) {
     opened_.push_back(GdalDataset::open_raster(src.path));
-    const GdalDataset& in = opened_.back();
-    for (double shift : warp_shifts(src)) {
-      GDALDatasetH copy = GDALCreateCopy(vrt, "", in.get(), FALSE, nullptr, nullptr, nullptr);
-      if (!copy)
-        throw InputError(src.path + ": cannot wrap the raster (" + gdal_last_error() + ")");
-      GdalDataset wrapped(copy, src.path);
-      auto gt = src.geotransform;
-      gt[0] += shift;
-      gdal_check(GDALSetGeoTransform(copy, gt.data()), src.path + ": setting the geotransform");
-      SpatialRef crs = SpatialRef::from_wkt(src.crs_wkt, src.path);
-      gdal_check(GDALSetSpatialRef(copy, crs.get()), src.path + ": setting the CRS");
-      if (src.nodata)
-        gdal_check(GDALSetRasterNoDataValue(wrapped.band(1), *src.nodata),
-                   src.path + ": setting --nodata");
-      sources.push_back(std::move(wrapped));
-    }
+    const GDALDatasetH in = opened_.back().get();
+    for (double shift : warp_shifts(src))
+      sources.push_back(georeferenced_copy(in, src, shift, src.nodata, {1}));
   }
   WarpSpec spec;
   spec.target_crs = plan.tiling.crs;
