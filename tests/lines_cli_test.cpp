@@ -244,6 +244,35 @@ TEST_F(LinesCli, LikeAdoptsTheTilingOfALocalTerrainPackage) {
   EXPECT_EQ(r.exit_code, 2) << r.err;
 }
 
+TEST_F(LinesCli, TerrainAndLinesOfOneAreaShareTheirDefaultView) {
+  // One rule for `center` in every package kind: the deepest zoom whose one
+  // tile holds the data (10 x 4 degrees fits a 11.25-degree geodetic tile,
+  // zoom 4), at the middle of the bounds.
+  const double gt[6] = {10, 0.1, 0, 44, 0, -0.1};
+  write_dem(pkg("dem.tif"), 100, 40, gt, "EPSG:4326", GDT_Float32,
+            [](int x, int y) { return 100.0 + x - y; });
+  auto r = run(tiler() + " terrain " + pkg("dem.tif") + " --tiling geodetic --max-zoom 6 -o " +
+                   pkg("t.mbtiles"),
+               dir_.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<globe::XY> line{{10, 40}, {15, 43}, {20, 44}};
+  write_text(pkg("l.geojson"),
+             "{\"type\":\"FeatureCollection\",\"features\":[" +
+                 feature(1, "a", "{\"type\":\"LineString\",\"coordinates\":" + coords(line) + "}") +
+                 "]}");
+  r = vectorize("lines " + pkg("l.geojson") + " --tiling geodetic --max-zoom 8 -o " +
+                pkg("l.mbtiles"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  tileformat::PackageReader terrain(pkg("t.mbtiles")), lines(pkg("l.mbtiles"));
+  ASSERT_TRUE(terrain.meta("center") && lines.meta("center"));
+  auto zoom_of = [](const std::string& center) {
+    return std::stoi(center.substr(center.rfind(',') + 1));
+  };
+  EXPECT_EQ(zoom_of(*terrain.meta("center")), 4) << *terrain.meta("center");
+  EXPECT_EQ(zoom_of(*lines.meta("center")), 4) << *lines.meta("center");
+  EXPECT_EQ(lines.meta("center")->substr(0, 3), "15,") << *lines.meta("center");
+}
+
 struct BadCase {
   std::string name, args;
   int exit_code;

@@ -503,7 +503,7 @@ class Builder {
     c.lonlat = ll;
     c.min_zoom = min_zoom_;
     c.max_zoom = max_zoom_;
-    c.center_zoom = min_zoom_;
+    c.center_zoom = tiling_.view_zoom(b, min_zoom_, max_zoom_);
     c.tiling = tiling_;
     c.generator = "globe-vectorize " GLOBE_VERSION;
     c.command_line = s_.command_line;

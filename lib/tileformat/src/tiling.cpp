@@ -75,6 +75,14 @@ TileRange Tiling::tiles_covering(const Bounds& b, int z) const {
   return r;
 }
 
+int Tiling::view_zoom(const Bounds& data, int min_zoom, int max_zoom) const {
+  const double span = std::max(data.width(), data.height());
+  int z = min_zoom;
+  while (z < max_zoom && span <= tile_size(z + 1))
+    ++z;
+  return z;
+}
+
 void Tiling::to_metadata(std::map<std::string, std::string>& meta) const {
   meta["globe:scheme"] = scheme_name(scheme);
   meta["globe:crs"] = crs;

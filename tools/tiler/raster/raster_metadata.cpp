@@ -1,6 +1,7 @@
 // Common raster package metadata (see raster_metadata.hpp).
 #include "raster_metadata.hpp"
 
+#include <algorithm>
 #include <filesystem>
 
 namespace globe {
@@ -18,7 +19,11 @@ tileformat::CommonMetadata raster_common_metadata(const RasterPackageFacts& fact
   // (empty tiles are not written): minzoom says what is there.
   m.min_zoom = facts.min_zoom;
   m.max_zoom = facts.max_zoom;
-  m.center_zoom = facts.max_zoom;
+  tileformat::Bounds data{1e300, 1e300, -1e300, -1e300};
+  for (const tileformat::Bounds& a : footprint.data_areas)
+    data = {std::min(data.min_x, a.min_x), std::min(data.min_y, a.min_y),
+            std::max(data.max_x, a.max_x), std::max(data.max_y, a.max_y)};
+  m.center_zoom = footprint.tiling.view_zoom(data, facts.min_zoom, facts.max_zoom);
   m.tiling = footprint.tiling;
   m.generator = "globe-tiler " GLOBE_VERSION;
   m.command_line = facts.command_line;

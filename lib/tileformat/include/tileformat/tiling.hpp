@@ -60,6 +60,10 @@ struct Tiling {
   double sample_spacing(int z, int steps) const { return tile_size(z) / steps; }
   // Tiles whose area intersects `b` (clipped to the scheme's extent).
   TileRange tiles_covering(const Bounds& b, int z) const;
+  // The zoom of a package's default view (`center`): the deepest zoom whose
+  // one tile still holds the data's wider side, within [min_zoom, max_zoom].
+  // Every package kind uses this one rule.
+  int view_zoom(const Bounds& data, int min_zoom, int max_zoom) const;
   Bounds extent() const {
     return {origin_x, origin_y - roots_y * root_size, origin_x + roots_x * root_size, origin_y};
   }
