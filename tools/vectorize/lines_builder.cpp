@@ -3,11 +3,8 @@
 
 #include <algorithm>
 #include <array>
-#include <cerrno>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -20,6 +17,7 @@
 #include "line_projector.hpp"
 #include "package_output.hpp"
 #include "parallel_batches.hpp"
+#include "scratch_file.hpp"
 #include "tile_cutter.hpp"
 #include "tile_sorter.hpp"
 #include "tileformat/blob_header.hpp"
@@ -45,24 +43,12 @@ constexpr double kTilePx = 256.0;  // nominal display size of a tile (docs/lines
 constexpr int kDefaultMaxZoomCap = 18;
 constexpr int kPointsOnlyMaxZoom = 14;
 
-// Pass-1 output: projected features, appended and read back sequentially.
+// Pass-1 output: projected features, appended and read back in order, one
+// scratch record each: id, class, the parts' vertex counts and coordinates
+// (f64), then the points.
 class GeometryScratch {
  public:
-  explicit GeometryScratch(std::string path) : path_(std::move(path)) {
-    file_ = std::fopen(path_.c_str(), "w+b");
-    if (!file_)
-      throw OutputError(path_ + ": cannot create scratch file (" + std::strerror(errno) +
-                        "); check free space and permissions next to the output");
-    std::setvbuf(file_, nullptr, _IOFBF, 1 << 20);
-  }
-  ~GeometryScratch() {
-    std::fclose(file_);
-    std::error_code ec;
-    std::filesystem::remove(path_, ec);
-  }
-  // One record per feature in the project's one byte codec
-  // (tileformat/byte_io.hpp): its byte length (u32), then id, class, the
-  // parts' vertex counts and coordinates (f64), then the points.
+  explicit GeometryScratch(std::string path) : file_(std::move(path)) {}
   void write(const ProjectedFeature& f) {
     tileformat::ByteWriter w;
     w.u64(f.id);
@@ -80,24 +66,12 @@ class GeometryScratch {
     }
     for (const XY& p : f.points)
       put_xy(p);
-    const std::vector<uint8_t> bytes = w.take();
-    tileformat::ByteWriter len;
-    len.u32(static_cast<uint32_t>(bytes.size()));
-    put_raw(len.take());
-    put_raw(bytes);
+    file_.append(w.take());
   }
-  void rewind() {
-    if (std::fflush(file_) != 0)
-      throw OutputError(path_ + ": cannot write scratch data; check free space");
-    std::rewind(file_);
-  }
+  void rewind() { file_.rewind(); }
   bool read(ProjectedFeature& f) {
-    uint8_t len_bytes[4];
-    if (std::fread(len_bytes, 1, 4, file_) != 4) return false;
-    buffer_.resize(tileformat::ByteReader(len_bytes, "scratch feature", "scratch").u32());
-    if (std::fread(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size())
-      throw OutputError(path_ + ": scratch file truncated while reading back");
-    tileformat::ByteReader r(buffer_, "scratch feature", "scratch");
+    if (!file_.next(buffer_)) return false;
+    tileformat::ByteReader r(buffer_, file_.path() + ": scratch feature", "scratch");
     f.id = r.u64();
     f.class_id = r.u32();
     f.lines.resize(r.u32());
@@ -118,14 +92,8 @@ class GeometryScratch {
   }
 
  private:
-  void put_raw(const std::vector<uint8_t>& b) {
-    if (!b.empty() && std::fwrite(b.data(), 1, b.size(), file_) != b.size())
-      throw OutputError(path_ + ": cannot write scratch data (" + std::strerror(errno) +
-                        "); check free space");
-  }
+  ScratchFile file_;
   std::vector<uint8_t> buffer_;
-  std::string path_;
-  std::FILE* file_ = nullptr;
 };
 
 // Segment lengths on a log scale (quarter octaves), for the median.

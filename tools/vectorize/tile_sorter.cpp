@@ -2,57 +2,40 @@
 #include "tile_sorter.hpp"
 
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
-#include <filesystem>
 #include <tuple>
 
-#include "errors.hpp"
+#include "scratch_file.hpp"
+#include "tileformat/byte_io.hpp"
 
 namespace globe {
 
-// One spilled run: a file of records in (key, seq, sub) order, read back
-// through a buffer with the head record decoded.
+// One spilled run: a scratch file of records in (key, seq, sub) order, each
+// key (u64), seq (u64), sub (u32) and the payload; read back with the head
+// record decoded.
 struct TileSorter::Run {
-  std::FILE* file = nullptr;
-  std::string path;
+  explicit Run(std::string path) : file(std::move(path)) {}
+  ScratchFile file;
   bool valid = false;
   uint64_t key = 0, seq = 0;
   uint32_t sub = 0;
-  std::vector<uint8_t> payload;
+  std::vector<uint8_t> record;
+  std::span<const uint8_t> payload;
 
-  ~Run() {
-    if (file) std::fclose(file);
-  }
   void advance() {
-    uint8_t head[24];
-    const size_t got = std::fread(head, 1, sizeof head, file);
-    if (got == 0 && std::feof(file)) {
-      valid = false;
-      return;
-    }
-    if (got != sizeof head) throw OutputError(path + ": scratch run file truncated");
-    std::memcpy(&key, head, 8);
-    std::memcpy(&seq, head + 8, 8);
-    std::memcpy(&sub, head + 16, 4);
-    uint32_t len;
-    std::memcpy(&len, head + 20, 4);
-    payload.resize(len);
-    if (len && std::fread(payload.data(), 1, len, file) != len)
-      throw OutputError(path + ": scratch run file truncated");
-    valid = true;
+    valid = file.next(record);
+    if (!valid) return;
+    tileformat::ByteReader r(record, file.path() + ": scratch run record", "scratch");
+    key = r.u64();
+    seq = r.u64();
+    sub = r.u32();
+    payload = r.bytes(r.remaining());
   }
 };
 
 TileSorter::TileSorter(std::string scratch_prefix, size_t memory_budget_bytes)
     : prefix_(std::move(scratch_prefix)), budget_(std::max<size_t>(memory_budget_bytes, 1 << 16)) {}
 
-TileSorter::~TileSorter() {
-  runs_.clear();
-  std::error_code ec;
-  for (const std::string& p : run_paths_)
-    std::filesystem::remove(p, ec);
-}
+TileSorter::~TileSorter() = default;
 
 void TileSorter::add(uint64_t key, uint64_t seq, uint32_t sub, std::span<const uint8_t> payload) {
   entries_.push_back({key, seq, sub, static_cast<uint32_t>(payload.size()), arena_.size()});
@@ -70,33 +53,17 @@ void TileSorter::sort_memory() {
 
 void TileSorter::spill() {
   sort_memory();
-  const std::string path = prefix_ + "." + std::to_string(run_paths_.size());
-  std::FILE* f = std::fopen(path.c_str(), "wb");
-  if (!f)
-    throw OutputError(path + ": cannot create scratch file (" + std::strerror(errno) +
-                      "); check free space and permissions next to the output");
-  run_paths_.push_back(path);
-  std::vector<uint8_t> buf;
+  auto run = std::make_unique<Run>(prefix_ + "." + std::to_string(runs_.size()));
   for (const Entry& e : entries_) {
-    uint8_t head[24];
-    std::memcpy(head, &e.key, 8);
-    std::memcpy(head + 8, &e.seq, 8);
-    std::memcpy(head + 16, &e.sub, 4);
-    std::memcpy(head + 20, &e.len, 4);
-    buf.insert(buf.end(), head, head + 24);
-    buf.insert(buf.end(), arena_.begin() + e.offset, arena_.begin() + e.offset + e.len);
-    if (buf.size() > (1 << 20) || &e == &entries_.back()) {
-      if (std::fwrite(buf.data(), 1, buf.size(), f) != buf.size()) {
-        std::fclose(f);
-        throw OutputError(path + ": cannot write scratch data (" + std::strerror(errno) +
-                          "); check free space");
-      }
-      spilled_bytes_ += buf.size();
-      buf.clear();
-    }
+    tileformat::ByteWriter w;
+    w.u64(e.key);
+    w.u64(e.seq);
+    w.u32(e.sub);
+    w.bytes({arena_.data() + e.offset, e.len});
+    run->file.append(w.take());
   }
-  if (std::fclose(f) != 0)
-    throw OutputError(path + ": cannot write scratch data; check free space");
+  spilled_bytes_ += run->file.bytes_written();
+  runs_.push_back(std::move(run));
   entries_.clear();
   entries_.shrink_to_fit();
   arena_.clear();
@@ -106,14 +73,9 @@ void TileSorter::spill() {
 void TileSorter::finish() {
   finished_ = true;
   sort_memory();  // the last run stays in memory
-  for (const std::string& p : run_paths_) {
-    auto r = std::make_unique<Run>();
-    r->path = p;
-    r->file = std::fopen(p.c_str(), "rb");
-    if (!r->file) throw OutputError(p + ": cannot reopen scratch file");
-    std::setvbuf(r->file, nullptr, _IOFBF, 1 << 20);
+  for (const auto& r : runs_) {
+    r->file.rewind();
     r->advance();
-    runs_.push_back(std::move(r));
   }
 }
 

@@ -6,7 +6,6 @@
 #pragma once
 
 #include <cstdint>
-#include <cstdio>
 #include <memory>
 #include <span>
 #include <string>
@@ -32,7 +31,8 @@ struct TileGroup {
 
 class TileSorter {
  public:
-  // Run files are named `scratch_prefix`.N and deleted by the destructor.
+  // Run files (scratch_file.hpp) are named `scratch_prefix`.N and deleted by
+  // the destructor.
   TileSorter(std::string scratch_prefix, size_t memory_budget_bytes);
   ~TileSorter();
   TileSorter(const TileSorter&) = delete;
@@ -45,7 +45,7 @@ class TileSorter {
   bool next_group(TileGroup& group);
 
   uint64_t records() const { return records_; }
-  size_t spilled_runs() const { return run_paths_.size(); }
+  size_t spilled_runs() const { return runs_.size(); }
   uint64_t spilled_bytes() const { return spilled_bytes_; }
 
  private:
@@ -62,7 +62,6 @@ class TileSorter {
   size_t budget_;
   std::vector<uint8_t> arena_;
   std::vector<Entry> entries_;
-  std::vector<std::string> run_paths_;
   std::vector<std::unique_ptr<Run>> runs_;
   size_t mem_pos_ = 0;  // next in-memory entry while merging
   uint64_t records_ = 0, spilled_bytes_ = 0;
