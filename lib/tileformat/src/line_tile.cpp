@@ -6,8 +6,8 @@
 
 #include "tileformat/blob_header.hpp"
 #include "tileformat/byte_io.hpp"
-#include "tileformat/detail/zstd_codec.hpp"
 #include "tileformat/error.hpp"
+#include "tileformat/zstd_codec.hpp"
 
 namespace tileformat {
 namespace {
@@ -142,7 +142,7 @@ std::vector<uint8_t> encode_line_tile(const LineTile& t, int zstd_level) {
                                       : t.cell_segments[k] - t.cell_segments[k - 1] - 1);
   }
   const std::vector<uint8_t> raw = p.take();
-  const std::vector<uint8_t> packed = detail::zstd_compress(raw, zstd_level);
+  const std::vector<uint8_t> packed = zstd_compress(raw, zstd_level);
   Header h{t.extent,
            t.grid,
            t.reach,
@@ -172,7 +172,7 @@ LineTile decode_line_tile(std::span<const uint8_t> blob) {
   ByteReader hr(read_blob_header(blob, BlobKind::kLineClusters), "line tile header", "7.1");
   const Header h = read_header(hr);
   const auto raw =
-      detail::zstd_decompress(hr.bytes(h.compressed_size), h.raw_size, "line tile payload", "7.2");
+      zstd_decompress(hr.bytes(h.compressed_size), h.raw_size, "line tile payload", "7.2");
   hr.expect_end();
 
   LineTile t;

@@ -12,8 +12,8 @@
 
 #include "tileformat/blob_header.hpp"
 #include "tileformat/byte_io.hpp"
-#include "tileformat/detail/zstd_codec.hpp"
 #include "tileformat/kpatch.hpp"
+#include "tileformat/zstd_codec.hpp"
 
 namespace tileformat {
 namespace {
@@ -78,8 +78,8 @@ constexpr int kMaxPackedLevel = 6;
 // Byte planes at the final levels (8 and up) search lazily (see ZstdSearch):
 // the same size within 0.01 % there; packed residuals stay with the level's
 // own search, which keeps them 0.2-0.4 % smaller.
-detail::ZstdSearch search(int level) {
-  return level >= 8 ? detail::ZstdSearch::kLazy : detail::ZstdSearch::kLevelDefault;
+ZstdSearch search(int level) {
+  return level >= 8 ? ZstdSearch::kLazy : ZstdSearch::kLevelDefault;
 }
 
 void put_u32(std::vector<uint8_t>& out, size_t at, uint32_t v) {
@@ -173,7 +173,7 @@ std::vector<uint8_t> residual_section(const std::vector<uint32_t>& residual, int
         out[i] = static_cast<uint8_t>(residual[i] >> (8 * p));
     }
     w.u8(static_cast<uint8_t>(planes));
-    auto data = detail::zstd_compress(plane_bytes, level, search(level));
+    auto data = zstd_compress(plane_bytes, level, search(level));
     w.u32(static_cast<uint32_t>(data.size()));
     w.bytes(data);
     return w.take();
@@ -188,10 +188,10 @@ std::vector<uint8_t> residual_section(const std::vector<uint32_t>& residual, int
   // on these streams for 35 % more time (measured on etopo20, a 5' global
   // grid and a synthetic 10 m DEM).
   const int packed_level = std::min(level, kMaxPackedLevel);
-  auto main = detail::zstd_compress(packed, packed_level);
+  auto main = zstd_compress(packed, packed_level);
   w.u32(static_cast<uint32_t>(main.size()));
   w.bytes(main);
-  auto exc = detail::zstd_compress(exceptions, packed_level);
+  auto exc = zstd_compress(exceptions, packed_level);
   w.u32(static_cast<uint32_t>(exc.size()));
   w.bytes(exc);
   return w.take();
@@ -226,7 +226,7 @@ std::vector<uint32_t> decode_residuals(ByteReader& r, size_t n) {
   if (coding == 0) {
     const int planes = r.u8();
     if (planes < 1 || planes > 4) r.fail("invalid byte-plane count " + std::to_string(planes));
-    auto bytes = detail::zstd_decompress(r.bytes(r.u32()), n * planes, "MBlock heights", "5.2");
+    auto bytes = zstd_decompress(r.bytes(r.u32()), n * planes, "MBlock heights", "5.2");
     const uint8_t* b = bytes.data();
     switch (planes) {  // unrolled per plane count: this loop runs for every scratch block
       case 1:
@@ -252,10 +252,10 @@ std::vector<uint32_t> decode_residuals(ByteReader& r, size_t n) {
   const uint32_t count = r.u32();
   if (count > n) r.fail("more exceptions than samples");
   const size_t per_byte = 8 / coding;
-  auto packed = detail::zstd_decompress(r.bytes(r.u32()), (n + per_byte - 1) / per_byte,
-                                        "MBlock heights", "5.2");
-  auto exc_bytes = detail::zstd_decompress(r.bytes(r.u32()), size_t{count} * 4,
-                                           "MBlock height exceptions", "5.2");
+  auto packed =
+      zstd_decompress(r.bytes(r.u32()), (n + per_byte - 1) / per_byte, "MBlock heights", "5.2");
+  auto exc_bytes =
+      zstd_decompress(r.bytes(r.u32()), size_t{count} * 4, "MBlock height exceptions", "5.2");
   const bool ok = coding == 1   ? unpack<1>(packed, exc_bytes, residual)
                   : coding == 2 ? unpack<2>(packed, exc_bytes, residual)
                                 : unpack<4>(packed, exc_bytes, residual);
@@ -284,7 +284,7 @@ std::vector<uint8_t> encode_error_tree(int depth, const std::vector<uint32_t>& e
     put_u32(raw, 4 * i, errors[i]);
   ByteWriter w;
   w.u8(static_cast<uint8_t>(depth));
-  auto z = detail::zstd_compress(raw, level);
+  auto z = zstd_compress(raw, level);
   w.u32(static_cast<uint32_t>(z.size()));
   w.bytes(z);
   return w.take();
@@ -340,7 +340,7 @@ std::vector<uint8_t> encode_mblock(const MBlock& b, int zstd_level, HeightCoding
     std::vector<uint8_t> bits((n + 7) / 8, 0);
     for (size_t i = 0; i < n; ++i)
       if (b.valid[i]) bits[i / 8] |= static_cast<uint8_t>(1u << (i % 8));
-    auto mask = detail::zstd_compress(bits, zstd_level);
+    auto mask = zstd_compress(bits, zstd_level);
     w.u32(static_cast<uint32_t>(mask.size()));
     w.bytes(mask);
   }
@@ -367,7 +367,7 @@ std::vector<uint8_t> encode_height_grid(const HeightGrid& g, int zstd_level, Hei
     std::vector<uint8_t> bits((n + 7) / 8, 0);
     for (size_t i = 0; i < n; ++i)
       if (g.valid[i]) bits[i / 8] |= static_cast<uint8_t>(1u << (i % 8));
-    auto mask = detail::zstd_compress(bits, zstd_level);
+    auto mask = zstd_compress(bits, zstd_level);
     w.u32(static_cast<uint32_t>(mask.size()));
     w.bytes(mask);
   }
@@ -388,7 +388,7 @@ HeightGrid decode_height_grid(std::span<const uint8_t> bytes) {
   g.valid.assign(n, 1);
   if (flags & kFlagMask) {
     r.set_section("5.3");
-    auto bits = detail::zstd_decompress(r.bytes(r.u32()), (n + 7) / 8, "height grid mask", "5.3");
+    auto bits = zstd_decompress(r.bytes(r.u32()), (n + 7) / 8, "height grid mask", "5.3");
     for (size_t i = 0; i < n; ++i)
       g.valid[i] = (bits[i / 8] >> (i % 8)) & 1;
   }
@@ -419,7 +419,7 @@ MBlock decode_mblock(std::span<const uint8_t> blob) {
     r.fail("a height is outside the quantization range");
   if (flags & kFlagMask) {
     r.set_section("5.3");
-    auto bits = detail::zstd_decompress(r.bytes(r.u32()), (n + 7) / 8, "MBlock mask", "5.3");
+    auto bits = zstd_decompress(r.bytes(r.u32()), (n + 7) / 8, "MBlock mask", "5.3");
     b.valid.resize(n);
     for (size_t i = 0; i < n; ++i)
       b.valid[i] = (bits[i / 8] >> (i % 8)) & 1;
@@ -429,7 +429,7 @@ MBlock decode_mblock(std::span<const uint8_t> blob) {
   if (depth != kpatch_depth(b.steps(), b.lattice))
     r.fail("error tree depth " + std::to_string(depth) + " does not match the block shape");
   const size_t count = kpatch_vertex_count(depth);
-  auto err_bytes = detail::zstd_decompress(r.bytes(r.u32()), count * 4, "MBlock error tree", "5.4");
+  auto err_bytes = zstd_decompress(r.bytes(r.u32()), count * 4, "MBlock error tree", "5.4");
   if (err_bytes.size() != count * 4) r.fail("error tree of the wrong length");
   b.vertex_error.resize(count);
   for (size_t i = 0; i < count; ++i)

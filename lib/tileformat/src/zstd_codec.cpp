@@ -1,11 +1,11 @@
 // zstd wrapper (docs/tileformat.md §5).
-#include "tileformat/detail/zstd_codec.hpp"
+#include "tileformat/zstd_codec.hpp"
 
 #include <zstd.h>
 
 #include "tileformat/error.hpp"
 
-namespace tileformat::detail {
+namespace tileformat {
 
 namespace {
 // One context per thread, reused: creating one per call costs more than
@@ -62,4 +62,4 @@ std::vector<uint8_t> zstd_decompress(std::span<const uint8_t> in, size_t expecte
   return out;
 }
 
-}  // namespace tileformat::detail
+}  // namespace tileformat

@@ -20,9 +20,9 @@
 #include "raster_metadata.hpp"
 #include "raster_stages.hpp"
 #include "tile_groups.hpp"
-#include "tileformat/detail/zstd_codec.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/package.hpp"
+#include "tileformat/zstd_codec.hpp"
 
 namespace globe {
 namespace {
@@ -111,8 +111,7 @@ class Builder {
   std::optional<TileOut> finish(TileId id, const TilePixels& px) const {
     if (px.empty()) return std::nullopt;
     TileOut out{id, {}, encode_image_tile(px, {s_.format, s_.quality, s_.png_level})};
-    if (id.z > plan_.min_zoom)
-      out.stage = tileformat::detail::zstd_compress(px.planes, kStageZstdLevel);
+    if (id.z > plan_.min_zoom) out.stage = tileformat::zstd_compress(px.planes, kStageZstdLevel);
     return out;
   }
 
@@ -206,8 +205,8 @@ class Builder {
             auto it = children.find(ids[c]);
             if (it == children.end()) continue;
             kids[c].emplace(s_.tile_size, plan_.colour);
-            kids[c]->planes = tileformat::detail::zstd_decompress(it->second, planes_bytes,
-                                                                  "staged pixels", "3.1");
+            kids[c]->planes =
+                tileformat::zstd_decompress(it->second, planes_bytes, "staged pixels", "3.1");
             ptrs[c] = &*kids[c];
           }
           return finish(tiles[i], downsample_children(ptrs, s_.tile_size, plan_.colour));

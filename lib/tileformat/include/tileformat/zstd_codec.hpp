@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace tileformat::detail {
+namespace tileformat {
 
 // How hard zstd searches for matches: its own choice for the level, or its
 // "lazy" strategy with 4-byte matches, which on MBlock byte planes at level 9
@@ -23,4 +23,4 @@ std::vector<uint8_t> zstd_compress(std::span<const uint8_t> in, int level,
 std::vector<uint8_t> zstd_decompress(std::span<const uint8_t> in, size_t expected_size,
                                      const std::string& what, const std::string& section);
 
-}  // namespace tileformat::detail
+}  // namespace tileformat
