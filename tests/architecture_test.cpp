@@ -2,6 +2,7 @@
 // the built binaries: a rule that is not checked erodes.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <filesystem>
 #include <functional>
 #include <sstream>
@@ -71,6 +72,64 @@ TEST(Architecture, LibraryIncludesNothingAbove) {
     return l.starts_with("#include \"") && !l.starts_with("#include \"tileformat/");
   };
   EXPECT_EQ(joined(matches("lib", above)), "");
+}
+
+// Whether `line` calls a C function named PREFIX + [A-Z_]... (e.g. GDALOpen,
+// OGR_F_Create, OSRRelease, sqlite3_step), outside comments.
+bool calls_c_api(const std::string& line, std::initializer_list<const char*> prefixes) {
+  const std::string code = line.substr(0, line.find("//"));
+  for (const char* prefix : prefixes)
+    for (size_t at = code.find(prefix); at != std::string::npos; at = code.find(prefix, at + 1)) {
+      if (at > 0 && (std::isalnum(static_cast<unsigned char>(code[at - 1])) || code[at - 1] == '_'))
+        continue;
+      const std::string p = prefix;
+      size_t end = at + p.size();
+      // GDALOpen, OGR_F_Create: an upper-case letter or '_' after the prefix;
+      // prefixes ending in '_' (sqlite3_, ZSTD_, png_) take any letter.
+      const bool name_goes_on =
+          end < code.size() &&
+          (std::isupper(static_cast<unsigned char>(code[end])) || code[end] == '_' ||
+           (p.back() == '_' && std::isalpha(static_cast<unsigned char>(code[end]))));
+      if (!name_goes_on) continue;
+      while (end < code.size() &&
+             (std::isalnum(static_cast<unsigned char>(code[end])) || code[end] == '_'))
+        ++end;
+      if (end < code.size() && code[end] == '(') return true;
+    }
+  return false;
+}
+
+std::vector<std::string> outside(const std::vector<std::string>& hits,
+                                 std::initializer_list<const char*> wrappers) {
+  std::vector<std::string> out;
+  for (const std::string& h : hits) {
+    bool allowed = false;
+    for (const char* w : wrappers)
+      allowed = allowed || h.starts_with(w);
+    if (!allowed) out.push_back(h);
+  }
+  return out;
+}
+
+TEST(Architecture, EachCApiIsCalledOnlyFromItsWrapper) {
+  auto gdal = [](const std::string& l) {
+    return calls_c_api(l, {"GDAL", "OGR", "OSR", "OCT", "CPL", "CSL", "VSI"});
+  };
+  EXPECT_EQ(joined(outside(matches("tools", gdal),
+                           {"tools/common/geo/", "tools/tiler/raster/raster_warper.",
+                            "tools/vectorize/vector_reader.", "tools/vectorize/vector_writer."})),
+            "")
+      << "call GDAL/OGR/OSR through tools/common/geo (docs/architecture.md rule 3)";
+  auto sqlite = [](const std::string& l) { return calls_c_api(l, {"sqlite3_"}); };
+  EXPECT_EQ(joined(outside(matches("lib", sqlite), {"lib/tileformat/src/sqlite_db."})), "");
+  auto zstd = [](const std::string& l) { return calls_c_api(l, {"ZSTD_"}); };
+  EXPECT_EQ(joined(outside(matches("lib", zstd), {"lib/tileformat/src/zstd_codec."})), "");
+  auto png = [](const std::string& l) { return calls_c_api(l, {"png_"}); };
+  EXPECT_EQ(joined(outside(matches("tools", png), {"tools/common/kit/png_encoder."})), "");
+  for (const char* dir : {"tools", "viewer"}) {
+    EXPECT_EQ(joined(matches(dir, sqlite)), "") << dir;
+    EXPECT_EQ(joined(matches(dir, zstd)), "") << dir;
+  }
 }
 
 TEST(Architecture, ViewerAndLibTestsLinkNoGdal) {

@@ -315,7 +315,7 @@ class Builder {
       const double c = std::cos(lat * std::numbers::pi / 180);
       crs_per_m = frame_ == TargetFrame::kWebMercator ? 1 / c : 1 / (111320.0 * c);
     } else {
-      crs_per_m = 1 / OSRGetLinearUnits(target_->get(), nullptr);
+      crs_per_m = 1 / target_->linear_units();
     }
     reach_.assign(max_zoom_ + 1, 0);
     for (int z = min_zoom_; z <= max_zoom_; ++z) {

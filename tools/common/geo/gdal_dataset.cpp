@@ -3,6 +3,8 @@
 
 #include <cpl_conv.h>
 #include <cpl_error.h>
+#include <cpl_string.h>
+#include <gdal_utils.h>
 #include <ogr_srs_api.h>
 
 #include <cctype>
@@ -10,6 +12,7 @@
 #include <mutex>
 
 #include "errors.hpp"
+#include "spatial_ref.hpp"
 
 namespace globe {
 
@@ -91,6 +94,120 @@ std::optional<double> GdalDataset::nodata(int band_index) const {
   double v = GDALGetRasterNoDataValue(band(band_index), &has);
   if (!has) return std::nullopt;
   return v;
+}
+
+GDALDataType GdalDataset::data_type(int band_index) const {
+  return GDALGetRasterDataType(band(band_index));
+}
+
+bool GdalDataset::integer_type(int band_index) const {
+  const GDALDataType type = data_type(band_index);
+  return !GDALDataTypeIsFloating(type) && !GDALDataTypeIsComplex(type);
+}
+
+GDALColorInterp GdalDataset::colour(int band_index) const {
+  return GDALGetRasterColorInterpretation(band(band_index));
+}
+
+std::optional<bool> GdalDataset::palette_translucent(int band_index) const {
+  GDALRasterBandH b = band(band_index);
+  GDALColorTableH table = GDALGetRasterColorTable(b);
+  if (GDALGetRasterColorInterpretation(b) != GCI_PaletteIndex || !table) return std::nullopt;
+  for (int i = 0; i < GDALGetColorEntryCount(table); ++i)
+    if (GDALGetColorEntry(table, i)->c4 < 255) return true;
+  return false;
+}
+
+std::optional<std::array<double, 2>> GdalDataset::min_max(int band_index, Scan scan) const {
+  std::array<double, 2> mm{};
+  CPLErrorReset();
+  if (GDALComputeRasterMinMax(band(band_index), scan == Scan::kApproximate, mm.data()) != CE_None)
+    return std::nullopt;
+  return mm;
+}
+
+void GdalDataset::read_rows(int band_index, int y, int rows, double* out) const {
+  const int w = width();
+  if (GDALRasterIO(band(band_index), GF_Read, 0, y, w, rows, out, w, rows, GDT_Float64, 0, 0) !=
+      CE_None)
+    throw InputError(name_ + ": cannot read row " + std::to_string(y) + " (" + gdal_last_error() +
+                     "); the file may be truncated or corrupt");
+}
+
+void GdalDataset::set_geotransform(const std::array<double, 6>& gt) {
+  std::array<double, 6> copy = gt;
+  gdal_check(GDALSetGeoTransform(h_, copy.data()), name_ + ": setting the geotransform");
+}
+
+void GdalDataset::set_crs(const SpatialRef& crs) {
+  gdal_check(GDALSetSpatialRef(h_, crs.get()), name_ + ": setting the CRS");
+}
+
+void GdalDataset::set_nodata(int band_index, double value) {
+  gdal_check(GDALSetRasterNoDataValue(band(band_index), value),
+             name_ + ": setting band " + std::to_string(band_index) + "'s nodata value");
+}
+
+void GdalDataset::set_colour(int band_index, GDALColorInterp colour) {
+  gdal_check(GDALSetRasterColorInterpretation(band(band_index), colour),
+             name_ + ": setting band " + std::to_string(band_index) + "'s colour");
+}
+
+void GdalDataset::fill(int band_index, double value) {
+  gdal_check(GDALFillRaster(band(band_index), value, 0),
+             name_ + ": filling band " + std::to_string(band_index));
+}
+
+void GdalDataset::write(int band_index, int x, int y, int w, int h, const void* data,
+                        GDALDataType type) {
+  gdal_check(GDALRasterIO(band(band_index), GF_Write, x, y, w, h, const_cast<void*>(data), w, h,
+                          type, 0, 0),
+             name_ + ": writing pixels");
+}
+
+void GdalDataset::close() {
+  if (h_) GDALClose(h_);
+  h_ = nullptr;
+}
+
+GdalDataset GdalDataset::create_raster(const std::string& driver, const std::string& path,
+                                       int width, int height, int bands, GDALDataType type,
+                                       const std::vector<std::string>& options) {
+  GDALDriverH d = GDALGetDriverByName(driver.c_str());
+  if (!d) throw OutputError("GDAL has no " + driver + " driver");
+  CPLStringList opts;
+  for (const std::string& o : options)
+    opts.AddString(o.c_str());
+  CPLErrorReset();
+  GDALDatasetH h = GDALCreate(d, path.c_str(), width, height, bands, type, opts.List());
+  if (!h)
+    throw OutputError(path + ": cannot create the " + driver + " raster (" + gdal_last_error() +
+                      "); check the folder exists and is writable");
+  return GdalDataset(h, path);
+}
+
+GdalDataset GdalDataset::vrt_copy(GDALDatasetH in, const std::string& name) {
+  CPLErrorReset();
+  GDALDatasetH h =
+      GDALCreateCopy(GDALGetDriverByName("VRT"), "", in, FALSE, nullptr, nullptr, nullptr);
+  if (!h) throw InputError(name + ": cannot wrap the raster (" + gdal_last_error() + ")");
+  return GdalDataset(h, name);
+}
+
+GdalDataset GdalDataset::translate_to_vrt(const std::vector<std::string>& args) const {
+  CPLStringList argv;
+  argv.AddString("-of");
+  argv.AddString("VRT");
+  for (const std::string& a : args)
+    argv.AddString(a.c_str());
+  GDALTranslateOptions* options = GDALTranslateOptionsNew(argv.List(), nullptr);
+  if (!options) throw std::logic_error("gdal_translate options: " + gdal_last_error());
+  int usage_error = 0;
+  CPLErrorReset();
+  GDALDatasetH out = GDALTranslate("", h_, options, &usage_error);
+  GDALTranslateOptionsFree(options);
+  if (!out) throw InputError(name_ + ": cannot select its bands (" + gdal_last_error() + ")");
+  return GdalDataset(out, name_);
 }
 
 }  // namespace globe

@@ -6,6 +6,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <gdal.h>
 
@@ -20,6 +21,11 @@ std::string gdal_last_error();
 // otherwise throws OutputError "`what` failed (GDAL's message)". Every call
 // whose result matters goes through it (docs/architecture.md rule 3).
 void gdal_check(int err, const std::string& what);
+
+class SpatialRef;
+
+// How a band's min/max is found: from overviews or a sample, or every pixel.
+enum class Scan { kApproximate, kExact };
 
 class GdalDataset {
  public:
@@ -38,6 +44,17 @@ class GdalDataset {
   // (GPKG if none); throws OutputError.
   static GdalDataset create_vector(const std::string& path);
 
+  // Creates a raster with `driver` ("GTiff", "MEM", ...) and creation options
+  // ("KEY=VALUE"); throws OutputError naming `path`.
+  static GdalDataset create_raster(const std::string& driver, const std::string& path, int width,
+                                   int height, int bands, GDALDataType type,
+                                   const std::vector<std::string>& options = {});
+  // An in-memory VRT copy of `in` whose georeferencing and band settings can
+  // be changed without touching the file; `name` is used in messages.
+  static GdalDataset vrt_copy(GDALDatasetH in, const std::string& name);
+  // gdal_translate into an in-memory VRT, `args` as the program's options.
+  GdalDataset translate_to_vrt(const std::vector<std::string>& args) const;
+
   GDALDatasetH get() const { return h_; }
   const std::string& name() const { return name_; }
   int width() const { return GDALGetRasterXSize(h_); }
@@ -47,6 +64,29 @@ class GdalDataset {
   std::optional<std::array<double, 6>> geotransform() const;
   std::string crs_wkt() const;  // "" if the dataset has no CRS
   std::optional<double> nodata(int band_index) const;
+  GDALDataType data_type(int band_index) const;
+  bool integer_type(int band_index) const;  // not floating point, not complex
+  GDALColorInterp colour(int band_index) const;
+  // For a palette band with a colour table: whether an entry is translucent.
+  // nullopt for any other band.
+  std::optional<bool> palette_translucent(int band_index) const;
+  // Min and max of a band (nodata excluded). nullopt if GDAL cannot compute
+  // them (then gdal_last_error() says why: no valid sample, or a read error).
+  std::optional<std::array<double, 2>> min_max(int band_index, Scan scan) const;
+  // Reads `rows` whole rows from row `y` as float64; throws InputError
+  // naming the file and the row.
+  void read_rows(int band_index, int y, int rows, double* out) const;
+
+  // Setters and writes: each checks GDAL's result and throws OutputError
+  // naming the dataset and what it was setting.
+  void set_geotransform(const std::array<double, 6>& gt);
+  void set_crs(const SpatialRef& crs);
+  void set_nodata(int band_index, double value);
+  void set_colour(int band_index, GDALColorInterp colour);
+  void fill(int band_index, double value);
+  void write(int band_index, int x, int y, int w, int h, const void* data, GDALDataType type);
+  // Closes (flushing what was written); the object is then empty.
+  void close();
 
  private:
   GDALDatasetH h_ = nullptr;

@@ -24,6 +24,8 @@ class SpatialRef {
   bool is_geographic() const { return OSRIsGeographic(h_.get()) != 0; }
   bool is_same(const SpatialRef& o) const { return OSRIsSame(h_.get(), o.get()) != 0; }
   std::string name() const;
+  // Metres per unit of a projected CRS's axes (1 for metres).
+  double linear_units() const { return OSRGetLinearUnits(h_.get(), nullptr); }
 
  private:
   void reset(OGRSpatialReferenceH h) {

@@ -49,19 +49,15 @@ void choose_bands(const GdalDataset& ds, const ImageSettings& s, ImageSource& sr
     if (k == 2 || k == 4) src.alpha_band = s.bands.back();
     return;
   }
-  GDALRasterBandH first = ds.band(1);
-  if (GDALGetRasterColorInterpretation(first) == GCI_PaletteIndex &&
-      GDALGetRasterColorTable(first)) {
+  if (const std::optional<bool> translucent = ds.palette_translucent(1)) {
     src.expand_palette = true;
     src.colour_bands = {1};
-    GDALColorTableH table = GDALGetRasterColorTable(first);
-    for (int i = 0; i < GDALGetColorEntryCount(table); ++i)
-      if (GDALGetColorEntry(table, i)->c4 < 255) src.has_alpha_palette = true;
+    src.has_alpha_palette = *translucent;
     return;
   }
   std::vector<int> colour;
   for (int b = 1; b <= n; ++b) {
-    if (GDALGetRasterColorInterpretation(ds.band(b)) == GCI_AlphaBand)
+    if (ds.colour(b) == GCI_AlphaBand)
       src.alpha_band = b;
     else
       colour.push_back(b);
@@ -97,19 +93,16 @@ ImagePlan plan_imagery(const ImageSettings& s) {
                        "; pick matching bands with --bands");
     }
     for (int b : src.colour_bands) {
-      GDALRasterBandH band = ds.band(b);
-      if (GDALGetRasterDataType(band) == GDT_Byte || src.expand_palette) continue;
+      if (ds.data_type(b) == GDT_Byte || src.expand_palette) continue;
       needs_scale = true;
       if (s.scale) continue;
-      if (s.nodata) GDALSetRasterNoDataValue(band, *s.nodata);  // this handle only
-      double mm[2] = {0, 0};
-      CPLErrorReset();
-      if (GDALComputeRasterMinMax(band, TRUE, mm) != CE_None || !std::isfinite(mm[0]) ||
-          !std::isfinite(mm[1]))
+      if (s.nodata) ds.set_nodata(b, *s.nodata);  // this handle only
+      const auto mm = ds.min_max(b, Scan::kApproximate);
+      if (!mm || !std::isfinite((*mm)[0]) || !std::isfinite((*mm)[1]))
         throw InputError(path + ": cannot read band " + std::to_string(b) + " (" +
                          gdal_last_error() + "); the file may be truncated, or hold no valid data");
-      lo = std::min(lo, mm[0]);
-      hi = std::max(hi, mm[1]);
+      lo = std::min(lo, (*mm)[0]);
+      hi = std::max(hi, (*mm)[1]);
     }
     plan.sources.push_back(std::move(src));
   }

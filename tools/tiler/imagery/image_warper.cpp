@@ -1,8 +1,7 @@
 // Image tiles from the imagery mosaic (see image_warper.hpp).
 #include "image_warper.hpp"
 
-#include <cpl_string.h>
-#include <gdal_utils.h>
+#include <cstdio>
 
 #include "errors.hpp"
 #include "spatial_ref.hpp"
@@ -12,44 +11,22 @@ namespace {
 
 // Band selection, palette expansion and 8-bit scaling, as gdal_translate -of VRT.
 GdalDataset select_bands(const GdalDataset& in, const ImageSource& src, const ImagePlan& plan) {
-  CPLStringList argv;
-  argv.AddString("-of");
-  argv.AddString("VRT");
-  for (int b : src.colour_bands) {
-    argv.AddString("-b");
-    argv.AddString(std::to_string(b).c_str());
-  }
-  if (src.expand_palette) {
-    argv.AddString("-expand");
-    argv.AddString(src.has_alpha_palette ? "rgba" : "rgb");
-  }
-  if (src.alpha_band) {
-    argv.AddString("-b");
-    argv.AddString(std::to_string(src.alpha_band).c_str());
-  }
+  std::vector<std::string> args;
+  for (int b : src.colour_bands)
+    args.insert(args.end(), {"-b", std::to_string(b)});
+  if (src.expand_palette)
+    args.insert(args.end(), {"-expand", src.has_alpha_palette ? "rgba" : "rgb"});
+  if (src.alpha_band) args.insert(args.end(), {"-b", std::to_string(src.alpha_band)});
   if (plan.scale) {
-    argv.AddString("-ot");
-    argv.AddString("Byte");
-    for (size_t i = 1; i <= src.colour_bands.size(); ++i) {
-      argv.AddString(("-scale_" + std::to_string(i)).c_str());
-      argv.AddString(CPLSPrintf("%.17g", plan.scale->first));
-      argv.AddString(CPLSPrintf("%.17g", plan.scale->second));
-      argv.AddString("0");
-      argv.AddString("255");
-    }
+    args.insert(args.end(), {"-ot", "Byte"});
+    char lo[32], hi[32];
+    std::snprintf(lo, sizeof lo, "%.17g", plan.scale->first);
+    std::snprintf(hi, sizeof hi, "%.17g", plan.scale->second);
+    for (size_t i = 1; i <= src.colour_bands.size(); ++i)
+      args.insert(args.end(), {"-scale_" + std::to_string(i), lo, hi, "0", "255"});
   }
-  GDALTranslateOptions* options = GDALTranslateOptionsNew(argv.List(), nullptr);
-  if (!options) throw std::runtime_error("gdal_translate options: " + gdal_last_error());
-  int usage_error = 0;
-  CPLErrorReset();
-  GDALDatasetH out = GDALTranslate("", in.get(), options, &usage_error);
-  GDALTranslateOptionsFree(options);
-  if (!out) throw InputError(src.path + ": cannot select its bands (" + gdal_last_error() + ")");
-  GdalDataset wrapped(out, src.path);
-  const int n = wrapped.bands();
-  if (src.alpha_band || src.has_alpha_palette)
-    gdal_check(GDALSetRasterColorInterpretation(wrapped.band(n), GCI_AlphaBand),
-               src.path + ": marking the alpha band");
+  GdalDataset wrapped = in.translate_to_vrt(args);
+  if (src.alpha_band || src.has_alpha_palette) wrapped.set_colour(wrapped.bands(), GCI_AlphaBand);
   return wrapped;
 }
 

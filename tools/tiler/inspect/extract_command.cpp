@@ -2,10 +2,6 @@
 // of a package as a GeoTIFF in the tiling CRS, so GDAL can check the package
 // against its sources. Terrain: the decoded heights (pixel centres on the
 // block samples); imagery: the tile pixels, colour + alpha.
-#include <cpl_conv.h>
-#include <cpl_string.h>
-#include <gdal.h>
-
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -39,12 +35,11 @@ int extract_terrain(const ExtractRequest& rq) {
                      " pixels; limit it with --bbox");
   const double sp = p.tiling.sample_spacing(rq.zoom, n);
   const auto corner = p.tiling.tile_bounds({rq.zoom, x0, y0});
-  double gt[6] = {corner.min_x - sp / 2, sp, 0, corner.max_y + sp / 2, 0, -sp};
+  const std::array<double, 6> gt{corner.min_x - sp / 2, sp, 0, corner.max_y + sp / 2, 0, -sp};
   ExtractTiff out(rq, static_cast<int>(w), static_cast<int>(h), 1, GDT_Float64, gt, p.tiling.crs);
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  GDALRasterBandH band = GDALGetRasterBand(out.handle(), 1);
-  gdal_check(GDALSetRasterNoDataValue(band, nan), rq.output + ": setting the nodata value");
-  gdal_check(GDALFillRaster(band, nan, 0), rq.output + ": filling with nodata");
+  out.dataset().set_nodata(1, nan);
+  out.dataset().fill(1, nan);
   std::vector<double> buf(size_t(n + 1) * (n + 1));
   for (const auto& id : ids) {
     tileformat::MBlock b;
@@ -56,7 +51,8 @@ int extract_terrain(const ExtractRequest& rq) {
     for (int y = 0; y <= n; ++y)
       for (int x = 0; x <= n; ++x)
         buf[size_t(y) * (n + 1) + x] = b.is_valid(x, y) ? b.height(x, y) : nan;
-    out.write(1, int(id.x - x0) * n, int(id.y - y0) * n, n + 1, n + 1, buf.data(), GDT_Float64);
+    out.dataset().write(1, int(id.x - x0) * n, int(id.y - y0) * n, n + 1, n + 1, buf.data(),
+                        GDT_Float64);
   }
   out.commit();
   std::fprintf(stderr, "globe-tiler: wrote %s: %llu x %llu samples from %zu tiles of zoom %d\n",
@@ -107,47 +103,31 @@ ExtractTiles tiles_to_extract(tileformat::PackageReader& reader, const tileforma
   return t;
 }
 
-ExtractTiff::ExtractTiff(const ExtractRequest& rq, int width, int height, int bands, int gdal_type,
-                         const double gt[6], const std::string& crs_text)
+ExtractTiff::ExtractTiff(const ExtractRequest& rq, int width, int height, int bands,
+                         GDALDataType type, const std::array<double, 6>& gt,
+                         const std::string& crs_text)
     : output_(rq.output), temp_(rq.output + ".tmp.tif") {
-  char** opts = nullptr;
-  opts = CSLSetNameValue(opts, "TILED", "YES");
-  opts = CSLSetNameValue(opts, "COMPRESS", "DEFLATE");
-  opts = CSLSetNameValue(opts, "BIGTIFF", "IF_SAFER");
-  GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), temp_.c_str(), width, height, bands,
-                               static_cast<GDALDataType>(gdal_type), opts);
-  CSLDestroy(opts);
-  if (!ds) throw OutputError(output_ + ": cannot create the GeoTIFF (" + gdal_last_error() + ")");
+  ds_ = GdalDataset::create_raster("GTiff", temp_, width, height, bands, type,
+                                   {"TILED=YES", "COMPRESS=DEFLATE", "BIGTIFF=IF_SAFER"});
   try {
-    gdal_check(GDALSetGeoTransform(ds, const_cast<double*>(gt)),
-               rq.output + ": setting the geotransform");
-    const SpatialRef crs = SpatialRef::from_user_input(crs_text, rq.package);
-    gdal_check(GDALSetSpatialRef(ds, crs.get()), rq.output + ": setting the CRS");
+    ds_.set_geotransform(gt);
+    ds_.set_crs(SpatialRef::from_user_input(crs_text, rq.package));
   } catch (...) {  // the destructor does not run for a constructor that throws
-    GDALClose(ds);
+    ds_.close();
     std::error_code ec;
     std::filesystem::remove(temp_, ec);
     throw;
   }
-  ds_ = ds;
 }
 
 ExtractTiff::~ExtractTiff() {
-  if (ds_) GDALClose(static_cast<GDALDatasetH>(ds_));
+  ds_.close();
   std::error_code ec;
   if (!committed_) std::filesystem::remove(temp_, ec);
 }
 
-void ExtractTiff::write(int band, int x, int y, int w, int h, const void* data, int gdal_type) {
-  if (GDALRasterIO(GDALGetRasterBand(static_cast<GDALDatasetH>(ds_), band), GF_Write, x, y, w, h,
-                   const_cast<void*>(data), w, h, static_cast<GDALDataType>(gdal_type), 0,
-                   0) != CE_None)
-    throw OutputError(output_ + ": write failed (" + gdal_last_error() + ")");
-}
-
 void ExtractTiff::commit() {
-  GDALClose(static_cast<GDALDatasetH>(ds_));  // flush
-  ds_ = nullptr;
+  ds_.close();  // flush
   std::error_code ec;
   std::filesystem::rename(temp_, output_, ec);
   if (ec) throw OutputError(output_ + ": cannot rename into place: " + ec.message());

@@ -26,17 +26,13 @@ int extract_image(const ExtractRequest& rq) {
                      " pixels; limit it with --bbox");
   const double px = p.tiling.sample_spacing(rq.zoom, n);
   const auto corner = p.tiling.tile_bounds({rq.zoom, x0, y0});
-  const double gt[6] = {corner.min_x, px, 0, corner.max_y, 0, -px};
+  const std::array<double, 6> gt{corner.min_x, px, 0, corner.max_y, 0, -px};
   const int bands = p.colour + 1;
   ExtractTiff out(rq, static_cast<int>(w), static_cast<int>(h), bands, GDT_Byte, gt, p.tiling.crs);
-  auto ds = static_cast<GDALDatasetH>(out.handle());
   const GDALColorInterp colours[] = {GCI_RedBand, GCI_GreenBand, GCI_BlueBand};
   for (int b = 1; b <= p.colour; ++b)
-    gdal_check(GDALSetRasterColorInterpretation(GDALGetRasterBand(ds, b),
-                                                p.colour == 1 ? GCI_GrayIndex : colours[b - 1]),
-               "setting band colours");
-  gdal_check(GDALSetRasterColorInterpretation(GDALGetRasterBand(ds, bands), GCI_AlphaBand),
-             "marking the alpha band");
+    out.dataset().set_colour(b, p.colour == 1 ? GCI_GrayIndex : colours[b - 1]);
+  out.dataset().set_colour(bands, GCI_AlphaBand);
   for (const auto& id : ids) {
     TilePixels tile;
     try {
@@ -45,7 +41,8 @@ int extract_image(const ExtractRequest& rq) {
       throw InputError(path + ": tile " + id.str() + ": " + e.what());
     }
     for (int b = 0; b < bands; ++b)
-      out.write(b + 1, int(id.x - x0) * n, int(id.y - y0) * n, n, n, tile.plane(b), GDT_Byte);
+      out.dataset().write(b + 1, int(id.x - x0) * n, int(id.y - y0) * n, n, n, tile.plane(b),
+                          GDT_Byte);
   }
   out.commit();
   std::fprintf(stderr, "globe-tiler: wrote %s: %llu x %llu pixels from %zu tiles of zoom %d\n",

@@ -3,10 +3,12 @@
 // `format` (terrain or image) to these.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "gdal_dataset.hpp"
 #include "tileformat/package.hpp"
 #include "tileformat/tiling.hpp"
 
@@ -35,16 +37,15 @@ ExtractTiles tiles_to_extract(tileformat::PackageReader& reader, const tileforma
 // The GeoTIFF an extract writes under a temporary name, renamed by commit().
 class ExtractTiff {
  public:
-  ExtractTiff(const ExtractRequest& request, int width, int height, int bands, int gdal_type,
-              const double gt[6], const std::string& crs);
+  ExtractTiff(const ExtractRequest& request, int width, int height, int bands, GDALDataType type,
+              const std::array<double, 6>& gt, const std::string& crs);
   ~ExtractTiff();  // removes the temporary file unless committed
-  void* handle() const { return ds_; }
-  void write(int band, int x, int y, int w, int h, const void* data, int gdal_type);
+  GdalDataset& dataset() { return ds_; }
   void commit();
 
  private:
   std::string output_, temp_;
-  void* ds_ = nullptr;
+  GdalDataset ds_;
   bool committed_ = false;
 };
 

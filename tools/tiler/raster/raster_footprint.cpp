@@ -113,19 +113,14 @@ double source_resolution(const RasterSource& src, const SpatialRef& crs, const S
 
 GdalDataset georeferenced_copy(GDALDatasetH in, const RasterSource& src, double shift,
                                std::optional<double> nodata, const std::vector<int>& nodata_bands) {
-  GDALDatasetH copy =
-      GDALCreateCopy(GDALGetDriverByName("VRT"), "", in, FALSE, nullptr, nullptr, nullptr);
-  if (!copy) throw InputError(src.path + ": cannot wrap the raster (" + gdal_last_error() + ")");
-  GdalDataset wrapped(copy, src.path);
+  GdalDataset wrapped = GdalDataset::vrt_copy(in, src.path);
   auto gt = src.geotransform;
   gt[0] += shift;
-  gdal_check(GDALSetGeoTransform(copy, gt.data()), src.path + ": setting the geotransform");
-  const SpatialRef crs = SpatialRef::from_wkt(src.crs_wkt, src.path);
-  gdal_check(GDALSetSpatialRef(copy, crs.get()), src.path + ": setting the CRS");
+  wrapped.set_geotransform(gt);
+  wrapped.set_crs(SpatialRef::from_wkt(src.crs_wkt, src.path));
   if (nodata)
     for (int b : nodata_bands)
-      gdal_check(GDALSetRasterNoDataValue(wrapped.band(b), *nodata),
-                 src.path + ": setting --nodata");
+      wrapped.set_nodata(b, *nodata);
   return wrapped;
 }
 

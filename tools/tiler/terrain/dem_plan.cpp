@@ -34,23 +34,19 @@ void check_settings(const TerrainSettings& s) {
 // Min and max over the finite samples that are not nodata (GDAL's own
 // min/max is infinite as soon as one sample is), read row by row; both NaN
 // when there is none.
-void finite_min_max(GDALRasterBandH band, std::optional<double> nodata, const std::string& path,
-                    double mm[2]) {
-  const int w = GDALGetRasterBandXSize(band), h = GDALGetRasterBandYSize(band);
-  std::vector<double> row(static_cast<size_t>(w));
+std::array<double, 2> finite_min_max(const GdalDataset& ds, std::optional<double> nodata) {
+  std::vector<double> row(static_cast<size_t>(ds.width()));
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (int y = 0; y < h; ++y) {
-    if (GDALRasterIO(band, GF_Read, 0, y, w, 1, row.data(), w, 1, GDT_Float64, 0, 0) != CE_None)
-      throw InputError(path + ": cannot read row " + std::to_string(y) + " (" + gdal_last_error() +
-                       "); the file may be truncated or corrupt");
+  for (int y = 0; y < ds.height(); ++y) {
+    ds.read_rows(1, y, 1, row.data());
     for (double v : row)
       if (std::isfinite(v) && !(nodata && v == *nodata)) {
         lo = std::min(lo, v);
         hi = std::max(hi, v);
       }
   }
-  mm[0] = std::isfinite(lo) ? lo : std::numeric_limits<double>::quiet_NaN();
-  mm[1] = std::isfinite(hi) ? hi : std::numeric_limits<double>::quiet_NaN();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  return {std::isfinite(lo) ? lo : nan, std::isfinite(hi) ? hi : nan};
 }
 
 }  // namespace
@@ -72,33 +68,26 @@ DemPlan plan_terrain(const TerrainSettings& s) {
     rasters.push_back(describe_raster(ds, path, s_srs));
     DemSource src;
     src.nodata = s.nodata ? s.nodata : ds.nodata(1);
-    const GDALDataType type = GDALGetRasterDataType(ds.band(1));
-    src.integer_type = !GDALDataTypeIsFloating(type) && !GDALDataTypeIsComplex(type);
+    src.integer_type = ds.integer_type(1);
     all_integer = all_integer && src.integer_type;
 
-    GDALRasterBandH band = ds.band(1);
-    if (s.nodata)
-      gdal_check(GDALSetRasterNoDataValue(band, *s.nodata),  // this handle's statistics only
-                 path + ": setting --nodata");
-    double mm[2] = {0, 0};
-    CPLErrorReset();
-    CPLErr err = GDALComputeRasterMinMax(band, TRUE, mm);
-    if (err == CE_None && (std::isinf(mm[0]) || std::isinf(mm[1])))
-      finite_min_max(band, src.nodata, path, mm);  // infinite heights are holes, like NaN
-    if (err != CE_None || !std::isfinite(mm[0]) || !std::isfinite(mm[1])) {
+    if (s.nodata) ds.set_nodata(1, *s.nodata);  // this handle's statistics only
+    std::optional<std::array<double, 2>> mm = ds.min_max(1, Scan::kApproximate);
+    if (mm && (std::isinf((*mm)[0]) || std::isinf((*mm)[1])))
+      mm = finite_min_max(ds, src.nodata);  // infinite heights are holes, like NaN
+    if (!mm || !std::isfinite((*mm)[0]) || !std::isfinite((*mm)[1])) {
       const std::string why = gdal_last_error();
       if (!why.empty() && why.find("no valid") == std::string::npos &&
           why.find("nodata") == std::string::npos)
         throw InputError(path + ": cannot read the raster data (" + why +
                          "); the file may be truncated or corrupt");
-      CPLErrorReset();
-      err = GDALComputeRasterMinMax(band, FALSE, mm);
-      if (err != CE_None || !std::isfinite(mm[0]))
+      mm = ds.min_max(1, Scan::kExact);
+      if (!mm || !std::isfinite((*mm)[0]))
         throw InputError(path + ": holds no valid data (every sample is nodata" +
                          (src.nodata ? " = " + std::to_string(*src.nodata) : std::string()) + ")");
     }
-    min_h = std::min(min_h, mm[0]);
-    max_h = std::max(max_h, mm[1]);
+    min_h = std::min(min_h, (*mm)[0]);
+    max_h = std::max(max_h, (*mm)[1]);
     plan.sources.push_back(std::move(src));
   }
 
