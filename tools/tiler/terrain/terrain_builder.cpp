@@ -16,10 +16,10 @@
 #include "parallel_batches.hpp"
 #include "raster_metadata.hpp"
 #include "raster_stages.hpp"
+#include "terrain_stages.hpp"
 #include "tile_groups.hpp"
 #include "tile_warper.hpp"
 #include "tileformat/blob_header.hpp"
-#include "tileformat/byte_io.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/kpatch.hpp"
 #include "tileformat/mblock.hpp"
@@ -33,67 +33,12 @@ using tileformat::KPatchLayout;
 using tileformat::MBlock;
 using tileformat::TileId;
 
-constexpr int kStageZstdLevel = 1;
 constexpr int kFinalZstdLevel = 9;
 
 // The passes of one zoom level, in order (StageCheckpoint::pass). Items are
 // warp groups (finest zoom) or tiles; kPassEncode's progress is the tiles in
 // the package itself.
 enum Pass : int { kPassRaw = 0, kPassFinal = 1, kPassEncode = 2 };
-
-struct Block {
-  std::vector<int32_t> q;
-  std::vector<uint8_t> valid;  // always size*size here
-};
-
-// Staged data in the project's one byte codec (tileformat/byte_io.hpp).
-
-// First row and first column of a block (x or y = 0 .. steps), what its
-// west/north neighbours take from it: per sample, the height quantum (i32)
-// then validity (u8). Samples the block does not own are invalid in it.
-std::vector<uint8_t> pack_edges(const Block& b, int size) {
-  tileformat::ByteWriter w;
-  auto put = [&](size_t i) {
-    w.i32(b.q[i]);
-    w.u8(b.valid[i]);
-  };
-  for (int x = 0; x < size; ++x)
-    put(size_t(x));
-  for (int y = 0; y < size; ++y)
-    put(size_t(y) * size);
-  return w.take();
-}
-
-// Unpacked edges: sample k < size is row 0 at x = k, else column 0 at y = k - size.
-Block unpack_edges(std::span<const uint8_t> bytes, int size) {
-  tileformat::ByteReader r(bytes, "staged block edges", "scratch");
-  Block e;
-  e.q.resize(2 * size_t(size));
-  e.valid.resize(2 * size_t(size));
-  for (size_t k = 0; k < e.q.size(); ++k) {
-    e.q[k] = r.i32();
-    e.valid[k] = r.u8();
-  }
-  r.expect_end();
-  return e;
-}
-
-// A block's node errors (error_tree.hpp), u32 each.
-std::vector<uint8_t> pack_errors(const std::vector<uint32_t>& errors) {
-  tileformat::ByteWriter w;
-  for (uint32_t e : errors)
-    w.u32(e);
-  return w.take();
-}
-
-std::vector<uint32_t> unpack_errors(std::span<const uint8_t> bytes) {
-  tileformat::ByteReader r(bytes, "staged node errors", "scratch");
-  std::vector<uint32_t> out(bytes.size() / 4);
-  for (uint32_t& e : out)
-    e = r.u32();
-  r.expect_end();
-  return out;
-}
 
 class Builder {
  public:
@@ -169,16 +114,6 @@ class Builder {
   }
 
  private:
-  // Scratch blocks (raw samples, a final block's every other sample): the
-  // MBlock height coding at zstd level 1, without header or error tree.
-  static std::vector<uint8_t> encode_scratch(const Block& b, int size) {
-    return tileformat::encode_height_grid({size, b.q, b.valid}, kStageZstdLevel,
-                                          tileformat::HeightCoding::kBestPacking);
-  }
-  static Block decode_scratch(const std::vector<uint8_t>& bytes) {
-    tileformat::HeightGrid g = tileformat::decode_height_grid(bytes);
-    return Block{std::move(g.q), std::move(g.valid)};
-  }
   // Final blocks: the best height coding, encoded once here (pass 3 only
   // swaps in the error tree).
   std::vector<uint8_t> encode_final(const Block& b) const {
@@ -192,20 +127,6 @@ class Builder {
     m.vertex_error.assign(layouts_[0].vertex_count(), 0);
     return tileformat::encode_mblock(m, kFinalZstdLevel, tileformat::HeightCoding::kBestPacking);
   }
-  // Every other sample of a final block: what its parent takes (pass 1 of
-  // the next coarser zoom), a quarter of the samples to store and read back.
-  std::vector<uint8_t> encode_quarter(const Block& b) const {
-    const int half = plan_.steps / 2 + 1;
-    Block qb{std::vector<int32_t>(size_t(half) * half), std::vector<uint8_t>(size_t(half) * half)};
-    for (int y = 0; y < half; ++y)
-      for (int x = 0; x < half; ++x) {
-        const size_t src = size_t(2 * y) * size_ + 2 * x, dst = size_t(y) * half + x;
-        qb.q[dst] = b.q[src];
-        qb.valid[dst] = b.valid[src];
-      }
-    return encode_scratch(qb, half);
-  }
-
   std::optional<TileId> neighbour(TileId id, int dx, int dy) const {
     const int64_t nx = static_cast<int64_t>(plan_.tiling.tiles_x(id.z)),
                   ny = static_cast<int64_t>(plan_.tiling.tiles_y(id.z));
@@ -448,8 +369,9 @@ class Builder {
         kid_ptrs[c] = &kids[c];
       }
     const auto errors = node_errors(layouts_[id.diagonal()], b.q, b.valid, kid_ptrs);
-    return FinalOut{encode_final(b), pack_errors(errors),
-                    id.z > plan_.min_zoom ? encode_quarter(b) : std::vector<uint8_t>{}};
+    return FinalOut{
+        encode_final(b), pack_errors(errors),
+        id.z > plan_.min_zoom ? encode_quarter(b, plan_.steps) : std::vector<uint8_t>{}};
   }
 
   // Pass 3: vertex errors and the final MBlock. Tiles are put in list order,
