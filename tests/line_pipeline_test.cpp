@@ -107,7 +107,7 @@ TEST(TileCutter, LinesContinueAcrossTileBordersAndStayInOneRunPerTile) {
   std::vector<globe::Emission> out;
   globe::CutStats stats;
   uint32_t sub = 0;
-  cutter.cut(f, 1, 32, false, sub, out, stats);
+  cutter.cut(f, 1, 32, globe::Collapsed::kDrop, sub, out, stats);
   std::map<std::string, std::vector<tileformat::LineVertex>> by_tile;
   for (const auto& e : out)
     by_tile[globe::key_tile(e.key).str()] = e.piece.vertices;
@@ -134,10 +134,10 @@ TEST(TileCutter, FeaturesBelowOneGridStepBecomeDotsOnlyAtTheFinestZoom) {
   std::vector<globe::Emission> out;
   globe::CutStats stats;
   uint32_t sub = 0;
-  cutter.cut(f, 0, 16, false, sub, out, stats);
+  cutter.cut(f, 0, 16, globe::Collapsed::kDrop, sub, out, stats);
   EXPECT_TRUE(out.empty());
   EXPECT_EQ(stats.collapsed_runs, 1u);
-  cutter.cut(f, 0, 16, true, sub, out, stats);
+  cutter.cut(f, 0, 16, globe::Collapsed::kKeep, sub, out, stats);
   ASSERT_EQ(out.size(), 1u);
   ASSERT_EQ(out[0].piece.vertices.size(), 2u);
   EXPECT_EQ(out[0].piece.vertices[0], out[0].piece.vertices[1]);

@@ -169,7 +169,7 @@ void check_package(const std::string& pkg, int cameras, uint32_t seed) {
     p.heading_deg = u(rng) * 360;
     p.pitch_deg = u(rng) * 80;
     scene.settings().cull = (i % 4 != 0);  // some whole-package meshes too
-    const FrameResult f = scene.frame(p, true, false);
+    const FrameResult f = scene.frame(p, Loading::kSettle, TerrainScene::Output::kSelectOnly);
     ASSERT_EQ(f.selection.waiting, 0u) << "camera " << p.str();
     const double zs = scene.world().height_scale();
     const Mesh m = weld(scene.capture(f), f, scene.world(), zs);

@@ -174,8 +174,9 @@ class Builder {
             Result r;
             uint32_t sub = 0;
             for (int z = plan_.min_zoom; z <= plan_.max_zoom; ++z)
-              cutter.cut(batch[i], z, plan_.reach[z], z == plan_.max_zoom, sub, r.emissions,
-                         r.stats);
+              cutter.cut(batch[i], z, plan_.reach[z],
+                         z == plan_.max_zoom ? Collapsed::kKeep : Collapsed::kDrop, sub,
+                         r.emissions, r.stats);
             return r;
           },
           [&](size_t i, Result&& r) {

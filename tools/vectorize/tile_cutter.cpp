@@ -52,10 +52,10 @@ TileCutter::TileCutter(const tileformat::Tiling& tiling, int extent, double simp
                        const tileformat::Bounds& area)
     : tiling_(tiling), extent_(extent), simplify_px_(simplify_px), area_(area) {}
 
-void TileCutter::cut(const ProjectedFeature& f, int z, double reach_units, bool keep_collapsed,
+void TileCutter::cut(const ProjectedFeature& f, int z, double reach_units, Collapsed collapsed,
                      uint32_t& sub, std::vector<Emission>& out, CutStats& stats) const {
   for (const auto& part : f.lines)
-    cut_part(part, f.class_id, z, reach_units, keep_collapsed, sub, out, stats);
+    cut_part(part, f.class_id, z, reach_units, collapsed, sub, out, stats);
   const double ts = tiling_.tile_size(z);
   const double unit = ts / extent_;
   for (const XY& p : f.points) {
@@ -74,7 +74,7 @@ void TileCutter::cut(const ProjectedFeature& f, int z, double reach_units, bool 
 }
 
 void TileCutter::cut_part(std::span<const XY> part, uint32_t class_id, int z, double reach_units,
-                          bool keep_collapsed, uint32_t& sub, std::vector<Emission>& out,
+                          Collapsed collapsed, uint32_t& sub, std::vector<Emission>& out,
                           CutStats& stats) const {
   const double ts = tiling_.tile_size(z);
   const double unit = ts / extent_;
@@ -91,7 +91,7 @@ void TileCutter::cut_part(std::span<const XY> part, uint32_t class_id, int z, do
   };
   std::map<uint64_t, Open> open;
   auto flush = [&](uint64_t key, Open& o) {
-    if (o.piece.vertices.size() == 1 && keep_collapsed)
+    if (o.piece.vertices.size() == 1 && collapsed == Collapsed::kKeep)
       o.piece.vertices.push_back(o.piece.vertices[0]);
     if (o.piece.vertices.size() >= 2) {
       ++stats.runs;

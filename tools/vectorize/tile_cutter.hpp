@@ -47,6 +47,9 @@ struct CutStats {
   uint64_t runs = 0, segments = 0, collapsed_runs = 0, points = 0;
 };
 
+// What the cutter does with a run that snaps to a single grid point.
+enum class Collapsed { kDrop, kKeep };
+
 class TileCutter {
  public:
   // `area`: the part of the tiling CRS to keep (the scheme's extent, or --bbox).
@@ -56,14 +59,14 @@ class TileCutter {
   // Appends f's pieces at zoom z; `reach_units` widens each tile's box.
   // `sub` numbers the pieces across calls for one feature. A run that
   // snaps to a single grid point is dropped (it is below the zoom's
-  // resolution) unless `keep_collapsed`: then it stays as a zero-length
+  // resolution) unless Collapsed::kKeep: then it stays as a zero-length
   // segment, drawn as a dot, so the finest zoom loses no feature.
-  void cut(const ProjectedFeature& f, int z, double reach_units, bool keep_collapsed, uint32_t& sub,
+  void cut(const ProjectedFeature& f, int z, double reach_units, Collapsed collapsed, uint32_t& sub,
            std::vector<Emission>& out, CutStats& stats) const;
 
  private:
   void cut_part(std::span<const XY> part, uint32_t class_id, int z, double reach_units,
-                bool keep_collapsed, uint32_t& sub, std::vector<Emission>& out,
+                Collapsed collapsed, uint32_t& sub, std::vector<Emission>& out,
                 CutStats& stats) const;
   const tileformat::Tiling& tiling_;
   int extent_;

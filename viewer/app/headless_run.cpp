@@ -39,7 +39,7 @@ int run_headless(const ViewerSettings& settings) {
   if (poses.empty()) poses.push_back(start);
 
   // Time to first frame: opening, the first complete selection, one draw.
-  FrameResult f = scene.frame(poses.front(), true, true);
+  FrameResult f = scene.frame(poses.front(), Loading::kSettle, TerrainScene::Output::kDraw);
   gl::Finish();
   const double first_frame_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_start).count();
@@ -50,7 +50,7 @@ int run_headless(const ViewerSettings& settings) {
     const int frames = settings.stats ? settings.frames : 1;
     for (int k = 0; k < frames; ++k) {
       const auto t0 = std::chrono::steady_clock::now();
-      f = scene.frame(poses[i], true, true);
+      f = scene.frame(poses[i], Loading::kSettle, TerrainScene::Output::kDraw);
       gl::Finish();
       frame_ms.push_back(
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());

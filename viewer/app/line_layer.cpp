@@ -36,11 +36,11 @@ std::vector<NamedLineStyle> LineLayer::read_styles() const {
   return styles;
 }
 
-void LineLayer::reload_style(bool force) {
+void LineLayer::reload_style(Reload when) {
   if (!style_path_) return;
   std::error_code ec;
   const auto t = std::filesystem::last_write_time(*style_path_, ec);
-  if (!force && (ec || t == style_time_)) return;
+  if (when == Reload::kIfChanged && (ec || t == style_time_)) return;
   style_time_ = t;
   try {
     renderer_.set_styles(read_styles());
@@ -60,7 +60,7 @@ size_t LineLayer::upload_loaded() {
 }
 
 double LineLayer::draw(const GBuffer& g, const View& view, const WorldFrame& world,
-                       double exaggeration, const TerrainHeights& terrain, bool settle) {
+                       double exaggeration, const TerrainHeights& terrain, Loading loading) {
   double ms = 0;
   int idle_rounds = 0;
   for (int round = 0;; ++round) {
@@ -74,7 +74,7 @@ double LineLayer::draw(const GBuffer& g, const View& view, const WorldFrame& wor
     for (const tileformat::TileId& id : fb.requests)
       cache_.request(id);
     cache_.flush_requests();
-    if (!settle || (fb.requests.empty() && !cache_.loader_busy())) break;
+    if (loading == Loading::kAsReady || (fb.requests.empty() && !cache_.loader_busy())) break;
     // Tiles that cannot get room in the budget are asked for again and again.
     idle_rounds = loaded == 0 ? idle_rounds + 1 : 0;
     if (idle_rounds > 3 || round > 200) break;

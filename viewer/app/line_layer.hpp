@@ -16,6 +16,11 @@
 
 namespace globe::viewer {
 
+// Whether a frame waits for the tiles it needs: kSettle keeps selecting and
+// loading until nothing the view needs is missing (headless snapshots);
+// kAsReady never waits for I/O (interactive windows).
+enum class Loading { kSettle, kAsReady };
+
 struct LineLayerStats {
   LineCacheStats cache;
   size_t tiles_used = 0;  // records the last frame read
@@ -28,15 +33,16 @@ class LineLayer {
             LineMode mode, uint64_t budget_bytes, int width, int height);
 
   void resize(int width, int height) { renderer_.resize(width, height); }
-  // The line pass over `g`; `settle`: keep loading until no visible tile is
-  // missing (headless). Returns the GPU time of the last pass in ms.
+  // The line pass over `g`; Loading::kSettle: keep loading until no visible
+  // tile is missing (headless). Returns the GPU time of the last pass in ms.
   double draw(const GBuffer& g, const View& view, const WorldFrame& world, double exaggeration,
-              const TerrainHeights& terrain, bool settle);
+              const TerrainHeights& terrain, Loading loading);
   GLuint output_fbo() const { return renderer_.output_fbo(); }
 
-  // Re-reads the style file if it changed since the last read (force: even
+  enum class Reload { kIfChanged, kAlways };
+  // Re-reads the style file if it changed since the last read (kAlways: even
   // if not). A broken file keeps the current styles; the error goes to stderr.
-  void reload_style(bool force);
+  void reload_style(Reload when);
   LineMode mode() const { return mode_; }
   void set_mode(LineMode m) { mode_ = m; }
   LineLayerStats stats() const { return {cache_.stats(), tiles_used_}; }

@@ -120,7 +120,7 @@ View TerrainScene::make(const CameraPose& pose) {
                    selector_->top_height_m(*cache_) * zs, selector_->bottom_height_m(*cache_) * zs);
 }
 
-FrameResult TerrainScene::frame(const CameraPose& pose, bool settle, bool draw) {
+FrameResult TerrainScene::frame(const CameraPose& pose, Loading loading, Output output) {
   FrameResult f;
   SelectionSettings sel{settings_.max_error_px, settings_.shading.exaggeration, settings_.cull};
   for (int round = 0;; ++round) {
@@ -131,10 +131,10 @@ FrameResult TerrainScene::frame(const CameraPose& pose, bool settle, bool draw) 
     f.patches = selector_->select(f.view, *world_, *cache_, sel, &f.selection);
     f.select_ms = ms_since(t0);
     cache_->flush_requests();
-    if (!settle || !cache_->loader_busy() || round > 1000) break;
+    if (loading == Loading::kAsReady || !cache_->loader_busy() || round > 1000) break;
     cache_->wait_for_loader();
   }
-  if (!draw) return f;
+  if (output == Output::kSelectOnly) return f;
   f.terrain_ms = renderer_->draw(f.patches, f.view, *world_, settings_.shading).terrain_ms;
   if (lines_) {
     TerrainHeights heights;
@@ -143,7 +143,7 @@ FrameResult TerrainScene::frame(const CameraPose& pose, bool settle, bool draw) 
                  package().max_zoom, package().block_size};
     }
     f.lines_ms = lines_->draw(renderer_->gbuffer(), f.view, *world_, settings_.shading.exaggeration,
-                              heights, settle);
+                              heights, loading);
   }
   return f;
 }

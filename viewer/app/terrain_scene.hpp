@@ -37,9 +37,10 @@ class TerrainScene {
   CameraPose initial_pose();
   void resize(int width, int height);
 
-  // One frame. `settle`: keep selecting and loading until nothing the view
-  // needs is missing (headless); otherwise never wait for I/O.
-  FrameResult frame(const CameraPose& pose, bool settle, bool draw);
+  enum class Output { kDraw, kSelectOnly };
+  // One frame (Loading: whether it waits for what the view needs);
+  // kSelectOnly stops after the patch selection.
+  FrameResult frame(const CameraPose& pose, Loading loading, Output output);
   std::vector<float> capture(const FrameResult& f) {
     return renderer_->capture_triangles(f.patches, f.view, *world_, settings_.shading.exaggeration);
   }

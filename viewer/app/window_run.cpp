@@ -129,7 +129,7 @@ int run_window(const ViewerSettings& settings) {
         s.mode = Shading::kAspect;
         break;
       case GLFW_KEY_F5:
-        if (scene->lines()) scene->lines()->reload_style(true);
+        if (scene->lines()) scene->lines()->reload_style(LineLayer::Reload::kAlways);
         break;
       case GLFW_KEY_L:
         if (LineLayer* l = scene->lines())
@@ -187,7 +187,8 @@ int run_window(const ViewerSettings& settings) {
     if (w <= 0 || h <= 0) continue;
     s.resize(w, h);
     const auto t0 = std::chrono::steady_clock::now();
-    const FrameResult f = s.frame(orbit.pose(s.world(), settings.fov_y_deg), false, true);
+    const FrameResult f = s.frame(orbit.pose(s.world(), settings.fov_y_deg), Loading::kAsReady,
+                                  TerrainScene::Output::kDraw);
     if (screenshot_pending) {
       const std::string name = "globe-view-" + std::to_string(++screenshot) + ".png";
       write_png(name, s.read_pixels(), w, h);
@@ -198,7 +199,8 @@ int run_window(const ViewerSettings& settings) {
     window->swap();
     const auto now = std::chrono::steady_clock::now();
     if (now - last_title > std::chrono::milliseconds(500)) {
-      if (s.lines()) s.lines()->reload_style(false);  // picks up edits of the style file
+      if (s.lines())
+        s.lines()->reload_style(LineLayer::Reload::kIfChanged);  // picks up edits of the style file
       const double ms = std::chrono::duration<double, std::milli>(now - t0).count();
       char title[256];
       std::snprintf(title, sizeof title,
