@@ -11,6 +11,8 @@ packages=(
   clang libclang-rt-14-dev
   # libraries (see README "Dependencies")
   libgdal-dev libproj-dev libtiff-dev libzstd-dev libsqlite3-dev libpng-dev
+  # viewer image tile decoding without GDAL
+  libjpeg62-turbo-dev libwebp-dev
   googletest libgtest-dev
   # viewer: GLM, GLFW window, OSMesa and EGL (Mesa llvmpipe) headless contexts
   libglm-dev libglfw3-dev libosmesa6-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri

@@ -125,7 +125,10 @@ TEST(Architecture, EachCApiIsCalledOnlyFromItsWrapper) {
   auto zstd = [](const std::string& l) { return calls_c_api(l, {"ZSTD_"}); };
   EXPECT_EQ(joined(outside(matches("lib", zstd), {"lib/tileformat/src/zstd_codec."})), "");
   auto png = [](const std::string& l) { return calls_c_api(l, {"png_"}); };
-  EXPECT_EQ(joined(outside(matches("tools", png), {"tools/common/kit/png_encoder."})), "");
+  EXPECT_EQ(joined(outside(matches("tools", png), {"tools/common/kit/png_codec."})), "");
+  auto jpeg_webp = [](const std::string& l) { return calls_c_api(l, {"jpeg_", "WebP"}); };
+  EXPECT_EQ(joined(outside(matches("tools", jpeg_webp), {"tools/common/kit/jpeg_webp_decoders."})),
+            "");
   for (const char* dir : {"tools", "viewer"}) {
     EXPECT_EQ(joined(matches(dir, sqlite)), "") << dir;
     EXPECT_EQ(joined(matches(dir, zstd)), "") << dir;

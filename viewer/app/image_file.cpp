@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "errors.hpp"
-#include "png_encoder.hpp"
+#include "png_codec.hpp"
 
 namespace globe::viewer {
 namespace {

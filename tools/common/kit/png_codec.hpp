@@ -1,10 +1,10 @@
 // The one wrapper around libpng: encodes 8-bit gray, gray + alpha, RGB or
-// RGBA pixels as a PNG file in memory. Used for image tiles (GDAL's PNG
-// driver offers neither the filter nor the deflate strategy, and spent 2.4x
-// the time for 5-17 % more bytes on the sample images; docs/imagery.md
-// "Encoding").
+// RGBA pixels as a PNG file in memory, and decodes any PNG to RGBA. Used for image tiles (GDAL's
+// PNG driver offers neither the filter nor the deflate strategy, and spent 2.4x the time for 5-17 %
+// more bytes on the sample images; docs/imagery.md "Encoding").
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -17,5 +17,10 @@ namespace globe {
 // std::runtime_error if libpng fails.
 std::vector<uint8_t> encode_png(const uint8_t* pixels, int width, int height, int channels,
                                 int effort);
+
+// Decodes a PNG in memory to 8-bit RGBA rows from the top (any bit depth,
+// palette, gray or transparency key). Throws std::runtime_error with libpng's
+// message.
+std::vector<uint8_t> decode_png_rgba(const uint8_t* data, size_t size, int& width, int& height);
 
 }  // namespace globe

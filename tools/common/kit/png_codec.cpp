@@ -1,5 +1,5 @@
-// PNG encoding through libpng (see png_encoder.hpp).
-#include "png_encoder.hpp"
+// PNG encoding and decoding through libpng (see png_codec.hpp).
+#include "png_codec.hpp"
 
 #include <png.h>
 #include <zlib.h>
@@ -74,6 +74,24 @@ std::vector<uint8_t> encode_png(const uint8_t* pixels, int width, int height, in
   if (!write_png(st, pixels, width, height, channels, effort))
     throw std::runtime_error(std::string("PNG encoding failed: ") +
                              (st.error[0] ? st.error : "out of memory"));
+  return out;
+}
+
+std::vector<uint8_t> decode_png_rgba(const uint8_t* data, size_t size, int& width, int& height) {
+  png_image image;
+  std::memset(&image, 0, sizeof image);
+  image.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_memory(&image, data, size))
+    throw std::runtime_error(std::string("not a readable PNG (") + image.message + ")");
+  image.format = PNG_FORMAT_RGBA;
+  std::vector<uint8_t> out(PNG_IMAGE_SIZE(image));
+  if (!png_image_finish_read(&image, nullptr, out.data(), 0, nullptr)) {
+    const std::string why = image.message;
+    png_image_free(&image);
+    throw std::runtime_error("PNG decoding failed (" + why + ")");
+  }
+  width = static_cast<int>(image.width);
+  height = static_cast<int>(image.height);
   return out;
 }
 
