@@ -28,16 +28,16 @@ PackageSet sort_packages(const std::vector<std::string>& paths) {
                          "); globe-view draws one line package per view");
       set.lines = path;
     } else if (kind == tileformat::PackageKind::kImage) {
-      throw InputError(path +
-                       ": an image package; draping imagery is not supported by this version "
-                       "of globe-view (docs/viewer.md)");
+      set.images.push_back(path);
     } else {
       throw InputError(path + ": format '" + format +
                        "' is neither a terrain nor a line-cluster package");
     }
   }
   if (set.terrain.empty())
-    throw UsageError("no terrain package among the arguments; lines are drawn over terrain");
+    throw UsageError(
+        "no terrain package among the arguments; imagery and lines are draped over terrain "
+        "(give a terrain package made by globe-tiler terrain)");
   return set;
 }
 

@@ -1,4 +1,4 @@
-// Which of the command line's packages is the terrain and which the lines:
+// Which of the command line's packages is the terrain, the imagery and the lines:
 // sorted by their `format` metadata, checked for a common tiling.
 #pragma once
 
@@ -12,11 +12,12 @@ namespace globe::viewer {
 
 struct PackageSet {
   std::string terrain;
+  std::vector<std::string> images;  // in command-line order: the first is the bottom layer
   std::optional<std::string> lines;
 };
 
-// Throws InputError (a package that is missing or of an unknown kind, an
-// image package) or UsageError (no terrain, two of a kind).
+// Throws InputError (a package that is missing or of an unknown kind) or
+// UsageError (no terrain, two terrains or two line packages).
 PackageSet sort_packages(const std::vector<std::string>& paths);
 
 // Throws InputError naming both files unless `other` uses the terrain's

@@ -2,6 +2,8 @@
 #include "app/terrain_scene.hpp"
 
 #include <chrono>
+#include <cmath>
+#include <numbers>
 #include <sstream>
 
 #include "app/package_set.hpp"
@@ -48,14 +50,21 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
   } else if (settings_.style) {
     throw UsageError("--style styles lines; give a line package too");
   }
-  // With lines, a quarter of the budget holds line tiles.
+  if (set.images.empty() && settings_.imagery_unlit)
+    throw UsageError("--shading imagery: give an image package too");
+  if (set.images.empty() && !settings_.image_opacity.empty())
+    throw UsageError("--image-opacity: give an image package too");
+  // With lines, a quarter of the budget holds line tiles; with imagery,
+  // another quarter holds image tiles.
   const uint64_t budget = settings_.cache_mb << 20;
   const uint64_t line_budget = lines ? budget / 4 : 0;
+  const uint64_t image_budget = set.images.empty() ? 0 : budget / 4;
   if (package.max_zoom > 21)
     throw InputError(path + ": maxzoom " + std::to_string(package.max_zoom) +
                      " is deeper than the viewer's integer vertex frame supports (21)");
   world_ = std::make_unique<WorldFrame>(package.tiling, package.block_size - 1, package.max_zoom);
-  cache_ = std::make_unique<BlockCache>(path, std::move(package), budget - line_budget);
+  cache_ =
+      std::make_unique<BlockCache>(path, std::move(package), budget - line_budget - image_budget);
   selector_ = std::make_unique<PatchSelector>(cache_->package());
   if (selector_->root_tiles().empty())
     throw InputError(path + ": no tiles at minzoom " + std::to_string(cache_->package().min_zoom) +
@@ -63,6 +72,9 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
   renderer_ = std::make_unique<TerrainRenderer>(
       cache_->package().block_size, cache_->package().lattice,
       static_cast<int>(cache_->slot_count()), settings_.width, settings_.height);
+  if (!set.images.empty())
+    images_ = std::make_unique<ImageLayers>(set.images, settings_.image_opacity, *world_,
+                                            image_budget, settings_.width, settings_.height);
   if (lines)
     lines_ = std::make_unique<LineLayer>(*set.lines, std::move(*lines), settings_.style,
                                          settings_.line_mode, line_budget, settings_.width,
@@ -73,11 +85,13 @@ TerrainScene::~TerrainScene() = default;
 
 void TerrainScene::resize(int width, int height) {
   renderer_->resize(width, height);
+  if (images_) images_->resize(width, height);
   if (lines_) lines_->resize(width, height);
 }
 
 GLuint TerrainScene::output_fbo() const {
-  return lines_ ? lines_->output_fbo() : renderer_->gbuffer().fbo;
+  if (lines_) return lines_->output_fbo();
+  return images_ ? images_->output_fbo() : renderer_->gbuffer().fbo;
 }
 
 std::vector<uint8_t> TerrainScene::read_pixels() const {
@@ -136,14 +150,22 @@ FrameResult TerrainScene::frame(const CameraPose& pose, Loading loading, Output 
   }
   if (output == Output::kSelectOnly) return f;
   f.terrain_ms = renderer_->draw(f.patches, f.view, *world_, settings_.shading).terrain_ms;
+  GBuffer g = renderer_->gbuffer();
+  if (images_) {
+    const double sun_z = std::sin(settings_.shading.sun_altitude_deg * std::numbers::pi / 180);
+    f.images_ms =
+        images_->draw(g, f.view, *world_,
+                      settings_.imagery_unlit ? ImageLighting::kUnlit : ImageLighting::kHillshade,
+                      static_cast<float>(0.12 + 0.88 * std::max(sun_z, 0.05)), loading);
+    g.color = images_->output_texture();  // lines draw over the imagery
+  }
   if (lines_) {
     TerrainHeights heights;
     if (lines_->mode() == LineMode::kGeometry) {
       heights = {renderer_->heights_texture(), cache_->resident_slots(), package().min_zoom,
                  package().max_zoom, package().block_size};
     }
-    f.lines_ms = lines_->draw(renderer_->gbuffer(), f.view, *world_, settings_.shading.exaggeration,
-                              heights, loading);
+    f.lines_ms = lines_->draw(g, f.view, *world_, settings_.shading.exaggeration, heights, loading);
   }
   return f;
 }

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "app/image_layers.hpp"
 #include "app/line_layer.hpp"
 #include "app/viewer_settings.hpp"
 #include "camera/camera.hpp"
@@ -22,7 +23,7 @@ struct FrameResult {
   View view;
   std::vector<Patch> patches;
   SelectionStats selection;
-  double select_ms = 0, terrain_ms = 0, lines_ms = 0;
+  double select_ms = 0, terrain_ms = 0, images_ms = 0, lines_ms = 0;
 };
 
 class TerrainScene {
@@ -47,7 +48,8 @@ class TerrainScene {
 
   TerrainRenderer& renderer() { return *renderer_; }
   LineLayer* lines() { return lines_.get(); }
-  // The finished image (terrain, with lines if any): framebuffer and pixels.
+  ImageLayers* images() { return images_.get(); }
+  // The finished image (terrain, imagery and lines): framebuffer and pixels.
   GLuint output_fbo() const;
   std::vector<uint8_t> read_pixels() const;
   BlockCache& cache() { return *cache_; }
@@ -65,6 +67,7 @@ class TerrainScene {
   std::unique_ptr<PatchSelector> selector_;
   std::unique_ptr<WorldFrame> world_;
   std::unique_ptr<TerrainRenderer> renderer_;
+  std::unique_ptr<ImageLayers> images_;
   std::unique_ptr<LineLayer> lines_;
 };
 

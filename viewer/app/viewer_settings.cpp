@@ -71,7 +71,9 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
       "memory budget for resident terrain blocks and line tiles (default 512; a quarter goes "
       "to line tiles when there are lines)",
       [&](const std::string& v) { s.cache_mb = CliArgs::to_int("--cache-mb", v, 4, 1 << 20); });
-  cli.option("--shading", "MODE", "hillshade (default), elevation, slope or aspect",
+  cli.option("--shading", "MODE",
+             "hillshade (default; imagery is lit by it), imagery (imagery unlit), elevation, "
+             "slope or aspect",
              [&](const std::string& v) {
                if (v == "hillshade")
                  s.shading.mode = Shading::kHillshade;
@@ -82,11 +84,25 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
                else if (v == "aspect")
                  s.shading.mode = Shading::kAspect;
                else if (v == "imagery")
-                 throw UsageError(
-                     "--shading imagery: needs an image package, which this version "
-                     "cannot read yet (see docs/viewer.md)");
+                 s.imagery_unlit = true;
                else
                  throw UsageError("--shading: unknown mode '" + v + "'");
+             });
+  cli.option("--image-opacity", "A[,B...]",
+             "opacity of each image layer, bottom first, 0..1 (default 1; the last value "
+             "applies to the layers after it)",
+             [&](const std::string& v) {
+               s.image_opacity.clear();
+               size_t start = 0;
+               for (;;) {
+                 const size_t comma = v.find(',', start);
+                 const double a =
+                     CliArgs::to_double("--image-opacity", v.substr(start, comma - start));
+                 if (a < 0 || a > 1) throw UsageError("--image-opacity: must be within 0..1");
+                 s.image_opacity.push_back(a);
+                 if (comma == std::string::npos) break;
+                 start = comma + 1;
+               }
              });
   cli.option("--sun", "AZ,ALT", "sun azimuth and altitude in degrees (default 315,45)",
              [&](const std::string& v) {
@@ -132,12 +148,13 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
                  throw UsageError("--platform: unknown '" + v + "' (auto, glfw, osmesa, egl)");
                s.platform = v;
              });
-  auto positional = cli.parse_command(args, 1, 3, "package");
+  auto positional = cli.parse_command(args, 1, 11, "package");
   if (!positional) return std::nullopt;
   s.packages = *positional;
   if (s.platform == "glfw" && (s.snapshot || s.export_mesh || s.stats))
     throw UsageError(
         "--platform glfw opens a window; --snapshot/--stats/--export-mesh are headless");
+  if (s.imagery_unlit) s.shading.mode = Shading::kHillshade;
   for (CameraPose& p : s.camera_path)
     p.fov_y_deg = s.fov_y_deg;
   if (s.camera) s.camera->fov_y_deg = s.fov_y_deg;

@@ -29,7 +29,9 @@ struct ViewerSettings {
   bool cull = true;
   std::optional<std::string> style;  // line style file (JSON)
   LineMode line_mode = LineMode::kDeferred;
-  bool lines = true;  // --lines off: draw none
+  bool lines = true;                  // --lines off: draw none
+  bool imagery_unlit = false;         // --shading imagery
+  std::vector<double> image_opacity;  // --image-opacity, per image layer (the last repeats)
 
   bool headless() const {
     return snapshot || export_mesh || stats || platform == "osmesa" || platform == "egl";

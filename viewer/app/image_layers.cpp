@@ -1,0 +1,224 @@
+// The image layers of one view (see image_layers.hpp).
+#include "app/image_layers.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+
+#include "camera/proj_crs.hpp"
+#include "errors.hpp"
+#include "render/image_shaders.hpp"
+
+namespace globe::viewer {
+
+namespace {
+
+using tileformat::Bounds;
+using tileformat::Scheme;
+
+constexpr int kGridN = 129;               // samples per side of a kGrid mapping
+constexpr double kMercatorR = 6378137.0;  // webmercator sphere
+constexpr double kMaxMercLat = 85.0511287798;
+
+double rad(double deg) {
+  return deg * std::numbers::pi / 180;
+}
+double deg(double rad) {
+  return rad * 180 / std::numbers::pi;
+}
+
+// The image's footprint in the terrain's tiling CRS (densified bounds), cut
+// to the terrain tiling's extent; empty if they do not meet.
+Bounds footprint_in_terrain(const ImagePackage& img, const WorldFrame& world) {
+  Bounds ll = img.meta.common.has_bounds ? img.meta.common.lonlat : img.tiling.lonlat_limits();
+  const Bounds limits = world.tiling().lonlat_limits();
+  ll = {std::max(ll.min_x, limits.min_x), std::max(ll.min_y, limits.min_y),
+        std::min(ll.max_x, limits.max_x), std::min(ll.max_y, limits.max_y)};
+  Bounds b{1e300, 1e300, -1e300, -1e300};
+  constexpr int kSteps = 32;
+  for (int i = 0; i <= kSteps; ++i)
+    for (int j = 0; j <= kSteps; ++j) {
+      if (i != 0 && i != kSteps && j != 0 && j != kSteps) continue;  // the boundary
+      try {
+        const glm::dvec2 c = world.lonlat_to_crs(ll.min_x + (ll.max_x - ll.min_x) * i / kSteps,
+                                                 ll.min_y + (ll.max_y - ll.min_y) * j / kSteps);
+        b = {std::min(b.min_x, c.x), std::min(b.min_y, c.y), std::max(b.max_x, c.x),
+             std::max(b.max_y, c.y)};
+      } catch (const std::runtime_error&) {
+      }
+    }
+  const Bounds e = world.tiling().extent();
+  return {std::max(b.min_x, e.min_x), std::max(b.min_y, e.min_y), std::min(b.max_x, e.max_x),
+          std::min(b.max_y, e.max_y)};
+}
+
+}  // namespace
+
+ImageLayers::ImageLayers(const std::vector<std::string>& paths,
+                         const std::vector<double>& opacities, const WorldFrame& world,
+                         uint64_t budget_bytes, int width, int height)
+    : renderer_(width, height, kGridN) {
+  if (paths.size() > size_t(shaders::kMaxImageLayers))
+    throw UsageError(std::to_string(paths.size()) + " image packages; globe-view blends up to " +
+                     std::to_string(shaders::kMaxImageLayers));
+  const tileformat::Tiling& tt = world.tiling();
+  GLint max_layers = 2048;
+  gl::GetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
+  for (size_t i = 0; i < paths.size(); ++i) {
+    const std::string& path = paths[i];
+    ImagePackage pkg = open_image_package(path);
+    if (pkg.tile_size < 1 || (pkg.tile_size & (pkg.tile_size - 1)) != 0 || pkg.tile_size > 4096)
+      throw InputError(path + ": tiles of " + std::to_string(pkg.tile_size) +
+                       " px; globe-view drapes square power-of-two tiles up to 4096 px");
+    Layer l;
+    l.opacity = i < opacities.size() ? opacities[i] : (opacities.empty() ? 1.0 : opacities.back());
+    const tileformat::Tiling& it = pkg.tiling;
+    std::vector<float> grid;
+    if (it.scheme == tt.scheme && (it.scheme != Scheme::kLocal || it.crs == tt.crs ||
+                                   crs_equivalent(it.crs, path, tt.crs, "the terrain"))) {
+      l.mode = ImageLayerFrame::kSameCrs;
+    } else if (tt.scheme == Scheme::kGeodetic && it.scheme == Scheme::kWebMercator) {
+      l.mode = ImageLayerFrame::kGeodeticToMercator;
+    } else if (tt.scheme == Scheme::kWebMercator && it.scheme == Scheme::kGeodetic) {
+      l.mode = ImageLayerFrame::kMercatorToGeodetic;
+    } else {
+      l.mode = ImageLayerFrame::kGrid;
+      const Bounds fp = footprint_in_terrain(pkg, world);
+      if (!(fp.min_x < fp.max_x && fp.min_y < fp.max_y)) {
+        std::fprintf(stderr,
+                     "globe-view: warning: %s: the image does not overlap the terrain's tiling; "
+                     "it is not drawn\n",
+                     path.c_str());
+      }
+      l.grid_nw = {fp.min_x, fp.max_y};
+      l.grid_cell = {std::max(fp.max_x - fp.min_x, 1e-9) / (kGridN - 1),
+                     std::max(fp.max_y - fp.min_y, 1e-9) / (kGridN - 1)};
+      ProjTransform to_image("EPSG:4326", it.crs, path);
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      std::vector<glm::dvec2> v(size_t(kGridN) * kGridN, glm::dvec2(nan));
+      for (int r = 0; r < kGridN; ++r)
+        for (int c = 0; c < kGridN; ++c) {
+          try {
+            glm::dvec2 ll = world.crs_to_lonlat(l.grid_nw.x + c * l.grid_cell.x,
+                                                l.grid_nw.y - r * l.grid_cell.y);
+            if (it.scheme == Scheme::kWebMercator)
+              ll.y = std::clamp(ll.y, -kMaxMercLat, kMaxMercLat);
+            if (to_image.transform(ll.x, ll.y)) v[size_t(r) * kGridN + c] = ll;
+          } catch (const std::runtime_error&) {
+          }
+        }
+      l.grid_anchor = v[size_t(kGridN / 2) * kGridN + kGridN / 2];
+      if (!std::isfinite(l.grid_anchor.x)) l.grid_anchor = {it.origin_x, it.origin_y};
+      grid.resize(v.size() * 2);
+      for (size_t k = 0; k < v.size(); ++k) {
+        // Points the image CRS cannot hold land far outside every tile.
+        const bool ok = std::isfinite(v[k].x) && std::isfinite(v[k].y);
+        grid[2 * k] = ok ? static_cast<float>(v[k].x - l.grid_anchor.x) : 1e30f;
+        grid[2 * k + 1] = ok ? static_cast<float>(v[k].y - l.grid_anchor.y) : 1e30f;
+      }
+    }
+    const uint64_t tile_bytes = uint64_t(pkg.tile_size) * pkg.tile_size * 4 * 4 / 3;
+    const uint64_t share = budget_bytes / std::max<size_t>(paths.size(), 1);
+    const int slots =
+        static_cast<int>(std::clamp<uint64_t>(share / tile_bytes, 16, uint64_t(max_layers)));
+    l.cache = std::make_unique<ImageCache>(path, std::move(pkg), slots);
+    renderer_.add_layer(*l.cache, grid);
+    layers_.push_back(std::move(l));
+  }
+}
+
+ImageLayers::~ImageLayers() = default;
+
+void ImageLayers::set_opacity(size_t i, double v) {
+  layers_.at(i).opacity = std::clamp(v, 0.0, 1.0);
+}
+
+ImageLayerFrame ImageLayers::frame_of(const Layer& l, const View& view,
+                                      const WorldFrame& world) const {
+  const tileformat::Tiling& it = l.cache->package().tiling;
+  const glm::dvec2 o = world.key_to_crs(double(view.origin.x), double(view.origin.y));
+  ImageLayerFrame f;
+  f.mode = l.mode;
+  f.opacity = static_cast<float>(l.opacity);
+  glm::dvec2 anchor = o;  // image CRS point the shader's offsets start from
+  if (l.mode == ImageLayerFrame::kGeodeticToMercator) {
+    const double lat = std::clamp(o.y, -kMaxMercLat, kMaxMercLat);
+    anchor = {kMercatorR * rad(o.x), kMercatorR * std::atanh(std::sin(rad(lat)))};
+    f.param = {static_cast<float>(rad(lat)), static_cast<float>(kMercatorR)};
+  } else if (l.mode == ImageLayerFrame::kMercatorToGeodetic) {
+    anchor = {deg(o.x / kMercatorR), deg(std::atan(std::sinh(o.y / kMercatorR)))};
+    f.param = {static_cast<float>(o.y / kMercatorR), static_cast<float>(kMercatorR)};
+  } else if (l.mode == ImageLayerFrame::kGrid) {
+    anchor = l.grid_anchor;
+    f.grid_org = {static_cast<float>((o.x - l.grid_nw.x) / l.grid_cell.x),
+                  static_cast<float>((l.grid_nw.y - o.y) / l.grid_cell.y)};
+    f.grid_inv_cell = {static_cast<float>(1 / l.grid_cell.x),
+                       static_cast<float>(1 / l.grid_cell.y)};
+  }
+  f.ref_zoom = l.cache->package().max_zoom;
+  const double size = it.tile_size(f.ref_zoom);
+  const double tx = (anchor.x - it.origin_x) / size, ty = (it.origin_y - anchor.y) / size;
+  const double bx = std::floor(tx), by = std::floor(ty);
+  f.base = {static_cast<int>(bx), static_cast<int>(by)};
+  f.frac = {static_cast<float>(tx - bx), static_cast<float>(ty - by)};
+  f.per_unit = glm::vec2(static_cast<float>(1 / size));
+  return f;
+}
+
+size_t ImageLayers::upload_loaded() {
+  size_t n = 0;
+  for (size_t i = 0; i < layers_.size(); ++i)
+    for (auto& [slot, mips] : layers_[i].cache->take_loaded()) {
+      renderer_.upload(i, slot, mips);
+      ++n;
+    }
+  return n;
+}
+
+double ImageLayers::draw(const GBuffer& g, const View& view, const WorldFrame& world,
+                         ImageLighting lighting, float light_norm, Loading loading) {
+  std::vector<const ImageCache*> caches;
+  std::vector<ImageLayerFrame> frames;
+  for (const Layer& l : layers_) {
+    caches.push_back(l.cache.get());
+    frames.push_back(frame_of(l, view, world));
+  }
+  double ms = 0;
+  int idle_rounds = 0;
+  for (int round = 0;; ++round) {
+    for (Layer& l : layers_)
+      l.cache->begin_frame();
+    const size_t loaded = upload_loaded();
+    ImageFeedback fb;
+    ms = renderer_.draw(g, view, world, caches, frames, lighting, light_norm, ++frame_, fb);
+    bool wanted = false, busy = false;
+    for (size_t i = 0; i < layers_.size(); ++i) {
+      ImageCache& c = *layers_[i].cache;
+      for (uint32_t s : fb.used[i])
+        c.mark_used(s);
+      for (const tileformat::TileId& id : fb.requests[i])
+        c.request(id);
+      c.flush_requests();
+      wanted = wanted || !fb.requests[i].empty();
+      busy = busy || c.loader_busy();
+    }
+    if (loading == Loading::kAsReady || (!wanted && !busy)) break;
+    // Tiles that cannot get a slot are asked for again and again.
+    idle_rounds = loaded == 0 && !busy ? idle_rounds + 1 : 0;
+    if (idle_rounds > 3 || round > 200) break;
+    for (Layer& l : layers_)
+      if (l.cache->loader_busy()) l.cache->wait_for_loader();
+  }
+  return ms;
+}
+
+std::vector<ImageCacheStats> ImageLayers::stats() const {
+  std::vector<ImageCacheStats> s;
+  for (const Layer& l : layers_)
+    s.push_back(l.cache->stats());
+  return s;
+}
+
+}  // namespace globe::viewer

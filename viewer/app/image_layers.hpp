@@ -1,0 +1,57 @@
+// The image layers of one view (docs/viewer.md "Imagery"): their caches,
+// how each maps the terrain's tiling onto its own (chosen once: the same
+// CRS, geodetic <-> webmercator in closed form, or a grid computed with PROJ
+// over the image's footprint), their opacities, and the imagery pass.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/line_layer.hpp"
+#include "camera/world_frame.hpp"
+#include "data/image_cache.hpp"
+#include "render/image_renderer.hpp"
+
+namespace globe::viewer {
+
+class ImageLayers {
+ public:
+  // Opens the image packages (bottom first) and checks each against the
+  // terrain; throws InputError naming the file. budget_bytes is shared by
+  // all layers. An OpenGL context must be current.
+  ImageLayers(const std::vector<std::string>& paths, const std::vector<double>& opacities,
+              const WorldFrame& world, uint64_t budget_bytes, int width, int height);
+  ~ImageLayers();
+
+  size_t size() const { return layers_.size(); }
+  void resize(int width, int height) { renderer_.resize(width, height); }
+  double opacity(size_t i) const { return layers_[i].opacity; }
+  void set_opacity(size_t i, double v);
+  // Draws the imagery over g's colour; Loading::kSettle keeps loading until
+  // no visible tile is missing. Returns the GPU time of the last pass in ms.
+  double draw(const GBuffer& g, const View& view, const WorldFrame& world, ImageLighting lighting,
+              float light_norm, Loading loading);
+  GLuint output_fbo() const { return renderer_.output_fbo(); }
+  GLuint output_texture() const { return renderer_.output_texture(); }
+  std::vector<ImageCacheStats> stats() const;
+
+ private:
+  struct Layer {
+    std::unique_ptr<ImageCache> cache;
+    int mode = ImageLayerFrame::kSameCrs;
+    double opacity = 1;
+    // kGrid: the grid's north-west corner and cell size (terrain CRS) and
+    // the image CRS point its values are relative to.
+    glm::dvec2 grid_nw{0}, grid_cell{1}, grid_anchor{0};
+  };
+  ImageLayerFrame frame_of(const Layer& l, const View& view, const WorldFrame& world) const;
+  size_t upload_loaded();
+
+  std::vector<Layer> layers_;
+  ImageRenderer renderer_;
+  uint32_t frame_ = 0;
+};
+
+}  // namespace globe::viewer

@@ -1,0 +1,178 @@
+// GLSL of the imagery pass (docs/viewer.md "Imagery"): one full-screen pass
+// after the terrain pass that drapes every image layer over the G-buffer.
+// Per pixel and layer: the terrain point's offset from the view origin in the
+// terrain's tiling CRS is carried into the image's tiling CRS (the same CRS;
+// geodetic <-> webmercator in closed form, stable for small offsets; anything
+// else through a grid computed with PROJ), the image zoom follows the pixel's
+// footprint in image pixels, the tile comes from the layer's table (or its
+// nearest resident ancestor while it loads), and its premultiplied texel,
+// filtered across mip levels with the footprint's gradients, is composited
+// over the layers below, lit by the terrain's hillshade unless unlit.
+#pragma once
+
+namespace globe::viewer::shaders {
+
+inline constexpr int kMaxImageLayers = 8;
+
+inline constexpr const char* kImageFragment = R"(#version 450 core
+#define MAX_LAYERS 8
+layout(std430, binding = 0) readonly buffer Tables { uvec4 tables[]; };
+layout(std430, binding = 1) buffer Requests { uint requests[]; };  // 2 per slot
+layout(std430, binding = 2) buffer Used { uint used[]; };
+uniform uint u_request_mask;
+uniform uint u_frame;
+uniform sampler2D u_color, u_position, u_normal;
+uniform mat4 u_inv_view_proj;
+uniform vec3 u_eye;
+uniform vec2 u_crs_per_m;   // terrain CRS units per world metre (x, y)
+uniform int u_lit;          // 1: imagery x hillshade; 0: unlit
+uniform float u_light_norm; // hillshade value of flat ground
+uniform int u_layers;
+uniform int u_mode[MAX_LAYERS];  // 0 same CRS, 1 geodetic -> webmercator, 2 webmercator -> geodetic, 3 grid
+uniform ivec2 u_base[MAX_LAYERS];
+uniform vec2 u_frac[MAX_LAYERS];
+uniform vec2 u_per_unit[MAX_LAYERS];  // tiles of the reference zoom per image CRS unit
+uniform int u_ref_zoom[MAX_LAYERS], u_min_zoom[MAX_LAYERS], u_max_zoom[MAX_LAYERS];
+uniform float u_tile_px[MAX_LAYERS], u_opacity[MAX_LAYERS];
+uniform vec2 u_param[MAX_LAYERS];     // mode 1: (lat0 rad, R); mode 2: (y0 / R, R)
+uniform vec2 u_grid_org[MAX_LAYERS];  // the view origin in grid cells (x east, y south)
+uniform vec2 u_grid_inv_cell[MAX_LAYERS];
+uniform int u_grid_n;
+uniform uint u_table_offset[MAX_LAYERS], u_table_mask[MAX_LAYERS], u_slot_offset[MAX_LAYERS];
+uniform sampler2DArray u_images[MAX_LAYERS];
+uniform sampler2DArray u_grids;
+layout(location = 0) out vec4 o_color;
+
+const float kMaxMercLat = 1.4844222297453324;  // 85.0511 degrees
+
+uint tile_hash(int z, ivec2 t) {
+  return (uint(t.x) * 73856093u) ^ (uint(t.y) * 19349663u) ^ (uint(z) * 83492791u);
+}
+// The layer's table value for tile (z, t), or -1 (unknown: not asked yet).
+int table_lookup(int L, int z, ivec2 t) {
+  uint mask = u_table_mask[L], off = u_table_offset[L];
+  uint h = tile_hash(z, t) & mask;
+  for (int i = 0; i < 64; ++i) {
+    uvec4 e = tables[off + h];
+    if (e.x == 0u) return -1;
+    if (e.x == uint(z + 1) && e.y == uint(t.x) && e.z == uint(t.y)) return int(e.w);
+    h = (h + 1u) & mask;
+  }
+  return -1;
+}
+void request(int L, int z, ivec2 t) {
+  if (t.x < 0 || t.y < 0) return;
+  uint k0 = ((uint(z) << 24) | uint(t.x)) + 1u, k1 = ((uint(L) << 28) | uint(t.y)) + 1u;
+  uint h = (tile_hash(z, t) ^ (uint(L) * 2654435761u)) & u_request_mask;
+  for (int i = 0; i < 16; ++i) {
+    uint p0 = atomicCompSwap(requests[2u * h], 0u, k0);
+    if (p0 == 0u || p0 == k0) {
+      uint p1 = atomicCompSwap(requests[2u * h + 1u], 0u, k1);
+      if (p1 == 0u || p1 == k1) return;
+    }
+    h = (h + 1u) & u_request_mask;
+  }
+}
+vec3 plane_hit(vec2 pixel, vec3 p, vec3 n, out bool ok) {
+  vec4 w = u_inv_view_proj * vec4(pixel / vec2(textureSize(u_position, 0)) * 2.0 - 1.0, 1.0, 1.0);
+  vec3 dir = w.xyz / w.w - u_eye;
+  float denom = dot(dir, n);
+  float t = dot(p - u_eye, n) / denom;
+  ok = abs(denom) > 1e-5 * length(dir) && t > 0.0;
+  return u_eye + t * dir;
+}
+// Grid value (image CRS relative to the grid's anchor) at grid position g;
+// false outside the grid.
+bool grid_at(int L, vec2 g, out vec2 v) {
+  float hi = float(u_grid_n - 1);
+  if (!(g.x >= 0.0 && g.y >= 0.0 && g.x <= hi && g.y <= hi)) return false;
+  ivec2 i = min(ivec2(floor(g)), ivec2(u_grid_n - 2));
+  vec2 f = g - vec2(i);
+  vec2 a = texelFetch(u_grids, ivec3(i, L), 0).xy, b = texelFetch(u_grids, ivec3(i + ivec2(1, 0), L), 0).xy;
+  vec2 c = texelFetch(u_grids, ivec3(i + ivec2(0, 1), L), 0).xy, d = texelFetch(u_grids, ivec3(i + 1, L), 0).xy;
+  v = mix(mix(a, b, f.x), mix(c, d, f.x), f.y);
+  return true;
+}
+// Image CRS offset (x east, y north) from the layer's anchor of the terrain
+// CRS offset d from the view origin; false where the image CRS is undefined.
+bool image_offset(int L, vec2 d, out vec2 c) {
+  int mode = u_mode[L];
+  if (mode == 0) {
+    c = d;
+  } else if (mode == 1) {
+    float lat0 = u_param[L].x, R = u_param[L].y, dl = radians(d.y);
+    float lat = clamp(lat0 + dl, -kMaxMercLat, kMaxMercLat);
+    dl = lat - lat0;
+    // atanh(sin lat) - atanh(sin lat0), without cancellation for small dl.
+    float num = 2.0 * cos(lat0 + 0.5 * dl) * sin(0.5 * dl);
+    c = vec2(R * radians(d.x), R * atanh(clamp(num / (1.0 - sin(lat) * sin(lat0)), -0.999999, 0.999999)));
+  } else if (mode == 2) {
+    float b = u_param[L].x, R = u_param[L].y, a = b + d.y / R;
+    // atan(sinh a) - atan(sinh b), likewise.
+    float num = 2.0 * cosh(0.5 * (a + b)) * sinh(0.5 * (a - b));
+    c = vec2(degrees(d.x / R), degrees(atan(num, 1.0 + sinh(a) * sinh(b))));
+  } else {
+    return grid_at(L, u_grid_org[L] + vec2(d.x, -d.y) * u_grid_inv_cell[L], c);
+  }
+  return true;
+}
+
+void main() {
+  ivec2 px = ivec2(gl_FragCoord.xy);
+  vec4 base = texelFetch(u_color, px, 0);
+  o_color = base;
+  vec4 p4 = texelFetch(u_position, px, 0);
+  if (p4.w == 0.0) return;
+  vec3 P = p4.xyz, N = texelFetch(u_normal, px, 0).xyz;
+  bool ok1, ok2;
+  vec3 q1 = plane_hit(gl_FragCoord.xy + vec2(1, 0), P, N, ok1);
+  vec3 q2 = plane_hit(gl_FragCoord.xy + vec2(0, 1), P, N, ok2);
+  if (!ok1 || !ok2) {  // edge-on: the pixel's own point, no footprint
+    q1 = P;
+    q2 = P;
+  }
+  float light = u_lit != 0 ? clamp(base.g / u_light_norm, 0.0, 1.25) : 1.0;
+  vec3 d0 = vec3(P.xy * u_crs_per_m, 0), d1 = vec3(q1.xy * u_crs_per_m, 0), d2 = vec3(q2.xy * u_crs_per_m, 0);
+  vec3 rgb = base.rgb;
+  for (int L = 0; L < u_layers; ++L) {
+    vec2 c0, c1, c2;
+    if (!image_offset(L, d0.xy, c0)) continue;
+    if (!image_offset(L, d1.xy, c1)) c1 = c0;
+    if (!image_offset(L, d2.xy, c2)) c2 = c0;
+    vec2 flip = vec2(1, -1) * u_per_unit[L];
+    vec2 p = u_frac[L] + c0 * flip;  // reference-zoom tiles from the base tile
+    mat2 Jt = mat2((c1 - c0) * flip, (c2 - c0) * flip);  // ref tiles per screen pixel
+    float fp = sqrt(abs(determinant(Jt))) * u_tile_px[L];  // ref-zoom image pixels per screen pixel
+    int ref = u_ref_zoom[L];
+    int z = fp > 0.0 ? int(ceil(float(ref) - log2(fp))) : ref;
+    z = clamp(z, u_min_zoom[L], u_max_zoom[L]);
+    vec2 fl = floor(p);
+    ivec2 g = u_base[L] + ivec2(fl);
+    int v = -1, zz = z;
+    vec2 local;
+    for (; zz >= u_min_zoom[L]; --zz) {
+      int s = ref - zz;
+      ivec2 t = g >> s;
+      int e = table_lookup(L, zz, t);
+      if (e == -1) {
+        if (zz == z) request(L, zz, t);
+        continue;
+      }
+      if (e == int(0xFFFFFFFDu)) continue;  // broken: the coarser tile
+      if (e == int(0xFFFFFFFEu)) break;     // absent: the layers below show
+      v = e;
+      local = (vec2(g - (t << s)) + (p - fl)) / float(1 << s);
+      break;
+    }
+    if (v < 0) continue;
+    used[u_slot_offset[L] + uint(v)] = u_frame;
+    float scale = exp2(float(zz - ref));
+    vec4 img = textureGrad(u_images[L], vec3(local, float(v)), Jt[0] * scale, Jt[1] * scale);
+    float a = img.a * u_opacity[L];
+    rgb = rgb * (1.0 - a) + img.rgb * u_opacity[L] * light;
+  }
+  o_color = vec4(rgb, 1.0);
+}
+)";
+
+}  // namespace globe::viewer::shaders
