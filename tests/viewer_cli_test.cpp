@@ -131,7 +131,11 @@ TEST(ViewerCli, BadInputGetsAClearError) {
   const Case cases[] = {
       {(dir / "missing.mbtiles").string() + snap, "missing.mbtiles", 1},
       {(dir / "text.mbtiles").string() + snap, "text.mbtiles", 1},
-      {(dir / "png.mbtiles").string() + snap, "an image package", 1},
+      {(dir / "png.mbtiles").string() + snap, "no terrain package", 2},
+      {jacksboro_package() + snap + " --shading imagery", "--shading imagery", 2},
+      {jacksboro_package() + snap + " --image-opacity 0.5", "--image-opacity", 2},
+      {jacksboro_package() + " " + (dir / "png.mbtiles").string() + snap + " --image-opacity 2",
+       "--image-opacity", 2},
       {jacksboro_package() + snap + " --camera 1,2,3", "--camera", 2},
       {jacksboro_package() + snap + " --shading sepia", "--shading", 2},
       {jacksboro_package() + " --snapshot " + (dir / "no/such/dir/x.png").string(), "x.png", 3},
