@@ -7,14 +7,13 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "render/deferred_pass.hpp"
 #include "render/image_shaders.hpp"
 #include "render/tile_table.hpp"
 
 namespace globe::viewer {
 
 namespace {
-
-constexpr uint32_t kRequestSlots = 4096;  // power of two
 
 enum Binding : GLuint { kTables = 0, kRequests = 1, kUsed = 2 };
 enum Unit : GLuint { kColor = 0, kPosition = 1, kNormal = 2, kGrids = 3, kFirstImage = 4 };
@@ -31,14 +30,9 @@ std::string at(const char* name, size_t i) {
 }  // namespace
 
 ImageRenderer::ImageRenderer(int width, int height, int grid_n) : grid_n_(grid_n) {
-  program_ = GlProgram("imagery pass",
-                       R"(#version 450 core
-void main() {
-  vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
-  gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
-}
-)",
-                       shaders::kImageFragment);
+  program_ = GlProgram("imagery pass", kFullScreenVertex,
+                       std::string("#version 450 core\n") + kTileHashGlsl +
+                           deferred_pass_glsl(kRequests) + shaders::kImageFragment);
   GLuint buffers[3];
   gl::CreateBuffers(3, buffers);
   tables_ = buffers[0], requests_ = buffers[1], used_ = buffers[2];
@@ -209,13 +203,8 @@ double ImageRenderer::draw(const GBuffer& g, const View& view, const WorldFrame&
   if (slots) gl::GetNamedBufferSubData(used_, 0, used.size() * 4, used.data());
   fb.requests.assign(n, {});
   fb.used.assign(n, {});
-  for (uint32_t i = 0; i < kRequestSlots; ++i) {
-    if (req[2 * i] == 0 || req[2 * i + 1] == 0) continue;
-    const uint32_t k0 = req[2 * i] - 1, k1 = req[2 * i + 1] - 1;
-    const size_t layer = k1 >> 28;
-    if (layer < n)
-      fb.requests[layer].push_back({static_cast<int>(k0 >> 24), k0 & 0xFFFFFF, k1 & 0xFFFFFFF});
-  }
+  for (const TileRequest& r : decode_tile_requests(req))
+    if (r.tag < n) fb.requests[r.tag].push_back(r.id);
   for (size_t i = 0; i < n; ++i)
     for (uint32_t s = 0; s < uint32_t(caches[i]->slots()); ++s)
       if (used[slot_offset[i] + s] == frame) fb.used[i].push_back(s);

@@ -14,16 +14,13 @@ namespace globe::viewer::shaders {
 
 inline constexpr int kMaxImageLayers = 8;
 
-inline constexpr const char* kImageFragment = R"(#version 450 core
+// (Follows "#version 450 core", tile_hash and deferred_pass_glsl().)
+inline constexpr const char* kImageFragment = R"(
 #define MAX_LAYERS 8
 layout(std430, binding = 0) readonly buffer Tables { uvec4 tables[]; };
-layout(std430, binding = 1) buffer Requests { uint requests[]; };  // 2 per slot
 layout(std430, binding = 2) buffer Used { uint used[]; };
-uniform uint u_request_mask;
 uniform uint u_frame;
-uniform sampler2D u_color, u_position, u_normal;
-uniform mat4 u_inv_view_proj;
-uniform vec3 u_eye;
+uniform sampler2D u_color, u_normal;
 uniform vec2 u_crs_per_m;   // terrain CRS units per world metre (x, y)
 uniform int u_lit;          // 1: imagery x hillshade; 0: unlit
 uniform float u_light_norm; // hillshade value of flat ground
@@ -45,9 +42,6 @@ layout(location = 0) out vec4 o_color;
 
 const float kMaxMercLat = 1.4844222297453324;  // 85.0511 degrees
 
-uint tile_hash(int z, ivec2 t) {
-  return (uint(t.x) * 73856093u) ^ (uint(t.y) * 19349663u) ^ (uint(z) * 83492791u);
-}
 // The layer's table value for tile (z, t), or -1 (unknown: not asked yet).
 int table_lookup(int L, int z, ivec2 t) {
   uint mask = u_table_mask[L], off = u_table_offset[L];
@@ -59,27 +53,6 @@ int table_lookup(int L, int z, ivec2 t) {
     h = (h + 1u) & mask;
   }
   return -1;
-}
-void request(int L, int z, ivec2 t) {
-  if (t.x < 0 || t.y < 0) return;
-  uint k0 = ((uint(z) << 24) | uint(t.x)) + 1u, k1 = ((uint(L) << 28) | uint(t.y)) + 1u;
-  uint h = (tile_hash(z, t) ^ (uint(L) * 2654435761u)) & u_request_mask;
-  for (int i = 0; i < 16; ++i) {
-    uint p0 = atomicCompSwap(requests[2u * h], 0u, k0);
-    if (p0 == 0u || p0 == k0) {
-      uint p1 = atomicCompSwap(requests[2u * h + 1u], 0u, k1);
-      if (p1 == 0u || p1 == k1) return;
-    }
-    h = (h + 1u) & u_request_mask;
-  }
-}
-vec3 plane_hit(vec2 pixel, vec3 p, vec3 n, out bool ok) {
-  vec4 w = u_inv_view_proj * vec4(pixel / vec2(textureSize(u_position, 0)) * 2.0 - 1.0, 1.0, 1.0);
-  vec3 dir = w.xyz / w.w - u_eye;
-  float denom = dot(dir, n);
-  float t = dot(p - u_eye, n) / denom;
-  ok = abs(denom) > 1e-5 * length(dir) && t > 0.0;
-  return u_eye + t * dir;
 }
 // Grid value (image CRS relative to the grid's anchor) at grid position g;
 // false outside the grid.
@@ -155,7 +128,7 @@ void main() {
       ivec2 t = g >> s;
       int e = table_lookup(L, zz, t);
       if (e == -1) {
-        if (zz == z) request(L, zz, t);
+        if (zz == z) request(zz, t, uint(L));
         continue;
       }
       if (e == int(0xFFFFFFFDu)) continue;  // broken: the coarser tile

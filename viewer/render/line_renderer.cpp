@@ -8,6 +8,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "render/deferred_pass.hpp"
 #include "render/line_shaders.hpp"
 #include "render/tile_table.hpp"
 
@@ -15,8 +16,7 @@ namespace globe::viewer {
 
 namespace {
 
-constexpr uint32_t kRequestSlots = 4096;  // power of two
-constexpr float kTilePx = 256;            // tileformat §7.3: draw tiles at >= 256 px per edge
+constexpr float kTilePx = 256;  // tileformat §7.3: draw tiles at >= 256 px per edge
 
 // Buffer bindings, as in line_shaders.hpp.
 enum Binding : GLuint {
@@ -57,15 +57,17 @@ void fill_buffer(GLuint buffer, size_t bytes, const void* data) {
   if (bytes) gl::NamedBufferSubData(buffer, 0, bytes, data);
 }
 
-std::string program_source(const std::string& table, int binding, const char* body) {
+std::string program_source(const std::string& table, int binding, const std::string& body) {
   return std::string(shaders::kLineCommon) + kTileHashGlsl + tile_table_glsl(table, binding) + body;
 }
 
 }  // namespace
 
 LineRenderer::LineRenderer(uint64_t arena_words, int width, int height) {
-  deferred_ = GlProgram("line pass", shaders::kFullScreenVertex,
-                        program_source("line_table", kLineTable, shaders::kLineDeferredFragment));
+  deferred_ =
+      GlProgram("line pass", kFullScreenVertex,
+                program_source("line_table", kLineTable,
+                               deferred_pass_glsl(kRequests) + shaders::kLineDeferredFragment));
   geometry_ = GlProgram(
       "line geometry", program_source("terrain_table", kTerrainTable, shaders::kLineGeometryVertex),
       shaders::kLineGeometryFragment);
@@ -236,11 +238,8 @@ void LineRenderer::read_feedback(const LineCache& cache, uint32_t frame, LineFee
   if (record_count_) gl::GetNamedBufferSubData(used_, 0, used.size() * 4, used.data());
   fb.requests.clear();
   fb.used.clear();
-  for (uint32_t i = 0; i < kRequestSlots; ++i) {
-    if (req[2 * i] == 0 || req[2 * i + 1] == 0) continue;
-    const uint32_t k0 = req[2 * i] - 1;
-    fb.requests.push_back({static_cast<int>(k0 >> 24), k0 & 0xFFFFFF, req[2 * i + 1] - 1});
-  }
+  for (const TileRequest& r : decode_tile_requests(req))
+    fb.requests.push_back(r.id);
   for (uint32_t r = 0; r < record_count_; ++r)
     if (used[r] == frame && cache.live(r)) fb.used.push_back(r);
 }

@@ -35,14 +35,6 @@ vec2 seg_a(uint o) { return vec2(uintBitsToFloat(arena[o]), uintBitsToFloat(aren
 vec2 seg_b(uint o) { return vec2(uintBitsToFloat(arena[o + 2u]), uintBitsToFloat(arena[o + 3u])); }
 )";
 
-// Full-screen triangle.
-inline constexpr const char* kFullScreenVertex = R"(#version 450 core
-void main() {
-  vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
-  gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
-}
-)";
-
 // The deferred pass. Per pixel: the surface point and its plane from the
 // G-buffer give the Jacobian J (world metres per screen pixel) of the map
 // position; the line zoom is the finest whose tiles still span
@@ -50,15 +42,12 @@ void main() {
 // the pixel's cell are measured in screen pixels through J^-1 (so widths hold
 // on slopes and in perspective) and composited: casings under fills, the
 // higher (coverage, class) winning, coverage from a 1-px box filter.
+// (Follows deferred_pass_glsl(), deferred_pass.hpp.)
 inline constexpr const char* kLineDeferredFragment = R"(
 layout(std430, binding = 1) readonly buffer Records { uvec4 records[]; };  // 2 per record
-layout(std430, binding = 4) buffer Requests { uint requests[]; };  // 2 per slot
 layout(std430, binding = 5) buffer Used { uint used[]; };
-uniform uint u_request_mask;
 uniform uint u_frame;
-uniform sampler2D u_color, u_position, u_normal;
-uniform mat4 u_inv_view_proj;
-uniform vec3 u_eye;
+uniform sampler2D u_color, u_normal;
 uniform TileRef u_ref;
 uniform int u_min_zoom, u_max_zoom;
 uniform float u_zoom_bias;  // log2(shorter zoom-0 tile edge in world metres / tile_px)
@@ -69,27 +58,6 @@ uniform int u_select_only;
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out uint o_record;  // record + 1 the pixel reads, 0 = none
 
-vec3 plane_hit(vec2 pixel, vec3 p, vec3 n, out bool ok) {
-  vec4 w = u_inv_view_proj * vec4(pixel / vec2(textureSize(u_position, 0)) * 2.0 - 1.0, 1.0, 1.0);
-  vec3 dir = w.xyz / w.w - u_eye;
-  float denom = dot(dir, n);
-  float t = dot(p - u_eye, n) / denom;
-  ok = abs(denom) > 1e-5 * length(dir) && t > 0.0;
-  return u_eye + t * dir;
-}
-void request(int z, ivec2 t) {
-  if (t.x < 0 || t.y < 0) return;
-  uint k0 = ((uint(z) << 24) | uint(t.x)) + 1u, k1 = uint(t.y) + 1u;
-  uint h = tile_hash(z, t) & u_request_mask;
-  for (int i = 0; i < 16; ++i) {
-    uint p0 = atomicCompSwap(requests[2u * h], 0u, k0);
-    if (p0 == 0u || p0 == k0) {
-      uint p1 = atomicCompSwap(requests[2u * h + 1u], 0u, k1);
-      if (p1 == 0u || p1 == k1) return;
-    }
-    h = (h + 1u) & u_request_mask;
-  }
-}
 // Coverage of a pixel (1-px box filter across the line) by a band of half
 // width h around a line at distance d.
 float coverage(float d, float h) {
@@ -140,7 +108,7 @@ void main() {
     ivec2 t = tile_at(u_ref, zz, P.xy, local);
     rec = line_table_lookup(zz, t);
     if (rec >= 0) break;
-    if (zz == z) request(zz, t);
+    if (zz == z) request(zz, t, 0u);
   }
   if (rec < 0) return;
   used[rec] = u_frame;
