@@ -64,9 +64,7 @@ class Fixtures {
   fs::path operator/(const std::string& name) const { return dir_ / name; }
 
  private:
-  Fixtures() : dir_(fs::temp_directory_path() / ("globe-global-dem-" + std::to_string(getpid()))) {
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+  Fixtures() : dir_(run_scratch_dir("globe-global-dem")) {
     const Grid e = read_etopo();
     if (e.data.empty()) {
       ADD_FAILURE() << "cannot read etopo20.tif";

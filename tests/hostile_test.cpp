@@ -13,10 +13,7 @@ namespace {
 class Hostile : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ =
-        new fs::path(fs::temp_directory_path() / ("globe-hostile-" + std::to_string(::getpid())));
-    fs::remove_all(*dir_);
-    fs::create_directories(*dir_);
+    dir_ = new fs::path(run_scratch_dir("globe-hostile"));
     const std::string t = (*dir_ / "t.mbtiles").string(), l = (*dir_ / "l.mbtiles").string();
     ASSERT_EQ(run(tiler() + " terrain " + sample("jacksboro.tif").string() + " -q -o " + t, *dir_)
                   .exit_code,

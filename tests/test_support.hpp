@@ -12,6 +12,9 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <vector>
+
+#include <stdlib.h>
 
 namespace globe_test {
 
@@ -71,6 +74,27 @@ class TempDir {
  private:
   fs::path path_;
 };
+
+// A folder for fixtures shared by all tests of one binary run: unique (made by
+// mkdtemp, so never a leftover of an earlier process with the same pid) and
+// removed when the process exits.
+inline fs::path run_scratch_dir(const std::string& prefix) {
+  struct Owned {
+    std::vector<fs::path> dirs;
+    ~Owned() {
+      std::error_code ec;
+      for (const fs::path& d : dirs) fs::remove_all(d, ec);
+    }
+  };
+  static Owned owned;
+  std::string name = (fs::temp_directory_path() / (prefix + "-XXXXXX")).string();
+  if (!::mkdtemp(name.data())) {
+    ADD_FAILURE() << "cannot make a folder like " << name;
+    return {};
+  }
+  owned.dirs.emplace_back(name);
+  return owned.dirs.back();
+}
 
 // Requires a sample fetched by samples/fetch.sh; fails (not skips) without it.
 inline fs::path sample(const std::string& name) {

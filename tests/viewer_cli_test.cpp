@@ -21,9 +21,7 @@ const char* kCamera = "--camera=-84.30,36.55,2500,30,65";
 // Tiles jacksboro once per test binary run.
 const std::string& jacksboro_package() {
   static const std::string pkg = [] {
-    const fs::path dir =
-        fs::temp_directory_path() / ("globe-view-test-" + std::to_string(getpid()));
-    fs::create_directories(dir);
+    const fs::path dir = run_scratch_dir("globe-view-test");
     const std::string p = (dir / "jacksboro.mbtiles").string();
     const RunResult r =
         run(tiler() + " terrain -q --force " + sample("jacksboro.tif").string() + " -o " + p, dir);

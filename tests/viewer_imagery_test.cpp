@@ -37,7 +37,7 @@ class ViewerImagery : public ::testing::TestWithParam<Pairing> {};
 // metres across kSize pixels, north up, centred below it. In the terrain's
 // CRS that is: webmercator, metres stretched by 1/cos(lat); geodetic, degrees
 // from the WGS84 radii of curvature; local (UTM), metres.
-std::string reference_grid(const std::string& tiling, std::string& srs) {
+std::string reference_grid(const std::string& tiling, const fs::path& scratch, std::string& srs) {
   const double px_m = 2 * kHeight * std::tan(22.5 * std::numbers::pi / 180) / kSize;
   const double phi = kLat * std::numbers::pi / 180;
   double cx, cy, px, py;
@@ -57,7 +57,7 @@ std::string reference_grid(const std::string& tiling, std::string& srs) {
     srs = "EPSG:32725";  // landsat.tif's own CRS, UTM 25S
     const RunResult r = run("echo '" + std::to_string(kLon) + " " + std::to_string(kLat) +
                                 "' | gdaltransform -s_srs EPSG:4326 -t_srs EPSG:32725 -output_xy",
-                            fs::temp_directory_path());
+                            scratch);
     std::istringstream(r.out) >> cx >> cy;
     px = py = px_m;
   }
@@ -91,7 +91,7 @@ TEST_P(ViewerImagery, StraightDownViewMatchesGdalwarp) {
        std::to_string(kSize) + "x" + std::to_string(kSize) + " " + camera + " --snapshot " + snap);
   // The reference: gdalwarp of the source image onto the ground grid.
   std::string srs;
-  const std::string te = reference_grid(p.terrain_tiling, srs);
+  const std::string te = reference_grid(p.terrain_tiling, dir.path(), srs);
   const std::string ref = (dir / "ref.tif").string();
   // (GDAL 3.6's gdalwarp has no -b: the bands are picked by gdal_translate.)
   const std::string bands = (dir / "bands.vrt").string();

@@ -27,8 +27,7 @@ struct Packages {
 const Packages& packages() {
   static const Packages p = [] {
     Packages k;
-    k.dir = fs::temp_directory_path() / ("globe-view-lines-" + std::to_string(getpid()));
-    fs::create_directories(k.dir);
+    k.dir = run_scratch_dir("globe-view-lines");
     auto must = [&](const std::string& cmd) {
       const RunResult r = run(cmd, k.dir);
       EXPECT_EQ(r.exit_code, 0) << cmd << "\n" << r.err;
