@@ -130,15 +130,13 @@ TEST_P(ViewerImagery, StraightDownViewMatchesGdalwarp) {
   }
 }
 
-// Geodetic terrain is left out for now: its straight-down view covers about
-// 1.5 times the ground it should (a viewer frame bug this test found; the
-// drape itself agrees between geodetic and webmercator images there). See
-// docs/viewer.md "Imagery".
 INSTANTIATE_TEST_SUITE_P(
     Pairings, ViewerImagery,
     ::testing::Values(Pairing{"webmercator_on_webmercator", "webmercator", "webmercator"},
                       Pairing{"geodetic_on_webmercator", "webmercator", "geodetic"},
-                      Pairing{"webmercator_on_local", "local", "webmercator"}),
+                      Pairing{"webmercator_on_local", "local", "webmercator"},
+                      Pairing{"webmercator_on_geodetic", "geodetic", "webmercator"},
+                      Pairing{"geodetic_on_geodetic", "geodetic", "geodetic"}),
     [](const ::testing::TestParamInfo<Pairing>& i) { return i.param.name; });
 
 TEST(ViewerImageryInput, AnImagePackageAloneIsAUsageError) {

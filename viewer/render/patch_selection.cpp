@@ -21,6 +21,13 @@ int ceil_half(int v) {
 // r(G) = r(G+1) + hyp(G+1)/2 summed over all finer levels = hyp(G) / (2 (sqrt2 - 1)).
 constexpr double kNestingRadius = 1.2072;
 
+// A node much larger than its distance from the eye is split even where its
+// error is zero: a triangle reaching thousands of kilometres past a nearby
+// eye loses float precision in clipping (llvmpipe dropped half of one over a
+// flat geodetic package). Both sides shrink together down the hierarchy, so
+// the rule stays nested like the error rule.
+constexpr double kMaxSpanPerDistance = 4.0;
+
 }  // namespace
 
 PatchSelector::PatchSelector(const TerrainPackage& package)
@@ -98,17 +105,16 @@ bool PatchSelector::active(const KeyPoint& v, int level) {
       const int ly = static_cast<int>((v.y - by * t) >> shift);
       const size_t index = layout_.vertex_at(d, {lx, ly});
       const double error = block->vertex_error.at(index) * error_scale_;
-      if (error > 0) {
-        const glm::dvec3 w = frame_->key_to_world(double(v.x), double(v.y), 0, view_->origin);
-        const int64_t root = int64_t{steps_} << max_zoom_;
-        const double side = double(root >> (level >> 1)) * metres_per_key_;
-        const double hyp = level % 2 == 0 ? side * std::sqrt(2.0) : side;
-        const double dh = std::max(
-            0.0, std::hypot(w.x - view_->eye.x, w.y - view_->eye.y) - kNestingRadius * hyp);
-        const double dv = std::max(0.0, view_->eye.z - z_top_world_);
-        const double dist = std::hypot(dh, dv);
-        result = dist <= 0 || error * view_->pixels_per_radian / dist > settings_.max_error_px;
-      }
+      const glm::dvec3 w = frame_->key_to_world(double(v.x), double(v.y), 0, view_->origin);
+      const int64_t root = int64_t{steps_} << max_zoom_;
+      const double side = double(root >> (level >> 1)) * metres_per_key_;
+      const double hyp = level % 2 == 0 ? side * std::sqrt(2.0) : side;
+      const double dh = std::max(
+          0.0, std::hypot(w.x - view_->eye.x, w.y - view_->eye.y) - kNestingRadius * hyp);
+      const double dv = std::max(0.0, view_->eye.z - z_top_world_);
+      const double dist = std::hypot(dh, dv);
+      result = dist <= 0 || error * view_->pixels_per_radian / dist > settings_.max_error_px ||
+               hyp > kMaxSpanPerDistance * dist;
     } else if (exists) {
       ++stats_.waiting;
       for (const TileId& id : missing)
