@@ -123,15 +123,20 @@ void main() {
     ivec2 g = u_base[L] + ivec2(fl);
     int v = -1, zz = z;
     vec2 local;
+    bool ask = true;  // request the wanted tile, or the first unknown one past a broken tile
     for (; zz >= u_min_zoom[L]; --zz) {
       int s = ref - zz;
       ivec2 t = g >> s;
       int e = table_lookup(L, zz, t);
       if (e == -1) {
-        if (zz == z) request(zz, t, uint(L));
+        if (ask) request(zz, t, uint(L));
+        ask = false;
         continue;
       }
-      if (e == int(0xFFFFFFFDu)) continue;  // broken: the coarser tile
+      if (e == int(0xFFFFFFFDu)) {  // broken: the coarser tile
+        ask = true;
+        continue;
+      }
       if (e == int(0xFFFFFFFEu)) break;     // absent: the layers below show
       v = e;
       local = (vec2(g - (t << s)) + (p - fl)) / float(1 << s);
