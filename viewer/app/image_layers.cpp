@@ -54,11 +54,24 @@ Bounds footprint_in_terrain(const ImagePackage& img, const WorldFrame& world) {
           std::min(b.max_y, e.max_y)};
 }
 
+// Whether two lon/lat boxes meet, longitudes taken modulo 360 (a box whose
+// west is east of its east crosses the antimeridian).
+bool lonlat_boxes_meet(const Bounds& a, const Bounds& b) {
+  if (a.max_y < b.min_y || b.max_y < a.min_y) return false;
+  const double aw = a.max_x >= a.min_x ? a.max_x - a.min_x : a.max_x + 360 - a.min_x;
+  const double bw = b.max_x >= b.min_x ? b.max_x - b.min_x : b.max_x + 360 - b.min_x;
+  if (aw >= 360 || bw >= 360) return true;
+  // b's west edge, east of a's west edge by 0..360 degrees.
+  const double d = std::fmod(std::fmod(b.min_x - a.min_x, 360.0) + 360.0, 360.0);
+  return d <= aw || d + bw >= 360;
+}
+
 }  // namespace
 
 ImageLayers::ImageLayers(const std::vector<std::string>& paths,
                          const std::vector<double>& opacities, const WorldFrame& world,
-                         uint64_t budget_bytes, int width, int height)
+                         const tileformat::Bounds* terrain_lonlat, uint64_t budget_bytes, int width,
+                         int height)
     : renderer_(width, height, kGridN) {
   if (paths.size() > size_t(shaders::kMaxImageLayers))
     throw UsageError(std::to_string(paths.size()) + " image packages; globe-view blends up to " +
@@ -72,6 +85,15 @@ ImageLayers::ImageLayers(const std::vector<std::string>& paths,
     if (pkg.tile_size < 1 || (pkg.tile_size & (pkg.tile_size - 1)) != 0 || pkg.tile_size > 4096)
       throw InputError(path + ": tiles of " + std::to_string(pkg.tile_size) +
                        " px; globe-view drapes square power-of-two tiles up to 4096 px");
+    const bool apart = terrain_lonlat && pkg.meta.common.has_bounds &&
+                       !lonlat_boxes_meet(*terrain_lonlat, pkg.meta.common.lonlat);
+    if (apart) {
+      const Bounds& b = pkg.meta.common.lonlat;
+      std::fprintf(stderr,
+                   "globe-view: warning: %s: the image (lon %g..%g, lat %g..%g) does not overlap "
+                   "the terrain; only the terrain is shown there\n",
+                   path.c_str(), b.min_x, b.max_x, b.min_y, b.max_y);
+    }
     Layer l;
     l.opacity = i < opacities.size() ? opacities[i] : (opacities.empty() ? 1.0 : opacities.back());
     const tileformat::Tiling& it = pkg.tiling;
@@ -86,7 +108,7 @@ ImageLayers::ImageLayers(const std::vector<std::string>& paths,
     } else {
       l.mode = ImageLayerFrame::kGrid;
       const Bounds fp = footprint_in_terrain(pkg, world);
-      if (!(fp.min_x < fp.max_x && fp.min_y < fp.max_y)) {
+      if (!apart && !(fp.min_x < fp.max_x && fp.min_y < fp.max_y)) {
         std::fprintf(stderr,
                      "globe-view: warning: %s: the image does not overlap the terrain's tiling; "
                      "it is not drawn\n",

@@ -19,10 +19,12 @@ namespace globe::viewer {
 class ImageLayers {
  public:
   // Opens the image packages (bottom first) and checks each against the
-  // terrain; throws InputError naming the file. budget_bytes is shared by
-  // all layers. An OpenGL context must be current.
+  // terrain; throws InputError naming the file, warns of an image whose
+  // bounds miss `terrain_lonlat` (when known). budget_bytes is shared by all
+  // layers. An OpenGL context must be current.
   ImageLayers(const std::vector<std::string>& paths, const std::vector<double>& opacities,
-              const WorldFrame& world, uint64_t budget_bytes, int width, int height);
+              const WorldFrame& world, const tileformat::Bounds* terrain_lonlat,
+              uint64_t budget_bytes, int width, int height);
   ~ImageLayers();
 
   size_t size() const { return layers_.size(); }

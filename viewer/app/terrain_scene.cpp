@@ -73,8 +73,10 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
       cache_->package().block_size, cache_->package().lattice,
       static_cast<int>(cache_->slot_count()), settings_.width, settings_.height);
   if (!set.images.empty())
-    images_ = std::make_unique<ImageLayers>(set.images, settings_.image_opacity, *world_,
-                                            image_budget, settings_.width, settings_.height);
+    images_ = std::make_unique<ImageLayers>(
+        set.images, settings_.image_opacity, *world_,
+        cache_->package().meta.common.has_bounds ? &cache_->package().meta.common.lonlat : nullptr,
+        image_budget, settings_.width, settings_.height);
   if (lines)
     lines_ = std::make_unique<LineLayer>(*set.lines, std::move(*lines), settings_.style,
                                          settings_.line_mode, line_budget, settings_.width,
