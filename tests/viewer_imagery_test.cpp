@@ -155,4 +155,126 @@ TEST(ViewerImageryInput, AnImagePackageAloneIsAUsageError) {
   EXPECT_FALSE(fs::exists(dir / "x.png"));
 }
 
+// Olinda: a DEM and a Landsat scene of the same ground, tiled once per run.
+struct Olinda {
+  fs::path dir;
+  std::string terrain, natural, false_colour;
+};
+
+const Olinda& olinda() {
+  static const Olinda o = [] {
+    Olinda k;
+    k.dir = run_scratch_dir("globe-view-imagery");
+    k.terrain = (k.dir / "olinda.mbtiles").string();
+    k.natural = (k.dir / "landsat321.mbtiles").string();
+    k.false_colour = (k.dir / "landsat432.mbtiles").string();
+    for (const std::string& cmd :
+         {tiler() + " terrain -q " + sample("olinda.tif").string() + " -o " + k.terrain,
+          tiler() + " imagery -q " + sample("landsat.tif").string() + " --bands 3,2,1 -o " +
+              k.natural,
+          tiler() + " imagery -q " + sample("landsat.tif").string() + " --bands 4,3,2 -o " +
+              k.false_colour}) {
+      const RunResult r = run(cmd, k.dir);
+      EXPECT_EQ(r.exit_code, 0) << cmd << "\n" << r.err;
+    }
+    return k;
+  }();
+  return o;
+}
+
+const char* kOlindaOblique = " --size 320x180 --camera=-34.88,-8.07,2500,20,70";
+
+RunResult view(const std::string& args, const fs::path& dir) {
+  return run(viewer() + " --platform osmesa " + args, dir);
+}
+
+TEST(ViewerImageryRender, ObliqueOverOlindaMatchesExpected) {
+  TempDir dir;
+  const std::string snap = (dir / "a.png").string();
+  const RunResult r =
+      view(olinda().terrain + " " + olinda().natural + kOlindaOblique + " --snapshot " + snap,
+           dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_image(snap, "olinda_landsat_oblique");
+}
+
+TEST(ViewerImageryRender, TwoBlendedLayersMatchExpected) {
+  TempDir dir;
+  const std::string snap = (dir / "a.png").string();
+  const RunResult r = view(olinda().terrain + " " + olinda().natural + " " + olinda().false_colour +
+                               " --image-opacity 1,0.5" + kOlindaOblique + " --snapshot " + snap,
+                           dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_image(snap, "olinda_landsat_blended");
+}
+
+double psnr(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+  double se = 0;
+  for (size_t i = 0; i < a.size(); ++i)
+    se += (double(a[i]) - b[i]) * (double(a[i]) - b[i]);
+  return se == 0 ? 99.0 : 10 * std::log10(255.0 * 255.0 / (se / double(a.size())));
+}
+
+TEST(ViewerImageryInput, CorruptImageTileWarnsAndShowsTheCoarserImage) {
+  TempDir dir;
+  const std::string broken = (dir / "broken.mbtiles").string();
+  fs::copy_file(olinda().natural, broken);
+  // Every tile of the finest zoom becomes 64 random bytes.
+  const RunResult s = run("sqlite3 " + broken +
+                              " \"UPDATE blobs SET tile_data = randomblob(64) WHERE blob_id IN "
+                              "(SELECT blob_id FROM map WHERE zoom_level = "
+                              "(SELECT max(zoom_level) FROM map));\"",
+                          dir.path());
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  const std::string camera = " --size 128x128 --camera=-34.8722,-7.999,1500,0,0";
+  const RunResult good = view(olinda().terrain + " " + olinda().natural + camera +
+                                  " --shading imagery --snapshot " + (dir / "good.png").string(),
+                              dir.path());
+  const RunResult bad = view(olinda().terrain + " " + broken + camera +
+                                 " --shading imagery --snapshot " + (dir / "bad.png").string(),
+                             dir.path());
+  const RunResult bare =
+      view(olinda().terrain + camera + " --snapshot " + (dir / "bare.png").string(), dir.path());
+  ASSERT_EQ(good.exit_code, 0) << good.err;
+  ASSERT_EQ(bad.exit_code, 0) << bad.err;
+  ASSERT_EQ(bare.exit_code, 0) << bare.err;
+  EXPECT_NE(bad.err.find("broken.mbtiles: image tile"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("the coarser image is shown there"), std::string::npos) << bad.err;
+  int w, h;
+  const auto g = read_rgb((dir / "good.png").string(), w, h);
+  const auto b = read_rgb((dir / "bad.png").string(), w, h);
+  const auto t = read_rgb((dir / "bare.png").string(), w, h);
+  // The coarser image is a blurred copy of the finest: close to it, far
+  // from the terrain without imagery.
+  const double to_good = psnr(b, g), to_bare = psnr(b, t);
+  std::printf("broken finest zoom: PSNR %.1f dB to the intact view, %.1f dB to no imagery\n",
+              to_good, to_bare);
+  EXPECT_GT(to_good, 22.0);
+  EXPECT_GT(to_good, to_bare + 8.0);
+  EXPECT_LT(to_good, 60.0) << "the broken tiles were drawn anyway?";
+}
+
+TEST(ViewerImageryInput, ImageWithNoOverlapWarnsAndShowsTheTerrain) {
+  TempDir dir;
+  const std::string far = (dir / "far.mbtiles").string();
+  ASSERT_EQ(
+      run(tiler() + " imagery -q " + sample("cbers20.tif").string() + " -o " + far, dir.path())
+          .exit_code,
+      0);
+  const std::string camera = " --size 128x72" + std::string(" --camera=-34.88,-8.07,2500,20,70");
+  const RunResult with =
+      view(olinda().terrain + " " + far + camera + " --snapshot " + (dir / "with.png").string(),
+           dir.path());
+  const RunResult bare =
+      view(olinda().terrain + camera + " --snapshot " + (dir / "bare.png").string(), dir.path());
+  ASSERT_EQ(with.exit_code, 0) << with.err;
+  ASSERT_EQ(bare.exit_code, 0) << bare.err;
+  EXPECT_NE(with.err.find("far.mbtiles: the image"), std::string::npos) << with.err;
+  EXPECT_NE(with.err.find("does not overlap the terrain"), std::string::npos) << with.err;
+  int w, h;
+  EXPECT_GT(psnr(read_rgb((dir / "with.png").string(), w, h),
+                 read_rgb((dir / "bare.png").string(), w, h)),
+            50.0);
+}
+
 }  // namespace

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the expected images of tests/viewer_cli_test.cpp from the
+# Regenerates the expected images of the viewer's render tests from the
 # current build (review them before committing!). Needs samples/fetch.sh.
 set -euo pipefail
 cd "$(dirname "$0")/../../.."
@@ -23,4 +23,13 @@ echo '{"c50": {"color": "#ffd92f", "width": 3, "casing_color": "#303030",
   "casing_width": 1, "dash": [8, 4]}}' >"$tmp/style.json"
 build/viewer/globe-view "$tmp/j.mbtiles" "$tmp/c.mbtiles" --style "$tmp/style.json" \
   --snapshot $out/jacksboro_contours_styled.png --size 320x180 --camera=-84.25,36.60,6000,0,0
+# Imagery (tests/viewer_imagery_test.cpp): Landsat over the Olinda DEM.
+build/tools/tiler/globe-tiler terrain -q samples/data/olinda.tif -o "$tmp/o.mbtiles"
+build/tools/tiler/globe-tiler imagery -q samples/data/landsat.tif --bands 3,2,1 -o "$tmp/n.mbtiles"
+build/tools/tiler/globe-tiler imagery -q samples/data/landsat.tif --bands 4,3,2 -o "$tmp/f.mbtiles"
+oblique="--size 320x180 --camera=-34.88,-8.07,2500,20,70"
+build/viewer/globe-view "$tmp/o.mbtiles" "$tmp/n.mbtiles" $oblique \
+  --snapshot $out/olinda_landsat_oblique.png
+build/viewer/globe-view "$tmp/o.mbtiles" "$tmp/n.mbtiles" "$tmp/f.mbtiles" --image-opacity 1,0.5 \
+  $oblique --snapshot $out/olinda_landsat_blended.png
 ls -l $out/*.png
