@@ -163,7 +163,7 @@ ImageLayerFrame ImageLayers::frame_of(const Layer& l, const View& view,
   const glm::dvec2 o = world.key_to_crs(double(view.origin.x), double(view.origin.y));
   ImageLayerFrame f;
   f.mode = l.mode;
-  f.opacity = static_cast<float>(l.opacity);
+  f.opacity = l.visible ? static_cast<float>(l.opacity) : 0.0f;
   glm::dvec2 anchor = o;  // image CRS point the shader's offsets start from
   if (l.mode == ImageLayerFrame::kGeodeticToMercator) {
     const double lat = std::clamp(o.y, -kMaxMercLat, kMaxMercLat);

@@ -31,6 +31,8 @@ class ImageLayers {
   void resize(int width, int height) { renderer_.resize(width, height); }
   double opacity(size_t i) const { return layers_[i].opacity; }
   void set_opacity(size_t i, double v);
+  bool visible(size_t i) const { return layers_[i].visible; }
+  void set_visible(size_t i, bool v) { layers_.at(i).visible = v; }
   // Draws the imagery over g's colour; Loading::kSettle keeps loading until
   // no visible tile is missing. Returns the GPU time of the last pass in ms.
   double draw(const GBuffer& g, const View& view, const WorldFrame& world, ImageLighting lighting,
@@ -44,6 +46,7 @@ class ImageLayers {
     std::unique_ptr<ImageCache> cache;
     int mode = ImageLayerFrame::kSameCrs;
     double opacity = 1;
+    bool visible = true;
     // kGrid: the grid's north-west corner and cell size (terrain CRS) and
     // the image CRS point its values are relative to.
     glm::dvec2 grid_nw{0}, grid_cell{1}, grid_anchor{0};

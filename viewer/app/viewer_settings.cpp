@@ -11,10 +11,17 @@ namespace globe::viewer {
 std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::string>& args) {
   ViewerSettings s;
   CliArgs cli("globe-view",
-              "globe-view TERRAIN.mbtiles [LINES.mbtiles] [options]\n"
-              "Renders a terrain package, and the lines of a line-cluster package shaded per\n"
-              "pixel over it: in a window, or headless with --snapshot, --stats or\n"
-              "--export-mesh (OSMesa or EGL; no display needed).");
+              "globe-view TERRAIN.mbtiles [IMAGE.mbtiles ...] [LINES.mbtiles] [options]\n"
+              "Renders a terrain package with image packages draped over it (bottom first)\n"
+              "and the lines of a line-cluster package shaded per pixel over both: in a\n"
+              "window, or headless with --snapshot, --stats or --export-mesh (OSMesa or EGL;\n"
+              "no display needed). Packages are told apart by their format.");
+  cli.epilogue(
+      "window: drag to orbit, right-drag to pan, wheel or W/S to zoom, arrows to pan,\n"
+      "  R home view, P screenshot (globe-view-N.png), Esc quit;\n"
+      "  1-4 hillshade/elevation/slope/aspect, +/- exaggeration;\n"
+      "  I select the next image layer, V show/hide it, [ and ] its opacity -/+ 0.1,\n"
+      "  U imagery unlit/lit; L line mode, F5 reload the style file.\n");
   cli.option("--snapshot", "OUT.png", "render headless, write the image, exit",
              [&](const std::string& v) { s.snapshot = v; });
   cli.option("--size", "WxH", "image / window size in pixels (default 1280x720)",
@@ -117,7 +124,7 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
   });
   cli.option("--style", "FILE.json",
              "line styles by class name, over the package's own (docs/viewer.md); the window "
-             "reloads the file when it changes, or on R",
+             "reloads the file when it changes, or on F5",
              [&](const std::string& v) { s.style = v; });
   cli.option("--lines", "MODE",
              "deferred (default: per-pixel shading from the G-buffer), geometry (the baseline: "

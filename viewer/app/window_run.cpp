@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <numbers>
 
 #include "app/image_file.hpp"
@@ -81,6 +82,7 @@ int run_window(const ViewerSettings& settings) {
   Orbit orbit, home;
   TerrainScene* scene = nullptr;
   int screenshot = 0;
+  size_t layer = 0;  // the image layer that V, [ and ] act on
   bool screenshot_pending = false;
   GlfwWindow* window_ptr = nullptr;
 
@@ -134,6 +136,21 @@ int run_window(const ViewerSettings& settings) {
       case GLFW_KEY_L:
         if (LineLayer* l = scene->lines())
           l->set_mode(l->mode() == LineMode::kDeferred ? LineMode::kGeometry : LineMode::kDeferred);
+        break;
+      case GLFW_KEY_I:
+        if (ImageLayers* im = scene->images()) layer = (layer + 1) % im->size();
+        break;
+      case GLFW_KEY_V:
+        if (ImageLayers* im = scene->images()) im->set_visible(layer, !im->visible(layer));
+        break;
+      case GLFW_KEY_LEFT_BRACKET:
+        if (ImageLayers* im = scene->images()) im->set_opacity(layer, im->opacity(layer) - 0.1);
+        break;
+      case GLFW_KEY_RIGHT_BRACKET:
+        if (ImageLayers* im = scene->images()) im->set_opacity(layer, im->opacity(layer) + 0.1);
+        break;
+      case GLFW_KEY_U:
+        if (scene->images()) scene->settings().imagery_unlit = !scene->settings().imagery_unlit;
         break;
       case GLFW_KEY_EQUAL:
       case GLFW_KEY_KP_ADD:
@@ -202,13 +219,22 @@ int run_window(const ViewerSettings& settings) {
       if (s.lines())
         s.lines()->reload_style(LineLayer::Reload::kIfChanged);  // picks up edits of the style file
       const double ms = std::chrono::duration<double, std::milli>(now - t0).count();
-      char title[256];
+      size_t waiting = f.selection.waiting;  // blocks and image tiles not in yet
+      if (const ImageLayers* im = s.images())
+        for (const ImageCacheStats& st : im->stats())
+          waiting += st.loading;
+      char title[320];
       std::snprintf(title, sizeof title,
                     "globe-view  %.1f ms (lines %.1f)  %zu patches  %zu k triangles  %zu blocks  "
                     "waiting %zu",
                     ms, f.lines_ms, f.patches.size(),
                     f.patches.size() * s.renderer().triangles_per_patch() / 1000,
-                    s.cache().stats().resident, f.selection.waiting);
+                    s.cache().stats().resident, waiting);
+      if (const ImageLayers* im = s.images()) {
+        const size_t n = std::strlen(title);
+        std::snprintf(title + n, sizeof title - n, "  image %zu/%zu %s %.1f", layer + 1, im->size(),
+                      im->visible(layer) ? "opacity" : "hidden, opacity", im->opacity(layer));
+      }
       window->set_title(title);
       last_title = now;
     }

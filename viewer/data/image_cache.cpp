@@ -168,6 +168,7 @@ std::vector<std::pair<TileId, uint32_t>> ImageCache::table() const {
 ImageCacheStats ImageCache::stats() const {
   ImageCacheStats s = stats_;
   for (const auto& [id, e] : entries_) {
+    s.loading += e.loading;
     if (e.loading) continue;
     if (e.value == kImageAbsent) ++s.known_absent;
     if (e.value < kImageBroken) ++s.resident;

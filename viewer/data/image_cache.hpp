@@ -37,7 +37,7 @@ struct ImageMips {
 ImageMips decode_image_mips(std::span<const uint8_t> blob, int size);
 
 struct ImageCacheStats {
-  size_t slots = 0, resident = 0, known_absent = 0;
+  size_t slots = 0, resident = 0, known_absent = 0, loading = 0;
   uint64_t loaded = 0, evictions = 0, broken = 0, bytes_read = 0;
 };
 

@@ -114,6 +114,7 @@ std::string CliArgs::help() const {
     out << left << o.help << "\n";
   }
   out << "  -h, --help                  show this help\n";
+  if (!epilogue_.empty()) out << "\n" << epilogue_;
   return out.str();
 }
 

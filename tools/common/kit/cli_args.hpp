@@ -24,6 +24,8 @@ class CliArgs {
   // Parses argv (excluding the program and command names); returns the
   // positional arguments. Throws UsageError. Returns nullopt after --help.
   std::optional<std::vector<std::string>> parse(const std::vector<std::string>& args);
+  // Text printed after the options by --help (e.g. window keys).
+  void epilogue(std::string text) { epilogue_ = std::move(text); }
   std::string help() const;
   // parse(), printing the help on stdout for --help (then nullopt), and
   // requiring between min and max positional `what` arguments.
@@ -50,7 +52,7 @@ class CliArgs {
     std::function<void()> on_flag;
   };
   const Opt* find(const std::string& name) const;
-  std::string program_, usage_;
+  std::string program_, usage_, epilogue_;
   std::vector<Opt> opts_;
 };
 
