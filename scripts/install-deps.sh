@@ -22,8 +22,8 @@ packages=(
   python3
   # gdal2tiles.py (imagery benchmark peer)
   python3-gdal
-  # window tests under a virtual X server
-  xvfb xauth
+  # window tests under a virtual X server, keys sent with xdotool
+  xvfb xauth xdotool
 )
 
 missing=()

@@ -277,4 +277,41 @@ TEST(ViewerImageryInput, ImageWithNoOverlapWarnsAndShowsTheTerrain) {
             50.0);
 }
 
+// The window as a user drives it, under a virtual X server: V hides the
+// image layer, V shows it again and five presses of [ take its opacity to
+// 0.5. Each screenshot (P) must match the headless view of the same state.
+TEST(ViewerImageryWindow, KeysHideAndFadeTheImageLayer) {
+  TempDir dir;
+  const std::string packages = olinda().terrain + " " + olinda().natural;
+  const RunResult w =
+      run("xvfb-run -a -s '-screen 0 640x480x24' " + std::string(GLOBE_TEST_DATA_DIR) +
+              "/window/drive_keys.sh " + dir.path().string() +
+              " ';v;v bracketleft bracketleft bracketleft bracketleft bracketleft' " + viewer() +
+              " --platform glfw " + packages + kOlindaOblique,
+          dir.path());
+  ASSERT_EQ(w.exit_code, 0) << w.err << read_file(dir / "viewer.stderr");
+  struct Expect {
+    std::string shot, args;
+  };
+  const Expect expect[] = {{"globe-view-1.png", packages},
+                           {"globe-view-2.png", olinda().terrain},
+                           {"globe-view-3.png", packages + " --image-opacity 0.5"}};
+  std::vector<std::vector<uint8_t>> headless;
+  for (const Expect& e : expect) {
+    const std::string snap = (dir / ("headless-" + e.shot)).string();
+    const RunResult r = view(e.args + kOlindaOblique + " --snapshot " + snap, dir.path());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    int w1, h1, w2, h2;
+    const auto shot = read_rgb((dir / e.shot).string(), w1, h1);
+    const auto want = read_rgb(snap, w2, h2);
+    ASSERT_EQ(shot.size(), want.size()) << e.shot;
+    std::printf("%s: PSNR %.1f dB to the headless view\n", e.shot.c_str(), psnr(shot, want));
+    EXPECT_GT(psnr(shot, want), 35.0) << e.shot << " vs the headless view with " << e.args;
+    headless.push_back(want);
+  }
+  // The three states differ from each other, so the checks above can fail.
+  EXPECT_LT(psnr(headless[0], headless[1]), 25.0);
+  EXPECT_LT(psnr(headless[0], headless[2]), 30.0);
+}
+
 }  // namespace
