@@ -314,4 +314,28 @@ TEST(ViewerImageryWindow, KeysHideAndFadeTheImageLayer) {
   EXPECT_LT(psnr(headless[0], headless[2]), 30.0);
 }
 
+// --stats reports the imagery pass; a settled view takes one pass a frame
+// (a geodetic global terrain under a webmercator image, near the sheet's
+// eastern edge, as bench/imagery_view.sh measures).
+TEST(ViewerImageryStats, StatsReportTheImagePass) {
+  TempDir dir;
+  const std::string t = (dir / "etopo.mbtiles").string(), i = (dir / "bm.mbtiles").string();
+  ASSERT_EQ(
+      run(tiler() + " terrain -q --tiling geodetic " + sample("etopo20.tif").string() + " -o " + t,
+          dir.path())
+          .exit_code,
+      0);
+  ASSERT_EQ(
+      run(tiler() + " imagery -q --max-zoom 2 " + sample("bluemarble.tif").string() + " -o " + i,
+          dir.path())
+          .exit_code,
+      0);
+  const RunResult r = view(
+      t + " " + i + " --stats --frames 2 --size 320x180 --camera=-70,-20,800000,90,70", dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"image_layers\": 1,"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"image_passes\": 1,"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("\"image_tiles_resident\": 0,"), std::string::npos) << r.out;
+}
+
 }  // namespace

@@ -44,7 +44,7 @@ int run_headless(const ViewerSettings& settings) {
   const double first_frame_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_start).count();
 
-  std::vector<double> frame_ms, terrain_ms, select_ms, lines_ms;
+  std::vector<double> frame_ms, terrain_ms, select_ms, lines_ms, images_ms;
   uint64_t max_resident = scene.cache().stats().resident_bytes;
   for (size_t i = 0; i < poses.size(); ++i) {
     const int frames = settings.stats ? settings.frames : 1;
@@ -56,6 +56,7 @@ int run_headless(const ViewerSettings& settings) {
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       terrain_ms.push_back(f.terrain_ms);
       lines_ms.push_back(f.lines_ms);
+      images_ms.push_back(f.images_ms);
       select_ms.push_back(f.select_ms);
       max_resident = std::max(max_resident, scene.cache().stats().resident_bytes);
     }
@@ -111,6 +112,24 @@ int run_headless(const ViewerSettings& settings) {
           static_cast<unsigned long long>(ls.cache.evictions),
           static_cast<unsigned long long>(ls.cache.broken),
           static_cast<unsigned long long>(ls.cache.bytes_read));
+    }
+    if (const ImageLayers* images = scene.images()) {
+      ImageCacheStats sum;
+      for (const ImageCacheStats& s : images->stats()) {
+        sum.slots += s.slots, sum.resident += s.resident, sum.known_absent += s.known_absent;
+        sum.loaded += s.loaded, sum.broken += s.broken, sum.bytes_read += s.bytes_read;
+        sum.evictions += s.evictions;
+      }
+      std::printf(
+          ", \"image_layers\": %zu, \"images_ms\": %.3f, \"image_passes\": %d, "
+          "\"image_tiles_resident\": %zu, \"image_tiles_absent\": %zu, "
+          "\"image_tiles_loaded\": %llu, \"image_evictions\": %llu, "
+          "\"broken_image_tiles\": %llu, \"image_bytes_read\": %llu",
+          images->size(), median(images_ms), images->passes(), sum.resident, sum.known_absent,
+          static_cast<unsigned long long>(sum.loaded),
+          static_cast<unsigned long long>(sum.evictions),
+          static_cast<unsigned long long>(sum.broken),
+          static_cast<unsigned long long>(sum.bytes_read));
     }
     std::printf("}\n");
   }

@@ -210,6 +210,7 @@ double ImageLayers::draw(const GBuffer& g, const View& view, const WorldFrame& w
   double ms = 0;
   int idle_rounds = 0;
   for (int round = 0;; ++round) {
+    passes_ = round + 1;
     for (Layer& l : layers_)
       l.cache->begin_frame();
     const size_t loaded = upload_loaded();
@@ -221,9 +222,8 @@ double ImageLayers::draw(const GBuffer& g, const View& view, const WorldFrame& w
       for (uint32_t s : fb.used[i])
         c.mark_used(s);
       for (const tileformat::TileId& id : fb.requests[i])
-        c.request(id);
+        wanted = c.request(id) || wanted;
       c.flush_requests();
-      wanted = wanted || !fb.requests[i].empty();
       busy = busy || c.loader_busy();
     }
     if (loading == Loading::kAsReady || (!wanted && !busy)) break;

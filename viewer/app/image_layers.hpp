@@ -40,6 +40,7 @@ class ImageLayers {
   GLuint output_fbo() const { return renderer_.output_fbo(); }
   GLuint output_texture() const { return renderer_.output_texture(); }
   std::vector<ImageCacheStats> stats() const;
+  int passes() const { return passes_; }  // imagery passes the last draw took
 
  private:
   struct Layer {
@@ -57,6 +58,7 @@ class ImageLayers {
   std::vector<Layer> layers_;
   ImageRenderer renderer_;
   uint32_t frame_ = 0;
+  int passes_ = 0;
 };
 
 }  // namespace globe::viewer

@@ -79,17 +79,20 @@ void ImageCache::mark_used(uint32_t slot) {
   if (it != entries_.end()) it->second.last_used = frame_;
 }
 
-void ImageCache::request(TileId id) {
-  if (id.z < package_.min_zoom || id.z > package_.max_zoom || !package_.tiling.contains(id)) return;
+bool ImageCache::request(TileId id) {
+  // Pixels past the tiling's edge ask for tiles no package can have.
+  if (id.z < package_.min_zoom || id.z > package_.max_zoom || !package_.tiling.contains(id))
+    return false;
   auto [it, fresh] = entries_.try_emplace(id);
   it->second.last_used = frame_;
-  if (!fresh) return;  // loading, resident or known
+  if (!fresh) return false;  // loading, resident or known
   if (!package_.reader->has_tile(id)) {
     it->second.value = kImageAbsent;
-    return;
+    return true;
   }
   it->second.loading = true;
   wanted_.push_back({id, -1});
+  return true;
 }
 
 void ImageCache::flush_requests() {

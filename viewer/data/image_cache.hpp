@@ -56,7 +56,9 @@ class ImageCache {
 
   void begin_frame() { ++frame_; }
   void mark_used(uint32_t slot);
-  void request(tileformat::TileId id);
+  // Returns whether the request was news: a tile now loading or now known
+  // absent (false for tiles already known and for tiles past the tiling).
+  bool request(tileformat::TileId id);
   void flush_requests();
   // Decoded tiles placed in slots: upload each (slot, mips) now.
   std::vector<std::pair<uint32_t, ImageMips>> take_loaded();
