@@ -71,10 +71,11 @@ double LineLayer::draw(const GBuffer& g, const View& view, const WorldFrame& wor
     tiles_used_ = fb.used.size();
     for (uint32_t r : fb.used)
       cache_.mark_used(r);
+    bool news = false;
     for (const tileformat::TileId& id : fb.requests)
-      cache_.request(id);
+      news = cache_.request(id) || news;
     cache_.flush_requests();
-    if (loading == Loading::kAsReady || (fb.requests.empty() && !cache_.loader_busy())) break;
+    if (loading == Loading::kAsReady || (!news && !cache_.loader_busy())) break;
     // Tiles that cannot get room in the budget are asked for again and again.
     idle_rounds = loaded == 0 ? idle_rounds + 1 : 0;
     if (idle_rounds > 3 || round > 200) break;

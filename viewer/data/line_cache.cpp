@@ -86,17 +86,20 @@ void LineCache::mark_used(uint32_t record) {
   if (it != entries_.end()) it->second.last_used = frame_;
 }
 
-void LineCache::request(TileId id) {
-  if (id.z < package_.min_zoom || id.z > package_.max_zoom || !package_.tiling.contains(id)) return;
+bool LineCache::request(TileId id) {
+  // Pixels past the tiling's edge ask for tiles no package can have.
+  if (id.z < package_.min_zoom || id.z > package_.max_zoom || !package_.tiling.contains(id))
+    return false;
   auto [it, fresh] = entries_.try_emplace(id);
   it->second.last_used = frame_;
-  if (!fresh) return;  // loading, resident or known empty
+  if (!fresh) return false;  // loading, resident or known empty
   if (!package_.reader->has_tile(id)) {
     it->second.record = static_cast<int>(new_record(id));
-    return;
+    return true;
   }
   it->second.loading = true;
   wanted_.push_back({id, -1});
+  return true;
 }
 
 void LineCache::flush_requests() {

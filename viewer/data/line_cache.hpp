@@ -67,7 +67,9 @@ class LineCache {
   void begin_frame() { ++frame_; }
   // GPU feedback of the frame just drawn.
   void mark_used(uint32_t record);
-  void request(tileformat::TileId id);
+  // Returns whether the request was news: a tile now loading or now known
+  // empty (false for tiles already known and for tiles past the tiling).
+  bool request(tileformat::TileId id);
   // Sends the new requests to the loader.
   void flush_requests();
   // Places decoded tiles in the arena; returns the records to upload now
