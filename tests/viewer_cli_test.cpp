@@ -3,6 +3,8 @@
 // the memory budget on a flight, and bad input.
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include <gdal.h>
 
 #include <cmath>
@@ -106,6 +108,46 @@ TEST(ViewerCli, MeshExportIsAPly) {
   EXPECT_EQ(ply.rfind("ply\nformat binary_little_endian 1.0\n", 0), 0u);
   EXPECT_NE(ply.find("element face "), std::string::npos);
   EXPECT_FALSE(fs::exists(dir / "m.ply.tmp"));
+}
+
+// --globe: the PLY holds geocentric WGS84 coordinates and says so; every
+// vertex lies on the ellipsoid (radius), around jacksboro (longitude, and the
+// geocentric latitude, 0.19 degrees below the geodetic one there), and some
+// right below the camera.
+TEST(ViewerCli, GlobeMeshExportIsGeocentric) {
+  TempDir dir;
+  const RunResult r = run(viewer() + " " + jacksboro_package() + " --globe --export-mesh " +
+                              (dir / "m.ply").string() + " --size 160x90 " + kCamera,
+                          dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string ply = read_file(dir / "m.ply");
+  EXPECT_NE(ply.find("comment globe frame geocentric\n"), std::string::npos);
+  const size_t at = ply.find("element vertex ");
+  ASSERT_NE(at, std::string::npos);
+  const size_t n = std::stoul(ply.substr(at + 15));
+  const size_t body = ply.find("end_header\n") + 11;
+  ASSERT_GT(n, 100u);
+  ASSERT_GE(ply.size(), body + n * 24);
+  const double kDeg = 180 / 3.141592653589793;
+  bool near_eye = false;
+  for (size_t i = 0; i < n; ++i) {
+    double v[3];
+    std::memcpy(v, ply.data() + body + i * 24, sizeof v);
+    const double r_xy = std::hypot(v[0], v[1]), radius = std::hypot(r_xy, v[2]);
+    const double lon = std::atan2(v[1], v[0]) * kDeg, lat = std::atan2(v[2], r_xy) * kDeg;
+    ASSERT_GT(radius, 6.36e6) << i;
+    ASSERT_LT(radius, 6.38e6) << i;
+    // Coarse patches reach past the data, up to the minzoom tiles.
+    ASSERT_NEAR(lon, -84.2, 12) << i;
+    ASSERT_NEAR(lat, 36.55 - 0.19, 12) << i;
+    near_eye = near_eye || (std::abs(lon + 84.30) < 0.05 && std::abs(lat - (36.55 - 0.19)) < 0.05);
+  }
+  EXPECT_TRUE(near_eye) << "no vertex below the camera";
+  const RunResult flat = run(viewer() + " " + jacksboro_package() + " --export-mesh " +
+                                 (dir / "f.ply").string() + " --size 160x90 " + kCamera,
+                             dir.path());
+  ASSERT_EQ(flat.exit_code, 0) << flat.err;
+  EXPECT_NE(read_file(dir / "f.ply").find("comment globe frame flat\n"), std::string::npos);
 }
 
 TEST(ViewerCli, BadInputGetsAClearError) {

@@ -338,4 +338,25 @@ TEST(ViewerImageryStats, StatsReportTheImagePass) {
   EXPECT_EQ(r.out.find("\"image_tiles_resident\": 0,"), std::string::npos) << r.out;
 }
 
+// --globe refuses what it cannot draw yet, naming it: a local CRS package,
+// and imagery (not draped on the globe yet).
+TEST(ViewerImageryInput, GlobeRefusesLocalPackagesAndImagery) {
+  TempDir dir;
+  const std::string local = (dir / "local.mbtiles").string();
+  ASSERT_EQ(
+      run(tiler() + " terrain -q --tiling local " + sample("olinda.tif").string() + " -o " + local,
+          dir.path())
+          .exit_code,
+      0);
+  const std::string snap = " --snapshot " + (dir / "x.png").string();
+  const RunResult a = view(local + " --globe" + snap, dir.path());
+  EXPECT_EQ(a.exit_code, 2) << a.err;
+  EXPECT_NE(a.err.find("local CRS"), std::string::npos) << a.err;
+  const RunResult b =
+      view(olinda().terrain + " " + olinda().natural + " --globe" + snap, dir.path());
+  EXPECT_EQ(b.exit_code, 2) << b.err;
+  EXPECT_NE(b.err.find("not draped on the globe yet"), std::string::npos) << b.err;
+  EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
 }  // namespace

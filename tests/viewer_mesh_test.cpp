@@ -8,6 +8,7 @@
 
 #include <climits>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <numeric>
 #include <random>
@@ -31,15 +32,25 @@ struct Mesh {
   std::vector<uint32_t> tris;
 };
 
-Mesh weld(const std::vector<float>& f, const FrameResult& fr, const WorldFrame& world, double zs) {
+// Welds the captured vertices on their key point and height (the vertex
+// shader's own integer key), so the checks below need no inverse mapping;
+// counts in `cracks` the vertices drawn at two different world positions
+// (the contract: a vertex shared by patches or blocks is bit-identical).
+Mesh weld(const std::vector<CapturedVertex>& c, const FrameResult& fr, size_t& cracks) {
   Mesh m;
-  std::map<std::array<float, 3>, uint32_t> index;
-  for (size_t i = 0; i + 2 < f.size(); i += 3) {
-    const std::array<float, 3> v{f[i], f[i + 1], f[i + 2]};
-    auto [it, added] = index.emplace(v, static_cast<uint32_t>(m.verts.size()));
+  std::map<std::array<double, 3>, uint32_t> index;
+  std::vector<std::array<float, 3>> world;
+  cracks = 0;
+  for (const CapturedVertex& v : c) {
+    const std::array<double, 3> k{double(fr.view.origin.x + v.key[0]),
+                                  double(fr.view.origin.y + v.key[1]), double(v.height_m)};
+    const std::array<float, 3> w{v.world[0], v.world[1], v.world[2]};
+    auto [it, added] = index.emplace(k, static_cast<uint32_t>(m.verts.size()));
     if (added) {
-      const glm::dvec2 k = world.world_to_key(v[0], v[1], fr.view.origin);
-      m.verts.push_back({std::round(k.x), std::round(k.y), v[2] / zs});
+      m.verts.push_back({k[0], k[1], k[2]});
+      world.push_back(w);
+    } else if (std::memcmp(world[it->second].data(), w.data(), sizeof w) != 0) {
+      ++cracks;
     }
     m.tris.push_back(it->second);
   }
@@ -172,7 +183,9 @@ void check_package(const std::string& pkg, int cameras, uint32_t seed) {
     const FrameResult f = scene.frame(p, Loading::kSettle, TerrainScene::Output::kSelectOnly);
     ASSERT_EQ(f.selection.waiting, 0u) << "camera " << p.str();
     const double zs = scene.world().height_scale();
-    const Mesh m = weld(scene.capture(f), f, scene.world(), zs);
+    size_t cracks = 0;
+    const Mesh m = weld(scene.capture(f), f, cracks);
+    EXPECT_EQ(cracks, 0u) << pkg << " camera " << p.str();
     total_triangles += m.tris.size() / 3;
     if (std::getenv("GLOBE_TEST_VERBOSE"))
       std::fprintf(stderr, "camera %d %s: %zu patches, %zu triangles\n", i, p.str().c_str(),
@@ -184,6 +197,45 @@ void check_package(const std::string& pkg, int cameras, uint32_t seed) {
       const double err = max_projected_error(m, finest, f, scene.world(), zs);
       EXPECT_LE(err, s.max_error_px + 1e-3) << pkg << " camera " << p.str();
     }
+  }
+  EXPECT_GT(total_triangles, size_t(cameras) * 1000) << "the cameras saw almost nothing";
+}
+
+// The globe: random cameras from 200 m to 20,000 km, a quarter of them over
+// the antimeridian, a quarter over a pole, a quarter near the ground.
+void check_globe(const std::string& pkg, int cameras, uint32_t seed) {
+  ViewerSettings s;
+  s.packages = {pkg};
+  s.width = 400;
+  s.height = 300;
+  s.globe = true;
+  TerrainScene scene(s);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  size_t total_triangles = 0;
+  for (int i = 0; i < cameras; ++i) {
+    CameraPose p;
+    p.lon = u(rng) * 360 - 180;
+    p.lat = u(rng) * 170 - 85;
+    p.height_m = 200 * std::pow(1e5, u(rng));
+    if (i % 4 == 1) p.lon = 179 + 2 * u(rng);  // over the antimeridian (past 180 too)
+    if (i % 4 == 2) p.lat = (u(rng) < 0.5 ? -1 : 1) * (84 + 6 * u(rng));
+    if (i % 4 == 3) p.height_m = 200 + 5000 * u(rng);
+    p.heading_deg = u(rng) * 360;
+    p.pitch_deg = u(rng) * 80;
+    scene.settings().cull = (i % 5 != 0);  // some whole-globe meshes too
+    const FrameResult f = scene.frame(p, Loading::kSettle, TerrainScene::Output::kSelectOnly);
+    ASSERT_EQ(f.selection.waiting, 0u) << "camera " << p.str();
+    size_t cracks = 0;
+    const Mesh m = weld(scene.capture(f), f, cracks);
+    total_triangles += m.tris.size() / 3;
+    if (std::getenv("GLOBE_TEST_VERBOSE"))
+      std::fprintf(stderr, "globe camera %d %s: %zu patches\n", i, p.str().c_str(),
+                   f.patches.size());
+    const auto [overused, tjunctions] = conformity_errors(m);
+    EXPECT_EQ(cracks, 0u) << pkg << " camera " << p.str();
+    EXPECT_EQ(overused, 0u) << pkg << " camera " << p.str();
+    EXPECT_EQ(tjunctions, 0u) << pkg << " camera " << p.str();
   }
   EXPECT_GT(total_triangles, size_t(cameras) * 1000) << "the cameras saw almost nothing";
 }
@@ -215,6 +267,23 @@ TEST_F(ViewerMesh, ConformingAndWithinTauOnBrasiliaLocal) {
           .exit_code,
       0);
   check_package(pkg, 50, 2);
+}
+
+TEST_F(ViewerMesh, ConformingOnTheGlobeGeodeticAndWebMercator) {
+  TempDir dir;
+  const std::string geo = (dir / "g.mbtiles").string(), merc = (dir / "m.mbtiles").string();
+  ASSERT_EQ(run(tiler() + " terrain -q --tiling geodetic " + sample("etopo20.tif").string() +
+                    " -o " + geo,
+                dir.path())
+                .exit_code,
+            0);
+  ASSERT_EQ(run(tiler() + " terrain -q --tiling webmercator " + sample("etopo20.tif").string() +
+                    " -o " + merc,
+                dir.path())
+                .exit_code,
+            0);
+  check_globe(geo, 50, 3);
+  check_globe(merc, 50, 4);
 }
 
 }  // namespace

@@ -62,7 +62,12 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
   if (package.max_zoom > 21)
     throw InputError(path + ": maxzoom " + std::to_string(package.max_zoom) +
                      " is deeper than the viewer's integer vertex frame supports (21)");
-  world_ = std::make_unique<WorldFrame>(package.tiling, package.block_size - 1, package.max_zoom);
+  if (settings_.globe && (!set.images.empty() || lines))
+    throw UsageError(
+        "--globe: imagery and lines are not draped on the globe yet; drop --globe to see them "
+        "on the flat frame");
+  world_ = std::make_unique<WorldFrame>(package.tiling, package.block_size - 1, package.max_zoom,
+                                        settings_.globe ? Surface::kGlobe : Surface::kFlat);
   cache_ =
       std::make_unique<BlockCache>(path, std::move(package), budget - line_budget - image_budget);
   selector_ = std::make_unique<PatchSelector>(cache_->package());

@@ -42,7 +42,7 @@ class TerrainScene {
   // One frame (Loading: whether it waits for what the view needs);
   // kSelectOnly stops after the patch selection.
   FrameResult frame(const CameraPose& pose, Loading loading, Output output);
-  std::vector<float> capture(const FrameResult& f) {
+  std::vector<CapturedVertex> capture(const FrameResult& f) {
     return renderer_->capture_triangles(f.patches, f.view, *world_, settings_.shading.exaggeration);
   }
 

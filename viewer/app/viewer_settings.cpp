@@ -42,6 +42,10 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
                  throw UsageError(std::string("--camera: ") + e.what());
                }
              });
+  cli.flag("--globe",
+           "draw a geodetic or webmercator package on the WGS84 ellipsoid (a virtual globe; "
+           "--fit of a global package shows the whole disc) instead of the flat map frame",
+           [&] { s.globe = true; });
   cli.flag("--fit", "frame the whole package, looking straight down (the default without --camera)",
            [&] { s.camera.reset(); });
   cli.option(

@@ -27,6 +27,7 @@ struct ViewerSettings {
   std::string platform = "auto";  // auto | osmesa | egl | glfw
   int frames = 5;                 // frames measured for --stats
   bool cull = true;
+  bool globe = false;                // --globe: the WGS84 ellipsoid instead of the flat frame
   std::optional<std::string> style;  // line style file (JSON)
   LineMode line_mode = LineMode::kDeferred;
   bool lines = true;                  // --lines off: draw none

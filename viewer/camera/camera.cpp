@@ -11,6 +11,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "camera/ellipsoid.hpp"
+
 namespace globe::viewer {
 
 namespace {
@@ -68,8 +70,16 @@ View make_view(const CameraPose& pose, WorldFrame& frame, int width, int height,
   // far plane: far enough to see the horizon of a 20,000 km wide map.
   const double above = v.eye.z - z_top_world;
   v.near_m = std::max(1.0, above * 0.5 * std::cos(std::min(p, 1.3)));
-  const double depth = std::max(v.eye.z - z_bottom_world, 1.0);
-  v.far_m = std::clamp(depth / std::max(std::cos(p + fovy / 2), 0.02), v.near_m * 10, 4e7);
+  if (frame.globe()) {
+    // Far enough for the horizon, and for peaks standing behind it.
+    auto horizon = [](double h) {
+      return std::sqrt(std::max(h, 0.0) * (2 * wgs84::kA + std::max(h, 0.0)));
+    };
+    v.far_m = std::max(horizon(pose.height_m) + horizon(z_top_world) + 1000, v.near_m * 10);
+  } else {
+    const double depth = std::max(v.eye.z - z_bottom_world, 1.0);
+    v.far_m = std::clamp(depth / std::max(std::cos(p + fovy / 2), 0.02), v.near_m * 10, 4e7);
+  }
   v.proj = glm::perspective(fovy, double(width) / height, v.near_m, v.far_m);
   const glm::dmat4 vp = v.proj * v.view;
   v.view_proj = glm::mat4(vp);
@@ -88,6 +98,30 @@ CameraPose fit_pose(const tileformat::Bounds& b, WorldFrame& frame, int width, i
   pose.lon = centre.x;
   pose.lat = centre.y;
   frame.set_view_latitude(pose.lat);
+  if (frame.globe()) {
+    const tileformat::Bounds ll{
+        frame.crs_to_lonlat(b.min_x, b.min_y).x, frame.crs_to_lonlat(b.min_x, b.min_y).y,
+        frame.crs_to_lonlat(b.max_x, b.max_y).x, frame.crs_to_lonlat(b.max_x, b.max_y).y};
+    if (ll.width() > 90 || ll.height() > 60) {
+      // The whole disc: the ellipsoid's equatorial radius fills the view's
+      // height (or width, if narrower), with 5% to spare.
+      const double half = std::min(pose.fov_y_deg * kDeg / 2,
+                                   std::atan(std::tan(pose.fov_y_deg * kDeg / 2) * width / height));
+      pose.height_m = wgs84::kA * 1.05 / std::sin(half) - wgs84::kA;
+      return pose;
+    }
+    // A smaller area: metres at its own latitude.
+    const double c = std::cos(pose.lat * kDeg);
+    const double per_crs = frame.tiling().scheme == tileformat::Scheme::kWebMercator
+                               ? c
+                               : wgs84::kA * std::numbers::pi / 180;
+    const double w_m =
+        b.width() * per_crs * (frame.tiling().scheme == tileformat::Scheme::kWebMercator ? 1 : c);
+    const double h_m = b.height() * per_crs;
+    const double half = std::max(w_m / (double(width) / height), h_m) / 2 * 1.05;
+    pose.height_m = z_top_m + half / std::tan(pose.fov_y_deg * kDeg / 2);
+    return pose;
+  }
   const double w_m = b.width() * frame.metres_per_crs_x();
   const double h_m = b.height() * frame.metres_per_crs_y();
   const double aspect = double(width) / height;

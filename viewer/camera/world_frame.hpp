@@ -4,15 +4,20 @@
 //    every zoom is an integer point here, so shared vertices are exact.
 //  - CRS coordinates of the tiling (metres for webmercator/local, degrees for
 //    geodetic).
-//  - world metres: a flat, right-handed frame (x east, y north, z up) in
-//    metres near the view latitude: webmercator heights are scaled by the
-//    Mercator scale factor 1/cos(lat); geodetic degrees are scaled to metres.
+//  - world metres, relative to a view origin (a key point near the eye):
+//    flat surface: a right-handed frame (x east, y north, z up) in metres
+//    near the view latitude: webmercator heights are scaled by the Mercator
+//    scale factor 1/cos(lat); geodetic degrees are scaled to metres.
+//    globe surface: the WGS84 ellipsoid, in the east-north-up frame at the
+//    origin's point on the ellipsoid (x east, y north, z up there), heights
+//    in metres along the normal.
 #pragma once
 
 #include <cstdint>
 #include <memory>
 #include <string>
 
+#include <glm/mat3x3.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -27,11 +32,27 @@ struct KeyPoint {
   bool operator==(const KeyPoint&) const = default;
 };
 
+enum class Surface { kFlat, kGlobe };
+
+// The globe frame's anchor: the view origin's point on the ellipsoid.
+struct GlobeAnchor {
+  KeyPoint origin;
+  double lat = 0, lon = 0;  // radians
+  double mercator_y = 0;    // webmercator: the origin's y / R
+  glm::dvec3 ecef{0};
+  glm::dmat3 enu{1};  // enu = M * (ecef - anchor ecef)
+};
+
 class WorldFrame {
  public:
   // steps: samples per block side - 1; key_zoom: the package's finest zoom.
-  WorldFrame(const tileformat::Tiling& tiling, int steps, int key_zoom);
+  // Surface::kGlobe needs a geodetic or webmercator tiling (UsageError).
+  WorldFrame(const tileformat::Tiling& tiling, int steps, int key_zoom,
+             Surface surface = Surface::kFlat);
   ~WorldFrame();
+
+  Surface surface() const { return surface_; }
+  bool globe() const { return surface_ == Surface::kGlobe; }
 
   const tileformat::Tiling& tiling() const { return tiling_; }
   int key_zoom() const { return key_zoom_; }
@@ -53,17 +74,33 @@ class WorldFrame {
 
   // World metres of a key-unit point relative to `origin` (also key units).
   glm::dvec3 key_to_world(double kx, double ky, double height_m, const KeyPoint& origin) const {
+    if (globe()) return globe_to_world(kx, ky, height_m, origin);
     return {(kx - double(origin.x)) * crs_per_key_ * mx_,
             -(ky - double(origin.y)) * crs_per_key_ * my_, height_m * hz_};
   }
+  // Flat surface only: the key point under a world x/y.
   glm::dvec2 world_to_key(double wx, double wy, const KeyPoint& origin) const {
     return {double(origin.x) + wx / (crs_per_key_ * mx_),
             double(origin.y) - wy / (crs_per_key_ * my_)};
   }
+  // Key point and height (metres) of a world point, on either surface.
+  glm::dvec3 world_to_key_height(const glm::dvec3& w, const KeyPoint& origin) const;
+
+  // Globe: lat/lon in radians of a key point (webmercator latitudes from
+  // the inverse Gudermannian), geocentric metres of a key point and height,
+  // and the anchor of `origin` (cached for the last origin asked for).
+  glm::dvec2 key_to_latlon(double kx, double ky) const;
+  glm::dvec3 key_to_ecef(double kx, double ky, double height_m) const;
+  const GlobeAnchor& anchor(const KeyPoint& origin) const;
 
  private:
+  glm::dvec3 globe_to_world(double kx, double ky, double height_m, const KeyPoint& origin) const;
+
   tileformat::Tiling tiling_;
+  Surface surface_;
   int steps_, key_zoom_;
+  mutable GlobeAnchor anchor_;
+  mutable bool anchor_set_ = false;
   double crs_per_key_;
   bool geographic_ = false;
   double mx_ = 1, my_ = 1, hz_ = 1;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "camera/ellipsoid.hpp"
 #include "tileformat/package.hpp"
 
 namespace globe::viewer {
@@ -109,12 +110,23 @@ bool PatchSelector::active(const KeyPoint& v, int level) {
       const int64_t root = int64_t{steps_} << max_zoom_;
       const double side = double(root >> (level >> 1)) * metres_per_key_;
       const double hyp = level % 2 == 0 ? side * std::sqrt(2.0) : side;
-      const double dh = std::max(
-          0.0, std::hypot(w.x - view_->eye.x, w.y - view_->eye.y) - kNestingRadius * hyp);
-      const double dv = std::max(0.0, view_->eye.z - z_top_world_);
-      const double dist = std::hypot(dh, dv);
-      result = dist <= 0 || error * view_->pixels_per_radian / dist > settings_.max_error_px ||
-               hyp > kMaxSpanPerDistance * dist;
+      double dist, geometric = 0;
+      if (frame_->globe()) {
+        // A sphere around v holding its descendants and their heights; the
+        // flat triangles of a node stand below the curved surface by up to
+        // their sagitta, an error that shrinks down the hierarchy.
+        dist = std::max(0.0, glm::length(w - view_->eye) - kNestingRadius * hyp - height_pad_);
+        geometric = hyp * hyp / (8 * wgs84::kB);
+      } else {
+        const double dh = std::max(
+            0.0, std::hypot(w.x - view_->eye.x, w.y - view_->eye.y) - kNestingRadius * hyp);
+        const double dv = std::max(0.0, view_->eye.z - z_top_world_);
+        dist = std::hypot(dh, dv);
+      }
+      result =
+          dist <= 0 ||
+          std::max(error, geometric) * view_->pixels_per_radian / dist > settings_.max_error_px ||
+          hyp > kMaxSpanPerDistance * dist;
     } else if (exists) {
       ++stats_.waiting;
       for (const TileId& id : missing)
@@ -147,7 +159,12 @@ void PatchSelector::visit(const Node& n) {
     ++stats_.waiting;
     return;
   }
-  if (settings_.cull) {
+  if (settings_.cull && frame_->globe()) {
+    if (!globe_visible(n, *block)) {
+      ++stats_.culled;
+      return;
+    }
+  } else if (settings_.cull) {
     const double z0 = block->min_h * frame_->height_scale() * settings_.exaggeration;
     const double z1 = block->max_h * frame_->height_scale() * settings_.exaggeration;
     glm::dvec3 corners[6];
@@ -191,6 +208,42 @@ void PatchSelector::visit(const Node& n) {
   out_.push_back(p);
 }
 
+bool PatchSelector::globe_visible(const Node& n, const ResidentBlock& block) const {
+  const double z0 = block.min_h * settings_.exaggeration, z1 = block.max_h * settings_.exaggeration;
+  const KeyPoint pts[3] = {n.apex, n.b, n.c};
+  // Bounding sphere: the corners at both heights, widened by the sagitta of
+  // the node's longest side (the surface bulges above its chords).
+  glm::dvec3 corners[6];
+  glm::dvec3 centre(0);
+  for (int i = 0; i < 3; ++i) {
+    corners[2 * i] = frame_->key_to_world(double(pts[i].x), double(pts[i].y), z0, view_->origin);
+    corners[2 * i + 1] =
+        frame_->key_to_world(double(pts[i].x), double(pts[i].y), z1, view_->origin);
+    centre += corners[2 * i] + corners[2 * i + 1];
+  }
+  centre /= 6.0;
+  double side = 0, radius = 0;
+  for (int i = 0; i < 3; ++i)
+    side = std::max(side, glm::length(corners[2 * i] - corners[2 * ((i + 1) % 3)]));
+  for (const glm::dvec3& c : corners)
+    radius = std::max(radius, glm::length(c - centre));
+  radius += side * side / (8 * wgs84::kB) + 1;
+  for (const glm::dvec4& pl : view_->planes)
+    if (glm::dot(glm::dvec3(pl), centre) + pl.w < -radius) return false;
+  // Horizon: seen from the eye, the ellipsoid (inside the sphere of the
+  // polar radius less the deepest trench) hides whatever lies past its
+  // horizon by more than the highest terrain can rise above it.
+  const double r_min = wgs84::kB - 11000;
+  const glm::dvec3 e = view_->eye - earth_centre_, s = centre - earth_centre_;
+  const double de = glm::length(e), ds = glm::length(s);
+  if (de <= r_min || ds <= radius) return true;
+  const double beyond = std::acos(std::clamp(glm::dot(e, s) / (de * ds), -1.0, 1.0));
+  const double horizon = std::acos(r_min / de) +
+                         std::acos(r_min / (wgs84::kA + std::max(z1, 0.0))) +
+                         std::asin(std::min(1.0, radius / ds));
+  return beyond <= horizon;
+}
+
 std::pair<double, double> PatchSelector::height_bounds_m(BlockCache& cache) const {
   double bottom = 1e30, top = -1e30;
   for (const TileId& id : roots_)
@@ -219,6 +272,12 @@ std::vector<Patch> PatchSelector::select(const View& view, const WorldFrame& fra
   error_scale_ = step_m_ * frame.height_scale() * settings.exaggeration;
   metres_per_key_ =
       frame.crs_per_key() * std::max(frame.metres_per_crs_x(), frame.metres_per_crs_y());
+  if (frame.globe()) {
+    const auto [bottom, top] = height_bounds_m(cache);
+    height_pad_ = std::max(std::abs(bottom), std::abs(top)) * settings.exaggeration;
+    const GlobeAnchor& a = frame.anchor(view.origin);
+    earth_centre_ = a.enu * -a.ecef;
+  }
   const int64_t t = int64_t{steps_} << (max_zoom_ - min_zoom_);
   for (const TileId& id : roots_) {
     const KeyPoint tl{id.x * t, id.y * t}, tr{tl.x + t, tl.y}, bl{tl.x, tl.y + t},

@@ -77,6 +77,8 @@ class PatchSelector {
     }
   };
 
+  // Globe: whether the node can be seen (frustum and horizon).
+  bool globe_visible(const Node& n, const ResidentBlock& block) const;
   int canonical_zoom(int level) const;  // block that draws nodes of this level
   int error_zoom(int level) const;      // block that stores this level's vertex errors
   bool active(const KeyPoint& v, int level);
@@ -99,6 +101,8 @@ class PatchSelector {
   SelectionSettings settings_;
   SelectionStats stats_;
   double z_top_world_ = 0, error_scale_ = 1, metres_per_key_ = 1;
+  double height_pad_ = 0;       // globe: the largest |height| (metres)
+  glm::dvec3 earth_centre_{0};  // globe: the ellipsoid's centre in world metres
   std::unordered_map<KeyPoint, bool, KeyHash> memo_;
   std::vector<Patch> out_;
 };

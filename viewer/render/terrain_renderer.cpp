@@ -7,6 +7,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "camera/ellipsoid.hpp"
 #include "render/terrain_shaders.hpp"
 
 namespace globe::viewer {
@@ -24,7 +25,8 @@ struct Instance {  // matches the vertex shader's per-instance attributes
 TerrainRenderer::TerrainRenderer(int block_size, int lattice, int slots, int width, int height)
     : size_(block_size), lattice_(lattice), slots_(slots) {
   draw_program_ = GlProgram("terrain", shaders::kTerrainVertex, shaders::kTerrainFragment);
-  capture_program_ = GlProgram("terrain capture", shaders::kTerrainVertex, "", {"v_world"});
+  capture_program_ =
+      GlProgram("terrain capture", shaders::kTerrainVertex, "", {"v_world", "v_key", "v_height"});
 
   // The lattice: vertices (i, j) with i + j <= L; each cell split along the
   // diagonal from (i+1, j) to (i, j+1), as the tiler's error trees assume.
@@ -170,6 +172,20 @@ void TerrainRenderer::set_common_uniforms(const GlProgram& p, const View& view,
                 static_cast<float>(frame.crs_per_key() * frame.metres_per_crs_x()),
                 static_cast<float>(frame.crs_per_key() * frame.metres_per_crs_y()),
                 static_cast<float>(frame.height_scale() * exaggeration));
+  int globe = 0;
+  if (frame.globe()) {
+    const GlobeAnchor& a = frame.anchor(view.origin);
+    const bool merc = frame.tiling().scheme == tileformat::Scheme::kWebMercator;
+    globe = merc ? 2 : 1;
+    // Radians (or mercator y / R) per key unit.
+    const double r =
+        merc ? frame.crs_per_key() / wgs84::kA : frame.crs_per_key() * std::numbers::pi / 180;
+    gl::Uniform2f(p.uniform("u_rad_per_key"), static_cast<float>(r), static_cast<float>(r));
+    gl::Uniform4f(p.uniform("u_anchor"), static_cast<float>(a.lat),
+                  static_cast<float>(std::sin(a.lat)), static_cast<float>(std::cos(a.lat)),
+                  static_cast<float>(a.mercator_y));
+  }
+  gl::Uniform1i(p.uniform("u_globe"), globe);
   gl::Uniform1i(p.uniform("u_heights"), 0);
   gl::BindTextureUnit(0, heights_);
 }
@@ -215,16 +231,18 @@ RenderTimes TerrainRenderer::draw(const std::vector<Patch>& patches, const View&
   return {static_cast<double>(ns) / 1e6};
 }
 
-std::vector<float> TerrainRenderer::capture_triangles(const std::vector<Patch>& patches,
-                                                      const View& view, const WorldFrame& frame,
-                                                      double exaggeration) {
-  const size_t floats = patches.size() * triangles_per_patch() * 9;
-  std::vector<float> out(floats);
+std::vector<CapturedVertex> TerrainRenderer::capture_triangles(const std::vector<Patch>& patches,
+                                                               const View& view,
+                                                               const WorldFrame& frame,
+                                                               double exaggeration) {
+  static_assert(sizeof(CapturedVertex) == 24, "matches the interleaved feedback varyings");
+  std::vector<CapturedVertex> out(patches.size() * triangles_per_patch() * 3);
+  const size_t bytes = out.size() * sizeof(CapturedVertex);
   if (patches.empty()) return out;
   upload_instances(patches, view, frame);
   GLuint buffer = 0;
   gl::CreateBuffers(1, &buffer);
-  gl::NamedBufferStorage(buffer, floats * sizeof(float), nullptr, 0);
+  gl::NamedBufferStorage(buffer, bytes, nullptr, 0);
   set_common_uniforms(capture_program_, view, frame, exaggeration);
   gl::Enable(GL_RASTERIZER_DISCARD);
   gl::BindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, buffer);
@@ -235,7 +253,7 @@ std::vector<float> TerrainRenderer::capture_triangles(const std::vector<Patch>& 
   gl::EndTransformFeedback();
   gl::BindVertexArray(0);
   gl::Disable(GL_RASTERIZER_DISCARD);
-  gl::GetNamedBufferSubData(buffer, 0, floats * sizeof(float), out.data());
+  gl::GetNamedBufferSubData(buffer, 0, bytes, out.data());
   gl::BindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
   gl::DeleteBuffers(1, &buffer);
   gl::check("capturing the mesh");

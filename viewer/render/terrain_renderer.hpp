@@ -36,6 +36,15 @@ struct RenderTimes {
   double terrain_ms = 0;  // GPU time of the terrain pass
 };
 
+// One vertex of a captured triangle: world metres relative to view.origin
+// (exactly what was drawn; shared vertices are bit-identical), its key point
+// relative to view.origin and its height in metres (before exaggeration).
+struct CapturedVertex {
+  float world[3];
+  int32_t key[2];
+  float height_m;
+};
+
 class TerrainRenderer {
  public:
   // block_size: samples per block side; slots: texture layers (cache slots).
@@ -51,9 +60,9 @@ class TerrainRenderer {
                    const ShadingSettings& shading);
   const GBuffer& gbuffer() const { return g_; }
   GLuint heights_texture() const { return heights_; }
-  // The drawn triangles, 3 vertices each, world metres relative to view.origin.
-  std::vector<float> capture_triangles(const std::vector<Patch>& patches, const View& view,
-                                       const WorldFrame& frame, double exaggeration);
+  // The drawn triangles, 3 vertices each, as the vertex shader computed them.
+  std::vector<CapturedVertex> capture_triangles(const std::vector<Patch>& patches, const View& view,
+                                                const WorldFrame& frame, double exaggeration);
   size_t triangles_per_patch() const { return static_cast<size_t>(lattice_) * lattice_; }
   int width() const { return g_.width; }
   int height() const { return g_.height; }

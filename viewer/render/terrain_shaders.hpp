@@ -7,27 +7,81 @@ namespace globe::viewer::shaders {
 
 // Lattice point (i, j) of an instanced patch -> block sample -> world metres
 // relative to the frame origin. Integer arithmetic up to the last step keeps
-// vertices shared by two blocks bit-identical.
+// vertices shared by two blocks bit-identical. On the globe, the key offset
+// from the origin becomes latitude/longitude offsets and then the WGS84 point
+// relative to the origin's point, in its east-north-up frame, with every
+// large term multiplying a small difference (half-angle forms), so float
+// keeps millimetres near the eye and the same relative precision far away.
 inline constexpr const char* kTerrainVertex = R"(#version 450 core
 layout(location = 0) in ivec2 a_lattice;
 layout(location = 1) in ivec4 i_origin_apex;  // block origin (key units, frame-relative), apex
 layout(location = 2) in ivec4 i_uv;           // lattice steps along the two legs (samples)
 layout(location = 3) in ivec2 i_layer_shift;  // texture layer, log2(key units per sample)
 uniform mat4 u_view_proj;
-uniform vec3 u_scale;  // metres per key unit (x, y), world z per metre of height
+uniform vec3 u_scale;  // flat: metres per key unit (x, y); world z per metre of height
+uniform int u_globe;   // 0 flat, 1 geodetic globe, 2 webmercator globe
+uniform vec2 u_rad_per_key;  // globe: longitude radians per key unit; latitude radians
+                             // (geodetic) or mercator y / R (webmercator) per key unit
+uniform vec4 u_anchor;       // globe: origin latitude, its sine and cosine, mercator y / R
 uniform sampler2DArray u_heights;
 out vec3 v_world;
 out vec2 v_sample;
 flat out int v_layer;
 flat out vec2 v_spacing;  // metres per block sample (x, y)
+flat out ivec2 v_key;     // for mesh capture: key units from the frame origin
+out float v_height;       // for mesh capture: metres
+
+const float kA = 6378137.0, kE2 = 0.00669437999014132;
+
+// ENU0 of a vector given in the frame with x at the origin's meridian on the
+// equator and z at the north pole, rotated so the origin's longitude is 0.
+vec3 to_enu0(vec3 v) {
+  return vec3(v.y, -u_anchor.y * v.x + u_anchor.z * v.z, u_anchor.z * v.x + u_anchor.y * v.z);
+}
+
+vec3 globe_world(vec2 dk, float h, out vec2 spacing) {
+  float lat0 = u_anchor.x, s0 = u_anchor.y, c0 = u_anchor.z;
+  float dlon = dk.x * u_rad_per_key.x, dlat;
+  if (u_globe == 1) {
+    dlat = -dk.y * u_rad_per_key.y;
+  } else {  // atan(sinh a) - atan(sinh b) without cancellation
+    float b = u_anchor.w, a = b - dk.y * u_rad_per_key.y;
+    dlat = atan(2.0 * cosh(0.5 * (a + b)) * sinh(0.5 * (a - b)), 1.0 + sinh(a) * sinh(b));
+  }
+  float lat = lat0 + dlat, s = sin(lat), c = cos(lat);
+  float hs = sin(0.5 * dlat);
+  float dsin = 2.0 * cos(lat0 + 0.5 * dlat) * hs;   // sin lat - sin lat0
+  float dcos = -2.0 * sin(lat0 + 0.5 * dlat) * hs;  // cos lat - cos lat0
+  float rw = sqrt(1.0 - kE2 * s * s), rw0 = sqrt(1.0 - kE2 * s0 * s0);
+  float n0 = kA / rw0;
+  float dn = kA * kE2 * sin(2.0 * lat0 + dlat) * sin(dlat) / (rw * rw0 * (rw + rw0));  // N - N0
+  float hl = sin(0.5 * dlon), cl = 1.0 - 2.0 * hl * hl, sl = sin(dlon);
+  float dx = (dn * c + h * c + n0 * dcos) * cl - n0 * c0 * 2.0 * hl * hl;
+  float dy = (n0 + dn + h) * c * sl;
+  float dz = (1.0 - kE2) * (dn * s + n0 * dsin) + h * s;
+  float n = n0 + dn;
+  // (East-west spacing shrinks to nothing at a geodetic pole; the slope
+  // across those slivers is not measurable, so it is bounded.)
+  spacing = u_globe == 1 ? vec2(n * max(c, 0.05) * u_rad_per_key.x,
+                                n * (1.0 - kE2) / (rw * rw) * u_rad_per_key.y)
+                         : vec2(n * c * u_rad_per_key.x);
+  return to_enu0(vec3(dx, dy, dz));
+}
+
 void main() {
   ivec2 local = i_origin_apex.zw + a_lattice.x * i_uv.xy + a_lattice.y * i_uv.zw;
   float h = texelFetch(u_heights, ivec3(local, i_layer_shift.x), 0).r;
   ivec2 key = i_origin_apex.xy + (local << i_layer_shift.y);
-  v_world = vec3(float(key.x) * u_scale.x, -float(key.y) * u_scale.y, h * u_scale.z);
+  vec2 spacing = u_scale.xy;
+  if (u_globe == 0)
+    v_world = vec3(float(key.x) * u_scale.x, -float(key.y) * u_scale.y, h * u_scale.z);
+  else
+    v_world = globe_world(vec2(key), h * u_scale.z, spacing);
+  v_key = key;
+  v_height = h;
   v_sample = vec2(local);
   v_layer = i_layer_shift.x;
-  v_spacing = u_scale.xy * float(1 << i_layer_shift.y);
+  v_spacing = spacing * float(1 << i_layer_shift.y);
   gl_Position = u_view_proj * vec4(v_world, 1.0);
 }
 )";
