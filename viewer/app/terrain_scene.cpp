@@ -77,6 +77,14 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
   renderer_ = std::make_unique<TerrainRenderer>(
       cache_->package().block_size, cache_->package().lattice,
       static_cast<int>(cache_->slot_count()), settings_.width, settings_.height);
+  if (world_->globe()) {
+    const TerrainPackage& p = cache_->package();
+    const tileformat::Bounds ll =
+        p.meta.common.has_bounds ? p.meta.common.lonlat : p.tiling.lonlat_limits();
+    double finest = p.tiling.sample_spacing(p.max_zoom, p.block_size - 1);
+    if (p.tiling.scheme == tileformat::Scheme::kWebMercator) finest /= 111320.0;  // ~degrees
+    caps_ = std::make_unique<PolarCaps>(*world_, ll, finest, p.meta.fill_height);
+  }
   if (!set.images.empty())
     images_ = std::make_unique<ImageLayers>(
         set.images, settings_.image_opacity, *world_,
@@ -157,6 +165,13 @@ FrameResult TerrainScene::frame(const CameraPose& pose, Loading loading, Output 
   }
   if (output == Output::kSelectOnly) return f;
   f.terrain_ms = renderer_->draw(f.patches, f.view, *world_, settings_.shading).terrain_ms;
+  if (caps_) {
+    // Flat ground's hillshade, a little towards white: ice, plainly.
+    const double sun_z = std::sin(settings_.shading.sun_altitude_deg * std::numbers::pi / 180);
+    const float grey = static_cast<float>(0.12 + 0.88 * std::max(sun_z, 0.05));
+    caps_->draw(renderer_->gbuffer(), f.view, *world_,
+                glm::vec3(grey * 0.92f + 0.08f, grey * 0.94f + 0.06f, grey * 0.96f + 0.04f));
+  }
   GBuffer g = renderer_->gbuffer();
   if (images_) {
     const double sun_z = std::sin(settings_.shading.sun_altitude_deg * std::numbers::pi / 180);

@@ -15,6 +15,7 @@
 #include "camera/world_frame.hpp"
 #include "data/block_cache.hpp"
 #include "render/patch_selection.hpp"
+#include "render/polar_caps.hpp"
 #include "render/terrain_renderer.hpp"
 
 namespace globe::viewer {
@@ -67,6 +68,7 @@ class TerrainScene {
   std::unique_ptr<PatchSelector> selector_;
   std::unique_ptr<WorldFrame> world_;
   std::unique_ptr<TerrainRenderer> renderer_;
+  std::unique_ptr<PolarCaps> caps_;
   std::unique_ptr<ImageLayers> images_;
   std::unique_ptr<LineLayer> lines_;
 };
