@@ -181,6 +181,10 @@ void TerrainRenderer::set_common_uniforms(const GlProgram& p, const View& view,
     const double r =
         merc ? frame.crs_per_key() / wgs84::kA : frame.crs_per_key() * std::numbers::pi / 180;
     gl::Uniform2f(p.uniform("u_rad_per_key"), static_cast<float>(r), static_cast<float>(r));
+    const int64_t wrap = frame.tiling().scheme == tileformat::Scheme::kWebMercator
+                             ? (int64_t{frame.steps()} << frame.key_zoom())
+                             : (int64_t{frame.steps()} << frame.key_zoom()) * 2;
+    gl::Uniform1i(p.uniform("u_wrap_keys"), static_cast<GLint>(wrap));
     gl::Uniform4f(p.uniform("u_anchor"), static_cast<float>(a.lat),
                   static_cast<float>(std::sin(a.lat)), static_cast<float>(std::cos(a.lat)),
                   static_cast<float>(a.mercator_y));

@@ -23,6 +23,7 @@ uniform int u_globe;   // 0 flat, 1 geodetic globe, 2 webmercator globe
 uniform vec2 u_rad_per_key;  // globe: longitude radians per key unit; latitude radians
                              // (geodetic) or mercator y / R (webmercator) per key unit
 uniform vec4 u_anchor;       // globe: origin latitude, its sine and cosine, mercator y / R
+uniform int u_wrap_keys;     // globe: key units per 360 degrees of longitude
 uniform sampler2DArray u_heights;
 out vec3 v_world;
 out vec2 v_sample;
@@ -32,6 +33,26 @@ flat out ivec2 v_key;     // for mesh capture: key units from the frame origin
 out float v_height;       // for mesh capture: metres
 
 const float kA = 6378137.0, kE2 = 0.00669437999014132;
+
+// Full relative precision near 0, where GLSL's built-ins may lose it
+// (sinh from a difference of exponentials; the spec bounds sin and atan only
+// absolutely): Taylor series below 0.1, good to a few float ulps.
+float sinh_precise(float x) {
+  if (abs(x) > 0.1) return sinh(x);
+  float x2 = x * x;
+  return x * (1.0 + x2 * (1.0 / 6.0 + x2 * (1.0 / 120.0 + x2 / 5040.0)));
+}
+float sin_precise(float x) {
+  if (abs(x) > 0.1) return sin(x);
+  float x2 = x * x;
+  return x * (1.0 - x2 * (1.0 / 6.0 - x2 * (1.0 / 120.0 - x2 / 5040.0)));
+}
+float atan_precise(float y, float x) {  // x > 0 where it matters
+  float t = y / x;
+  if (x <= 0.0 || abs(t) > 0.1) return atan(y, x);
+  float t2 = t * t;
+  return t * (1.0 - t2 * (1.0 / 3.0 - t2 * (1.0 / 5.0 - t2 * (1.0 / 7.0 - t2 / 9.0))));
+}
 
 // ENU0 of a vector given in the frame with x at the origin's meridian on the
 // equator and z at the north pole, rotated so the origin's longitude is 0.
@@ -44,18 +65,18 @@ vec3 globe_world(vec2 dk, float h, out vec2 spacing) {
   float dlon = dk.x * u_rad_per_key.x, dlat;
   if (u_globe == 1) {
     dlat = -dk.y * u_rad_per_key.y;
-  } else {  // atan(sinh a) - atan(sinh b) without cancellation
-    float b = u_anchor.w, a = b - dk.y * u_rad_per_key.y;
-    dlat = atan(2.0 * cosh(0.5 * (a + b)) * sinh(0.5 * (a - b)), 1.0 + sinh(a) * sinh(b));
+  } else {  // atan(sinh a) - atan(sinh b) without cancellation, a = b + dy
+    float b = u_anchor.w, dy = -dk.y * u_rad_per_key.y, a = b + dy;
+    dlat = atan_precise(2.0 * cosh(b + 0.5 * dy) * sinh_precise(0.5 * dy), 1.0 + sinh(a) * sinh(b));
   }
   float lat = lat0 + dlat, s = sin(lat), c = cos(lat);
-  float hs = sin(0.5 * dlat);
+  float hs = sin_precise(0.5 * dlat);
   float dsin = 2.0 * cos(lat0 + 0.5 * dlat) * hs;   // sin lat - sin lat0
   float dcos = -2.0 * sin(lat0 + 0.5 * dlat) * hs;  // cos lat - cos lat0
   float rw = sqrt(1.0 - kE2 * s * s), rw0 = sqrt(1.0 - kE2 * s0 * s0);
   float n0 = kA / rw0;
-  float dn = kA * kE2 * sin(2.0 * lat0 + dlat) * sin(dlat) / (rw * rw0 * (rw + rw0));  // N - N0
-  float hl = sin(0.5 * dlon), cl = 1.0 - 2.0 * hl * hl, sl = sin(dlon);
+  float dn = kA * kE2 * sin(2.0 * lat0 + dlat) * sin_precise(dlat) / (rw * rw0 * (rw + rw0));  // N - N0
+  float hl = sin_precise(0.5 * dlon), cl = 1.0 - 2.0 * hl * hl, sl = sin_precise(dlon);
   float dx = (dn * c + h * c + n0 * dcos) * cl - n0 * c0 * 2.0 * hl * hl;
   float dy = (n0 + dn + h) * c * sl;
   float dz = (1.0 - kE2) * (dn * s + n0 * dsin) + h * s;
@@ -73,10 +94,16 @@ void main() {
   float h = texelFetch(u_heights, ivec3(local, i_layer_shift.x), 0).r;
   ivec2 key = i_origin_apex.xy + (local << i_layer_shift.y);
   vec2 spacing = u_scale.xy;
-  if (u_globe == 0)
+  if (u_globe == 0) {
     v_world = vec3(float(key.x) * u_scale.x, -float(key.y) * u_scale.y, h * u_scale.z);
-  else
-    v_world = globe_world(vec2(key), h * u_scale.z, spacing);
+  } else {
+    // Longitude offsets into -180..180 degrees in integers, before any
+    // rounding: across the antimeridian a neighbour is a small offset.
+    ivec2 k = key;
+    if (k.x > u_wrap_keys / 2) k.x -= u_wrap_keys;
+    if (k.x < -u_wrap_keys / 2) k.x += u_wrap_keys;
+    v_world = globe_world(vec2(k), h * u_scale.z, spacing);
+  }
   v_key = key;
   v_height = h;
   v_sample = vec2(local);
