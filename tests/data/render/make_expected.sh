@@ -32,4 +32,14 @@ build/viewer/globe-view "$tmp/o.mbtiles" "$tmp/n.mbtiles" $oblique \
   --snapshot $out/olinda_landsat_oblique.png
 build/viewer/globe-view "$tmp/o.mbtiles" "$tmp/n.mbtiles" "$tmp/f.mbtiles" --image-opacity 1,0.5 \
   $oblique --snapshot $out/olinda_landsat_blended.png
+# The globe (tests/viewer_globe_test.cpp): etopo20 in both global schemes.
+build/tools/tiler/globe-tiler terrain -q --tiling geodetic samples/data/etopo20.tif -o "$tmp/eg.mbtiles"
+build/tools/tiler/globe-tiler terrain -q --tiling webmercator samples/data/etopo20.tif \
+  -o "$tmp/em.mbtiles"
+build/viewer/globe-view "$tmp/eg.mbtiles" --globe --fit --exaggeration 30 --size 320x180 \
+  --snapshot $out/globe_etopo_orbit.png
+build/viewer/globe-view "$tmp/eg.mbtiles" --globe --camera=8,40,700000,0,60 --exaggeration 20 \
+  --size 320x180 --snapshot $out/globe_etopo_alps.png
+build/viewer/globe-view "$tmp/em.mbtiles" --globe --camera=0,90,3000000,0,0 --size 160x120 \
+  --snapshot $out/globe_webmercator_north_cap.png
 ls -l $out/*.png

@@ -1,0 +1,110 @@
+// globe-view --globe as a user runs it: a global package from orbit (the
+// whole disc with --fit), close oblique views, the polar caps of a
+// webmercator package, against expected PNGs and checks from first
+// principles (the disc's size from the ellipsoid and the camera).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "render_fixtures.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using namespace globe_test;
+
+struct Globes {
+  fs::path dir;
+  std::string geodetic, mercator;
+};
+
+const Globes& globes() {
+  static const Globes g = [] {
+    Globes k;
+    k.dir = run_scratch_dir("globe-view-globe");
+    k.geodetic = (k.dir / "etopo_geodetic.mbtiles").string();
+    k.mercator = (k.dir / "etopo_webmercator.mbtiles").string();
+    for (const auto& [tiling, out] :
+         {std::pair{"geodetic", k.geodetic}, std::pair{"webmercator", k.mercator}}) {
+      const std::string cmd = tiler() + " terrain -q --tiling " + tiling + " " +
+                              sample("etopo20.tif").string() + " -o " + out;
+      const RunResult r = run(cmd, k.dir);
+      EXPECT_EQ(r.exit_code, 0) << cmd << "\n" << r.err;
+    }
+    return k;
+  }();
+  return g;
+}
+
+RunResult view(const std::string& args, const fs::path& dir) {
+  return run(viewer() + " --platform osmesa --globe " + args, dir);
+}
+
+bool is_sky(const std::vector<uint8_t>& rgb, size_t i) {
+  return std::abs(int(rgb[3 * i]) - 158) < 4 && std::abs(int(rgb[3 * i + 1]) - 184) < 4 &&
+         std::abs(int(rgb[3 * i + 2]) - 209) < 4;
+}
+
+TEST(ViewerGlobe, FitShowsTheWholeDiscFromOrbit) {
+  TempDir dir;
+  const std::string snap = (dir / "a.png").string();
+  const RunResult r =
+      view(globes().geodetic + " --fit --exaggeration 30 --size 320x180 --snapshot " + snap +
+               " --stats --frames 1",
+           dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  int w, h;
+  const auto rgb = read_rgb(snap, w, h);
+  // The border is sky; the disc's vertical extent follows from the eye's
+  // distance D = kA * 1.05 / sin(fov / 2) (what --fit promises: the
+  // equatorial radius plus 5% fills the half-height): the disc subtends
+  // asin(kA / D) of the 22.5-degree half field of view.
+  for (int x = 0; x < w; ++x) {
+    EXPECT_TRUE(is_sky(rgb, size_t(x))) << "top row, x " << x;
+    EXPECT_TRUE(is_sky(rgb, size_t(h - 1) * w + x)) << "bottom row, x " << x;
+  }
+  int top = -1, bottom = -1;
+  for (int y = 0; y < h; ++y)
+    if (!is_sky(rgb, size_t(y) * w + w / 2)) {
+      if (top < 0) top = y;
+      bottom = y;
+    }
+  const double half = 22.5 * std::numbers::pi / 180;
+  const double disc = std::asin(std::sin(half) / 1.05);  // angular radius of the equator
+  // (the polar radius is 0.3% smaller; the view is straight down at 0,0)
+  const double want = std::tan(disc) / std::tan(half) * h;
+  EXPECT_NEAR(bottom - top + 1, want, 4.0) << "top " << top << " bottom " << bottom;
+  expect_image(snap, "globe_etopo_orbit");
+}
+
+TEST(ViewerGlobe, ObliqueViewOverTheAlpsMatchesExpected) {
+  TempDir dir;
+  const std::string snap = (dir / "a.png").string();
+  const RunResult r = view(globes().geodetic + " --camera=8,40,700000,0,60 --exaggeration 20" +
+                               " --size 320x180 --snapshot " + snap,
+                           dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_image(snap, "globe_etopo_alps");
+}
+
+TEST(ViewerGlobe, WebMercatorPolesAreCapsNotHoles) {
+  TempDir dir;
+  for (const char* cam : {"0,90,3000000,0,0", "0,-90,3000000,0,0"}) {
+    const std::string snap = (dir / "a.png").string();
+    const RunResult r = view(
+        globes().mercator + " --camera=" + cam + " --size 160x120 --snapshot " + snap, dir.path());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    int w, h;
+    const auto rgb = read_rgb(snap, w, h);
+    // Straight down on the pole: beyond 85.05 degrees there are no tiles,
+    // and the cap must cover it (the centre 20 x 20 pixels, 4.95 degrees of
+    // latitude span about 30 px here).
+    for (int y = h / 2 - 10; y < h / 2 + 10; ++y)
+      for (int x = w / 2 - 10; x < w / 2 + 10; ++x)
+        ASSERT_FALSE(is_sky(rgb, size_t(y) * w + x)) << cam << ": sky at " << x << "," << y;
+    if (cam[2] == '9') expect_image(snap, "globe_webmercator_north_cap");
+  }
+}
+
+}  // namespace
