@@ -73,25 +73,10 @@ row() { # name dem [tiler options...]
              n, tt, tw, tt / tw, pb, tb, pb / tb, rss / 1024 }'
 }
 
-# A global 5' relief grid, grid-registered like ETOPO5/GEBCO (4321 x 2161
-# samples on -180..180, -90..90; pixel areas half a pixel past both): etopo20
-# (lon 0..360) mosaicked with its copy shifted by -360 degrees, resampled.
-make_global() {
-  local west="$scratch/etopo20_west.vrt"
-  gdal_translate -q -of VRT samples/data/etopo20.tif "$west"
-  local gt
-  gt=$(gdalinfo samples/data/etopo20.tif | sed -n 's/^Origin = (\([-0-9.e+]*\),\([-0-9.e+]*\))/\1 \2/p')
-  read -r ox oy <<<"$gt"
-  px=$(gdalinfo samples/data/etopo20.tif | sed -n 's/^Pixel Size = (\([-0-9.e+]*\),.*/\1/p')
-  sed -i "s|<GeoTransform>.*</GeoTransform>|<GeoTransform>$(awk -v x="$ox" 'BEGIN { printf "%.17g", x - 360 }'), $px, 0, $oy, 0, -$px</GeoTransform>|" "$west"
-  gdalwarp -q -overwrite -r cubic -ot Int16 -te -180.041666666666667 -90.041666666666667 \
-    180.041666666666667 90.041666666666667 -ts 4321 2161 "$west" samples/data/etopo20.tif \
-    "$scratch/global_5min.tif"
-}
 
 echo "bench: $(date -u +%FT%TZ), $(nproc) cores, $(gdal-config --version 2>/dev/null || echo GDAL) ($(git rev-parse --short HEAD))"
 [ -f "$scratch/synth_4096.tif" ] || "$gen" 4096 "$scratch/synth_4096.tif"
-[ -f "$scratch/global_5min.tif" ] || make_global
+[ -f "$scratch/global_5min.tif" ] || bench/make_global.sh "$scratch/global_5min.tif"
 row jacksboro samples/data/jacksboro.tif
 row brasilia_local samples/data/brasilia.tif --tiling local
 row etopo20_geodetic samples/data/etopo20.tif --tiling geodetic
