@@ -62,10 +62,10 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
   if (package.max_zoom > 21)
     throw InputError(path + ": maxzoom " + std::to_string(package.max_zoom) +
                      " is deeper than the viewer's integer vertex frame supports (21)");
-  if (settings_.globe && (!set.images.empty() || lines))
+  if (settings_.globe && lines && settings_.line_mode == LineMode::kGeometry)
     throw UsageError(
-        "--globe: imagery and lines are not draped on the globe yet; drop --globe to see them "
-        "on the flat frame");
+        "--globe: --lines geometry (the baseline of draped quads) draws on the flat frame only; "
+        "the globe draws lines per pixel (--lines deferred, the default)");
   world_ = std::make_unique<WorldFrame>(package.tiling, package.block_size - 1, package.max_zoom,
                                         settings_.globe ? Surface::kGlobe : Surface::kFlat);
   cache_ =

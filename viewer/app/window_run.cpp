@@ -134,7 +134,7 @@ int run_window(const ViewerSettings& settings) {
         if (scene->lines()) scene->lines()->reload_style(LineLayer::Reload::kAlways);
         break;
       case GLFW_KEY_L:
-        if (LineLayer* l = scene->lines())
+        if (LineLayer* l = scene->lines(); l && !scene->world().globe())
           l->set_mode(l->mode() == LineMode::kDeferred ? LineMode::kGeometry : LineMode::kDeferred);
         break;
       case GLFW_KEY_I:

@@ -37,23 +37,24 @@ WorldFrame::WorldFrame(const tileformat::Tiling& tiling, int steps, int key_zoom
 WorldFrame::~WorldFrame() = default;
 
 void WorldFrame::set_view_latitude(double lat_deg) {
+  const double c = std::cos(std::clamp(lat_deg, -85.0, 85.0) * std::numbers::pi / 180);
+  if (tiling_.scheme == tileformat::Scheme::kWebMercator) {
+    gx_ = gy_ = 1;
+    gz_ = 1 / c;  // Mercator metres are stretched by 1/cos(lat); heights follow
+  } else if (geographic_) {
+    gx_ = kMetresPerDegreeLonEquator * c;
+    gy_ = kMetresPerDegreeLat;
+    gz_ = 1;
+  } else {
+    gx_ = gy_ = gz_ = 1;
+  }
   if (globe()) {
     // Metres per CRS unit where they are largest (the equator): selection
     // distances and node sizes stay conservative at every latitude.
     mx_ = my_ = geographic_ ? wgs84::kA * std::numbers::pi / 180 : 1.0;
     hz_ = 1;
-    return;
-  }
-  const double c = std::cos(std::clamp(lat_deg, -85.0, 85.0) * std::numbers::pi / 180);
-  if (tiling_.scheme == tileformat::Scheme::kWebMercator) {
-    mx_ = my_ = 1;
-    hz_ = 1 / c;  // Mercator metres are stretched by 1/cos(lat); heights follow
-  } else if (geographic_) {
-    mx_ = kMetresPerDegreeLonEquator * c;
-    my_ = kMetresPerDegreeLat;
-    hz_ = 1;
   } else {
-    mx_ = my_ = hz_ = 1;
+    mx_ = gx_, my_ = gy_, hz_ = gz_;
   }
 }
 

@@ -65,6 +65,11 @@ class WorldFrame {
   double metres_per_crs_x() const { return mx_; }
   double metres_per_crs_y() const { return my_; }
   double height_scale() const { return hz_; }  // world z per metre of height
+  // The flat frame's scales at the view latitude on either surface: the
+  // "ground" coordinates the deferred passes measure in (render/terrain_renderer.hpp).
+  double ground_per_crs_x() const { return gx_; }
+  double ground_per_crs_y() const { return gy_; }
+  double ground_height_scale() const { return gz_; }
 
   glm::dvec2 key_to_crs(double kx, double ky) const;
   glm::dvec2 crs_to_key(double cx, double cy) const;
@@ -104,6 +109,7 @@ class WorldFrame {
   double crs_per_key_;
   bool geographic_ = false;
   double mx_ = 1, my_ = 1, hz_ = 1;
+  double gx_ = 1, gy_ = 1, gz_ = 1;
   std::unique_ptr<ProjTransform> to_crs_, to_lonlat_;
 };
 

@@ -16,7 +16,14 @@ namespace globe::viewer {
 namespace {
 
 enum Binding : GLuint { kTables = 0, kRequests = 1, kUsed = 2 };
-enum Unit : GLuint { kColor = 0, kPosition = 1, kNormal = 2, kGrids = 3, kFirstImage = 4 };
+enum Unit : GLuint {
+  kColor = 0,
+  kPosition = 1,
+  kGround = 2,
+  kGroundDy = 3,
+  kGrids = 4,
+  kFirstImage = 5
+};
 
 void fill_buffer(GLuint buffer, size_t bytes, const void* data) {
   gl::NamedBufferData(buffer, std::max<size_t>(bytes, 16), nullptr, GL_STREAM_DRAW);
@@ -146,18 +153,20 @@ double ImageRenderer::draw(const GBuffer& g, const View& view, const WorldFrame&
   gl::UseProgram(p.id());
   gl::BindTextureUnit(kColor, g.color);
   gl::BindTextureUnit(kPosition, g.position);
-  gl::BindTextureUnit(kNormal, g.normal);
+  gl::BindTextureUnit(kGround, g.ground);
+  gl::BindTextureUnit(kGroundDy, g.ground_dy);
   gl::BindTextureUnit(kGrids, grids_texture_);
   gl::Uniform1i(p.uniform("u_color"), kColor);
   gl::Uniform1i(p.uniform("u_position"), kPosition);
-  gl::Uniform1i(p.uniform("u_normal"), kNormal);
+  gl::Uniform1i(p.uniform("u_ground"), kGround);
+  gl::Uniform1i(p.uniform("u_ground_dy"), kGroundDy);
   gl::Uniform1i(p.uniform("u_grids"), kGrids);
   gl::Uniform1i(p.uniform("u_grid_n"), grid_n_);
   const glm::mat4 inv = glm::mat4(glm::inverse(view.proj * view.view));
   gl::UniformMatrix4fv(p.uniform("u_inv_view_proj"), 1, GL_FALSE, glm::value_ptr(inv));
   gl::Uniform3f(p.uniform("u_eye"), float(view.eye.x), float(view.eye.y), float(view.eye.z));
-  gl::Uniform2f(p.uniform("u_crs_per_m"), float(1 / world.metres_per_crs_x()),
-                float(1 / world.metres_per_crs_y()));
+  gl::Uniform2f(p.uniform("u_crs_per_m"), float(1 / world.ground_per_crs_x()),
+                float(1 / world.ground_per_crs_y()));
   gl::Uniform1i(p.uniform("u_lit"), lighting == ImageLighting::kHillshade ? 1 : 0);
   gl::Uniform1f(p.uniform("u_light_norm"), light_norm);
   gl::Uniform1ui(p.uniform("u_request_mask"), kRequestSlots - 1);
@@ -174,6 +183,7 @@ double ImageRenderer::draw(const GBuffer& g, const View& view, const WorldFrame&
     gl::Uniform2f(p.uniform(at("u_frac", i).c_str()), f.frac.x, f.frac.y);
     gl::Uniform2f(p.uniform(at("u_per_unit", i).c_str()), f.per_unit.x, f.per_unit.y);
     gl::Uniform1i(p.uniform(at("u_ref_zoom", i).c_str()), f.ref_zoom);
+    gl::Uniform1i(p.uniform(at("u_wrap", i).c_str()), caches[i]->package().tiling.wrap_tiles());
     gl::Uniform1i(p.uniform(at("u_min_zoom", i).c_str()), l.min_zoom);
     gl::Uniform1i(p.uniform(at("u_max_zoom", i).c_str()), l.max_zoom);
     gl::Uniform1f(p.uniform(at("u_tile_px", i).c_str()), float(l.tile_px));

@@ -20,8 +20,8 @@ inline constexpr const char* kImageFragment = R"(
 layout(std430, binding = 0) readonly buffer Tables { uvec4 tables[]; };
 layout(std430, binding = 2) buffer Used { uint used[]; };
 uniform uint u_frame;
-uniform sampler2D u_color, u_normal;
-uniform vec2 u_crs_per_m;   // terrain CRS units per world metre (x, y)
+uniform sampler2D u_color, u_ground, u_ground_dy;
+uniform vec2 u_crs_per_m;   // terrain CRS units per ground unit (x, y)
 uniform int u_lit;          // 1: imagery x hillshade; 0: unlit
 uniform float u_light_norm; // hillshade value of flat ground
 uniform int u_layers;
@@ -30,6 +30,7 @@ uniform ivec2 u_base[MAX_LAYERS];
 uniform vec2 u_frac[MAX_LAYERS];
 uniform vec2 u_per_unit[MAX_LAYERS];  // tiles of the reference zoom per image CRS unit
 uniform int u_ref_zoom[MAX_LAYERS], u_min_zoom[MAX_LAYERS], u_max_zoom[MAX_LAYERS];
+uniform int u_wrap[MAX_LAYERS];  // tiles across 360 degrees at zoom 0; 0: no wrap
 uniform float u_tile_px[MAX_LAYERS], u_opacity[MAX_LAYERS];
 uniform vec2 u_param[MAX_LAYERS];     // mode 1: (lat0 rad, R); mode 2: (y0 / R, R)
 uniform vec2 u_grid_org[MAX_LAYERS];  // the view origin in grid cells (x east, y south)
@@ -96,22 +97,18 @@ void main() {
   o_color = base;
   vec4 p4 = texelFetch(u_position, px, 0);
   if (p4.w == 0.0) return;
-  vec3 P = p4.xyz, N = texelFetch(u_normal, px, 0).xyz;
-  bool ok1, ok2;
-  vec3 q1 = plane_hit(gl_FragCoord.xy + vec2(1, 0), P, N, ok1);
-  vec3 q2 = plane_hit(gl_FragCoord.xy + vec2(0, 1), P, N, ok2);
-  if (!ok1 || !ok2) {  // edge-on: the pixel's own point, no footprint
-    q1 = P;
-    q2 = P;
-  }
+  // The pixel's ground point and its neighbours' (terrain_renderer.hpp):
+  // the terrain CRS offset from the view origin and the pixel's footprint.
+  vec4 gr = texelFetch(u_ground, px, 0);
+  vec2 gdy = texelFetch(u_ground_dy, px, 0).xy;
   float light = u_lit != 0 ? clamp(base.g / u_light_norm, 0.0, 1.25) : 1.0;
-  vec3 d0 = vec3(P.xy * u_crs_per_m, 0), d1 = vec3(q1.xy * u_crs_per_m, 0), d2 = vec3(q2.xy * u_crs_per_m, 0);
+  vec2 d0 = gr.xy * u_crs_per_m, d1 = (gr.xy + gr.zw) * u_crs_per_m, d2 = (gr.xy + gdy) * u_crs_per_m;
   vec3 rgb = base.rgb;
   for (int L = 0; L < u_layers; ++L) {
     vec2 c0, c1, c2;
-    if (!image_offset(L, d0.xy, c0)) continue;
-    if (!image_offset(L, d1.xy, c1)) c1 = c0;
-    if (!image_offset(L, d2.xy, c2)) c2 = c0;
+    if (!image_offset(L, d0, c0)) continue;
+    if (!image_offset(L, d1, c1)) c1 = c0;
+    if (!image_offset(L, d2, c2)) c2 = c0;
     vec2 flip = vec2(1, -1) * u_per_unit[L];
     vec2 p = u_frac[L] + c0 * flip;  // reference-zoom tiles from the base tile
     mat2 Jt = mat2((c1 - c0) * flip, (c2 - c0) * flip);  // ref tiles per screen pixel
@@ -127,9 +124,14 @@ void main() {
     for (; zz >= u_min_zoom[L]; --zz) {
       int s = ref - zz;
       ivec2 t = g >> s;
-      int e = table_lookup(L, zz, t);
+      ivec2 tw = t;  // the tile's own column, past the antimeridian too
+      if (u_wrap[L] > 0) {
+        int n = u_wrap[L] << zz;
+        tw.x = ((t.x % n) + n) % n;
+      }
+      int e = table_lookup(L, zz, tw);
       if (e == -1) {
-        if (ask) request(zz, t, uint(L));
+        if (ask) request(zz, tw, uint(L));
         ask = false;
         continue;
       }

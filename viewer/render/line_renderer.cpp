@@ -47,9 +47,10 @@ void set_tile_ref(const GlProgram& p, const std::string& name, const View& view,
   gl::Uniform2f(p.uniform((name + ".frac").c_str()), static_cast<float>(tx - bx),
                 static_cast<float>(ty - by));
   gl::Uniform2f(p.uniform((name + ".per_m").c_str()),
-                static_cast<float>(1 / (world.metres_per_crs_x() * size)),
-                static_cast<float>(1 / (world.metres_per_crs_y() * size)));
+                static_cast<float>(1 / (world.ground_per_crs_x() * size)),
+                static_cast<float>(1 / (world.ground_per_crs_y() * size)));
   gl::Uniform1i(p.uniform((name + ".zoom").c_str()), zoom);
+  gl::Uniform1i(p.uniform((name + ".wrap").c_str()), t.wrap_tiles());
 }
 
 void fill_buffer(GLuint buffer, size_t bytes, const void* data) {
@@ -176,7 +177,7 @@ double LineRenderer::draw(const GBuffer& g, const View& view, const WorldFrame& 
   upload_tables(cache);
   const LinePackage& pkg = cache.package();
   const tileformat::Tiling& tiling = world.tiling();
-  const double mx = world.metres_per_crs_x(), my = world.metres_per_crs_y();
+  const double mx = world.ground_per_crs_x(), my = world.ground_per_crs_y();
 
   gl::BindFramebuffer(GL_FRAMEBUFFER, fbo_);
   gl::Viewport(0, 0, width_, height_);
@@ -192,10 +193,12 @@ double LineRenderer::draw(const GBuffer& g, const View& view, const WorldFrame& 
   gl::UseProgram(p.id());
   gl::BindTextureUnit(0, g.color);
   gl::BindTextureUnit(1, g.position);
-  gl::BindTextureUnit(2, g.normal);
+  gl::BindTextureUnit(2, g.ground);
+  gl::BindTextureUnit(3, g.ground_dy);
   gl::Uniform1i(p.uniform("u_color"), 0);
   gl::Uniform1i(p.uniform("u_position"), 1);
-  gl::Uniform1i(p.uniform("u_normal"), 2);
+  gl::Uniform1i(p.uniform("u_ground"), 2);
+  gl::Uniform1i(p.uniform("u_ground_dy"), 3);
   const glm::mat4 inv = glm::mat4(glm::inverse(view.proj * view.view));
   gl::UniformMatrix4fv(p.uniform("u_inv_view_proj"), 1, GL_FALSE, glm::value_ptr(inv));
   gl::Uniform3f(p.uniform("u_eye"), float(view.eye.x), float(view.eye.y), float(view.eye.z));
@@ -207,7 +210,7 @@ double LineRenderer::draw(const GBuffer& g, const View& view, const WorldFrame& 
                 static_cast<float>(std::log2(std::min(m0x, m0y) / kTilePx)));
   gl::Uniform2f(p.uniform("u_tile_m0"), float(m0x), float(m0y));
   gl::Uniform1f(p.uniform("u_units_to_nominal_px"), kTilePx / float(std::max(pkg.extent, 1)));
-  gl::Uniform1f(p.uniform("u_world_per_m"), static_cast<float>(world.height_scale()));
+  gl::Uniform1f(p.uniform("u_world_per_m"), static_cast<float>(world.ground_height_scale()));
   gl::Uniform1ui(p.uniform("line_table_mask"), table_mask_);
   gl::Uniform1ui(p.uniform("u_request_mask"), kRequestSlots - 1);
   gl::Uniform1ui(p.uniform("u_frame"), frame);
@@ -268,12 +271,12 @@ void LineRenderer::draw_geometry(const View& view, const WorldFrame& world, doub
   gl::Uniform1i(p.uniform("u_terrain_max_zoom"), terrain.max_zoom);
   gl::Uniform1f(p.uniform("u_block_steps"), float(terrain.block_size - 1));
   gl::Uniform1f(p.uniform("u_block_size"), float(terrain.block_size));
-  gl::Uniform1f(p.uniform("u_zscale"), float(world.height_scale() * exaggeration));
+  gl::Uniform1f(p.uniform("u_zscale"), float(world.ground_height_scale() * exaggeration));
   gl::UniformMatrix4fv(p.uniform("u_view_proj"), 1, GL_FALSE, glm::value_ptr(view.view_proj));
   gl::Uniform2f(p.uniform("u_viewport"), float(width_), float(height_));
   gl::Uniform1f(p.uniform("u_focal_px"), float(height_ * 0.5 * view.proj[1][1]));
   gl::Uniform1i(p.uniform("u_class_count"), class_count_);
-  gl::Uniform1f(p.uniform("u_world_per_m"), static_cast<float>(world.height_scale()));
+  gl::Uniform1f(p.uniform("u_world_per_m"), static_cast<float>(world.ground_height_scale()));
 
   gl::Enable(GL_DEPTH_TEST);
   gl::DepthFunc(GL_LEQUAL);
@@ -282,7 +285,7 @@ void LineRenderer::draw_geometry(const View& view, const WorldFrame& world, doub
   gl::PolygonOffset(-1.0f, -4.0f);
   const tileformat::Tiling& tiling = world.tiling();
   const glm::dvec2 o = world.key_to_crs(double(view.origin.x), double(view.origin.y));
-  const double mx = world.metres_per_crs_x(), my = world.metres_per_crs_y();
+  const double mx = world.ground_per_crs_x(), my = world.ground_per_crs_y();
   for (int layer = 0; layer < 2; ++layer) {
     gl::Uniform1i(p.uniform("u_layer"), layer);
     for (uint32_t r : used) {

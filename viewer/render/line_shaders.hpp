@@ -13,12 +13,15 @@ layout(std430, binding = 3) readonly buffer Styles { vec4 styles[]; };  // 5 per
 uniform int u_class_count;
 
 // Tile coordinates of world points: `base + frac` is the view origin in
-// tiles of zoom `zoom`, `per_m` tiles per world metre (x east, y north).
+// tiles of zoom `zoom`, `per_m` tiles per world metre (x east, y north),
+// `wrap` tiles across 360 degrees at zoom 0 (0: a tiling that does not wrap;
+// on the globe, ground points continue past the antimeridian).
 struct TileRef {
   ivec2 base;
   vec2 frac;
   vec2 per_m;
   int zoom;
+  int wrap;
 };
 // The tile of zoom z (<= ref.zoom) holding world point w, and w's position
 // inside it (0..1, y south).
@@ -29,6 +32,10 @@ ivec2 tile_at(TileRef r, int z, vec2 w, out vec2 local) {
   int s = r.zoom - z;
   ivec2 t = g >> s;
   local = (vec2(g - (t << s)) + (p - fl)) / float(1 << s);
+  if (r.wrap > 0) {
+    int n = r.wrap << z;
+    t.x = ((t.x % n) + n) % n;
+  }
   return t;
 }
 vec2 seg_a(uint o) { return vec2(uintBitsToFloat(arena[o]), uintBitsToFloat(arena[o + 1u])); }
@@ -47,7 +54,7 @@ inline constexpr const char* kLineDeferredFragment = R"(
 layout(std430, binding = 1) readonly buffer Records { uvec4 records[]; };  // 2 per record
 layout(std430, binding = 5) buffer Used { uint used[]; };
 uniform uint u_frame;
-uniform sampler2D u_color, u_normal;
+uniform sampler2D u_color, u_ground, u_ground_dy;
 uniform TileRef u_ref;
 uniform int u_min_zoom, u_max_zoom;
 uniform float u_zoom_bias;  // log2(shorter zoom-0 tile edge in world metres / tile_px)
@@ -88,12 +95,10 @@ void main() {
   o_record = 0u;
   vec4 p4 = texelFetch(u_position, px, 0);
   if (p4.w == 0.0) return;
-  vec3 P = p4.xyz, N = texelFetch(u_normal, px, 0).xyz;
-  bool ok1, ok2;
-  vec3 q1 = plane_hit(gl_FragCoord.xy + vec2(1, 0), P, N, ok1);
-  vec3 q2 = plane_hit(gl_FragCoord.xy + vec2(0, 1), P, N, ok2);
-  if (!ok1 || !ok2) return;  // grazing: the surface is edge-on
-  mat2 J = mat2(q1.xy - P.xy, q2.xy - P.xy);  // world metres per pixel (columns: x, y)
+  // The pixel's ground point and its screen derivatives (terrain_renderer.hpp).
+  vec4 gr = texelFetch(u_ground, px, 0);
+  vec2 G = gr.xy;
+  mat2 J = mat2(gr.zw, texelFetch(u_ground_dy, px, 0).xy);  // ground metres per pixel (x, y)
   if (abs(determinant(J)) < 1e-12) return;
   mat2 Jinv = inverse(J);
   // The zoom follows the pixel's area footprint (sqrt |det J|); in oblique
@@ -105,7 +110,7 @@ void main() {
   int rec = -1, zz = z;
   vec2 local;
   for (; zz >= u_min_zoom; --zz) {
-    ivec2 t = tile_at(u_ref, zz, P.xy, local);
+    ivec2 t = tile_at(u_ref, zz, G, local);
     rec = line_table_lookup(zz, t);
     if (rec >= 0) break;
     if (zz == z) request(zz, t, 0u);

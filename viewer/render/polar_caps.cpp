@@ -29,10 +29,14 @@ uniform vec3 u_colour;
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_position;  // w = 0: not terrain
 layout(location = 2) out vec4 o_normal;
+layout(location = 3) out vec4 o_ground;
+layout(location = 4) out vec2 o_ground_dy;
 void main() {
   o_color = vec4(u_colour, 1.0);
   o_position = vec4(0.0);
   o_normal = vec4(0.0);
+  o_ground = vec4(0.0);
+  o_ground_dy = vec2(0.0);
 }
 )";
 

@@ -92,8 +92,9 @@ TerrainRenderer::TerrainRenderer(int block_size, int lattice, int slots, int wid
 TerrainRenderer::~TerrainRenderer() {
   gl::DeleteQueries(1, &timer_);
   gl::DeleteFramebuffers(1, &g_.fbo);
-  GLuint textures[6] = {heights_, mask_, g_.color, g_.position, g_.normal, g_.depth};
-  gl::DeleteTextures(6, textures);
+  GLuint textures[8] = {heights_,  mask_,     g_.color,     g_.position,
+                        g_.normal, g_.ground, g_.ground_dy, g_.depth};
+  gl::DeleteTextures(8, textures);
   GLuint buffers[3] = {lattice_vbo_, index_buffer_, instance_buffer_};
   gl::DeleteBuffers(3, buffers);
   gl::DeleteVertexArrays(1, &vao_);
@@ -103,8 +104,8 @@ void TerrainRenderer::resize(int width, int height) {
   if (width == g_.width && height == g_.height) return;
   if (g_.fbo) {
     gl::DeleteFramebuffers(1, &g_.fbo);
-    GLuint t[4] = {g_.color, g_.position, g_.normal, g_.depth};
-    gl::DeleteTextures(4, t);
+    GLuint t[6] = {g_.color, g_.position, g_.normal, g_.ground, g_.ground_dy, g_.depth};
+    gl::DeleteTextures(6, t);
   }
   g_.width = width;
   g_.height = height;
@@ -119,14 +120,19 @@ void TerrainRenderer::resize(int width, int height) {
   g_.color = texture(GL_RGBA8);
   g_.position = texture(GL_RGBA32F);
   g_.normal = texture(GL_RGBA16F);
+  g_.ground = texture(GL_RGBA32F);
+  g_.ground_dy = texture(GL_RG32F);
   g_.depth = texture(GL_DEPTH_COMPONENT24);
   gl::CreateFramebuffers(1, &g_.fbo);
   gl::NamedFramebufferTexture(g_.fbo, GL_COLOR_ATTACHMENT0, g_.color, 0);
   gl::NamedFramebufferTexture(g_.fbo, GL_COLOR_ATTACHMENT1, g_.position, 0);
   gl::NamedFramebufferTexture(g_.fbo, GL_COLOR_ATTACHMENT2, g_.normal, 0);
+  gl::NamedFramebufferTexture(g_.fbo, GL_COLOR_ATTACHMENT3, g_.ground, 0);
+  gl::NamedFramebufferTexture(g_.fbo, GL_COLOR_ATTACHMENT4, g_.ground_dy, 0);
   gl::NamedFramebufferTexture(g_.fbo, GL_DEPTH_ATTACHMENT, g_.depth, 0);
-  const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-  gl::NamedFramebufferDrawBuffers(g_.fbo, 3, buffers);
+  const GLenum buffers[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                             GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4};
+  gl::NamedFramebufferDrawBuffers(g_.fbo, 5, buffers);
   if (gl::CheckNamedFramebufferStatus(g_.fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw std::runtime_error("the offscreen framebuffer is incomplete");
 }
@@ -172,6 +178,9 @@ void TerrainRenderer::set_common_uniforms(const GlProgram& p, const View& view,
                 static_cast<float>(frame.crs_per_key() * frame.metres_per_crs_x()),
                 static_cast<float>(frame.crs_per_key() * frame.metres_per_crs_y()),
                 static_cast<float>(frame.height_scale() * exaggeration));
+  gl::Uniform2f(p.uniform("u_ground"),
+                static_cast<float>(frame.crs_per_key() * frame.ground_per_crs_x()),
+                static_cast<float>(frame.crs_per_key() * frame.ground_per_crs_y()));
   int globe = 0;
   if (frame.globe()) {
     const GlobeAnchor& a = frame.anchor(view.origin);
@@ -206,6 +215,8 @@ RenderTimes TerrainRenderer::draw(const std::vector<Patch>& patches, const View&
   gl::ClearNamedFramebufferfv(g_.fbo, GL_COLOR, 0, sky);
   gl::ClearNamedFramebufferfv(g_.fbo, GL_COLOR, 1, none);
   gl::ClearNamedFramebufferfv(g_.fbo, GL_COLOR, 2, none);
+  gl::ClearNamedFramebufferfv(g_.fbo, GL_COLOR, 3, none);
+  gl::ClearNamedFramebufferfv(g_.fbo, GL_COLOR, 4, none);
   gl::ClearNamedFramebufferfv(g_.fbo, GL_DEPTH, 0, &far);
   set_common_uniforms(draw_program_, view, frame, s.exaggeration);
   const GlProgram& p = draw_program_;

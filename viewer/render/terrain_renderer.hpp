@@ -27,8 +27,16 @@ struct ShadingSettings {
 // The terrain pass's output: shaded colour (RGBA8), world position (RGBA32F,
 // metres from the view origin, w = 1 where terrain was drawn), the drawn
 // triangle's normal (RGBA16F) and depth.
+// The terrain pass's output, read by the deferred passes: colour; world
+// position (w = 1 on terrain); the drawn triangle's plane; and the "ground"
+// coordinates: the flat frame's x/y at the view latitude (world_frame.hpp;
+// equal to the position's x/y on the flat frame, continuous across the
+// antimeridian on the globe) with their screen derivatives, so imagery and
+// lines find their tiles on either surface without inverting it.
 struct GBuffer {
   GLuint fbo = 0, color = 0, position = 0, normal = 0, depth = 0;
+  GLuint ground = 0;     // RGBA32F: ground x, y, d/dx of x, y (per pixel to the right)
+  GLuint ground_dy = 0;  // RG32F: d/dy of ground x, y (per pixel up)
   int width = 0, height = 0;
 };
 

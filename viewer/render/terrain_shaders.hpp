@@ -19,6 +19,7 @@ layout(location = 2) in ivec4 i_uv;           // lattice steps along the two leg
 layout(location = 3) in ivec2 i_layer_shift;  // texture layer, log2(key units per sample)
 uniform mat4 u_view_proj;
 uniform vec3 u_scale;  // flat: metres per key unit (x, y); world z per metre of height
+uniform vec2 u_ground;  // ground units per key unit (x, y), flat frame at the view latitude
 uniform int u_globe;   // 0 flat, 1 geodetic globe, 2 webmercator globe
 uniform vec2 u_rad_per_key;  // globe: longitude radians per key unit; latitude radians
                              // (geodetic) or mercator y / R (webmercator) per key unit
@@ -26,6 +27,7 @@ uniform vec4 u_anchor;       // globe: origin latitude, its sine and cosine, mer
 uniform int u_wrap_keys;     // globe: key units per 360 degrees of longitude
 uniform sampler2DArray u_heights;
 out vec3 v_world;
+out vec2 v_ground;
 out vec2 v_sample;
 flat out int v_layer;
 flat out vec2 v_spacing;  // metres per block sample (x, y)
@@ -96,6 +98,7 @@ void main() {
   vec2 spacing = u_scale.xy;
   if (u_globe == 0) {
     v_world = vec3(float(key.x) * u_scale.x, -float(key.y) * u_scale.y, h * u_scale.z);
+    v_ground = v_world.xy;
   } else {
     // Longitude offsets into -180..180 degrees in integers, before any
     // rounding: across the antimeridian a neighbour is a small offset.
@@ -103,6 +106,7 @@ void main() {
     if (k.x > u_wrap_keys / 2) k.x -= u_wrap_keys;
     if (k.x < -u_wrap_keys / 2) k.x += u_wrap_keys;
     v_world = globe_world(vec2(k), h * u_scale.z, spacing);
+    v_ground = vec2(float(k.x) * u_ground.x, -float(k.y) * u_ground.y);
   }
   v_key = key;
   v_height = h;
@@ -117,6 +121,7 @@ void main() {
 // writes the G-buffer the line pass reads: position and surface plane.
 inline constexpr const char* kTerrainFragment = R"(#version 450 core
 in vec3 v_world;
+in vec2 v_ground;
 in vec2 v_sample;
 flat in int v_layer;
 flat in vec2 v_spacing;
@@ -130,6 +135,8 @@ uniform vec2 u_range;      // height range for the ramp (metres)
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_position;  // G-buffer: world point, w = 1 on terrain
 layout(location = 2) out vec4 o_normal;    // G-buffer: plane of the drawn triangle
+layout(location = 3) out vec4 o_ground;    // G-buffer: ground x, y and their d/dx
+layout(location = 4) out vec2 o_ground_dy; // G-buffer: d/dy of ground x, y
 
 float height_at(vec2 s) {
   return texture(u_heights, vec3((s + 0.5) / u_size, float(v_layer))).r;
@@ -170,6 +177,8 @@ void main() {
   o_color = vec4(color, 1.0);
   o_position = vec4(v_world, 1.0);
   o_normal = vec4(normalize(cross(dFdx(v_world), dFdy(v_world))), 0.0);
+  o_ground = vec4(v_ground, dFdxFine(v_ground));
+  o_ground_dy = dFdyFine(v_ground);
 }
 )";
 

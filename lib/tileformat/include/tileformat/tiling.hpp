@@ -70,6 +70,9 @@ struct Tiling {
   // The longitude/latitude range a package's `bounds` may take: webmercator
   // ends at +-85.0511 degrees (readers such as GDAL reject bounds past it).
   Bounds lonlat_limits() const;
+  // Tiles across 360 degrees of longitude at zoom 0, where the tiling wraps
+  // around the Earth (geodetic: 2, webmercator: 1); 0 for a local tiling.
+  int wrap_tiles() const { return scheme == Scheme::kLocal ? 0 : static_cast<int>(roots_x); }
   bool contains(TileId id) const {
     return id.z >= 0 && id.z <= kMaxZoom && id.x < tiles_x(id.z) && id.y < tiles_y(id.z);
   }
