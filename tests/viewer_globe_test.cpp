@@ -16,7 +16,7 @@ using namespace globe_test;
 
 struct Globes {
   fs::path dir;
-  std::string geodetic, mercator;
+  std::string geodetic, mercator, bluemarble, contours;
 };
 
 const Globes& globes() {
@@ -29,6 +29,20 @@ const Globes& globes() {
          {std::pair{"geodetic", k.geodetic}, std::pair{"webmercator", k.mercator}}) {
       const std::string cmd = tiler() + " terrain -q --tiling " + tiling + " " +
                               sample("etopo20.tif").string() + " -o " + out;
+      const RunResult r = run(cmd, k.dir);
+      EXPECT_EQ(r.exit_code, 0) << cmd << "\n" << r.err;
+    }
+    // Blue Marble (webmercator, zooms 0-3) and 1000 m contours of etopo20
+    // (geodetic, as the terrain).
+    k.bluemarble = (k.dir / "bluemarble.mbtiles").string();
+    k.contours = (k.dir / "contours.mbtiles").string();
+    for (const std::string& cmd :
+         {tiler() + " imagery -q --max-zoom 3 " + sample("bluemarble.tif").string() + " -o " +
+              k.bluemarble,
+          "gdal_contour -q -i 1000 -a elev " + sample("etopo20.tif").string() + " " +
+              (k.dir / "c1000.shp").string(),
+          vectorize() + " lines -q --tiling geodetic " + (k.dir / "c1000.shp").string() + " -o " +
+              k.contours + " --style 'c1000:color=#ffd92f,width=1.5px'"}) {
       const RunResult r = run(cmd, k.dir);
       EXPECT_EQ(r.exit_code, 0) << cmd << "\n" << r.err;
     }
@@ -105,6 +119,43 @@ TEST(ViewerGlobe, WebMercatorPolesAreCapsNotHoles) {
         ASSERT_FALSE(is_sky(rgb, size_t(y) * w + x)) << cam << ": sky at " << x << "," << y;
     if (cam[2] == '9') expect_image(snap, "globe_webmercator_north_cap");
   }
+}
+
+TEST(ViewerGlobe, ImageryFromOrbitMatchesExpected) {
+  TempDir dir;
+  const std::string snap = (dir / "a.png").string();
+  const RunResult r = view(
+      globes().geodetic + " " + globes().bluemarble + " --fit --size 320x180 --snapshot " + snap,
+      dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_image(snap, "globe_bluemarble_orbit");
+}
+
+// Over the antimeridian, where ground points, image tiles and line tiles
+// all wrap: Bering Sea from 1,500 km, looking east.
+TEST(ViewerGlobe, LinesOverImageryAcrossTheAntimeridianMatchExpected) {
+  TempDir dir;
+  const std::string snap = (dir / "a.png").string();
+  const RunResult r = view(globes().geodetic + " " + globes().bluemarble + " " + globes().contours +
+                               " --camera=179.5,60,1500000,90,50 --size 320x180 --snapshot " + snap,
+                           dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  int w, h;
+  const auto rgb = read_rgb(snap, w, h);
+  // East of the antimeridian (the right half) is imagery and lines too: no
+  // plain hillshade grey among the ground pixels there.
+  size_t grey = 0, ground = 0;
+  for (int y = h / 2; y < h; ++y)
+    for (int x = w / 2; x < w; ++x) {
+      const size_t i = size_t(y) * w + x;
+      if (is_sky(rgb, i)) continue;
+      ++ground;
+      const int r8 = rgb[3 * i], g8 = rgb[3 * i + 1], b8 = rgb[3 * i + 2];
+      if (std::abs(r8 - g8) < 6 && std::abs(g8 - b8) < 6 && r8 > 150) ++grey;
+    }
+  EXPECT_GT(ground, size_t(w * h / 8));
+  EXPECT_LT(grey, ground / 50) << "undraped ground east of the antimeridian";
+  expect_image(snap, "globe_lines_over_imagery_antimeridian");
 }
 
 }  // namespace

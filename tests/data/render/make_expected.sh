@@ -42,4 +42,13 @@ build/viewer/globe-view "$tmp/eg.mbtiles" --globe --camera=8,40,700000,0,60 --ex
   --size 320x180 --snapshot $out/globe_etopo_alps.png
 build/viewer/globe-view "$tmp/em.mbtiles" --globe --camera=0,90,3000000,0,0 --size 160x120 \
   --snapshot $out/globe_webmercator_north_cap.png
+build/tools/tiler/globe-tiler imagery -q --max-zoom 3 samples/data/bluemarble.tif -o "$tmp/bm.mbtiles"
+gdal_contour -q -i 1000 -a elev samples/data/etopo20.tif "$tmp/c1000.shp"
+build/tools/vectorize/globe-vectorize lines -q --tiling geodetic "$tmp/c1000.shp" \
+  -o "$tmp/c1000.mbtiles" --style 'c1000:color=#ffd92f,width=1.5px'
+build/viewer/globe-view "$tmp/eg.mbtiles" "$tmp/bm.mbtiles" --globe --fit --size 320x180 \
+  --snapshot $out/globe_bluemarble_orbit.png
+build/viewer/globe-view "$tmp/eg.mbtiles" "$tmp/bm.mbtiles" "$tmp/c1000.mbtiles" --globe \
+  --camera=179.5,60,1500000,90,50 --size 320x180 \
+  --snapshot $out/globe_lines_over_imagery_antimeridian.png
 ls -l $out/*.png
