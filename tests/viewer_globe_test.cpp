@@ -158,4 +158,22 @@ TEST(ViewerGlobe, LinesOverImageryAcrossTheAntimeridianMatchExpected) {
   expect_image(snap, "globe_lines_over_imagery_antimeridian");
 }
 
+// The globe is the default for a package spanning more than 30 degrees in
+// a global tiling; --flat keeps the map frame; --lines geometry (flat only)
+// picks the flat frame by default too.
+TEST(ViewerGlobe, GlobeIsTheDefaultForWidePackages) {
+  TempDir dir;
+  auto surface = [&](const std::string& args) {
+    const RunResult r = run(
+        viewer() + " --platform osmesa " + args + " --stats --frames 1 --size 64x48", dir.path());
+    EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
+    const size_t at = r.out.find("\"surface\": \"");
+    return at == std::string::npos ? std::string("?") : r.out.substr(at + 12, 5);
+  };
+  EXPECT_EQ(surface(globes().geodetic), "globe");
+  EXPECT_EQ(surface(globes().mercator), "globe");
+  EXPECT_EQ(surface(globes().geodetic + " --flat"), "flat\"");
+  EXPECT_EQ(surface(globes().geodetic + " " + globes().contours + " --lines geometry"), "flat\"");
+}
+
 }  // namespace

@@ -79,7 +79,8 @@ int run_headless(const ViewerSettings& settings) {
       full_res += L * L * double(p.u.x * p.u.x + p.u.y * p.u.y) * scale;
     }
     std::printf(
-        "{\"platform\": \"%s\", \"width\": %d, \"height\": %d, \"frames\": %zu, "
+        "{\"platform\": \"%s\", \"surface\": \"%s\", \"width\": %d, \"height\": %d, "
+        "\"frames\": %zu, "
         "\"frame_ms\": %.3f, \"terrain_ms\": %.3f, \"select_ms\": %.3f, "
         "\"first_frame_ms\": %.1f, \"patches\": %zu, \"triangles\": %zu, "
         "\"full_res_triangles\": %.0f, "
@@ -87,11 +88,11 @@ int run_headless(const ViewerSettings& settings) {
         "\"resident_blocks\": %zu, \"resident_bytes\": %llu, \"max_resident_bytes\": %llu, "
         "\"budget_bytes\": %llu, \"blocks_loaded\": %llu, \"evictions\": %llu, "
         "\"broken_tiles\": %llu, \"bytes_read\": %llu, \"camera\": \"%s\"",
-        context->platform().c_str(), scene.renderer().width(), scene.renderer().height(),
-        frame_ms.size(), median(frame_ms), median(terrain_ms), median(select_ms), first_frame_ms,
-        f.patches.size(), triangles, full_res, settings.max_error_px,
-        f.selection.vertices_evaluated, f.selection.waiting, cs.resident,
-        static_cast<unsigned long long>(cs.resident_bytes),
+        context->platform().c_str(), scene.world().globe() ? "globe" : "flat",
+        scene.renderer().width(), scene.renderer().height(), frame_ms.size(), median(frame_ms),
+        median(terrain_ms), median(select_ms), first_frame_ms, f.patches.size(), triangles,
+        full_res, settings.max_error_px, f.selection.vertices_evaluated, f.selection.waiting,
+        cs.resident, static_cast<unsigned long long>(cs.resident_bytes),
         static_cast<unsigned long long>(max_resident),
         static_cast<unsigned long long>(cs.budget_bytes),
         static_cast<unsigned long long>(cs.blocks_loaded),

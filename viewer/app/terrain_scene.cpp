@@ -62,12 +62,19 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
   if (package.max_zoom > 21)
     throw InputError(path + ": maxzoom " + std::to_string(package.max_zoom) +
                      " is deeper than the viewer's integer vertex frame supports (21)");
-  if (settings_.globe && lines && settings_.line_mode == LineMode::kGeometry)
+  if (!settings_.globe) {
+    const tileformat::Bounds& ll = package.meta.common.lonlat;
+    const bool wide = package.meta.common.has_bounds &&
+                      (std::max(ll.width(), ll.height()) > kGlobeDefaultSpanDeg);
+    settings_.globe = package.tiling.scheme != tileformat::Scheme::kLocal && wide &&
+                      !(lines && settings_.line_mode == LineMode::kGeometry);
+  }
+  if (*settings_.globe && lines && settings_.line_mode == LineMode::kGeometry)
     throw UsageError(
         "--globe: --lines geometry (the baseline of draped quads) draws on the flat frame only; "
         "the globe draws lines per pixel (--lines deferred, the default)");
   world_ = std::make_unique<WorldFrame>(package.tiling, package.block_size - 1, package.max_zoom,
-                                        settings_.globe ? Surface::kGlobe : Surface::kFlat);
+                                        *settings_.globe ? Surface::kGlobe : Surface::kFlat);
   cache_ =
       std::make_unique<BlockCache>(path, std::move(package), budget - line_budget - image_budget);
   selector_ = std::make_unique<PatchSelector>(cache_->package());

@@ -43,9 +43,14 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
                }
              });
   cli.flag("--globe",
-           "draw a geodetic or webmercator package on the WGS84 ellipsoid (a virtual globe; "
-           "--fit of a global package shows the whole disc) instead of the flat map frame",
+           "draw a geodetic or webmercator package on the WGS84 ellipsoid, a virtual globe "
+           "(the default where the data spans more than 30 degrees; --fit of a global package "
+           "shows the whole disc)",
            [&] { s.globe = true; });
+  cli.flag("--flat",
+           "draw on the flat map frame (the default for local packages and areas "
+           "under 30 degrees)",
+           [&] { s.globe = false; });
   cli.flag("--fit", "frame the whole package, looking straight down (the default without --camera)",
            [&] { s.camera.reset(); });
   cli.option(

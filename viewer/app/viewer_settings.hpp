@@ -12,6 +12,8 @@
 
 namespace globe::viewer {
 
+inline constexpr double kGlobeDefaultSpanDeg = 30;
+
 struct ViewerSettings {
   std::vector<std::string> packages;
   std::optional<std::string> snapshot;     // PNG path: render headless and exit
@@ -27,7 +29,9 @@ struct ViewerSettings {
   std::string platform = "auto";  // auto | osmesa | egl | glfw
   int frames = 5;                 // frames measured for --stats
   bool cull = true;
-  bool globe = false;                // --globe: the WGS84 ellipsoid instead of the flat frame
+  // --globe / --flat; unset: the globe for geodetic and webmercator packages
+  // whose data spans more than kGlobeDefaultSpanDeg (and not --lines geometry).
+  std::optional<bool> globe;
   std::optional<std::string> style;  // line style file (JSON)
   LineMode line_mode = LineMode::kDeferred;
   bool lines = true;                  // --lines off: draw none
