@@ -3,8 +3,8 @@
 # missing, builds, fetches the sample DEMs, tiles one into a terrain package
 # prints its summary and renders a headless snapshot (OSMesa, no display needed),
 # then turns a real road network into a line-cluster package with styled classes.
-# Output: demo/jacksboro.mbtiles, demo/jacksboro.png, demo/contours.png, demo/canada_roads.mbtiles,
-# demo/cbers20.mbtiles (git-ignored).
+# Output: demo/jacksboro.mbtiles, demo/jacksboro.png, demo/contours.png, demo/globe.png (etopo20
+# and Blue Marble on the globe), demo/canada_roads.mbtiles, demo/cbers20.mbtiles (git-ignored).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -34,5 +34,12 @@ build/tools/tiler/globe-tiler imagery samples/data/cbers20.tif --format jpg \
   -o demo/cbers20.mbtiles --force
 build/tools/tiler/globe-tiler validate demo/cbers20.mbtiles
 gdalinfo demo/cbers20.mbtiles >/dev/null && echo "demo: GDAL opens demo/cbers20.mbtiles (MBTiles)" >&2
-echo "demo: wrote demo/jacksboro.png, demo/contours.png, demo/canada_roads.mbtiles and" \
-  "demo/cbers20.mbtiles" >&2
+# The whole Earth on the globe: etopo20 relief with Blue Marble draped over it.
+build/tools/tiler/globe-tiler terrain -q --tiling geodetic samples/data/etopo20.tif \
+  -o demo/etopo20.mbtiles --force
+build/tools/tiler/globe-tiler imagery -q samples/data/bluemarble.tif -o demo/bluemarble.mbtiles \
+  --force
+build/viewer/globe-view demo/etopo20.mbtiles demo/bluemarble.mbtiles --snapshot demo/globe.png \
+  --size 1280x720 --fit --stats
+echo "demo: wrote demo/jacksboro.png, demo/contours.png, demo/globe.png," \
+  "demo/canada_roads.mbtiles and demo/cbers20.mbtiles" >&2
