@@ -176,4 +176,28 @@ TEST(ViewerGlobe, GlobeIsTheDefaultForWidePackages) {
   EXPECT_EQ(surface(globes().geodetic + " " + globes().contours + " --lines geometry"), "flat\"");
 }
 
+// The window on the globe, driven by keys under a virtual X server: the
+// whole disc first (sky in the corners), then eight presses of W zoom in
+// until the globe fills the window, and the arrows pan over it.
+TEST(ViewerGlobe, WindowZoomsOntoTheGlobe) {
+  TempDir dir;
+  const RunResult w =
+      run("xvfb-run -a -s '-screen 0 640x480x24' " + std::string(GLOBE_TEST_DATA_DIR) +
+              "/window/drive_keys.sh " + dir.path().string() + " ';w w w w w w w w;Left Left Up' " +
+              viewer() + " --platform glfw --size 320x180 " + globes().geodetic + " " +
+              globes().bluemarble,
+          dir.path());
+  ASSERT_EQ(w.exit_code, 0) << w.err << read_file(dir / "viewer.stderr");
+  int width, height;
+  const auto first = read_rgb((dir / "globe-view-1.png").string(), width, height);
+  const auto zoomed = read_rgb((dir / "globe-view-2.png").string(), width, height);
+  const auto panned = read_rgb((dir / "globe-view-3.png").string(), width, height);
+  EXPECT_TRUE(is_sky(first, 0)) << "the whole disc, sky in the corner";
+  size_t sky = 0;
+  for (size_t i = 0; i < size_t(width) * height; ++i)
+    sky += is_sky(zoomed, i);
+  EXPECT_EQ(sky, 0u) << "zoomed in, the globe fills the window";
+  EXPECT_NE(zoomed, panned) << "the arrows moved the view";
+}
+
 }  // namespace

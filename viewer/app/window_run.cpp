@@ -16,6 +16,7 @@
 
 #include "app/image_file.hpp"
 #include "app/terrain_scene.hpp"
+#include "camera/orbit.hpp"
 #include "errors.hpp"
 #include "platform/glfw_window.hpp"
 #include "render/readback.hpp"
@@ -26,54 +27,6 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180;
 
-// A camera orbiting a target point on the terrain.
-struct Orbit {
-  glm::dvec2 target_key{0, 0};
-  double target_h_m = 0, distance_m = 1000, heading_deg = 0, pitch_deg = 0;
-
-  static Orbit from_pose(const CameraPose& p, WorldFrame& w, double ground_m) {
-    Orbit o;
-    w.set_view_latitude(p.lat);
-    const glm::dvec2 crs = w.lonlat_to_crs(p.lon, p.lat);
-    const glm::dvec2 eye = w.crs_to_key(crs.x, crs.y);
-    o.heading_deg = p.heading_deg;
-    o.pitch_deg = std::min(p.pitch_deg, 85.0);
-    o.target_h_m = ground_m;
-    const double dz = std::max((p.height_m - ground_m) * w.height_scale(), 1.0);
-    o.distance_m = dz / std::cos(o.pitch_deg * kDeg);
-    const double ground = dz * std::tan(o.pitch_deg * kDeg);  // horizontal eye-target distance
-    const double h = o.heading_deg * kDeg;
-    o.target_key =
-        eye + glm::dvec2(ground * std::sin(h) / (w.crs_per_key() * w.metres_per_crs_x()),
-                         -ground * std::cos(h) / (w.crs_per_key() * w.metres_per_crs_y()));
-    return o;
-  }
-  CameraPose pose(WorldFrame& w, double fov) const {
-    const glm::dvec2 tc = w.key_to_crs(target_key.x, target_key.y);
-    w.set_view_latitude(w.crs_to_lonlat(tc.x, tc.y).y);
-    const double h = heading_deg * kDeg, p = pitch_deg * kDeg;
-    const double ground = distance_m * std::sin(p), dz = distance_m * std::cos(p);
-    const glm::dvec2 eye =
-        target_key - glm::dvec2(ground * std::sin(h) / (w.crs_per_key() * w.metres_per_crs_x()),
-                                -ground * std::cos(h) / (w.crs_per_key() * w.metres_per_crs_y()));
-    const glm::dvec2 crs = w.key_to_crs(eye.x, eye.y);
-    const glm::dvec2 ll = w.crs_to_lonlat(crs.x, crs.y);
-    CameraPose c;
-    c.lon = ll.x, c.lat = ll.y;
-    c.height_m = target_h_m + dz / w.height_scale();
-    c.heading_deg = heading_deg, c.pitch_deg = pitch_deg, c.fov_y_deg = fov;
-    return c;
-  }
-  void pan(double dx_px, double dy_px, double px_per_rad, WorldFrame& w) {
-    const double m = distance_m / px_per_rad;  // metres per pixel at the target
-    const double h = heading_deg * kDeg;
-    const double east = -dx_px * m * std::cos(h) - dy_px * m * std::sin(h);
-    const double north = dx_px * m * std::sin(h) - dy_px * m * std::cos(h);
-    target_key += glm::dvec2(east / (w.crs_per_key() * w.metres_per_crs_x()),
-                             -north / (w.crs_per_key() * w.metres_per_crs_y()));
-  }
-};
-
 }  // namespace
 
 int run_window(const ViewerSettings& settings) {
@@ -83,6 +36,8 @@ int run_window(const ViewerSettings& settings) {
   TerrainScene* scene = nullptr;
   int screenshot = 0;
   size_t layer = 0;  // the image layer that V, [ and ] act on
+  View last_view;    // the last frame's view: G-buffer points are relative to its origin
+  bool have_view = false;
   bool screenshot_pending = false;
   GlfwWindow* window_ptr = nullptr;
 
@@ -96,14 +51,21 @@ int run_window(const ViewerSettings& settings) {
     const double dx = x - last_x, dy = y - last_y;
     last_x = x, last_y = y;
     if (drag_orbit) {
-      orbit.heading_deg = std::fmod(orbit.heading_deg - dx * 0.3 + 360, 360);
-      orbit.pitch_deg = std::clamp(orbit.pitch_deg + dy * 0.3, 0.0, 85.0);
+      orbit.turn(-dx * 0.3, dy * 0.3);
     } else if (drag_pan && scene) {
       orbit.pan(dx, dy, scene->renderer().height() / (2 * std::tan(settings.fov_y_deg * kDeg / 2)),
                 scene->world());
     }
   };
-  cb.on_scroll = [&](double dy) { orbit.distance_m *= std::pow(0.85, dy); };
+  // The wheel zooms towards the terrain point under the cursor.
+  cb.on_scroll = [&](double dy) {
+    if (!scene) return;
+    const glm::vec4 p = read_position(scene->renderer().gbuffer().fbo, int(last_x), int(last_y),
+                                      scene->renderer().height());
+    const glm::dvec3 under(p.x, p.y, p.z);
+    orbit.zoom(std::pow(0.85, dy), scene->world(), &last_view,
+               p.w > 0.5 && have_view ? &under : nullptr);
+  };
   cb.on_key = [&](int key, int) {
     if (!scene) return;
     ShadingSettings& s = scene->settings().shading;
@@ -161,10 +123,10 @@ int run_window(const ViewerSettings& settings) {
         s.exaggeration = std::max(s.exaggeration / 1.25, 0.1);
         break;
       case GLFW_KEY_W:
-        orbit.distance_m *= 0.85;
+        orbit.zoom(0.85, scene->world());
         break;
       case GLFW_KEY_S:
-        orbit.distance_m /= 0.85;
+        orbit.zoom(1 / 0.85, scene->world());
         break;
       case GLFW_KEY_LEFT:
         orbit.pan(-40, 0, px, scene->world());
@@ -206,6 +168,8 @@ int run_window(const ViewerSettings& settings) {
     const auto t0 = std::chrono::steady_clock::now();
     const FrameResult f = s.frame(orbit.pose(s.world(), settings.fov_y_deg), Loading::kAsReady,
                                   TerrainScene::Output::kDraw);
+    last_view = f.view;
+    have_view = true;
     if (screenshot_pending) {
       const std::string name = "globe-view-" + std::to_string(++screenshot) + ".png";
       write_png(name, s.read_pixels(), w, h);

@@ -21,6 +21,17 @@ std::vector<uint8_t> read_rgba(GLuint fbo, int width, int height) {
   return flipped;
 }
 
+glm::vec4 read_position(GLuint fbo, int x, int y, int height) {
+  glm::vec4 p(0);
+  gl::NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT1);
+  gl::BindFramebuffer(GL_FRAMEBUFFER, fbo);
+  gl::ReadPixels(x, height - 1 - y, 1, 1, GL_RGBA, GL_FLOAT, &p);
+  gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
+  gl::NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
+  gl::check("reading a G-buffer position");
+  return p;
+}
+
 void blit_to_window(GLuint fbo, int width, int height, int window_width, int window_height) {
   gl::NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
   gl::BlitNamedFramebuffer(fbo, 0, 0, 0, width, height, 0, 0, window_width, window_height,
