@@ -83,7 +83,8 @@ inline fs::path run_scratch_dir(const std::string& prefix) {
     std::vector<fs::path> dirs;
     ~Owned() {
       std::error_code ec;
-      for (const fs::path& d : dirs) fs::remove_all(d, ec);
+      for (const fs::path& d : dirs)
+        fs::remove_all(d, ec);
     }
   };
   static Owned owned;

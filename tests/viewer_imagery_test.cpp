@@ -142,7 +142,8 @@ INSTANTIATE_TEST_SUITE_P(
                       Pairing{"geodetic_on_geodetic", "geodetic", "geodetic"},
                       Pairing{"webmercator_on_geodetic_globe", "geodetic", "webmercator", true},
                       Pairing{"geodetic_on_webmercator_globe", "webmercator", "geodetic", true},
-                      Pairing{"webmercator_on_webmercator_globe", "webmercator", "webmercator", true}),
+                      Pairing{"webmercator_on_webmercator_globe", "webmercator", "webmercator",
+                              true}),
     [](const ::testing::TestParamInfo<Pairing>& i) { return i.param.name; });
 
 TEST(ViewerImageryInput, AnImagePackageAloneIsAUsageError) {
