@@ -159,6 +159,49 @@ TEST(CrashSafety, ImageryResumesToTheSameBytes) {
                   std::chrono::milliseconds(8000));
 }
 
+// The one moment random kills rarely hit: after the last level, before the
+// staging file is removed and the package renamed. strace holds the build
+// there (a delay injected into the staging file's second unlink, its
+// removal), the test kills it, and the resumed build - with nothing left to
+// do but the metadata - must still give the uninterrupted bytes (it wrote no
+// globe:png_level, as it had counted no PNG tile).
+TEST(CrashSafety, ImageryKilledAfterItsLastLevelResumesToTheSameBytes) {
+  TempDir dir;
+  fs::create_directories(dir / "ref");
+  fs::create_directories(dir / "work");
+  const std::string build = tiler() + " imagery -q " + sample("bluemarble.tif").string() +
+                            " --max-zoom 3 -o out.mbtiles -j2";
+  const auto t0 = std::chrono::steady_clock::now();
+  ASSERT_EQ(run("cd " + (dir / "ref").string() + " && " + build, dir.path()).exit_code, 0);
+  const auto took = std::chrono::steady_clock::now() - t0;
+  const auto hold =
+      std::chrono::duration_cast<std::chrono::microseconds>(took * 4 + std::chrono::seconds(10));
+  const pid_t pid = spawn(dir / "work",
+                          "strace -f -o /dev/null -P out.mbtiles.staging -e trace=unlink "
+                          "-e inject=unlink:delay_enter=" +
+                              std::to_string(hold.count()) + ":when=2 " + build + " --resume");
+  ASSERT_GT(pid, 0);
+  std::this_thread::sleep_for(took * 2 + std::chrono::seconds(2));
+  // The build first (were strace killed first, it would let the build go on).
+  run("pkill -KILL -f '" + sample("bluemarble.tif").string() +
+          " --max-zoom 3 -o out.mbtiles -j2 --resume'",
+      dir.path());
+  ::kill(pid, SIGKILL);
+  ::waitpid(pid, nullptr, 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ASSERT_FALSE(fs::exists(dir / "work" / "out.mbtiles"))
+      << "the build was not held before its rename";
+  ASSERT_TRUE(fs::exists(dir / "work" / "out.mbtiles.staging"))
+      << run("ls -la " + (dir / "work").string(), dir.path()).out;
+  const RunResult r =
+      run("cd " + (dir / "work").string() + " && " + tiler() + " imagery " +
+              sample("bluemarble.tif").string() + " --max-zoom 3 -o out.mbtiles -j2 --resume",
+          dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("continuing at zoom -1"), std::string::npos) << r.err;
+  EXPECT_TRUE(same_bytes(dir / "work" / "out.mbtiles", dir / "ref" / "out.mbtiles"));
+}
+
 TEST(CrashSafety, ResumeRefusesAnotherBuildsTemporaryFile) {
   TempDir dir;
   const std::string cd = "cd " + dir.path().string() + " && ";

@@ -50,6 +50,7 @@ class Builder {
           s_.output + ".staging", writer->key_hash(),
           writer->resumed() ? tileformat::Resume::kContinue : tileformat::Resume::kStartAfresh);
       const StageCheckpoint start = resume_point(stage, *writer);
+      if (start.z < plan_.max_zoom) count_finished_levels(*writer, start.z);
       warpers_.resize(threads_);
       for (int z = plan_.max_zoom; z >= plan_.min_zoom; --z) {
         if (z > start.z) {  // finished before the interruption
@@ -107,6 +108,29 @@ class Builder {
     return start;
   }
 
+  // The tile formats of the levels a resumed build finished before the
+  // interruption (finer than `start_z`): the metadata says whether any tile
+  // is PNG, and must not depend on where the build was killed (a kill after
+  // the last level and before the rename left nothing to count).
+  void count_finished_levels(tileformat::PackageWriter& writer, int start_z) {
+    tileformat::PackageReader done(writer.temp_path());
+    for (int z = plan_.max_zoom; z > start_z && z >= plan_.min_zoom; --z)
+      done.for_each_tile([&](TileId, std::span<const uint8_t> blob) { count_format(blob); }, z);
+  }
+  void count_format(std::span<const uint8_t> blob) {
+    switch (tileformat::inspect_image_tile(blob).format) {
+      case tileformat::ImageFormat::kPng:
+        ++sum_.png;
+        break;
+      case tileformat::ImageFormat::kJpeg:
+        ++sum_.jpeg;
+        break;
+      case tileformat::ImageFormat::kWebp:
+        ++sum_.webp;
+        break;
+    }
+  }
+
   // Encodes a tile and, unless it is the coarsest zoom, keeps its pixels.
   std::optional<TileOut> finish(TileId id, const TilePixels& px) const {
     if (px.empty()) return std::nullopt;
@@ -123,17 +147,7 @@ class Builder {
     else
       writer.put_tile(out.id, out.blob);
     coarsest_written_ = out.id.z;
-    switch (tileformat::inspect_image_tile(out.blob).format) {
-      case tileformat::ImageFormat::kPng:
-        ++sum_.png;
-        break;
-      case tileformat::ImageFormat::kJpeg:
-        ++sum_.jpeg;
-        break;
-      case tileformat::ImageFormat::kWebp:
-        ++sum_.webp;
-        break;
-    }
+    count_format(out.blob);
   }
 
   // From group `first` on (a resumed build).
