@@ -96,11 +96,7 @@ bool ImageCache::request(TileId id) {
 }
 
 void ImageCache::flush_requests() {
-  // Coarser tiles first: they cover more of the screen.
-  std::sort(wanted_.begin(), wanted_.end(),
-            [](const Loader::Job& a, const Loader::Job& b) { return a.id < b.id; });
-  loader_->submit(wanted_);
-  wanted_.clear();
+  loader_->submit_coarsest_first(wanted_);
 }
 
 int ImageCache::take_slot() {

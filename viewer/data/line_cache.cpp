@@ -103,11 +103,7 @@ bool LineCache::request(TileId id) {
 }
 
 void LineCache::flush_requests() {
-  // Coarser tiles first: they cover more of the screen.
-  std::sort(wanted_.begin(), wanted_.end(),
-            [](const Loader::Job& a, const Loader::Job& b) { return a.id < b.id; });
-  loader_->submit(wanted_);
-  wanted_.clear();
+  loader_->submit_coarsest_first(wanted_);
 }
 
 std::optional<uint64_t> LineCache::allocate_evicting(uint64_t words) {

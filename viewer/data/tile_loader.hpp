@@ -7,6 +7,7 @@
 // tile cache.
 #pragma once
 
+#include <algorithm>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -64,6 +65,13 @@ class TileLoader {
       in_flight_ += static_cast<int>(jobs.size());
     }
     wake_loader_.notify_one();
+  }
+  // Submits `jobs` coarser tiles first (they cover more of the screen) and
+  // empties it.
+  void submit_coarsest_first(std::vector<Job>& jobs) {
+    std::sort(jobs.begin(), jobs.end(), [](const Job& a, const Job& b) { return a.id < b.id; });
+    submit(jobs);
+    jobs.clear();
   }
   std::vector<Done> take_done() {
     std::vector<Done> out;

@@ -8,6 +8,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "render/deferred_pass.hpp"
+#include "render/gl_buffer.hpp"
 #include "render/image_shaders.hpp"
 #include "render/tile_table.hpp"
 
@@ -24,11 +25,6 @@ enum Unit : GLuint {
   kGrids = 4,
   kFirstImage = 5
 };
-
-void fill_buffer(GLuint buffer, size_t bytes, const void* data) {
-  gl::NamedBufferData(buffer, std::max<size_t>(bytes, 16), nullptr, GL_STREAM_DRAW);
-  if (bytes) gl::NamedBufferSubData(buffer, 0, bytes, data);
-}
 
 std::string at(const char* name, size_t i) {
   return std::string(name) + "[" + std::to_string(i) + "]";

@@ -9,6 +9,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "render/deferred_pass.hpp"
+#include "render/gl_buffer.hpp"
 #include "render/line_shaders.hpp"
 #include "render/tile_table.hpp"
 
@@ -51,11 +52,6 @@ void set_tile_ref(const GlProgram& p, const std::string& name, const View& view,
                 static_cast<float>(1 / (world.ground_per_crs_y() * size)));
   gl::Uniform1i(p.uniform((name + ".zoom").c_str()), zoom);
   gl::Uniform1i(p.uniform((name + ".wrap").c_str()), t.wrap_tiles());
-}
-
-void fill_buffer(GLuint buffer, size_t bytes, const void* data) {
-  gl::NamedBufferData(buffer, std::max<size_t>(bytes, 16), nullptr, GL_STREAM_DRAW);
-  if (bytes) gl::NamedBufferSubData(buffer, 0, bytes, data);
 }
 
 std::string program_source(const std::string& table, int binding, const std::string& body) {
