@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <numbers>
 #include <numeric>
 #include <random>
 #include <set>
@@ -286,13 +287,42 @@ TEST_F(ViewerMesh, ConformingOnTheGlobeGeodeticAndWebMercator) {
   check_globe(merc, 50, 4);
 }
 
+// A key point at height h in the east-north-up frame of `origin`'s point on
+// the ellipsoid, brute force in double from the textbook WGS84 formulas
+// (nothing of the viewer's mapping): the reference of the precision test.
+glm::dvec3 reference_enu(const tileformat::Tiling& t, double crs_per_key, double kx, double ky,
+                         double h, const KeyPoint& origin) {
+  const double a = 6378137.0, e2 = 0.00669437999014132, d = std::numbers::pi / 180;
+  auto latlon = [&](double x, double y) {
+    const double cx = t.origin_x + x * crs_per_key, cy = t.origin_y - y * crs_per_key;
+    if (t.scheme == tileformat::Scheme::kWebMercator)
+      return std::pair{std::atan(std::sinh(cy / a)), cx / a};
+    return std::pair{cy * d, cx * d};
+  };
+  auto ecef = [&](double lat, double lon, double height) {
+    const double n = a / std::sqrt(1 - e2 * std::sin(lat) * std::sin(lat));
+    return glm::dvec3((n + height) * std::cos(lat) * std::cos(lon),
+                      (n + height) * std::cos(lat) * std::sin(lon),
+                      (n * (1 - e2) + height) * std::sin(lat));
+  };
+  const auto [lat0, lon0] = latlon(double(origin.x), double(origin.y));
+  const auto [lat, lon] = latlon(kx, ky);
+  const glm::dvec3 p = ecef(lat, lon, h) - ecef(lat0, lon0, 0);
+  const glm::dvec3 east(-std::sin(lon0), std::cos(lon0), 0);
+  const glm::dvec3 north(-std::sin(lat0) * std::cos(lon0), -std::sin(lat0) * std::sin(lon0),
+                         std::cos(lat0));
+  const glm::dvec3 up(std::cos(lat0) * std::cos(lon0), std::cos(lat0) * std::sin(lon0),
+                      std::sin(lat0));
+  return {glm::dot(p, east), glm::dot(p, north), glm::dot(p, up)};
+}
+
 // Globe precision: the vertex shader's float positions agree with the
-// ellipsoid computed in double on the CPU (wgs84::to_ecef, then the origin's
-// east-north-up frame: another formula, no shared code) to within 5e-5 of
-// their distance from the eye (0.1 px at 1280 x 720), and to 0.5 mm within
-// 10 m of it, over the antimeridian, near a pole and at the equator, 2 m
-// above the ellipsoid. (Where the terrain is higher the camera is inside it;
-// the vertices are what they are.)
+// ellipsoid computed in double by reference_enu (textbook formulas in this
+// test, no shared code) to within 5e-5 of their distance from the eye
+// (0.1 px at 1280 x 720), and to 0.5 mm within 10 m of it, over the
+// antimeridian, near a pole and at the equator, 2 m above the ellipsoid.
+// (Where the terrain is higher the camera is inside it; the vertices are what
+// they are.)
 TEST_F(ViewerMesh, GlobeVerticesArePreciseNearTheEye) {
   TempDir dir;
   for (const char* tiling : {"geodetic", "webmercator"}) {
@@ -315,9 +345,9 @@ TEST_F(ViewerMesh, GlobeVerticesArePreciseNearTheEye) {
       double worst = 0, worst_m = 0;
       size_t n = 0;
       for (const CapturedVertex& v : scene.capture(f)) {
-        const glm::dvec3 want = scene.world().key_to_world(double(f.view.origin.x + v.key[0]),
-                                                           double(f.view.origin.y + v.key[1]),
-                                                           v.height_m, f.view.origin);
+        const glm::dvec3 want = reference_enu(
+            scene.world().tiling(), scene.world().crs_per_key(), double(f.view.origin.x + v.key[0]),
+            double(f.view.origin.y + v.key[1]), v.height_m, f.view.origin);
         const double err = glm::length(glm::dvec3(v.world[0], v.world[1], v.world[2]) - want);
         const double dist = glm::length(want - f.view.eye);
         worst = std::max(worst, err / std::max(dist, 10.0));
