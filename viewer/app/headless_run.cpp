@@ -98,6 +98,8 @@ int run_headless(const ViewerSettings& settings) {
         static_cast<unsigned long long>(cs.blocks_loaded),
         static_cast<unsigned long long>(cs.evictions), static_cast<unsigned long long>(cs.broken),
         static_cast<unsigned long long>(cs.bytes_read), poses.back().str().c_str());
+    const auto [ramp_lo, ramp_hi] = scene.ramp().data_range();
+    std::printf(", \"height_range\": [%.2f, %.2f]", ramp_lo, ramp_hi);
     if (LineLayer* lines = scene.lines()) {
       const LineLayerStats ls = lines->stats();
       std::printf(

@@ -40,6 +40,7 @@ tileformat::Bounds data_bounds_crs(const TerrainPackage& p, const WorldFrame& wo
 }  // namespace
 
 TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings) {
+  ramp_ = std::make_unique<ElevationRamp>(settings_.shading);
   const PackageSet set = sort_packages(settings_.packages);
   const std::string& path = set.terrain;
   TerrainPackage package = open_terrain_package(path);
@@ -121,26 +122,53 @@ std::vector<uint8_t> TerrainScene::read_pixels() const {
 }
 
 void TerrainScene::upload_loaded() {
-  for (const LoadedBlock& b : cache_->take_loaded())
+  for (const LoadedBlock& b : cache_->take_loaded()) {
+    if (b.id.z == ramp_zoom_) {
+      ramp_->add_samples(b);
+      ramp_level_.push_back(b.id);
+    }
     renderer_->upload(b);
+  }
 }
 
-CameraPose TerrainScene::initial_pose() {
+void TerrainScene::load_now(const std::vector<tileformat::TileId>& tiles) {
   cache_->begin_frame();
-  for (const tileformat::TileId& id : selector_->root_tiles())
+  for (const tileformat::TileId& id : tiles)
     cache_->request(id, 0);
   cache_->flush_requests();
   while (cache_->loader_busy()) {
     cache_->wait_for_loader();
     upload_loaded();
   }
-  const double top = selector_->top_height_m(*cache_);
-  const double bottom = selector_->bottom_height_m(*cache_);
-  if (settings_.shading.range_max_m <= settings_.shading.range_min_m ||
-      (settings_.shading.range_min_m == 0 && settings_.shading.range_max_m == 1000)) {
-    settings_.shading.range_min_m = bottom;
-    settings_.shading.range_max_m = top;
+  upload_loaded();
+}
+
+void TerrainScene::sample_heights() {
+  // The ramp's heights come from the coarsest zoom with enough valid
+  // samples: a small dataset covers one sample of its root block, so go
+  // down (at most 64 blocks a zoom) until the data has 64 k samples.
+  constexpr size_t kEnough = 65536, kMaxBlocks = 64;
+  while (ramp_->sample_count() < kEnough && ramp_zoom_ < cache_->package().max_zoom) {
+    std::vector<tileformat::TileId> next;
+    for (const tileformat::TileId& id : ramp_level_)
+      for (const tileformat::TileId& c : id.children())
+        if (cache_->state(c) != BlockState::kAbsent) next.push_back(c);
+    if (next.empty() || next.size() > kMaxBlocks) break;
+    ramp_->clear_samples();
+    ramp_level_.clear();
+    ++ramp_zoom_;
+    load_now(next);
   }
+  ramp_zoom_ = -1;
+  ramp_->finish();
+  apply_ramp();
+}
+
+CameraPose TerrainScene::initial_pose() {
+  ramp_zoom_ = cache_->package().min_zoom;
+  load_now(selector_->root_tiles());
+  if (!ramp_->finished()) sample_heights();
+  const double top = selector_->top_height_m(*cache_);
   if (settings_.camera) return *settings_.camera;
   if (!settings_.camera_path.empty()) return settings_.camera_path.front();
   CameraPose pose = fit_pose(data_bounds_crs(package(), *world_), *world_, settings_.width,

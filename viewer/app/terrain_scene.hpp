@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "app/elevation_ramp.hpp"
 #include "app/image_layers.hpp"
 #include "app/line_layer.hpp"
 #include "app/viewer_settings.hpp"
@@ -58,9 +59,14 @@ class TerrainScene {
   const TerrainPackage& package() const { return cache_->package(); }
   ViewerSettings& settings() { return settings_; }
   double top_height_m() { return selector_->top_height_m(*cache_); }
+  // The elevation ramp; after an edit, apply_ramp() hands it to the renderer.
+  ElevationRamp& ramp() { return *ramp_; }
+  void apply_ramp() { renderer_->set_ramp(ramp_->table()); }
 
  private:
   void upload_loaded();
+  void load_now(const std::vector<tileformat::TileId>& tiles);  // waits for them
+  void sample_heights();  // fixes the elevation ramp's data range
   View make(const CameraPose& pose);
 
   ViewerSettings settings_;
@@ -71,6 +77,9 @@ class TerrainScene {
   std::unique_ptr<PolarCaps> caps_;
   std::unique_ptr<ImageLayers> images_;
   std::unique_ptr<LineLayer> lines_;
+  std::unique_ptr<ElevationRamp> ramp_;
+  int ramp_zoom_ = -1;  // zoom whose blocks feed the ramp's samples (-1: done)
+  std::vector<tileformat::TileId> ramp_level_;  // its blocks loaded so far
 };
 
 }  // namespace globe::viewer

@@ -20,8 +20,9 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
       "window: drag to orbit, right-drag to pan, wheel or W/S to zoom, arrows to pan,\n"
       "  R home view, P screenshot (globe-view-N.png), Esc quit;\n"
       "  1-4 hillshade/elevation/slope/aspect, +/- exaggeration;\n"
+      "  , and . shift the elevation ramp down/up, ; and ' narrow/widen it, 0 reset;\n"
       "  I select the next image layer, V show/hide it, [ and ] its opacity -/+ 0.1,\n"
-      "  U imagery unlit/lit; L line mode, F5 reload the style file.\n");
+      "  U imagery unlit/lit; L line mode, F5 reload the style and colour files.\n");
   cli.option("--snapshot", "OUT.png", "render headless, write the image, exit",
              [&](const std::string& v) { s.snapshot = v; });
   cli.option("--size", "WxH", "image / window size in pixels (default 1280x720)",
@@ -103,6 +104,28 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
                  s.imagery_unlit = true;
                else
                  throw UsageError("--shading: unknown mode '" + v + "'");
+             });
+  cli.option("--colormap", "NAME|FILE",
+             "the elevation ramp: hypsometric (default: bathymetry below 0 m, land above), "
+             "gray, or a gdaldem color-relief file (VALUE R G B [A] per line; VALUE in metres, "
+             "a percentage of the height range, or nv); the window reloads the file when it "
+             "changes",
+             [&](const std::string& v) { s.shading.colormap = v; });
+  cli.option("--height-range", "MIN,MAX",
+             "heights in metres the elevation ramp spans (default: the data's own heights, "
+             "from the coarsest blocks)",
+             [&](const std::string& v) {
+               const auto d = CliArgs::to_doubles("--height-range", v, 2);
+               if (!(d[1] > d[0])) throw UsageError("--height-range: MAX must be above MIN");
+               s.shading.height_range = std::pair{d[0], d[1]};
+             });
+  cli.option("--height-percentile", "P",
+             "clip the data's height range to its P-th and (100-P)-th percentiles "
+             "(default 0: minimum to maximum)",
+             [&](const std::string& v) {
+               s.shading.height_percentile = CliArgs::to_double("--height-percentile", v);
+               if (s.shading.height_percentile < 0 || s.shading.height_percentile >= 50)
+                 throw UsageError("--height-percentile: must be within 0..50");
              });
   cli.option("--image-opacity", "A[,B...]",
              "opacity of each image layer, bottom first, 0..1 (default 1; the last value "

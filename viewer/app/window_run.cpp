@@ -1,6 +1,7 @@
 // Interactive session (see window_run.hpp).
 //   left drag: orbit   right drag / arrows: pan   wheel / W,S: zoom
 //   1-4: hillshade, elevation, slope, aspect   +/-: exaggeration
+//   , . shift the elevation ramp, ; ' narrow / widen it, 0 resets it
 //   R: reset view   P: screenshot (globe-view-N.png)   Esc: quit
 #define GLFW_INCLUDE_NONE
 #include "app/window_run.hpp"
@@ -94,6 +95,27 @@ int run_window(const ViewerSettings& settings) {
         break;
       case GLFW_KEY_F5:
         if (scene->lines()) scene->lines()->reload_style(LineLayer::Reload::kAlways);
+        if (scene->ramp().reload(ElevationRamp::Reload::kAlways)) scene->apply_ramp();
+        break;
+      case GLFW_KEY_COMMA:  // the elevation ramp: shift down / up, narrow / widen, reset
+        scene->ramp().shift(-0.05);
+        scene->apply_ramp();
+        break;
+      case GLFW_KEY_PERIOD:
+        scene->ramp().shift(0.05);
+        scene->apply_ramp();
+        break;
+      case GLFW_KEY_SEMICOLON:
+        scene->ramp().stretch(1 / 1.1);
+        scene->apply_ramp();
+        break;
+      case GLFW_KEY_APOSTROPHE:
+        scene->ramp().stretch(1.1);
+        scene->apply_ramp();
+        break;
+      case GLFW_KEY_0:
+        scene->ramp().reset();
+        scene->apply_ramp();
         break;
       case GLFW_KEY_L:
         if (LineLayer* l = scene->lines(); l && !scene->world().globe())
@@ -155,7 +177,8 @@ int run_window(const ViewerSettings& settings) {
   TerrainScene s(settings);
   scene = &s;
   const CameraPose start = s.initial_pose();
-  const double ground = (s.settings().shading.range_min_m + s.settings().shading.range_max_m) / 2;
+  const auto [data_lo, data_hi] = s.ramp().data_range();
+  const double ground = (data_lo + data_hi) / 2;
   home = orbit = Orbit::from_pose(start, s.world(), ground);
 
   auto last_title = std::chrono::steady_clock::now();
@@ -182,6 +205,7 @@ int run_window(const ViewerSettings& settings) {
     if (now - last_title > std::chrono::milliseconds(500)) {
       if (s.lines())
         s.lines()->reload_style(LineLayer::Reload::kIfChanged);  // picks up edits of the style file
+      if (s.ramp().reload(ElevationRamp::Reload::kIfChanged)) s.apply_ramp();  // and colour file
       const double ms = std::chrono::duration<double, std::milli>(now - t0).count();
       size_t waiting = f.selection.waiting;  // blocks and image tiles not in yet
       if (const ImageLayers* im = s.images())

@@ -61,6 +61,7 @@
   X(PFNGLCREATETEXTURESPROC, CreateTextures)                           \
   X(PFNGLTEXTURESTORAGE2DPROC, TextureStorage2D)                       \
   X(PFNGLTEXTURESTORAGE3DPROC, TextureStorage3D)                       \
+  X(PFNGLTEXTURESUBIMAGE2DPROC, TextureSubImage2D)                     \
   X(PFNGLTEXTURESUBIMAGE3DPROC, TextureSubImage3D)                     \
   X(PFNGLTEXTUREPARAMETERIPROC, TextureParameteri)                     \
   X(PFNGLBINDTEXTUREUNITPROC, BindTextureUnit)                         \

@@ -78,7 +78,10 @@ TerrainRenderer::TerrainRenderer(int block_size, int lattice, int slots, int wid
   gl::TextureStorage3D(heights_, 1, GL_R32F, size_, size_, slots_);
   gl::CreateTextures(GL_TEXTURE_2D_ARRAY, 1, &mask_);
   gl::TextureStorage3D(mask_, 1, GL_R8, size_, size_, slots_);
-  for (GLuint t : {heights_, mask_}) {
+  gl::CreateTextures(GL_TEXTURE_2D, 1, &ramp_);
+  gl::TextureStorage2D(ramp_, 1, GL_RGBA8, RampTable::kEntries, 1);
+  set_ramp(tabulate(builtin_ramp("hypsometric", 0, 1000), 0, 1000));
+  for (GLuint t : {heights_, mask_, ramp_}) {
     gl::TextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     gl::TextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     gl::TextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -92,9 +95,9 @@ TerrainRenderer::TerrainRenderer(int block_size, int lattice, int slots, int wid
 TerrainRenderer::~TerrainRenderer() {
   gl::DeleteQueries(1, &timer_);
   gl::DeleteFramebuffers(1, &g_.fbo);
-  GLuint textures[8] = {heights_,  mask_,     g_.color,     g_.position,
+  GLuint textures[9] = {heights_,  mask_,     ramp_,        g_.color, g_.position,
                         g_.normal, g_.ground, g_.ground_dy, g_.depth};
-  gl::DeleteTextures(8, textures);
+  gl::DeleteTextures(9, textures);
   GLuint buffers[3] = {lattice_vbo_, index_buffer_, instance_buffer_};
   gl::DeleteBuffers(3, buffers);
   gl::DeleteVertexArrays(1, &vao_);
@@ -135,6 +138,14 @@ void TerrainRenderer::resize(int width, int height) {
   gl::NamedFramebufferDrawBuffers(g_.fbo, 5, buffers);
   if (gl::CheckNamedFramebufferStatus(g_.fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw std::runtime_error("the offscreen framebuffer is incomplete");
+}
+
+void TerrainRenderer::set_ramp(const RampTable& table) {
+  gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  gl::TextureSubImage2D(ramp_, 0, 0, 0, RampTable::kEntries, 1, GL_RGBA, GL_UNSIGNED_BYTE,
+                        table.rgba.data());
+  ramp_lo_ = table.lo;
+  ramp_hi_ = table.hi;
 }
 
 void TerrainRenderer::upload(const LoadedBlock& b) {
@@ -230,8 +241,10 @@ RenderTimes TerrainRenderer::draw(const std::vector<Patch>& patches, const View&
                 static_cast<float>(std::cos(az) * std::cos(alt)),
                 static_cast<float>(std::sin(alt)));
   gl::Uniform1i(p.uniform("u_mode"), static_cast<int>(s.mode));
-  gl::Uniform2f(p.uniform("u_range"), static_cast<float>(s.range_min_m),
-                static_cast<float>(s.range_max_m));
+  gl::Uniform2f(p.uniform("u_ramp_range"), static_cast<float>(ramp_lo_),
+                static_cast<float>(ramp_hi_));
+  gl::Uniform1i(p.uniform("u_ramp"), 2);
+  gl::BindTextureUnit(2, ramp_);
   gl::BindVertexArray(vao_);
   gl::BeginQuery(GL_TIME_ELAPSED, timer_);
   if (!patches.empty())

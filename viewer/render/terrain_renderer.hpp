@@ -6,10 +6,14 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "camera/camera.hpp"
 #include "data/block_cache.hpp"
+#include "render/color_ramp.hpp"
 #include "render/gl_program.hpp"
 #include "render/patch_selection.hpp"
 
@@ -21,7 +25,12 @@ struct ShadingSettings {
   Shading mode = Shading::kHillshade;
   double sun_azimuth_deg = 315, sun_altitude_deg = 45;
   double exaggeration = 1;
-  double range_min_m = 0, range_max_m = 1000;  // elevation ramp
+  // The elevation ramp: a built-in name or a gdaldem color-relief file, over
+  // the data's real heights (the coarsest blocks' samples, clipped to the
+  // percentiles) unless height_range is given.
+  std::string colormap = "hypsometric";
+  std::optional<std::pair<double, double>> height_range;
+  double height_percentile = 0;
 };
 
 // The terrain pass's output: shaded colour (RGBA8), world position (RGBA32F,
@@ -63,6 +72,8 @@ class TerrainRenderer {
 
   void resize(int width, int height);
   void upload(const LoadedBlock& block);
+  // The elevation ramp's lookup table (shading mode 1).
+  void set_ramp(const RampTable& table);
   // Draws into the offscreen framebuffer; waits for the GPU and returns its time.
   RenderTimes draw(const std::vector<Patch>& patches, const View& view, const WorldFrame& frame,
                    const ShadingSettings& shading);
@@ -85,7 +96,8 @@ class TerrainRenderer {
   GLsizei index_count_ = 0;
   GlProgram draw_program_, capture_program_;
   GLuint vao_ = 0, lattice_vbo_ = 0, index_buffer_ = 0, instance_buffer_ = 0;
-  GLuint heights_ = 0, mask_ = 0;
+  GLuint heights_ = 0, mask_ = 0, ramp_ = 0;
+  double ramp_lo_ = 0, ramp_hi_ = 1;
   GBuffer g_;
   GLuint timer_ = 0;
 };

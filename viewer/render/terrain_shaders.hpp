@@ -131,7 +131,8 @@ uniform float u_size;      // samples per block side
 uniform float u_zscale;    // world z per metre of height (with exaggeration)
 uniform vec3 u_sun;        // unit vector towards the sun
 uniform int u_mode;
-uniform vec2 u_range;      // height range for the ramp (metres)
+uniform sampler2D u_ramp;  // elevation ramp: RampTable::kEntries x 1 colours
+uniform vec2 u_ramp_range; // heights of the ramp's first and last entries (metres)
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_position;  // G-buffer: world point, w = 1 on terrain
 layout(location = 2) out vec4 o_normal;    // G-buffer: plane of the drawn triangle
@@ -141,14 +142,10 @@ layout(location = 4) out vec2 o_ground_dy; // G-buffer: d/dy of ground x, y
 float height_at(vec2 s) {
   return texture(u_heights, vec3((s + 0.5) / u_size, float(v_layer))).r;
 }
-vec3 ramp(float t) {  // hypsometric: green lowlands, tan hills, brown, white peaks
-  const vec3 c0 = vec3(0.16, 0.42, 0.23), c1 = vec3(0.62, 0.71, 0.38), c2 = vec3(0.85, 0.76, 0.52),
-             c3 = vec3(0.58, 0.42, 0.30), c4 = vec3(0.97, 0.97, 0.97);
-  t = clamp(t, 0.0, 1.0) * 4.0;
-  if (t < 1.0) return mix(c0, c1, t);
-  if (t < 2.0) return mix(c1, c2, t - 1.0);
-  if (t < 3.0) return mix(c2, c3, t - 2.0);
-  return mix(c3, c4, t - 3.0);
+vec3 ramp(float h) {  // the entries sit on texel centres
+  float n = float(textureSize(u_ramp, 0).x);
+  float t = clamp((h - u_ramp_range.x) / max(u_ramp_range.y - u_ramp_range.x, 1e-6), 0.0, 1.0);
+  return texture(u_ramp, vec2((t * (n - 1.0) + 0.5) / n, 0.5)).rgb;
 }
 vec3 hue(float h) {
   return clamp(abs(mod(h * 6.0 + vec3(0.0, 4.0, 2.0), 6.0) - 3.0) - 1.0, 0.0, 1.0);
@@ -165,7 +162,7 @@ void main() {
     color = vec3(0.12 + 0.88 * shade);
   } else if (u_mode == 1) {
     float h = height_at(v_sample);
-    color = ramp((h - u_range.x) / max(u_range.y - u_range.x, 1e-6)) * (0.55 + 0.45 * shade / max(u_sun.z, 0.2));
+    color = ramp(h) * (0.55 + 0.45 * shade / max(u_sun.z, 0.2));
   } else if (u_mode == 2) {
     float slope = degrees(acos(clamp(n.z, 0.0, 1.0)));
     color = mix(vec3(1.0, 1.0, 0.85), vec3(0.75, 0.1, 0.05), clamp(slope / 45.0, 0.0, 1.0));

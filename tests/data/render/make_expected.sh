@@ -51,4 +51,11 @@ build/viewer/globe-view "$tmp/eg.mbtiles" "$tmp/bm.mbtiles" --globe --fit --size
 build/viewer/globe-view "$tmp/eg.mbtiles" "$tmp/bm.mbtiles" "$tmp/c1000.mbtiles" --globe \
   --camera=179.5,60,1500000,90,50 --size 320x180 \
   --snapshot $out/globe_lines_over_imagery_antimeridian.png
+# Elevation ramp (tests/viewer_shading_test.cpp): global and the Himalaya.
+build/viewer/globe-view "$tmp/eg.mbtiles" --globe --fit --shading elevation --size 320x180 \
+  --snapshot $out/globe_etopo_elevation.png
+gdal_translate -q -projwin 70 40 100 25 samples/data/etopo20.tif "$tmp/himalaya.tif"
+build/tools/tiler/globe-tiler terrain -q "$tmp/himalaya.tif" -o "$tmp/hi.mbtiles"
+build/viewer/globe-view "$tmp/hi.mbtiles" --fit --shading elevation --size 320x180 \
+  --snapshot $out/himalaya_elevation.png
 ls -l $out/*.png
