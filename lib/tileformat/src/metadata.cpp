@@ -16,6 +16,7 @@ namespace tileformat {
 std::optional<PackageKind> package_kind_of_format(const std::string& format) {
   if (format == kMBlockFormat) return PackageKind::kTerrain;
   if (format == kLineClustersFormat) return PackageKind::kLines;
+  if (format == kAnalysisFormat) return PackageKind::kAnalysis;
   if (parse_image_format(format)) return PackageKind::kImage;
   return std::nullopt;
 }
@@ -28,6 +29,8 @@ const char* package_kind_name(PackageKind kind) {
       return "image";
     case PackageKind::kLines:
       return "line-cluster";
+    case PackageKind::kAnalysis:
+      return "analysis";
   }
   return "?";
 }
@@ -252,6 +255,39 @@ MetadataMap to_metadata(const LineMetadata& m) {
 CommonMetadata read_common_metadata(const MetadataMap& meta) {
   CommonMetadata m;
   read_common(Keys(meta, "3.2"), meta, m);
+  return m;
+}
+
+MetadataMap to_metadata(const AnalysisMetadata& m) {
+  MetadataMap meta = common_keys(m.common);
+  meta["globe:block_size"] = std::to_string(m.block_size);
+  std::string names;
+  for (AnalysisLayer l : m.layers)
+    names += (names.empty() ? "" : ",") + std::string(analysis_layer_info(l).name);
+  meta["globe:analysis_layers"] = names;
+  meta["globe:terrain"] = m.terrain;
+  meta["globe:height_step"] = metadata_number(m.height_step);
+  return meta;
+}
+
+AnalysisMetadata read_analysis_metadata(const MetadataMap& meta) {
+  const Keys k(meta, "9");
+  AnalysisMetadata m;
+  read_common(Keys(meta, "3.2"), meta, m.common);
+  if (!m.common.has_tiling) Tiling::from_metadata(meta);  // names the missing key
+  m.block_size = k.integer("globe:block_size");
+  const std::string names = k.find("globe:analysis_layers").value_or("");
+  size_t start = 0;
+  while (start <= names.size()) {
+    const size_t comma = std::min(names.find(',', start), names.size());
+    const std::string name = names.substr(start, comma - start);
+    const auto layer = analysis_layer_by_name(name);
+    if (!layer) throw FormatError("9", "globe:analysis_layers: unknown layer '" + name + "'");
+    m.layers.push_back(*layer);
+    start = comma + 1;
+  }
+  m.terrain = k.find("globe:terrain").value_or("");
+  m.height_step = k.find("globe:height_step") ? k.number("globe:height_step") : 0.0;
   return m;
 }
 

@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "tileformat/analysis_block.hpp"
 #include "tileformat/image_tile.hpp"
 #include "tileformat/tiling.hpp"
 
@@ -26,14 +27,15 @@ using MetadataMap = std::map<std::string, std::string>;
 // `format` values of our own kinds (imagery uses png, jpg or webp).
 inline constexpr const char* kMBlockFormat = "application/vnd.globe.mblock";
 inline constexpr const char* kLineClustersFormat = "application/vnd.globe.lineclusters";
+inline constexpr const char* kAnalysisFormat = "application/vnd.globe.analysis";
 
 // The kinds of package; the `format` key tells them apart.
-enum class PackageKind { kTerrain, kImage, kLines };
+enum class PackageKind { kTerrain, kImage, kLines, kAnalysis };
 
 // The kind whose `format` value this is (terrain and lines by their media
 // type, imagery by png/jpg/webp), or nullopt.
 std::optional<PackageKind> package_kind_of_format(const std::string& format);
-// "terrain", "image" or "line-cluster", for messages.
+// "terrain", "image", "line-cluster" or "analysis", for messages.
 const char* package_kind_name(PackageKind kind);
 
 struct InputFile {
@@ -98,11 +100,21 @@ struct LineMetadata {
   std::vector<LineLayerInfo> layers;  // globe:layers
 };
 
+// Terrain analytics (§9): the terrain's tiling, zooms and block size.
+struct AnalysisMetadata {
+  CommonMetadata common;
+  int block_size = 0;                 // globe:block_size, as the terrain's
+  std::vector<AnalysisLayer> layers;  // globe:analysis_layers, names comma-separated, id order
+  std::string terrain;                // globe:terrain: the terrain package's file name
+  double height_step = 0;             // globe:height_step of that terrain
+};
+
 // The package's keys; kind-specific keys absent from the struct (optionals)
 // are not written.
 MetadataMap to_metadata(const TerrainMetadata& m);
 MetadataMap to_metadata(const ImageMetadata& m);
 MetadataMap to_metadata(const LineMetadata& m);
+MetadataMap to_metadata(const AnalysisMetadata& m);
 
 // Read back; throw FormatError (§3.2, §7.4, §8) naming the missing or bad
 // key. read_common_metadata reads what any MBTiles has (other tools'
@@ -111,6 +123,7 @@ CommonMetadata read_common_metadata(const MetadataMap& meta);
 TerrainMetadata read_terrain_metadata(const MetadataMap& meta);
 ImageMetadata read_image_metadata(const MetadataMap& meta);
 LineMetadata read_line_metadata(const MetadataMap& meta);
+AnalysisMetadata read_analysis_metadata(const MetadataMap& meta);
 
 // The `description` our tools write: "WHAT built by PROGRAM from FIRST
 // (and N more)", FIRST being the first input's file name.

@@ -1,0 +1,53 @@
+// Analysis blocks: per-sample terrain analytics of one terrain tile
+// (docs/tileformat.md §9). Same tile id and sample grid as the terrain
+// block; each layer's values quantized to u16 (value = offset + q * scale,
+// kNoValue where the layer has none). encode/decode are exact inverses.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace tileformat {
+
+enum class AnalysisLayer : uint8_t {
+  kSlope = 1,             // degrees from horizontal, 0..90
+  kAspect = 2,            // degrees clockwise from north the slope faces, 0..360
+  kProfileCurvature = 3,  // 1/m along the slope line: > 0 convex (crests), < 0 concave
+  kPlanCurvature = 4,     // 1/m across the slope line: > 0 ridges (flow diverges), < 0 valleys
+};
+
+struct AnalysisLayerInfo {
+  AnalysisLayer layer;
+  const char* name;  // as on the command line and in globe:layers
+  const char* unit;
+  double scale, offset;  // value = offset + q * scale
+};
+
+inline constexpr uint16_t kNoValue = 65535;
+
+// Every layer the format knows, in id order.
+const std::vector<AnalysisLayerInfo>& analysis_layers();
+const AnalysisLayerInfo& analysis_layer_info(AnalysisLayer layer);
+std::optional<AnalysisLayer> analysis_layer_by_name(const std::string& name);
+
+// q for a value: rounded to the nearest quantum, clamped to 0..kNoValue - 1.
+uint16_t quantize(const AnalysisLayerInfo& info, double value);
+inline double dequantize(const AnalysisLayerInfo& info, uint16_t q) {
+  return info.offset + q * info.scale;
+}
+
+struct AnalysisBlock {
+  int size = 0;                               // samples per side, as the terrain block
+  std::vector<AnalysisLayer> layers;          // ascending ids, no repeats
+  std::vector<std::vector<uint16_t>> values;  // per layer, size * size, row-major from north
+};
+
+// Preconditions checked (std::invalid_argument).
+std::vector<uint8_t> encode_analysis_block(const AnalysisBlock& block, int zstd_level = 9);
+// Throws FormatError citing §4/§9 for anything malformed.
+AnalysisBlock decode_analysis_block(std::span<const uint8_t> blob);
+
+}  // namespace tileformat
