@@ -14,9 +14,10 @@ const char* kUsage =
     "commands:\n"
     "  terrain INPUT... -o OUT.mbtiles   DEMs (any GDAL raster, any CRS) -> terrain package\n"
     "  imagery INPUT... -o OUT.mbtiles   images (any GDAL raster, any CRS) -> image package\n"
+    "  analyze TERRAIN -o OUT.mbtiles    slope, aspect, curvature per sample -> analysis package\n"
     "  info PACKAGE                      metadata, zoom range, tile counts and sizes\n"
     "  validate PACKAGE                  decode every tile, check schema and invariants\n"
-    "  extract PACKAGE --zoom Z -o OUT.tif   one zoom as a GeoTIFF (heights or pixels)\n"
+    "  extract PACKAGE --zoom Z -o OUT.tif   one zoom as a GeoTIFF (heights, pixels or a layer)\n"
     "\n"
     "Run 'globe-tiler COMMAND --help' for the options of a command.\n"
     "Exit codes: 0 ok, 1 bad input data, 2 bad usage, 3 output cannot be written,\n"
@@ -34,6 +35,7 @@ int main(int argc, char** argv) {
   return globe::run_command_tool("globe-tiler", GLOBE_VERSION, kUsage,
                                  {{"terrain", globe::run_terrain},
                                   {"imagery", globe::run_imagery},
+                                  {"analyze", globe::run_analyze},
                                   {"info", globe::run_info},
                                   {"validate", globe::run_validate},
                                   {"extract", globe::run_extract}},

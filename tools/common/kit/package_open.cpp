@@ -27,13 +27,17 @@ std::unique_ptr<tileformat::PackageReader> open_package_of_kind(const std::strin
   const std::string fmt = package_format(*reader, path);
   if (tileformat::package_kind_of_format(fmt) != kind) {
     const std::string expected =
-        kind == tileformat::PackageKind::kTerrain ? tileformat::kMBlockFormat
-        : kind == tileformat::PackageKind::kLines ? std::string(tileformat::kLineClustersFormat)
-                                                  : std::string("png, jpg, webp");
+        kind == tileformat::PackageKind::kTerrain    ? tileformat::kMBlockFormat
+        : kind == tileformat::PackageKind::kLines    ? std::string(tileformat::kLineClustersFormat)
+        : kind == tileformat::PackageKind::kAnalysis ? std::string(tileformat::kAnalysisFormat)
+                                                     : std::string("png, jpg, webp");
     const std::string name = tileformat::package_kind_name(kind);
-    throw InputError(path + ": a '" + fmt + "' package, not " +
-                     (kind == tileformat::PackageKind::kImage ? "an " : "a ") + name +
-                     " package (" + expected + ")");
+    throw InputError(
+        path + ": a '" + fmt + "' package, not " +
+        (kind == tileformat::PackageKind::kImage || kind == tileformat::PackageKind::kAnalysis
+             ? "an "
+             : "a ") +
+        name + " package (" + expected + ")");
   }
   return reader;
 }

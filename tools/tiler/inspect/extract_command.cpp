@@ -141,11 +141,15 @@ int run_extract(const std::vector<std::string>& args) {
               "globe-tiler extract PACKAGE --zoom Z [--bbox W,S,E,N] -o OUT.tif\n\n"
               "Writes one zoom of a package as a GeoTIFF in the tiling CRS. Terrain: the decoded\n"
               "heights as Float64, NaN (nodata) where there is no data. Imagery: the tile pixels,\n"
-              "gray or RGB plus an alpha band.");
+              "gray or RGB plus an alpha band. Analysis: one layer (--layer) as Float32.");
   cli.option("--zoom", "Z", "zoom level to extract",
              [&](const std::string& v) { zoom = CliArgs::to_int("--zoom", v, 0, 30); });
   cli.option("--bbox", "W,S,E,N", "only tiles intersecting this lon/lat box",
              [&](const std::string& v) { rq.bbox = CliArgs::to_doubles("--bbox", v, 4); });
+  cli.option("--layer", "NAME",
+             "analysis packages: the layer to write (slope, aspect, profile_curvature, "
+             "plan_curvature), Float32 in its unit, NaN where it has no value",
+             [&](const std::string& v) { rq.layer = v; });
   cli.option("-o,--output", "OUT.tif", "output GeoTIFF",
              [&](const std::string& v) { rq.output = v; });
   cli.flag("--force", "replace an existing output", [&] { rq.force = true; });
@@ -159,8 +163,11 @@ int run_extract(const std::vector<std::string>& args) {
   if (std::filesystem::exists(rq.output, ec) && !rq.force)
     throw OutputError(rq.output + ": output exists; pass --force to replace it");
   gdal_init();
-  return package_kind(rq.package) == tileformat::PackageKind::kImage ? extract_image(rq)
-                                                                     : extract_terrain(rq);
+  const auto kind = package_kind(rq.package);
+  if (kind == tileformat::PackageKind::kImage) return extract_image(rq);
+  if (kind == tileformat::PackageKind::kAnalysis) return extract_analysis(rq);
+  if (!rq.layer.empty()) throw UsageError("--layer applies to analysis packages only");
+  return extract_terrain(rq);
 }
 
 }  // namespace globe

@@ -41,8 +41,13 @@ int run_info(const std::vector<std::string>& args) {
   auto positional = cli.parse_command(args, 1, 1, "PACKAGE");
   if (!positional) return kExitOk;
   const std::string& path = (*positional)[0];
-  if (package_kind(path) == tileformat::PackageKind::kImage) {
+  const auto kind = package_kind(path);
+  if (kind == tileformat::PackageKind::kImage) {
     print_image_info(path);
+    return kExitOk;
+  }
+  if (kind == tileformat::PackageKind::kAnalysis) {
+    print_analysis_info(path);
     return kExitOk;
   }
   TerrainPackage p = open_terrain_package(path);

@@ -19,11 +19,15 @@ struct ExtractRequest {
   int zoom = 0;
   std::optional<std::vector<double>> bbox;
   bool force = false;
+  std::string layer;  // analysis packages: the layer to write
 };
 
 int validate_image_package(const std::string& path);
 void print_image_info(const std::string& path);
 int extract_image(const ExtractRequest& request);
+int validate_analysis_package(const std::string& path);
+void print_analysis_info(const std::string& path);
+int extract_analysis(const ExtractRequest& request);
 
 // Shared by both extracts: the tiles of the zoom (inside --bbox) and the
 // range they span; throws InputError if there are none, UsageError if the

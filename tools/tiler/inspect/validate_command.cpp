@@ -70,7 +70,9 @@ int run_validate(const std::vector<std::string>& args) {
   auto positional = cli.parse_command(args, 1, 1, "PACKAGE");
   if (!positional) return kExitOk;
   const std::string& path = (*positional)[0];
-  if (package_kind(path) == tileformat::PackageKind::kImage) return validate_image_package(path);
+  const auto kind = package_kind(path);
+  if (kind == tileformat::PackageKind::kImage) return validate_image_package(path);
+  if (kind == tileformat::PackageKind::kAnalysis) return validate_analysis_package(path);
   TerrainPackage p = open_terrain_package(path);
   ValidationReport r;
   if (p.reader->application_id() != tileformat::kApplicationId)

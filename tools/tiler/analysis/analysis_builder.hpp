@@ -1,0 +1,31 @@
+// `globe-tiler analyze`: a terrain package -> an analysis package with the
+// same tiles, holding per-sample slope, aspect and curvature computed from
+// the heights of each zoom (so every zoom's analytics match the heights drawn
+// at that zoom). Neighbouring blocks supply the samples past each block's
+// edges, so there are no seams; deterministic for any thread count;
+// resumable (docs/analysis.md).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "build_options.hpp"
+#include "progress.hpp"
+#include "tileformat/analysis_block.hpp"
+
+namespace globe {
+
+struct AnalysisSettings : BuildOptions {
+  std::vector<tileformat::AnalysisLayer> layers;  // ascending ids
+};
+
+struct AnalysisSummary {
+  uint64_t tiles = 0, unique_blobs = 0, file_bytes = 0;
+  double seconds = 0;
+};
+
+// Throws InputError (not a terrain package, a corrupt tile: naming the file
+// and tile), OutputError (cannot write).
+AnalysisSummary build_analysis(const AnalysisSettings& settings, Progress& progress);
+
+}  // namespace globe

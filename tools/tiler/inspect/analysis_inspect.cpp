@@ -1,0 +1,116 @@
+// info, validate and extract for analysis packages (tileformat §9).
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+
+#include "analysis_package.hpp"
+#include "errors.hpp"
+#include "inspect_commands.hpp"
+#include "package_info.hpp"
+#include "tileformat/error.hpp"
+#include "validation_report.hpp"
+
+namespace globe {
+namespace {
+
+using tileformat::AnalysisLayer;
+
+std::string layer_list(const std::vector<AnalysisLayer>& layers) {
+  std::string s;
+  for (AnalysisLayer l : layers) {
+    const auto& i = tileformat::analysis_layer_info(l);
+    s += (s.empty() ? "" : ", ") + std::string(i.name) + " (" + i.unit + ")";
+  }
+  return s;
+}
+
+}  // namespace
+
+void print_analysis_info(const std::string& path) {
+  AnalysisPackage p = open_analysis_package(path);
+  print_package_info(*p.reader, path);
+  std::printf("analysis: %s; from terrain %s; %d x %d samples per block\n",
+              layer_list(p.meta.layers).c_str(), p.meta.terrain.c_str(), p.block_size,
+              p.block_size);
+}
+
+int validate_analysis_package(const std::string& path) {
+  AnalysisPackage p = open_analysis_package(path);
+  ValidationReport r;
+  if (p.reader->application_id() != tileformat::kApplicationId)
+    r.warning("PRAGMA application_id is not 0x4d504258 (tileformat §3.1)");
+  uint64_t tiles = 0;
+  p.reader->for_each_tile([&](tileformat::TileId id, std::span<const uint8_t> blob) {
+    ++tiles;
+    const std::string where = "tile " + id.str();
+    if (!p.tiling.contains(id) || id.z < p.min_zoom || id.z > p.max_zoom) {
+      r.error(where + ": outside the tiling or the zoom range");
+      return;
+    }
+    try {
+      const tileformat::AnalysisBlock b = tileformat::decode_analysis_block(blob);
+      if (b.size != p.block_size)
+        r.error(where + ": size " + std::to_string(b.size) + " differs from globe:block_size");
+      if (b.layers != p.meta.layers)
+        r.error(where + ": layers differ from globe:analysis_layers (tileformat §9)");
+    } catch (const tileformat::FormatError& e) {
+      r.error(where + ": " + e.what());
+    }
+  });
+  std::printf("%llu tiles checked: %llu errors, %llu warnings\n",
+              static_cast<unsigned long long>(tiles), static_cast<unsigned long long>(r.errors),
+              static_cast<unsigned long long>(r.warnings));
+  return r.exit_code();
+}
+
+int extract_analysis(const ExtractRequest& rq) {
+  AnalysisPackage p = open_analysis_package(rq.package);
+  if (rq.layer.empty())
+    throw UsageError("--layer is required for an analysis package; it holds " +
+                     layer_list(p.meta.layers));
+  const auto layer = tileformat::analysis_layer_by_name(rq.layer);
+  size_t index = 0;
+  while (layer && index < p.meta.layers.size() && p.meta.layers[index] != *layer)
+    ++index;
+  if (!layer || index == p.meta.layers.size())
+    throw UsageError("--layer " + rq.layer + ": " + rq.package + " holds " +
+                     layer_list(p.meta.layers));
+  const auto& info = tileformat::analysis_layer_info(*layer);
+  const ExtractTiles t = tiles_to_extract(*p.reader, p.tiling, rq, p.min_zoom, p.max_zoom);
+  const int n = p.block_size - 1;
+  const uint64_t w = uint64_t(t.cols) * n + 1, h = uint64_t(t.rows) * n + 1;
+  if (w > 1000000 || h > 1000000)
+    throw UsageError("the extract would be " + std::to_string(w) + " x " + std::to_string(h) +
+                     " pixels; limit it with --bbox");
+  const double sp = p.tiling.sample_spacing(rq.zoom, n);
+  const auto corner = p.tiling.tile_bounds({rq.zoom, t.x0, t.y0});
+  const std::array<double, 6> gt{corner.min_x - sp / 2, sp, 0, corner.max_y + sp / 2, 0, -sp};
+  ExtractTiff out(rq, static_cast<int>(w), static_cast<int>(h), 1, GDT_Float32, gt, p.tiling.crs);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  out.dataset().set_nodata(1, nan);
+  out.dataset().fill(1, nan);
+  std::vector<float> buf(size_t(n + 1) * (n + 1));
+  for (const auto& id : t.ids) {
+    tileformat::AnalysisBlock b;
+    try {
+      b = tileformat::decode_analysis_block(*p.reader->tile(id));
+    } catch (const tileformat::FormatError& e) {
+      throw InputError(rq.package + ": tile " + id.str() + ": " + e.what());
+    }
+    const std::vector<uint16_t>& v = b.values[index];
+    for (size_t i = 0; i < buf.size(); ++i)
+      buf[i] = v[i] == tileformat::kNoValue
+                   ? nan
+                   : static_cast<float>(tileformat::dequantize(info, v[i]));
+    out.dataset().write(1, int(id.x - t.x0) * n, int(id.y - t.y0) * n, n + 1, n + 1, buf.data(),
+                        GDT_Float32);
+  }
+  out.commit();
+  std::fprintf(stderr, "globe-tiler: wrote %s: %s, %llu x %llu samples from %zu tiles of zoom %d\n",
+               rq.output.c_str(), info.name, static_cast<unsigned long long>(w),
+               static_cast<unsigned long long>(h), t.ids.size(), rq.zoom);
+  return kExitOk;
+}
+
+}  // namespace globe
