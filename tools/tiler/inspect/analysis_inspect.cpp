@@ -79,14 +79,8 @@ int extract_analysis(const ExtractRequest& rq) {
   const auto& info = tileformat::analysis_layer_info(*layer);
   const ExtractTiles t = tiles_to_extract(*p.reader, p.tiling, rq, p.min_zoom, p.max_zoom);
   const int n = p.block_size - 1;
-  const uint64_t w = uint64_t(t.cols) * n + 1, h = uint64_t(t.rows) * n + 1;
-  if (w > 1000000 || h > 1000000)
-    throw UsageError("the extract would be " + std::to_string(w) + " x " + std::to_string(h) +
-                     " pixels; limit it with --bbox");
-  const double sp = p.tiling.sample_spacing(rq.zoom, n);
-  const auto corner = p.tiling.tile_bounds({rq.zoom, t.x0, t.y0});
-  const std::array<double, 6> gt{corner.min_x - sp / 2, sp, 0, corner.max_y + sp / 2, 0, -sp};
-  ExtractTiff out(rq, static_cast<int>(w), static_cast<int>(h), 1, GDT_Float32, gt, p.tiling.crs);
+  const SampleGrid grid = sample_grid(p.tiling, t, rq.zoom, p.block_size);
+  ExtractTiff out(rq, grid.width, grid.height, 1, GDT_Float32, grid.gt, p.tiling.crs);
   const float nan = std::numeric_limits<float>::quiet_NaN();
   out.dataset().set_nodata(1, nan);
   out.dataset().fill(1, nan);
@@ -108,8 +102,8 @@ int extract_analysis(const ExtractRequest& rq) {
   }
   out.commit();
   std::fprintf(stderr, "globe-tiler: wrote %s: %s, %llu x %llu samples from %zu tiles of zoom %d\n",
-               rq.output.c_str(), info.name, static_cast<unsigned long long>(w),
-               static_cast<unsigned long long>(h), t.ids.size(), rq.zoom);
+               rq.output.c_str(), info.name, static_cast<unsigned long long>(grid.width),
+               static_cast<unsigned long long>(grid.height), t.ids.size(), rq.zoom);
   return kExitOk;
 }
 

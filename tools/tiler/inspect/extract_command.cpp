@@ -29,14 +29,8 @@ int extract_terrain(const ExtractRequest& rq) {
   const auto& ids = t.ids;
   const uint32_t x0 = t.x0, y0 = t.y0;
   const int n = p.block_size - 1;
-  const uint64_t w = uint64_t(t.cols) * n + 1, h = uint64_t(t.rows) * n + 1;
-  if (w > 1000000 || h > 1000000)
-    throw UsageError("the extract would be " + std::to_string(w) + " x " + std::to_string(h) +
-                     " pixels; limit it with --bbox");
-  const double sp = p.tiling.sample_spacing(rq.zoom, n);
-  const auto corner = p.tiling.tile_bounds({rq.zoom, x0, y0});
-  const std::array<double, 6> gt{corner.min_x - sp / 2, sp, 0, corner.max_y + sp / 2, 0, -sp};
-  ExtractTiff out(rq, static_cast<int>(w), static_cast<int>(h), 1, GDT_Float64, gt, p.tiling.crs);
+  const SampleGrid grid = sample_grid(p.tiling, t, rq.zoom, p.block_size);
+  ExtractTiff out(rq, grid.width, grid.height, 1, GDT_Float64, grid.gt, p.tiling.crs);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   out.dataset().set_nodata(1, nan);
   out.dataset().fill(1, nan);
@@ -56,12 +50,26 @@ int extract_terrain(const ExtractRequest& rq) {
   }
   out.commit();
   std::fprintf(stderr, "globe-tiler: wrote %s: %llu x %llu samples from %zu tiles of zoom %d\n",
-               rq.output.c_str(), static_cast<unsigned long long>(w),
-               static_cast<unsigned long long>(h), ids.size(), rq.zoom);
+               rq.output.c_str(), static_cast<unsigned long long>(grid.width),
+               static_cast<unsigned long long>(grid.height), ids.size(), rq.zoom);
   return kExitOk;
 }
 
 }  // namespace
+
+SampleGrid sample_grid(const tileformat::Tiling& tiling, const ExtractTiles& t, int zoom,
+                       int block_size) {
+  const int n = block_size - 1;
+  const uint64_t w = uint64_t(t.cols) * n + 1, h = uint64_t(t.rows) * n + 1;
+  if (w > 1000000 || h > 1000000)
+    throw UsageError("the extract would be " + std::to_string(w) + " x " + std::to_string(h) +
+                     " pixels; limit it with --bbox");
+  const double sp = tiling.sample_spacing(zoom, n);
+  const auto corner = tiling.tile_bounds({zoom, t.x0, t.y0});
+  return {static_cast<int>(w),
+          static_cast<int>(h),
+          {corner.min_x - sp / 2, sp, 0, corner.max_y + sp / 2, 0, -sp}};
+}
 
 ExtractTiles tiles_to_extract(tileformat::PackageReader& reader, const tileformat::Tiling& tiling,
                               const ExtractRequest& rq, int min_zoom, int max_zoom) {

@@ -38,6 +38,15 @@ struct ExtractTiles {
 };
 ExtractTiles tiles_to_extract(tileformat::PackageReader& reader, const tileformat::Tiling& tiling,
                               const ExtractRequest& request, int min_zoom, int max_zoom);
+// The GeoTIFF grid of block samples (terrain and analysis extracts): pixel
+// centres on the samples, neighbouring blocks sharing their edge samples.
+// Throws UsageError for an extract over 10^6 samples a side.
+struct SampleGrid {
+  int width = 0, height = 0;
+  std::array<double, 6> gt{};
+};
+SampleGrid sample_grid(const tileformat::Tiling& tiling, const ExtractTiles& tiles, int zoom,
+                       int block_size);
 // The GeoTIFF an extract writes under a temporary name, renamed by commit().
 class ExtractTiff {
  public:
