@@ -83,8 +83,9 @@ TEST(ColorRamp, ColourFileColoursValuesAsGdaldemDoes) {
       worst = std::max(worst, d);
       // One table entry spans (3000 + 800) / 4095 m; the steepest blend here
       // changes 255 levels over 0.5 m (0 -> 0.5 m), so allow a step there.
-      if (values[i] < -1 || values[i] > 2)
+      if (values[i] < -1 || values[i] > 2) {
         EXPECT_LE(d, 2) << "value " << values[i] << " band " << b;
+      }
     }
   }
   std::printf("worst channel difference to gdaldem: %d\n", worst);
