@@ -16,7 +16,8 @@ const std::vector<AnalysisLayerInfo>& analysis_layers() {
       {AnalysisLayer::kSlope, "slope", "degrees", 0.01, 0},
       {AnalysisLayer::kAspect, "aspect", "degrees", 0.01, 0},
       {AnalysisLayer::kProfileCurvature, "profile_curvature", "1/m", 1e-6, -0.032767},
-      {AnalysisLayer::kPlanCurvature, "plan_curvature", "1/m", 1e-6, -0.032767}};
+      {AnalysisLayer::kPlanCurvature, "plan_curvature", "1/m", 1e-6, -0.032767},
+      {AnalysisLayer::kSkyview, "skyview", "fraction", 1e-4, 0}};
   return layers;
 }
 

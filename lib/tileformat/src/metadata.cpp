@@ -267,6 +267,10 @@ MetadataMap to_metadata(const AnalysisMetadata& m) {
   meta["globe:analysis_layers"] = names;
   meta["globe:terrain"] = m.terrain;
   meta["globe:height_step"] = metadata_number(m.height_step);
+  if (m.skyview_directions > 0) {
+    meta["globe:skyview_directions"] = std::to_string(m.skyview_directions);
+    meta["globe:skyview_radius_m"] = metadata_number(m.skyview_radius_m);
+  }
   return meta;
 }
 
@@ -288,6 +292,10 @@ AnalysisMetadata read_analysis_metadata(const MetadataMap& meta) {
   }
   m.terrain = k.find("globe:terrain").value_or("");
   m.height_step = k.find("globe:height_step") ? k.number("globe:height_step") : 0.0;
+  if (k.find("globe:skyview_directions")) {
+    m.skyview_directions = k.integer("globe:skyview_directions");
+    m.skyview_radius_m = k.number("globe:skyview_radius_m");
+  }
   return m;
 }
 

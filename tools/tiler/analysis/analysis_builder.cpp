@@ -6,10 +6,14 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <mutex>
+#include <optional>
 
 #include "errors.hpp"
+#include "height_window.hpp"
 #include "package_output.hpp"
 #include "parallel_batches.hpp"
+#include "sky_view.hpp"
 #include "terrain_derivatives.hpp"
 #include "terrain_package.hpp"
 #include "tileformat/error.hpp"
@@ -22,80 +26,87 @@ namespace {
 using tileformat::AnalysisLayer;
 using tileformat::TileId;
 
-using Blobs = std::map<TileId, std::shared_ptr<const std::vector<uint8_t>>>;
-
-// The up to 9 tiles whose samples a block's window reads: itself and its
-// neighbours (east-west wrapping in the global tilings).
-std::vector<TileId> neighbourhood(const tileformat::Tiling& t, TileId id) {
-  std::vector<TileId> out;
-  const int64_t nx = static_cast<int64_t>(t.tiles_x(id.z)),
-                ny = static_cast<int64_t>(t.tiles_y(id.z));
-  for (int dy = -1; dy <= 1; ++dy)
-    for (int dx = -1; dx <= 1; ++dx) {
-      int64_t x = int64_t(id.x) + dx, y = int64_t(id.y) + dy;
-      if (y < 0 || y >= ny) continue;
-      if (x < 0 || x >= nx) {
-        if (t.wrap_tiles() == 0) continue;
-        x = (x + nx) % nx;
+// The terrain blocks one batch of work reads, each decoded once, by the
+// first worker that needs it.
+class BatchBlocks {
+ public:
+  void add(TileId id, std::optional<std::vector<uint8_t>> blob) {
+    if (slots_.count(id)) return;
+    auto slot = std::make_unique<Slot>();
+    slot->blob = std::move(blob);
+    slots_.emplace(id, std::move(slot));
+  }
+  bool has(TileId id) const { return slots_.count(id) != 0; }
+  // Null where there is no tile. Throws InputError for a corrupt block.
+  const tileformat::MBlock* get(TileId id, const std::string& path) const {
+    const auto it = slots_.find(id);
+    if (it == slots_.end() || !it->second->blob) return nullptr;
+    Slot& s = *it->second;
+    std::call_once(s.once, [&] {
+      try {
+        s.block = tileformat::decode_mblock(*s.blob);
+      } catch (const tileformat::FormatError& e) {
+        throw InputError(path + ": tile " + id.str() + ": " + e.what() +
+                         "; rebuild the terrain package (globe-tiler validate lists bad tiles)");
       }
-      out.push_back({id.z, uint32_t(x), uint32_t(y)});
-    }
-  return out;
+    });
+    return &s.block;
+  }
+
+ private:
+  struct Slot {
+    std::optional<std::vector<uint8_t>> blob;
+    std::once_flag once;
+    tileformat::MBlock block;
+  };
+  std::map<TileId, std::unique_ptr<Slot>> slots_;
+};
+
+bool has_layer(const std::vector<AnalysisLayer>& layers, AnalysisLayer l) {
+  return std::find(layers.begin(), layers.end(), l) != layers.end();
 }
 
 class BlockAnalyzer {
  public:
-  BlockAnalyzer(const TerrainPackage& p, const std::vector<AnalysisLayer>& layers,
-                const std::string& path)
-      : p_(p), layers_(layers), path_(path) {}
+  BlockAnalyzer(const TerrainPackage& p, const AnalysisSettings& s) : p_(p), s_(s) {}
 
-  std::vector<uint8_t> analyze(TileId id, const Blobs& blobs) const {
-    const int s = p_.block_size, n = s - 1, g = s + 2;  // g: the window with a 1-sample halo
-    std::vector<double> h(size_t(g) * g, 0);
-    std::vector<uint8_t> ok(size_t(g) * g, 0);
-    const int64_t nx = static_cast<int64_t>(p_.tiling.tiles_x(id.z));
-    for (const TileId& t : neighbourhood(p_.tiling, id)) {
-      const auto it = blobs.find(t);
-      if (it == blobs.end() || !it->second) continue;  // no tile there: no data
-      const tileformat::MBlock b = decode(t, *it->second);
-      // Offset of block t's samples in the window: dx, dy in -1..1 tiles.
-      int64_t dx = int64_t(t.x) - int64_t(id.x);
-      if (dx > 1) dx -= nx;
-      if (dx < -1) dx += nx;
-      const int64_t dy = int64_t(t.y) - int64_t(id.y);
-      for (int y = 0; y < s; ++y) {
-        const int64_t wy = dy * n + y + 1;
-        if (wy < 0 || wy >= g) continue;
-        for (int x = 0; x < s; ++x) {
-          const int64_t wx = dx * n + x + 1;
-          if (wx < 0 || wx >= g) continue;
-          const size_t k = size_t(wy) * g + size_t(wx);
-          if (t == id || !ok[k]) {  // shared edge samples are equal; the block itself wins
-            h[k] = b.height(x, y);
-            ok[k] = b.is_valid(x, y) ? 1 : 0;
-          }
-        }
-      }
+  // Samples around a block that its layers read.
+  int halo(TileId id) const {
+    const int n = p_.block_size - 1;
+    if (!has_layer(s_.layers, AnalysisLayer::kSkyview)) return 1;
+    double spacing = 1e300;
+    for (int row : {0, n}) {
+      const GroundSpacing g = ground_spacing(p_.tiling, id.z, n, id.y, row);
+      spacing = std::min({spacing, g.dx, g.dy});
     }
+    return std::max(1, sky_view_halo(s_.skyview, spacing, n));
+  }
+
+  std::vector<uint8_t> analyze(TileId id, const BatchBlocks& blocks) const {
+    const int s = p_.block_size, n = s - 1;
+    const HeightWindow w(p_.tiling, id, s, halo(id),
+                         [&](TileId t) { return blocks.get(t, s_.inputs[0]); });
+    const std::vector<AnalysisLayer>& layers = s_.layers;
+    const bool skyview = has_layer(layers, AnalysisLayer::kSkyview);
     tileformat::AnalysisBlock out;
     out.size = s;
-    out.layers = layers_;
-    out.values.assign(layers_.size(), std::vector<uint16_t>(size_t(s) * s, tileformat::kNoValue));
+    out.layers = layers;
+    out.values.assign(layers.size(), std::vector<uint16_t>(size_t(s) * s, tileformat::kNoValue));
     for (int y = 0; y < s; ++y) {
       const GroundSpacing sp = ground_spacing(p_.tiling, id.z, n, id.y, y);
+      std::optional<SkyViewScan> scan;
+      if (skyview) scan.emplace(s_.skyview, sp);
       for (int x = 0; x < s; ++x) {
-        const size_t c = size_t(y + 1) * g + size_t(x + 1);
-        if (!ok[c]) continue;
-        Window3 w;
+        if (!w.valid(x, y)) continue;
+        Window3 w3;
         for (int j = 0; j < 3; ++j)
-          for (int i = 0; i < 3; ++i) {
-            const size_t k = c + size_t(j - 1) * g + size_t(i) - 1;
-            w.z[j * 3 + i] = ok[k] ? h[k] : h[c];
-          }
-        const Derivatives d = derivatives(w, sp.dx, sp.dy);
-        for (size_t l = 0; l < layers_.size(); ++l) {
+          for (int i = 0; i < 3; ++i)
+            w3.z[j * 3 + i] =
+                w.valid(x + i - 1, y + j - 1) ? w.height(x + i - 1, y + j - 1) : w.height(x, y);
+        const Derivatives d = derivatives(w3, sp.dx, sp.dy);
+        for (size_t l = 0; l < layers.size(); ++l) {
           double v = 0;
-          switch (layers_[l]) {
+          switch (layers[l]) {
             case AnalysisLayer::kSlope:
               v = d.slope_deg;
               break;
@@ -108,10 +119,13 @@ class BlockAnalyzer {
             case AnalysisLayer::kPlanCurvature:
               v = d.plan;
               break;
+            case AnalysisLayer::kSkyview:
+              v = scan->factor(w, x, y);
+              break;
           }
           if (!std::isnan(v))
             out.values[l][size_t(y) * s + x] =
-                tileformat::quantize(tileformat::analysis_layer_info(layers_[l]), v);
+                tileformat::quantize(tileformat::analysis_layer_info(layers[l]), v);
         }
       }
     }
@@ -119,17 +133,8 @@ class BlockAnalyzer {
   }
 
  private:
-  tileformat::MBlock decode(TileId t, const std::vector<uint8_t>& blob) const {
-    try {
-      return tileformat::decode_mblock(blob);
-    } catch (const tileformat::FormatError& e) {
-      throw InputError(path_ + ": tile " + t.str() + ": " + e.what() +
-                       "; rebuild the terrain package (globe-tiler validate lists bad tiles)");
-    }
-  }
   const TerrainPackage& p_;
-  const std::vector<AnalysisLayer>& layers_;
-  const std::string& path_;
+  const AnalysisSettings& s_;
 };
 
 tileformat::AnalysisMetadata analysis_metadata(const AnalysisSettings& s, const TerrainPackage& p) {
@@ -149,6 +154,10 @@ tileformat::AnalysisMetadata analysis_metadata(const AnalysisSettings& s, const 
   m.layers = s.layers;
   m.terrain = std::filesystem::path(s.inputs[0]).filename().string();
   m.height_step = p.step_m;
+  if (has_layer(s.layers, tileformat::AnalysisLayer::kSkyview)) {
+    m.skyview_directions = s.skyview.directions;
+    m.skyview_radius_m = s.skyview.radius_m;
+  }
   return m;
 }
 
@@ -171,23 +180,23 @@ AnalysisSummary build_analysis(const AnalysisSettings& s, Progress& progress) {
     if (writer->resumed())
       for (int z = p.min_zoom; z <= p.max_zoom; ++z)
         first += writer->tiles_at_zoom(z);
-    const BlockAnalyzer analyzer(p, s.layers, path);
+    const BlockAnalyzer analyzer(p, s);
     progress.begin("analyze", items.size());
     progress.advance(first);
-    parallel_batches<Blobs, std::vector<uint8_t>>(
+    parallel_batches<BatchBlocks, std::vector<uint8_t>>(
         items.size(), s.worker_threads(), 64,
         [&](size_t begin, size_t end) {
-          Blobs blobs;
-          for (size_t i = begin; i < end; ++i)
-            for (const TileId& t : neighbourhood(p.tiling, items[i]))
-              if (!blobs.count(t)) {
-                auto blob = p.reader->tile(t);
-                blobs[t] =
-                    blob ? std::make_shared<const std::vector<uint8_t>>(std::move(*blob)) : nullptr;
-              }
-          return blobs;
+          BatchBlocks blocks;
+          for (size_t i = begin; i < end; ++i) {
+            const int radius = HeightWindow::radius_for(p.block_size, analyzer.halo(items[i]));
+            for (const TileId& t : tiles_around(p.tiling, items[i], radius))
+              if (!blocks.has(t)) blocks.add(t, p.reader->tile(t));
+          }
+          return blocks;
         },
-        [&](size_t i, int, const Blobs& blobs) { return analyzer.analyze(items[i], blobs); },
+        [&](size_t i, int, const BatchBlocks& blocks) {
+          return analyzer.analyze(items[i], blocks);
+        },
         [&](size_t i, std::vector<uint8_t>&& blob) {
           writer->put_tile(items[i], blob);
           progress.advance();

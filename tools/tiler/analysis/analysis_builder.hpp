@@ -1,5 +1,5 @@
 // `globe-tiler analyze`: a terrain package -> an analysis package with the
-// same tiles, holding per-sample slope, aspect and curvature computed from
+// same tiles, holding per-sample slope, aspect, curvature and sky-view factor computed from
 // the heights of each zoom (so every zoom's analytics match the heights drawn
 // at that zoom). Neighbouring blocks supply the samples past each block's
 // edges, so there are no seams; deterministic for any thread count;
@@ -11,12 +11,14 @@
 
 #include "build_options.hpp"
 #include "progress.hpp"
+#include "sky_view.hpp"
 #include "tileformat/analysis_block.hpp"
 
 namespace globe {
 
 struct AnalysisSettings : BuildOptions {
   std::vector<tileformat::AnalysisLayer> layers;  // ascending ids
+  SkyViewSettings skyview;
 };
 
 struct AnalysisSummary {

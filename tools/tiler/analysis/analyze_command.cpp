@@ -49,13 +49,25 @@ int run_analyze(const std::vector<std::string>& args) {
               "Computes terrain analytics for every sample of every block of a terrain package,\n"
               "from the heights of that zoom, into an analysis package with the same tiles:\n"
               "slope and aspect in degrees (Horn's method, as gdaldem), profile and plan\n"
-              "curvature in 1/m (positive where convex), with true ground distances in the\n"
-              "geodetic and webmercator tilings. Blocks read their neighbours' samples, so\n"
+              "curvature in 1/m (positive where convex), and the sky-view factor (the share of\n"
+              "the sky seen within a radius: ambient occlusion), with true ground distances in\n"
+              "the geodetic and webmercator tilings. Blocks read their neighbours' samples, so\n"
               "values at block edges are seamless. 'globe-tiler extract ANALYSIS --layer NAME'\n"
               "writes one layer as a GeoTIFF.");
   cli.option("--layers", "LIST",
              "comma-separated: " + layer_names() + ", or curvature (both); default slope,aspect",
              [&](const std::string& v) { s.layers = parse_layers(v); });
+  cli.option("--skyview-directions", "N", "azimuths of the sky-view horizon scan (default 16)",
+             [&](const std::string& v) {
+               s.skyview.directions = CliArgs::to_int("--skyview-directions", v, 4, 360);
+             });
+  cli.option("--skyview-radius", "METRES",
+             "how far the sky-view scan looks for the horizon (default 10000)",
+             [&](const std::string& v) {
+               s.skyview.radius_m = CliArgs::to_double("--skyview-radius", v);
+               if (!(s.skyview.radius_m > 0 && s.skyview.radius_m <= 1e6))
+                 throw UsageError("--skyview-radius: give metres, more than 0 and at most 1000000");
+             });
   cli.option("-o,--output", "OUT.mbtiles", "output analysis package",
              [&](const std::string& v) { s.output = v; });
   declare_run_options(cli, s);

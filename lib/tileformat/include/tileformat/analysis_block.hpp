@@ -17,6 +17,7 @@ enum class AnalysisLayer : uint8_t {
   kAspect = 2,            // degrees clockwise from north the slope faces, 0..360
   kProfileCurvature = 3,  // 1/m along the slope line: > 0 convex (crests), < 0 concave
   kPlanCurvature = 4,     // 1/m across the slope line: > 0 ridges (flow diverges), < 0 valleys
+  kSkyview = 5,           // sky-view factor: share of the sky seen, 0..1 (1 = open plane)
 };
 
 struct AnalysisLayerInfo {

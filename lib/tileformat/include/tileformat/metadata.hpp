@@ -107,6 +107,8 @@ struct AnalysisMetadata {
   std::vector<AnalysisLayer> layers;  // globe:analysis_layers, names comma-separated, id order
   std::string terrain;                // globe:terrain: the terrain package's file name
   double height_step = 0;             // globe:height_step of that terrain
+  int skyview_directions = 0;         // globe:skyview_directions (with the skyview layer)
+  double skyview_radius_m = 0;        // globe:skyview_radius_m
 };
 
 // The package's keys; kind-specific keys absent from the struct (optionals)
