@@ -114,55 +114,163 @@ INSTANTIATE_TEST_SUITE_P(Samples, AnalyzeVsGdaldem,
                          });
 
 // Planar ramps in longitude/latitude on the geodetic tiling: the slope
-// follows from the WGS84 radii of curvature (textbook formulas, here).
-TEST(AnalyzeGeodetic, RampSlopesFollowTheEllipsoid) {
+// follows from the WGS84 radii of curvature (textbook formulas, here). At
+// mid-latitudes, next to the north and south poles (where a degree of
+// longitude is a few kilometres), and across the antimeridian, where the
+// samples at 180 degrees east read their eastern neighbours from the tiles
+// at 180 degrees west: without the wrap their slope would be half the ramp's.
+struct Ramp {
+  const char* name;
+  double west, north;               // a 2 x 2 degree DEM of 0.01 degree pixels
+  bool east;                        // rising eastwards (else southwards)
+  std::vector<std::string> bboxes;  // extracts to check ("" = the whole zoom)
+};
+
+void PrintTo(const Ramp& r, std::ostream* os) {
+  *os << r.name;
+}
+
+class AnalyzeGeodetic : public ::testing::TestWithParam<Ramp> {};
+
+TEST_P(AnalyzeGeodetic, RampSlopesFollowTheEllipsoid) {
+  const Ramp& ramp = GetParam();
   TempDir dir;
   const double a = 6378137.0, e2 = 6.69437999014e-3, deg = std::numbers::pi / 180;
-  const double gt[6] = {10, 0.01, 0, 61, 0, -0.01};  // 10..12 E, 59..61 N, 0.01 deg pixels
-  const std::string north = (dir / "n.tif").string(), east = (dir / "e.tif").string();
-  write_dem(north, 200, 200, gt, "EPSG:4326", GDT_Float32,
-            [](int, int y) { return 2000 - 5.0 * y; });
-  write_dem(east, 200, 200, gt, "EPSG:4326", GDT_Float32,
-            [](int x, int) { return 1000 + 5.0 * x; });
-  for (const auto& [src, dir_name] : {std::pair{north, "north"}, std::pair{east, "east"}}) {
-    const std::string pkg = (dir / (std::string(dir_name) + ".mbtiles")).string(),
-                      ana = (dir / (std::string(dir_name) + "_a.mbtiles")).string(),
-                      out = (dir / (std::string(dir_name) + "_slope.tif")).string();
-    ASSERT_EQ(run(tiler() + " terrain -q --tiling geodetic --max-zoom 8 " + src + " -o " + pkg,
-                  dir.path())
-                  .exit_code,
-              0);
-    ASSERT_EQ(run(tiler() + " analyze -q " + pkg + " -o " + ana, dir.path()).exit_code, 0);
-    const RunResult e =
-        run(tiler() + " extract " + ana + " --zoom 8 --layer slope -o " + out, dir.path());
+  const double gt[6] = {ramp.west, 0.01, 0, ramp.north, 0, -0.01};
+  const std::string src = (dir / "ramp.tif").string(), pkg = (dir / "t.mbtiles").string(),
+                    ana = (dir / "a.mbtiles").string();
+  write_dem(src, 200, 200, gt, "EPSG:4326", GDT_Float32,
+            [&](int x, int y) { return ramp.east ? 1000 + 5.0 * x : 2000 - 5.0 * y; });
+  ASSERT_EQ(
+      run(tiler() + " terrain -q --tiling geodetic --max-zoom 8 " + src + " -o " + pkg, dir.path())
+          .exit_code,
+      0);
+  ASSERT_EQ(run(tiler() + " analyze -q " + pkg + " -o " + ana, dir.path()).exit_code, 0);
+  size_t checked = 0, seam = 0;
+  double worst = 0;
+  for (const std::string& bbox : ramp.bboxes) {
+    const std::string out = (dir / "slope.tif").string();
+    const RunResult e = run(tiler() + " extract --force " + ana + " --zoom 8 --layer slope" +
+                                (bbox.empty() ? "" : " --bbox=" + bbox) + " -o " + out,
+                            dir.path());
     ASSERT_EQ(e.exit_code, 0) << e.err;
     const Raster r = read_raster(out);
-    size_t checked = 0;
-    double worst = 0;
-    // Interior samples (two samples from the data's edges): the ramp rises 5 m
-    // per 0.01 degree of source pixel.
+    // Interior samples (three source pixels from the data's edges): the ramp
+    // rises 5 m per 0.01 degree. (Next to the south pole the worst, 0.035
+    // degrees of a 13-degree slope, is in the column next to that margin.)
+    const double sp = 0.01;
     for (int y = 0; y < r.height; ++y)
       for (int x = 0; x < r.width; ++x) {
-        const double lon = r.gt[0] + (x + 0.5) * r.gt[1], lat = r.gt[3] + (y + 0.5) * r.gt[5];
-        const double sp = r.gt[1];
-        if (lon < 10 + 3 * sp || lon > 12 - 3 * sp || lat < 59 + 3 * sp || lat > 61 - 3 * sp)
+        double lon = r.gt[0] + (x + 0.5) * r.gt[1];
+        const double lat = r.gt[3] + (y + 0.5) * r.gt[5];
+        if (lon < ramp.west - 1e-9) lon += 360;
+        if (lon < ramp.west + 3 * sp || lon > ramp.west + 2 - 3 * sp ||
+            lat < ramp.north - 2 + 3 * sp || lat > ramp.north - 3 * sp)
           continue;
         if (std::isnan(r.at(x, y))) continue;
         const double s2 = std::sin(lat * deg) * std::sin(lat * deg);
         const double m = a * (1 - e2) / std::pow(1 - e2 * s2, 1.5);
         const double n = a / std::sqrt(1 - e2 * s2);
-        const double metres_per_deg =
-            dir_name == std::string("north") ? m * deg : n * std::cos(lat * deg) * deg;
+        const double metres_per_deg = ramp.east ? n * std::cos(lat * deg) * deg : m * deg;
         const double want = std::atan(5.0 / 0.01 / metres_per_deg) / deg;
         worst = std::max(worst, std::abs(r.at(x, y) - want));
         ++checked;
+        if (x == 0 || x + 1 == r.width) ++seam;
       }
-    std::printf("%s ramp: %zu samples, worst slope error %.4f deg\n", dir_name, checked, worst);
-    EXPECT_GT(checked, 1000u);
-    // Bilinear resampling keeps the ramp linear; heights are quantized to
-    // the package's height step.
-    EXPECT_LT(worst, 0.05) << dir_name;
   }
+  std::printf("%s: %zu samples (%zu on an extract's edge column), worst slope error %.4f deg\n",
+              ramp.name, checked, seam, worst);
+  EXPECT_GT(checked, 1000u);
+  if (ramp.bboxes.size() > 1) {
+    EXPECT_GT(seam, 100u) << "the antimeridian column was not checked";
+  }
+  // Bilinear resampling keeps the ramp linear; heights are quantized to the
+  // package's height step.
+  EXPECT_LT(worst, 0.05);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Ramps, AnalyzeGeodetic,
+    ::testing::Values(Ramp{"north_60n", 10, 61, false, {""}}, Ramp{"east_60n", 10, 61, true, {""}},
+                      Ramp{"north_88n", 10, 89, false, {""}}, Ramp{"east_88s", 10, -87, true, {""}},
+                      Ramp{"east_antimeridian", 179, 1, true, {"179,-1,180,1", "-180,-1,-179,1"}}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+// The sky-view factor by brute force: every half sample along each of the
+// 16 rays out to the radius, heights interpolated bilinearly in the
+// extracted grid, the ray ending at the grid's edge or at no data.
+double brute_force_sky_view(const Raster& dem, int x, int y, double radius_m) {
+  const double sp = dem.gt[1], h0 = dem.at(x, y);
+  double sum = 0;
+  for (int k = 0; k < 16; ++k) {
+    const double az = 2 * std::numbers::pi * k / 16;
+    double best = 0;
+    for (double d = sp / 2; d <= radius_m + 1e-6; d += sp / 2) {
+      const double fx = x + std::sin(az) * d / sp, fy = y - std::cos(az) * d / sp;
+      const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+      if (x0 < 0 || y0 < 0 || x0 + 1 >= dem.width || y0 + 1 >= dem.height) break;
+      const double a = dem.at(x0, y0), b = dem.at(x0 + 1, y0), c = dem.at(x0, y0 + 1),
+                   e = dem.at(x0 + 1, y0 + 1);
+      if (std::isnan(a) || std::isnan(b) || std::isnan(c) || std::isnan(e)) break;
+      const double tx = fx - x0, ty = fy - y0;
+      const double h = (a * (1 - tx) + b * tx) * (1 - ty) + (c * (1 - tx) + e * tx) * ty;
+      best = std::max(best, std::atan((h - h0) / d));
+    }
+    sum += std::sin(best);
+  }
+  return 1 - sum / 16;
+}
+
+// Small blocks (65 samples) so that the 3 km radius (100 samples) reaches
+// two tiles away: the rays cross block edges in every direction.
+TEST(AnalyzeSkyview, MatchesABruteForceHorizonScan) {
+  TempDir dir;
+  const std::string pkg = (dir / "t.mbtiles").string(), ana = (dir / "a.mbtiles").string();
+  ASSERT_EQ(run(tiler() + " terrain -q --tiling local --block-size 65 " +
+                    sample("brasilia.tif").string() + " -o " + pkg,
+                dir.path())
+                .exit_code,
+            0);
+  const RunResult a =
+      run(tiler() + " analyze -q --layers skyview --skyview-radius 3000 " + pkg + " -o " + ana,
+          dir.path());
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  const RunResult info = run(tiler() + " info " + pkg, dir.path());
+  const std::string z = std::to_string(3);
+  const std::string dem = (dir / "dem.tif").string(), sky = (dir / "sky.tif").string();
+  ASSERT_EQ(run(tiler() + " extract " + pkg + " --zoom " + z + " -o " + dem, dir.path()).exit_code,
+            0)
+      << info.out;
+  const RunResult e =
+      run(tiler() + " extract " + ana + " --zoom " + z + " --layer skyview -o " + sky, dir.path());
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  const Raster h = read_raster(dem), ours = read_raster(sky);
+  ASSERT_EQ(h.width, ours.width);
+  ASSERT_EQ(h.height, ours.height);
+  ASSERT_NEAR(h.gt[1], 30, 1) << "a 30 m grid expected at zoom " << z;
+  size_t compared = 0, ours_missing = 0;
+  double sum = 0, worst = 0, lowest = 1;
+  for (int y = 0; y < h.height; y += 3)
+    for (int x = 0; x < h.width; x += 3) {
+      if (std::isnan(h.at(x, y))) continue;
+      if (std::isnan(ours.at(x, y))) {
+        ++ours_missing;
+        continue;
+      }
+      const double want = brute_force_sky_view(h, x, y, 3000);
+      const double d = std::abs(ours.at(x, y) - want);
+      sum += d;
+      worst = std::max(worst, d);
+      lowest = std::min(lowest, want);
+      ++compared;
+    }
+  const double mean = compared ? sum / compared : 1;
+  std::printf("skyview: %zu samples, mean |ours - brute force| %.4f, worst %.4f, lowest %.3f\n",
+              compared, mean, worst, lowest);
+  EXPECT_GT(compared, 10000u);
+  EXPECT_EQ(ours_missing, 0u);
+  EXPECT_LE(mean, 0.02);
+  EXPECT_LT(lowest, 0.95) << "the sample has valleys: some sky must be hidden";
 }
 
 TEST(Analyze, ThreadCountsGiveIdenticalBytes) {
@@ -177,8 +285,8 @@ TEST(Analyze, ThreadCountsGiveIdenticalBytes) {
   std::string bytes[2];
   for (int j = 1; j <= 2; ++j) {
     const RunResult r =
-        run(tiler() + " analyze -q --force -j " + std::to_string(j) + " --layers slope,curvature " +
-                pkg + " -o " + (dir / "a.mbtiles").string(),
+        run(tiler() + " analyze -q --force -j " + std::to_string(j) +
+                " --layers slope,curvature,skyview " + pkg + " -o " + (dir / "a.mbtiles").string(),
             dir.path());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     bytes[j - 1] = read_file(dir / "a.mbtiles");

@@ -159,6 +159,18 @@ TEST(CrashSafety, ImageryResumesToTheSameBytes) {
                   std::chrono::milliseconds(8000));
 }
 
+TEST(CrashSafety, AnalyzeResumesToTheSameBytes) {
+  const TempDir terrain("-terrain");
+  const std::string pkg = (terrain / "t.mbtiles").string();
+  ASSERT_EQ(
+      run(tiler() + " terrain -q " + sample("etopo20.tif").string() + " --max-zoom 3 -o " + pkg,
+          terrain.path())
+          .exit_code,
+      0);
+  kill_and_resume(tiler() + " analyze " + pkg + " --layers slope,aspect,skyview", 10,
+                  std::chrono::milliseconds(2500));
+}
+
 // The one moment random kills rarely hit: after the last level, before the
 // staging file is removed and the package renamed. strace holds the build
 // there (a delay injected into the staging file's second unlink, its

@@ -57,10 +57,12 @@ inline fs::path samples() {
 // A fresh folder per test, removed afterwards.
 class TempDir {
  public:
-  TempDir() {
+  // `tag` tells apart two folders of one test.
+  explicit TempDir(const std::string& tag = "") {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() / ("globe-test-" + std::string(info->test_suite_name()) +
-                                         "-" + info->name() + "-" + std::to_string(::getpid()));
+    path_ =
+        fs::temp_directory_path() / ("globe-test-" + std::string(info->test_suite_name()) + "-" +
+                                     info->name() + tag + "-" + std::to_string(::getpid()));
     fs::remove_all(path_);
     fs::create_directories(path_);
   }
