@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <stdexcept>
 
+#include "tileformat/analysis_block.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/kpatch.hpp"
 #include "tileformat/mblock.hpp"
@@ -15,9 +17,27 @@ using tileformat::TileId;
 
 namespace {
 
+// The analysis texels of tile `id` (defaults where the package has no tile).
+std::vector<float> read_analysis(const AnalysisSource& a, TileId id, int block_size) {
+  const auto blob = a.reader->tile(id);
+  tileformat::AnalysisBlock b;
+  if (blob) {
+    try {
+      b = tileformat::decode_analysis_block(*blob);
+    } catch (const tileformat::FormatError& e) {
+      throw std::runtime_error(a.path + ": " + e.what());
+    }
+    if (b.size != block_size)
+      throw tileformat::FormatError("9", a.path + ": block size differs from the terrain's");
+  } else {
+    b.size = block_size;
+  }
+  return analysis_texels(b);
+}
+
 // Runs on the loader thread.
-auto decode_block(int block_size, int lattice) {
-  return [block_size, lattice](TileId id, std::span<const uint8_t> blob) {
+auto decode_block(int block_size, int lattice, const std::optional<AnalysisSource>& analysis) {
+  return [block_size, lattice, &analysis](TileId id, std::span<const uint8_t> blob) {
     tileformat::MBlock b = tileformat::decode_mblock(blob);
     if (b.size != block_size || b.lattice != lattice)
       throw tileformat::FormatError("§5", "block size or lattice differs from the metadata");
@@ -37,25 +57,28 @@ auto decode_block(int block_size, int lattice) {
     d.meta.min_h = lo;
     d.meta.max_h = hi;
     d.meta.vertex_error = std::move(b.vertex_error);
+    if (analysis) d.block.analysis = read_analysis(*analysis, id, block_size);
     return d;
   };
 }
 
 }  // namespace
 
-BlockCache::BlockCache(const std::string& path, TerrainPackage package, uint64_t budget_bytes)
-    : path_(path), package_(std::move(package)) {
+BlockCache::BlockCache(const std::string& path, TerrainPackage package, uint64_t budget_bytes,
+                       std::optional<AnalysisSource> analysis)
+    : path_(path), package_(std::move(package)), analysis_(std::move(analysis)) {
   const uint64_t samples = uint64_t(package_.block_size) * package_.block_size;
   const size_t errors = tileformat::kpatch_vertex_count(
       tileformat::kpatch_depth(package_.block_size - 1, package_.lattice));
   bytes_per_slot_ = samples * (sizeof(float) + 1) + errors * sizeof(uint32_t) + 256;
+  if (analysis_) bytes_per_slot_ += samples * 8;  // RGBA16F texels
   slots_ = std::max<uint64_t>(8, budget_bytes / bytes_per_slot_);
   stats_.slots = slots_;
   stats_.budget_bytes = budget_bytes;
   for (int s = static_cast<int>(slots_) - 1; s >= 0; --s)
     free_slots_.push_back(s);
-  loader_ = std::make_unique<Loader>(*package_.reader,
-                                     decode_block(package_.block_size, package_.lattice));
+  loader_ = std::make_unique<Loader>(
+      *package_.reader, decode_block(package_.block_size, package_.lattice, analysis_));
 }
 
 BlockCache::~BlockCache() = default;

@@ -16,10 +16,12 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
+#include "data/analysis_texels.hpp"
 #include "data/tile_loader.hpp"
 #include "terrain_package.hpp"
 #include "tileformat/tile_id.hpp"
@@ -46,8 +48,16 @@ struct ResidentBlock {
 struct LoadedBlock {
   tileformat::TileId id;
   int slot = -1;
-  std::vector<float> heights;  // size*size, metres, row-major from the north row
-  std::vector<uint8_t> mask;   // size*size, 255 = data, 0 = hole
+  std::vector<float> heights;   // size*size, metres, row-major from the north row
+  std::vector<uint8_t> mask;    // size*size, 255 = data, 0 = hole
+  std::vector<float> analysis;  // size*size*4 (analysis_texels.hpp) with an analysis package
+};
+
+// An analysis package drawn with the terrain (the same tiles); its reader is
+// used by the loader thread only.
+struct AnalysisSource {
+  std::string path;
+  std::unique_ptr<tileformat::PackageReader> reader;
 };
 
 // What the loader thread makes of one blob.
@@ -66,7 +76,9 @@ struct CacheStats {
 class BlockCache {
  public:
   // budget_bytes: memory for resident blocks; at least 8 blocks are allowed.
-  BlockCache(const std::string& path, TerrainPackage package, uint64_t budget_bytes);
+  // With `analysis`, each block also carries its analysis texels.
+  BlockCache(const std::string& path, TerrainPackage package, uint64_t budget_bytes,
+             std::optional<AnalysisSource> analysis = std::nullopt);
   const TerrainPackage& package() const { return package_; }
   ~BlockCache();
   BlockCache(const BlockCache&) = delete;
@@ -113,7 +125,8 @@ class BlockCache {
   std::vector<int> free_slots_;
   std::vector<std::pair<double, tileformat::TileId>> wanted_;
   CacheStats stats_;
-  std::unique_ptr<Loader> loader_;
+  std::optional<AnalysisSource> analysis_;
+  std::unique_ptr<Loader> loader_;  // last: stops before what it reads
 };
 
 }  // namespace globe::viewer

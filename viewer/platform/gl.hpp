@@ -38,6 +38,7 @@
   X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)                   \
   X(PFNGLUNIFORM1IPROC, Uniform1i)                                     \
   X(PFNGLUNIFORM1FPROC, Uniform1f)                                     \
+  X(PFNGLUNIFORM1FVPROC, Uniform1fv)                                   \
   X(PFNGLUNIFORM2FPROC, Uniform2f)                                     \
   X(PFNGLUNIFORM3FPROC, Uniform3f)                                     \
   X(PFNGLUNIFORM4FPROC, Uniform4f)                                     \

@@ -22,8 +22,10 @@ struct Instance {  // matches the vertex shader's per-instance attributes
 
 }  // namespace
 
-TerrainRenderer::TerrainRenderer(int block_size, int lattice, int slots, int width, int height)
+TerrainRenderer::TerrainRenderer(int block_size, int lattice, int slots, int width, int height,
+                                 bool analysis)
     : size_(block_size), lattice_(lattice), slots_(slots) {
+  edge_scales_.fill(0.05f);
   draw_program_ = GlProgram("terrain", shaders::kTerrainVertex, shaders::kTerrainFragment);
   capture_program_ =
       GlProgram("terrain capture", shaders::kTerrainVertex, "", {"v_world", "v_key", "v_height"});
@@ -81,7 +83,12 @@ TerrainRenderer::TerrainRenderer(int block_size, int lattice, int slots, int wid
   gl::CreateTextures(GL_TEXTURE_2D, 1, &ramp_);
   gl::TextureStorage2D(ramp_, 1, GL_RGBA8, RampTable::kEntries, 1);
   set_ramp(tabulate(builtin_ramp("hypsometric", 0, 1000), 0, 1000));
-  for (GLuint t : {heights_, mask_, ramp_}) {
+  if (analysis) {
+    gl::CreateTextures(GL_TEXTURE_2D_ARRAY, 1, &layers_);
+    gl::TextureStorage3D(layers_, 1, GL_RGBA16F, size_, size_, slots_);
+  }
+  for (GLuint t : {heights_, mask_, ramp_, layers_}) {
+    if (!t) continue;
     gl::TextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     gl::TextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     gl::TextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -95,9 +102,9 @@ TerrainRenderer::TerrainRenderer(int block_size, int lattice, int slots, int wid
 TerrainRenderer::~TerrainRenderer() {
   gl::DeleteQueries(1, &timer_);
   gl::DeleteFramebuffers(1, &g_.fbo);
-  GLuint textures[9] = {heights_,  mask_,     ramp_,        g_.color, g_.position,
-                        g_.normal, g_.ground, g_.ground_dy, g_.depth};
-  gl::DeleteTextures(9, textures);
+  GLuint textures[10] = {heights_,  mask_,     ramp_,        g_.color, g_.position,
+                         g_.normal, g_.ground, g_.ground_dy, g_.depth, layers_};
+  gl::DeleteTextures(layers_ ? 10 : 9, textures);
   GLuint buffers[3] = {lattice_vbo_, index_buffer_, instance_buffer_};
   gl::DeleteBuffers(3, buffers);
   gl::DeleteVertexArrays(1, &vao_);
@@ -154,6 +161,9 @@ void TerrainRenderer::upload(const LoadedBlock& b) {
                         b.heights.data());
   gl::TextureSubImage3D(mask_, 0, 0, 0, b.slot, size_, size_, 1, GL_RED, GL_UNSIGNED_BYTE,
                         b.mask.data());
+  if (layers_ && !b.analysis.empty())
+    gl::TextureSubImage3D(layers_, 0, 0, 0, b.slot, size_, size_, 1, GL_RGBA, GL_FLOAT,
+                          b.analysis.data());
 }
 
 void TerrainRenderer::upload_instances(const std::vector<Patch>& patches, const View& view,
@@ -245,6 +255,12 @@ RenderTimes TerrainRenderer::draw(const std::vector<Patch>& patches, const View&
                 static_cast<float>(ramp_hi_));
   gl::Uniform1i(p.uniform("u_ramp"), 2);
   gl::BindTextureUnit(2, ramp_);
+  gl::Uniform1i(p.uniform("u_has_gradient"), layers_ && gradient_from_layers_ ? 1 : 0);
+  gl::Uniform1fv(p.uniform("u_edge_scale"), 32, edge_scales_.data());
+  gl::Uniform1i(p.uniform("u_key_zoom"), frame.key_zoom());
+  gl::Uniform1i(p.uniform("u_ao"), s.ambient_occlusion && layers_ ? 1 : 0);
+  gl::Uniform1i(p.uniform("u_layers"), 3);
+  gl::BindTextureUnit(3, layers_ ? layers_ : mask_);  // any array texture when unused
   gl::BindVertexArray(vao_);
   gl::BeginQuery(GL_TIME_ELAPSED, timer_);
   if (!patches.empty())

@@ -5,6 +5,7 @@
 // and reads the image back for snapshots.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -19,12 +20,22 @@
 
 namespace globe::viewer {
 
-enum class Shading { kHillshade = 0, kElevation = 1, kSlope = 2, kAspect = 3 };
+// Slope and aspect come from an analysis package when one is drawn (else
+// from the drawn heights, per pixel); sky view and edges need one.
+enum class Shading {
+  kHillshade = 0,
+  kElevation = 1,
+  kSlope = 2,
+  kAspect = 3,
+  kSkyview = 4,  // the sky-view factor, white on open ground
+  kEdges = 5,    // hillshade with ridges warm and valleys blue (plan curvature)
+};
 
 struct ShadingSettings {
   Shading mode = Shading::kHillshade;
   double sun_azimuth_deg = 315, sun_altitude_deg = 45;
   double exaggeration = 1;
+  bool ambient_occlusion = false;  // multiply the sky-view factor onto the colour (and imagery)
   // The elevation ramp: a built-in name or a gdaldem color-relief file, over
   // the data's real heights (the coarsest blocks' samples, clipped to the
   // percentiles) unless height_range is given.
@@ -64,8 +75,10 @@ struct CapturedVertex {
 
 class TerrainRenderer {
  public:
-  // block_size: samples per block side; slots: texture layers (cache slots).
-  TerrainRenderer(int block_size, int lattice, int slots, int width, int height);
+  // block_size: samples per block side; slots: texture layers (cache slots);
+  // analysis: the blocks carry analysis texels (LoadedBlock::analysis).
+  TerrainRenderer(int block_size, int lattice, int slots, int width, int height,
+                  bool analysis = false);
   ~TerrainRenderer();
   TerrainRenderer(const TerrainRenderer&) = delete;
   TerrainRenderer& operator=(const TerrainRenderer&) = delete;
@@ -74,6 +87,11 @@ class TerrainRenderer {
   void upload(const LoadedBlock& block);
   // The elevation ramp's lookup table (shading mode 1).
   void set_ramp(const RampTable& table);
+  // Whether slope and aspect come from the analysis texels' gradient (the
+  // package has both layers) or from the drawn heights.
+  void set_gradient_from_layers(bool on) { gradient_from_layers_ = on; }
+  // Per zoom: plan curvature x sample spacing where the edges shading saturates.
+  void set_edge_scales(const std::array<float, 32>& scales) { edge_scales_ = scales; }
   // Draws into the offscreen framebuffer; waits for the GPU and returns its time.
   RenderTimes draw(const std::vector<Patch>& patches, const View& view, const WorldFrame& frame,
                    const ShadingSettings& shading);
@@ -96,8 +114,10 @@ class TerrainRenderer {
   GLsizei index_count_ = 0;
   GlProgram draw_program_, capture_program_;
   GLuint vao_ = 0, lattice_vbo_ = 0, index_buffer_ = 0, instance_buffer_ = 0;
-  GLuint heights_ = 0, mask_ = 0, ramp_ = 0;
+  GLuint heights_ = 0, mask_ = 0, ramp_ = 0, layers_ = 0;  // layers_: 0 without analysis
   double ramp_lo_ = 0, ramp_hi_ = 1;
+  std::array<float, 32> edge_scales_;
+  bool gradient_from_layers_ = false;
   GBuffer g_;
   GLuint timer_ = 0;
 };

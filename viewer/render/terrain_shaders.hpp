@@ -30,6 +30,7 @@ out vec3 v_world;
 out vec2 v_ground;
 out vec2 v_sample;
 flat out int v_layer;
+flat out int v_shift;     // log2(key units per sample): the block's zoom is key zoom - shift
 flat out vec2 v_spacing;  // metres per block sample (x, y)
 flat out ivec2 v_key;     // for mesh capture: key units from the frame origin
 out float v_height;       // for mesh capture: metres
@@ -112,18 +113,23 @@ void main() {
   v_height = h;
   v_sample = vec2(local);
   v_layer = i_layer_shift.x;
+  v_shift = i_layer_shift.y;
   v_spacing = spacing * float(1 << i_layer_shift.y);
   gl_Position = u_view_proj * vec4(v_world, 1.0);
 }
 )";
 
-// Shading modes: 0 hillshade, 1 elevation ramp, 2 slope, 3 aspect. Also
-// writes the G-buffer the line pass reads: position and surface plane.
+// Shading modes: 0 hillshade, 1 elevation ramp, 2 slope, 3 aspect, 4 sky
+// view, 5 edges (Shading). With an analysis package, u_layers holds per
+// sample the sky-view factor, plan curvature and downhill gradient
+// (data/analysis_texels.hpp). Also writes the G-buffer the line pass reads:
+// position and surface plane.
 inline constexpr const char* kTerrainFragment = R"(#version 450 core
 in vec3 v_world;
 in vec2 v_ground;
 in vec2 v_sample;
 flat in int v_layer;
+flat in int v_shift;
 flat in vec2 v_spacing;
 uniform sampler2DArray u_heights;
 uniform sampler2DArray u_mask;
@@ -133,6 +139,11 @@ uniform vec3 u_sun;        // unit vector towards the sun
 uniform int u_mode;
 uniform sampler2D u_ramp;  // elevation ramp: RampTable::kEntries x 1 colours
 uniform vec2 u_ramp_range; // heights of the ramp's first and last entries (metres)
+uniform sampler2DArray u_layers;
+uniform int u_has_gradient;  // 1: u_layers holds the analysis package's slope and aspect
+uniform int u_ao;          // 1: multiply the sky-view factor onto the colour
+uniform float u_edge_scale[32]; // per zoom: plan curvature x spacing where edge colours saturate
+uniform int u_key_zoom;
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_position;  // G-buffer: world point, w = 1 on terrain
 layout(location = 2) out vec4 o_normal;    // G-buffer: plane of the drawn triangle
@@ -146,6 +157,13 @@ vec3 ramp(float h) {  // the entries sit on texel centres
   float n = float(textureSize(u_ramp, 0).x);
   float t = clamp((h - u_ramp_range.x) / max(u_ramp_range.y - u_ramp_range.x, 1e-6), 0.0, 1.0);
   return texture(u_ramp, vec2((t * (n - 1.0) + 0.5) / n, 0.5)).rgb;
+}
+vec4 layers_at(vec2 s) {
+  return texture(u_layers, vec3((s + 0.5) / u_size, float(v_layer)));
+}
+// Sky-view factor -> brightness: 0.65 (a deep valley) black .. 1 (open) white.
+float sky_light(float svf) {
+  return clamp((svf - 0.65) / 0.35, 0.0, 1.0);
 }
 vec3 hue(float h) {
   return clamp(abs(mod(h * 6.0 + vec3(0.0, 4.0, 2.0), 6.0) - 3.0) - 1.0, 0.0, 1.0);
@@ -164,13 +182,27 @@ void main() {
     float h = height_at(v_sample);
     color = ramp(h) * (0.55 + 0.45 * shade / max(u_sun.z, 0.2));
   } else if (u_mode == 2) {
-    float slope = degrees(acos(clamp(n.z, 0.0, 1.0)));
+    float slope = u_has_gradient != 0 ? degrees(atan(length(layers_at(v_sample).ba)))
+                                    : degrees(acos(clamp(n.z, 0.0, 1.0)));
     color = mix(vec3(1.0, 1.0, 0.85), vec3(0.75, 0.1, 0.05), clamp(slope / 45.0, 0.0, 1.0));
+  } else if (u_mode == 3) {
+    // The downhill direction and steepness: from the analysis package's
+    // gradient, else from the drawn triangle's normal.
+    vec2 a = u_has_gradient != 0 ? layers_at(v_sample).ba : n.xy;
+    float aspect = atan(a.x, a.y) / 6.2831853 + 0.5;
+    color = mix(vec3(0.85), hue(aspect), clamp(length(a) * 4.0, 0.0, 1.0));
+  } else if (u_mode == 4) {
+    color = vec3(sky_light(layers_at(v_sample).r));
   } else {
-    float aspect = atan(n.x, n.y) / 6.2831853 + 0.5;
-    float steep = clamp(length(n.xy) * 4.0, 0.0, 1.0);
-    color = mix(vec3(0.85), hue(aspect), steep);
+    // Plan curvature times the sample spacing (the change of grade across
+    // the slope per sample), stretched by the data's 95th percentile.
+    float scale = u_edge_scale[clamp(u_key_zoom - v_shift, 0, 31)];
+    float k = clamp(layers_at(v_sample).g * v_spacing.x / scale, -1.0, 1.0);
+    color = vec3(0.35 + 0.6 * shade);
+    color = mix(color, vec3(0.95, 0.55, 0.2), max(k, 0.0));
+    color = mix(color, vec3(0.1, 0.3, 0.75), max(-k, 0.0));
   }
+  if (u_ao != 0) color *= 0.3 + 0.7 * sky_light(layers_at(v_sample).r);
   o_color = vec4(color, 1.0);
   o_position = vec4(v_world, 1.0);
   o_normal = vec4(normalize(cross(dFdx(v_world), dFdy(v_world))), 0.0);
