@@ -29,6 +29,11 @@ PackageSet sort_packages(const std::vector<std::string>& paths) {
       set.lines = path;
     } else if (kind == tileformat::PackageKind::kImage) {
       set.images.push_back(path);
+    } else if (kind == tileformat::PackageKind::kAnalysis) {
+      if (set.analysis)
+        throw UsageError("two analysis packages (" + *set.analysis + ", " + path +
+                         "); globe-view draws one analysis package per view");
+      set.analysis = path;
     } else {
       throw InputError(path + ": format '" + format +
                        "' is neither a terrain nor a line-cluster package");

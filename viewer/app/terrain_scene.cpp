@@ -1,11 +1,13 @@
 // One viewer session's frame sequence (see terrain_scene.hpp).
 #include "app/terrain_scene.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <numbers>
 #include <sstream>
 
+#include "app/analysis_overlay.hpp"
 #include "app/package_set.hpp"
 #include "errors.hpp"
 #include "line_package.hpp"
@@ -76,15 +78,29 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
         "the globe draws lines per pixel (--lines deferred, the default)");
   world_ = std::make_unique<WorldFrame>(package.tiling, package.block_size - 1, package.max_zoom,
                                         *settings_.globe ? Surface::kGlobe : Surface::kFlat);
-  cache_ =
-      std::make_unique<BlockCache>(path, std::move(package), budget - line_budget - image_budget);
+  std::optional<AnalysisSource> analysis;
+  analysis_path_ = set.analysis;
+  if (set.analysis) {
+    AnalysisOverlay o = open_analysis_overlay(*set.analysis, package, path);
+    analysis_layers_ = o.layers;
+    analysis = std::move(o.source);
+  }
+  if (const std::string e = shading_problem(settings_.shading); !e.empty()) throw UsageError(e);
+  cache_ = std::make_unique<BlockCache>(path, std::move(package),
+                                        budget - line_budget - image_budget, std::move(analysis));
   selector_ = std::make_unique<PatchSelector>(cache_->package());
   if (selector_->root_tiles().empty())
     throw InputError(path + ": no tiles at minzoom " + std::to_string(cache_->package().min_zoom) +
                      "; the package is empty or its metadata is wrong");
-  renderer_ = std::make_unique<TerrainRenderer>(
-      cache_->package().block_size, cache_->package().lattice,
-      static_cast<int>(cache_->slot_count()), settings_.width, settings_.height);
+  renderer_ =
+      std::make_unique<TerrainRenderer>(cache_->package().block_size, cache_->package().lattice,
+                                        static_cast<int>(cache_->slot_count()), settings_.width,
+                                        settings_.height, set.analysis.has_value());
+  auto holds = [&](tileformat::AnalysisLayer l) {
+    return std::find(analysis_layers_.begin(), analysis_layers_.end(), l) != analysis_layers_.end();
+  };
+  renderer_->set_gradient_from_layers(holds(tileformat::AnalysisLayer::kSlope) &&
+                                      holds(tileformat::AnalysisLayer::kAspect));
   if (world_->globe()) {
     const TerrainPackage& p = cache_->package();
     const tileformat::Bounds ll =
@@ -105,6 +121,10 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
 }
 
 TerrainScene::~TerrainScene() = default;
+
+std::string TerrainScene::shading_problem(const ShadingSettings& shading) const {
+  return shading_needs(shading, analysis_path_, analysis_layers_);
+}
 
 void TerrainScene::resize(int width, int height) {
   renderer_->resize(width, height);
@@ -127,6 +147,10 @@ void TerrainScene::upload_loaded() {
       ramp_->add_samples(b);
       ramp_level_.push_back(b.id);
     }
+    const TerrainPackage& p = cache_->package();
+    if (edges_.add_samples(
+            b, p.tiling.sample_spacing(b.id.z, p.block_size - 1) * world_->metres_per_crs_x()))
+      renderer_->set_edge_scales(edges_.scales());
     renderer_->upload(b);
   }
 }

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "app/edge_scale.hpp"
 #include "app/elevation_ramp.hpp"
 #include "app/image_layers.hpp"
 #include "app/line_layer.hpp"
@@ -62,6 +63,8 @@ class TerrainScene {
   // The elevation ramp; after an edit, apply_ramp() hands it to the renderer.
   ElevationRamp& ramp() { return *ramp_; }
   void apply_ramp() { renderer_->set_ramp(ramp_->table()); }
+  // "" when `shading` can be drawn (its analysis layers are there), else why not.
+  std::string shading_problem(const ShadingSettings& shading) const;
 
  private:
   void upload_loaded();
@@ -78,6 +81,9 @@ class TerrainScene {
   std::unique_ptr<ImageLayers> images_;
   std::unique_ptr<LineLayer> lines_;
   std::unique_ptr<ElevationRamp> ramp_;
+  EdgeScale edges_;                                         // the edges shading's stretch per zoom
+  std::optional<std::string> analysis_path_;                // the analysis package, if any
+  std::vector<tileformat::AnalysisLayer> analysis_layers_;  // and its layers
   int ramp_zoom_ = -1;  // zoom whose blocks feed the ramp's samples (-1: done)
   std::vector<tileformat::TileId> ramp_level_;  // its blocks loaded so far
 };

@@ -19,7 +19,8 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
   cli.epilogue(
       "window: drag to orbit, right-drag to pan, wheel or W/S to zoom, arrows to pan,\n"
       "  R home view, P screenshot (globe-view-N.png), Esc quit;\n"
-      "  1-4 hillshade/elevation/slope/aspect, +/- exaggeration;\n"
+      "  1-6 hillshade/elevation/slope/aspect/skyview/edges, O ambient occlusion on/off,\n"
+      "  +/- exaggeration;\n"
       "  , and . shift the elevation ramp down/up, ; and ' narrow/widen it, 0 reset;\n"
       "  I select the next image layer, V show/hide it, [ and ] its opacity -/+ 0.1,\n"
       "  U imagery unlit/lit; L line mode, F5 reload the style and colour files.\n");
@@ -90,7 +91,9 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
       [&](const std::string& v) { s.cache_mb = CliArgs::to_int("--cache-mb", v, 4, 1 << 20); });
   cli.option("--shading", "MODE",
              "hillshade (default; imagery is lit by it), imagery (imagery unlit), elevation, "
-             "slope or aspect",
+             "slope, aspect (from an analysis package when given, else from the heights), "
+             "skyview (sky-view factor) or edges (ridges and valleys from plan curvature); "
+             "skyview and edges need an analysis package (globe-tiler analyze)",
              [&](const std::string& v) {
                if (v == "hillshade")
                  s.shading.mode = Shading::kHillshade;
@@ -100,11 +103,19 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
                  s.shading.mode = Shading::kSlope;
                else if (v == "aspect")
                  s.shading.mode = Shading::kAspect;
+               else if (v == "skyview")
+                 s.shading.mode = Shading::kSkyview;
+               else if (v == "edges")
+                 s.shading.mode = Shading::kEdges;
                else if (v == "imagery")
                  s.imagery_unlit = true;
                else
                  throw UsageError("--shading: unknown mode '" + v + "'");
              });
+  cli.flag("--ambient-occlusion",
+           "darken by the sky-view factor of an analysis package (any shading, and imagery lit "
+           "by it)",
+           [&] { s.shading.ambient_occlusion = true; });
   cli.option("--colormap", "NAME|FILE",
              "the elevation ramp: hypsometric (default: bathymetry below 0 m, land above), "
              "gray, or a gdaldem color-relief file (VALUE R G B [A] per line; VALUE in metres, "

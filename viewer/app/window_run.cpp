@@ -93,6 +93,20 @@ int run_window(const ViewerSettings& settings) {
       case GLFW_KEY_4:
         s.mode = Shading::kAspect;
         break;
+      case GLFW_KEY_5:
+      case GLFW_KEY_6:
+      case GLFW_KEY_O: {  // only with the analysis layers they draw
+        ShadingSettings next = s;
+        if (key == GLFW_KEY_O)
+          next.ambient_occlusion = !s.ambient_occlusion;
+        else
+          next.mode = key == GLFW_KEY_5 ? Shading::kSkyview : Shading::kEdges;
+        if (const std::string e = scene->shading_problem(next); !e.empty())
+          std::fprintf(stderr, "globe-view: %s\n", e.c_str());
+        else
+          s = next;
+        break;
+      }
       case GLFW_KEY_F5:
         if (scene->lines()) scene->lines()->reload_style(LineLayer::Reload::kAlways);
         if (scene->ramp().reload(ElevationRamp::Reload::kAlways)) scene->apply_ramp();
