@@ -18,6 +18,12 @@ inline std::string viewer() {
   return GLOBE_VIEW_PATH;
 }
 
+// The viewer's sky (its clear colour) in an RGB snapshot pixel.
+inline bool is_sky(const uint8_t* p) {
+  return std::abs(int(p[0]) - 158) < 4 && std::abs(int(p[1]) - 184) < 4 &&
+         std::abs(int(p[2]) - 209) < 4;
+}
+
 inline std::vector<uint8_t> read_rgb(const std::string& path, int& w, int& h) {
   gdal_setup();
   GDALDatasetH ds = GDALOpen(path.c_str(), GA_ReadOnly);

@@ -43,10 +43,6 @@ RunResult view(const std::string& args, const fs::path& dir) {
   return run(viewer() + " --platform osmesa " + args, dir);
 }
 
-bool is_sky(const uint8_t* p) {
-  return std::abs(int(p[0]) - 158) < 4 && std::abs(int(p[1]) - 184) < 4 &&
-         std::abs(int(p[2]) - 209) < 4;
-}
 
 // Fractions of the terrain pixels (not sky) that `pick` accepts.
 struct Census {

@@ -13,6 +13,13 @@ for mode in elevation slope aspect; do
   build/viewer/globe-view "$tmp/j.mbtiles" --snapshot $out/jacksboro_fit_$mode.png --size 320x180 \
     --fit --shading $mode
 done
+# Analysis (tests/viewer_analysis_test.cpp): sky view and edges of the same DEM.
+build/tools/tiler/globe-tiler analyze -q "$tmp/j.mbtiles" --layers slope,aspect,curvature,skyview \
+  -o "$tmp/ja.mbtiles"
+for mode in skyview edges; do
+  build/viewer/globe-view "$tmp/j.mbtiles" "$tmp/ja.mbtiles" --snapshot $out/jacksboro_$mode.png \
+    --size 480x360 --fit --shading $mode
+done
 # Lines (tests/viewer_lines_test.cpp): 50 m contours of the same DEM.
 gdal_contour -q -i 50 -a elev samples/data/jacksboro.tif "$tmp/c50.shp"
 build/tools/vectorize/globe-vectorize lines -q "$tmp/c50.shp" -o "$tmp/c.mbtiles" \

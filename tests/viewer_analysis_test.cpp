@@ -1,0 +1,171 @@
+// globe-view drawing an analysis package (globe-tiler analyze) over its
+// terrain, as a user runs it: sky view dark in the valleys of the Tennessee
+// ridges, edges marking ridges and valleys, ambient occlusion darkening the
+// elevation ramp there, slope and aspect from the package, and clear errors
+// when a shading needs a layer the package lacks.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "render_fixtures.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using namespace globe_test;
+
+struct Packages {
+  fs::path dir;
+  std::string terrain, all, skyview_only, other;
+};
+
+const Packages& packages() {
+  static const Packages s = [] {
+    Packages k;
+    k.dir = run_scratch_dir("globe-view-analysis");
+    k.terrain = (k.dir / "j.mbtiles").string();
+    k.all = (k.dir / "ja.mbtiles").string();
+    k.skyview_only = (k.dir / "js.mbtiles").string();
+    const std::string other_terrain = (k.dir / "b.mbtiles").string();
+    k.other = (k.dir / "ba.mbtiles").string();
+    for (const std::string& cmd :
+         {tiler() + " terrain -q " + sample("jacksboro.tif").string() + " -o " + k.terrain,
+          tiler() + " analyze -q " + k.terrain + " --layers slope,aspect,curvature,skyview -o " +
+              k.all,
+          tiler() + " analyze -q " + k.terrain + " --layers skyview -o " + k.skyview_only,
+          tiler() + " terrain -q --tiling local " + sample("brasilia.tif").string() + " -o " +
+              other_terrain,
+          tiler() + " analyze -q " + other_terrain + " -o " + k.other}) {
+      const RunResult r = run(cmd, k.dir);
+      EXPECT_EQ(r.exit_code, 0) << cmd << "\n" << r.err;
+    }
+    return k;
+  }();
+  return s;
+}
+
+// 480 x 360: fine enough that the view draws the zooms whose samples
+// resolve the valleys (about 60 m).
+RunResult view(const std::string& args, const fs::path& dir) {
+  return run(viewer() + " --platform osmesa --fit --size 480x360 " + args, dir);
+}
+
+int luminance(const uint8_t* p) {
+  return (p[0] * 3 + p[1] * 6 + p[2]) / 10;
+}
+
+// The fraction of terrain pixels (not sky) that `pick` accepts.
+template <class Pick>
+double fraction(const std::vector<uint8_t>& rgb, Pick pick) {
+  size_t n = 0, terrain = 0;
+  for (size_t i = 0; i + 2 < rgb.size(); i += 3) {
+    if (is_sky(&rgb[i])) continue;
+    ++terrain;
+    if (pick(&rgb[i])) ++n;
+  }
+  return terrain ? double(n) / terrain : 0;
+}
+
+std::vector<uint8_t> snapshot(const std::string& args, const TempDir& dir,
+                              const std::string& name) {
+  const std::string snap = (dir / (name + ".png")).string();
+  const RunResult r = view(args + " --snapshot " + snap, dir.path());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  int w = 0, h = 0;
+  return read_rgb(snap, w, h);
+}
+
+TEST(ViewerAnalysis, SkyviewIsDarkInTheValleysAndWhiteOnOpenGround) {
+  TempDir dir;
+  const auto rgb =
+      snapshot(packages().terrain + " " + packages().all + " --shading skyview", dir, "a");
+  const double grey = fraction(
+      rgb, [](const uint8_t* p) { return std::abs(p[0] - p[1]) < 3 && std::abs(p[1] - p[2]) < 3; });
+  const double dark = fraction(rgb, [](const uint8_t* p) { return luminance(p) < 170; });
+  const double open = fraction(rgb, [](const uint8_t* p) { return luminance(p) > 230; });
+  std::printf("skyview: grey %.3f, dark %.3f, open %.3f\n", grey, dark, open);
+  EXPECT_GT(grey, 0.99);
+  EXPECT_GT(dark, 0.08) << "the hollows of the ridges";
+  EXPECT_GT(open, 0.15) << "the valley floor and the plateau";
+  expect_image((dir / "a.png").string(), "jacksboro_skyview");
+}
+
+TEST(ViewerAnalysis, EdgesMarkRidgesWarmAndValleysBlue) {
+  TempDir dir;
+  const auto rgb =
+      snapshot(packages().terrain + " " + packages().all + " --shading edges", dir, "a");
+  const double valley = fraction(rgb, [](const uint8_t* p) { return p[2] > p[0] + 60; });
+  const double ridge = fraction(rgb, [](const uint8_t* p) { return p[0] > p[2] + 60; });
+  std::printf("edges: valley %.3f, ridge %.3f\n", valley, ridge);
+  EXPECT_GT(valley, 0.03);
+  EXPECT_GT(ridge, 0.03);
+  expect_image((dir / "a.png").string(), "jacksboro_edges");
+}
+
+TEST(ViewerAnalysis, AmbientOcclusionDarkensTheHollowsOnly) {
+  TempDir dir;
+  const std::string base = packages().terrain + " " + packages().all + " --shading elevation";
+  const auto plain = snapshot(base, dir, "plain"),
+             ao = snapshot(base + " --ambient-occlusion", dir, "ao");
+  ASSERT_EQ(plain.size(), ao.size());
+  size_t terrain = 0, darker = 0, same = 0;
+  for (size_t i = 0; i + 2 < plain.size(); i += 3) {
+    if (is_sky(&plain[i])) continue;
+    ++terrain;
+    const int d = luminance(&plain[i]) - luminance(&ao[i]);
+    if (d > 30) ++darker;
+    if (std::abs(d) * 10 <= luminance(&plain[i])) ++same;
+  }
+  std::printf("ambient occlusion: %zu terrain pixels, %zu much darker, %zu unchanged\n", terrain,
+              darker, same);
+  EXPECT_GT(darker, terrain / 50) << "the hollows";
+  EXPECT_GT(same, terrain / 5) << "open ground keeps (within 10 %) its colour";
+}
+
+TEST(ViewerAnalysis, SlopeAndAspectComeFromThePackageWhenItHasThem) {
+  TempDir dir;
+  const std::string& t = packages().terrain;
+  for (const std::string mode : {"slope", "aspect"}) {
+    const auto own = snapshot(t + " --shading " + mode, dir, mode + "_own");
+    const auto pkg = snapshot(t + " " + packages().all + " --shading " + mode, dir, mode + "_pkg");
+    const auto sky =
+        snapshot(t + " " + packages().skyview_only + " --shading " + mode, dir, mode + "_sky");
+    ASSERT_EQ(own.size(), pkg.size());
+    double sum = 0;
+    for (size_t i = 0; i < own.size(); ++i)
+      sum += std::abs(int(own[i]) - int(pkg[i]));
+    const double mean = sum / double(own.size());
+    std::printf("%s: mean |per-pixel - package| %.2f levels\n", mode.c_str(), mean);
+    // Horn's 3 x 3 gradient of the package against the drawn triangles'
+    // central differences: alike, not the same.
+    EXPECT_GT(mean, 0.05) << mode << ": the package's layers were not drawn";
+    EXPECT_LT(mean, 8.0) << mode;
+    EXPECT_TRUE(sky == own) << mode << ": without the layers, the heights' own " << mode;
+  }
+}
+
+TEST(ViewerAnalysis, MissingLayersAndOtherTilingsAreClearErrors) {
+  TempDir dir;
+  const std::string& t = packages().terrain;
+  const std::string snap = " --snapshot " + (dir / "a.png").string();
+  RunResult r = view(t + " --shading skyview" + snap, dir.path());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--shading skyview draws the skyview layer of an analysis package"),
+            std::string::npos)
+      << r.err;
+  r = view(t + " " + packages().skyview_only + " --shading edges" + snap, dir.path());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("js.mbtiles has no plan_curvature layer"), std::string::npos) << r.err;
+  r = view(t + " " + packages().all + " --shading skyview --ambient-occlusion" + snap, dir.path());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  fs::remove(dir / "a.png");
+  r = view(t + " " + packages().other + snap, dir.path());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("ba.mbtiles: its tiling"), std::string::npos) << r.err;
+  r = view(t + " " + packages().all + " " + packages().skyview_only + snap, dir.path());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("two analysis packages"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "a.png"));
+}
+
+}  // namespace
