@@ -19,8 +19,8 @@ struct SkyViewSettings {
 
 // The halo, in samples, a block with `steps` samples a side needs so that
 // rays of radius_m at the finest ground spacing `min_spacing_m` stay inside
-// the window: capped at two blocks (rays past it stop there; that happens
-// only near the poles of the geodetic tiling, see docs/analysis.md).
+// the window: capped at two blocks (rays past it stop there: on DEMs finer
+// than R / 512 samples, and east-west near the geodetic poles; docs/analysis.md).
 int sky_view_halo(const SkyViewSettings& s, double min_spacing_m, int steps);
 
 // The scan of one row of samples (one ground spacing): per direction, the
