@@ -43,7 +43,6 @@ RunResult view(const std::string& args, const fs::path& dir) {
   return run(viewer() + " --platform osmesa " + args, dir);
 }
 
-
 // Fractions of the terrain pixels (not sky) that `pick` accepts.
 struct Census {
   size_t terrain = 0;
