@@ -12,6 +12,8 @@
 #include "validation_report.hpp"
 
 namespace globe {
+
+using tileformat::TileId;
 namespace {
 
 using tileformat::AnalysisLayer;
@@ -78,29 +80,19 @@ int extract_analysis(const ExtractRequest& rq) {
                      layer_list(p.meta.layers));
   const auto& info = tileformat::analysis_layer_info(*layer);
   const ExtractTiles t = tiles_to_extract(*p.reader, p.tiling, rq, p.min_zoom, p.max_zoom);
-  const int n = p.block_size - 1;
-  const SampleGrid grid = sample_grid(p.tiling, t, rq.zoom, p.block_size);
-  ExtractTiff out(rq, grid.width, grid.height, 1, GDT_Float32, grid.gt, p.tiling.crs);
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  out.dataset().set_nodata(1, nan);
-  out.dataset().fill(1, nan);
-  std::vector<float> buf(size_t(n + 1) * (n + 1));
-  for (const auto& id : t.ids) {
-    tileformat::AnalysisBlock b;
-    try {
-      b = tileformat::decode_analysis_block(*p.reader->tile(id));
-    } catch (const tileformat::FormatError& e) {
-      throw InputError(rq.package + ": tile " + id.str() + ": " + e.what());
-    }
-    const std::vector<uint16_t>& v = b.values[index];
-    for (size_t i = 0; i < buf.size(); ++i)
-      buf[i] = v[i] == tileformat::kNoValue
-                   ? nan
-                   : static_cast<float>(tileformat::dequantize(info, v[i]));
-    out.dataset().write(1, int(id.x - t.x0) * n, int(id.y - t.y0) * n, n + 1, n + 1, buf.data(),
-                        GDT_Float32);
-  }
-  out.commit();
+  const SampleGrid grid = write_block_samples(
+      rq, p.tiling, t, p.block_size, GDT_Float32, [&](TileId id, std::vector<double>& samples) {
+        tileformat::AnalysisBlock b;
+        try {
+          b = tileformat::decode_analysis_block(*p.reader->tile(id));
+        } catch (const tileformat::FormatError& e) {
+          throw InputError(rq.package + ": tile " + id.str() + ": " + e.what());
+        }
+        const std::vector<uint16_t>& v = b.values[index];
+        for (size_t i = 0; i < samples.size(); ++i)
+          samples[i] = v[i] == tileformat::kNoValue ? std::numeric_limits<double>::quiet_NaN()
+                                                    : tileformat::dequantize(info, v[i]);
+      });
   std::fprintf(stderr, "globe-tiler: wrote %s: %s, %llu x %llu samples from %zu tiles of zoom %d\n",
                rq.output.c_str(), info.name, static_cast<unsigned long long>(grid.width),
                static_cast<unsigned long long>(grid.height), t.ids.size(), rq.zoom);

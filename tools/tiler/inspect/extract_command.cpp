@@ -20,55 +20,58 @@
 #include "tileformat/mblock.hpp"
 
 namespace globe {
+
+using tileformat::TileId;
 namespace {
 
 int extract_terrain(const ExtractRequest& rq) {
-  const std::string& path = rq.package;
-  TerrainPackage p = open_terrain_package(path);
+  TerrainPackage p = open_terrain_package(rq.package);
   const ExtractTiles t = tiles_to_extract(*p.reader, p.tiling, rq, p.min_zoom, p.max_zoom);
-  const auto& ids = t.ids;
-  const uint32_t x0 = t.x0, y0 = t.y0;
-  const int n = p.block_size - 1;
-  const SampleGrid grid = sample_grid(p.tiling, t, rq.zoom, p.block_size);
-  ExtractTiff out(rq, grid.width, grid.height, 1, GDT_Float64, grid.gt, p.tiling.crs);
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  out.dataset().set_nodata(1, nan);
-  out.dataset().fill(1, nan);
-  std::vector<double> buf(size_t(n + 1) * (n + 1));
-  for (const auto& id : ids) {
-    tileformat::MBlock b;
-    try {
-      b = tileformat::decode_mblock(*p.reader->tile(id));
-    } catch (const tileformat::FormatError& e) {
-      throw InputError(path + ": tile " + id.str() + ": " + e.what());
-    }
-    for (int y = 0; y <= n; ++y)
-      for (int x = 0; x <= n; ++x)
-        buf[size_t(y) * (n + 1) + x] = b.is_valid(x, y) ? b.height(x, y) : nan;
-    out.dataset().write(1, int(id.x - x0) * n, int(id.y - y0) * n, n + 1, n + 1, buf.data(),
-                        GDT_Float64);
-  }
-  out.commit();
+  const SampleGrid grid = write_block_samples(
+      rq, p.tiling, t, p.block_size, GDT_Float64, [&](TileId id, std::vector<double>& samples) {
+        tileformat::MBlock b;
+        try {
+          b = tileformat::decode_mblock(*p.reader->tile(id));
+        } catch (const tileformat::FormatError& e) {
+          throw InputError(rq.package + ": tile " + id.str() + ": " + e.what());
+        }
+        for (int y = 0; y < b.size; ++y)
+          for (int x = 0; x < b.size; ++x)
+            samples[size_t(y) * b.size + x] =
+                b.is_valid(x, y) ? b.height(x, y) : std::numeric_limits<double>::quiet_NaN();
+      });
   std::fprintf(stderr, "globe-tiler: wrote %s: %llu x %llu samples from %zu tiles of zoom %d\n",
                rq.output.c_str(), static_cast<unsigned long long>(grid.width),
-               static_cast<unsigned long long>(grid.height), ids.size(), rq.zoom);
+               static_cast<unsigned long long>(grid.height), t.ids.size(), rq.zoom);
   return kExitOk;
 }
 
 }  // namespace
 
-SampleGrid sample_grid(const tileformat::Tiling& tiling, const ExtractTiles& t, int zoom,
-                       int block_size) {
+SampleGrid write_block_samples(
+    const ExtractRequest& rq, const tileformat::Tiling& tiling, const ExtractTiles& t,
+    int block_size, GDALDataType type,
+    const std::function<void(TileId, std::vector<double>& samples)>& fill) {
   const int n = block_size - 1;
   const uint64_t w = uint64_t(t.cols) * n + 1, h = uint64_t(t.rows) * n + 1;
   if (w > 1000000 || h > 1000000)
     throw UsageError("the extract would be " + std::to_string(w) + " x " + std::to_string(h) +
                      " pixels; limit it with --bbox");
-  const double sp = tiling.sample_spacing(zoom, n);
-  const auto corner = tiling.tile_bounds({zoom, t.x0, t.y0});
-  return {static_cast<int>(w),
-          static_cast<int>(h),
-          {corner.min_x - sp / 2, sp, 0, corner.max_y + sp / 2, 0, -sp}};
+  const double sp = tiling.sample_spacing(rq.zoom, n);
+  const auto corner = tiling.tile_bounds({rq.zoom, t.x0, t.y0});
+  const std::array<double, 6> gt{corner.min_x - sp / 2, sp, 0, corner.max_y + sp / 2, 0, -sp};
+  ExtractTiff out(rq, static_cast<int>(w), static_cast<int>(h), 1, type, gt, tiling.crs);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  out.dataset().set_nodata(1, nan);
+  out.dataset().fill(1, nan);
+  std::vector<double> samples(size_t(block_size) * block_size);
+  for (const TileId& id : t.ids) {
+    fill(id, samples);
+    out.dataset().write(1, int(id.x - t.x0) * n, int(id.y - t.y0) * n, block_size, block_size,
+                        samples.data(), GDT_Float64);
+  }
+  out.commit();
+  return {static_cast<int>(w), static_cast<int>(h)};
 }
 
 ExtractTiles tiles_to_extract(tileformat::PackageReader& reader, const tileformat::Tiling& tiling,

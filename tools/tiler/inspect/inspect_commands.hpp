@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -38,15 +39,18 @@ struct ExtractTiles {
 };
 ExtractTiles tiles_to_extract(tileformat::PackageReader& reader, const tileformat::Tiling& tiling,
                               const ExtractRequest& request, int min_zoom, int max_zoom);
-// The GeoTIFF grid of block samples (terrain and analysis extracts): pixel
-// centres on the samples, neighbouring blocks sharing their edge samples.
-// Throws UsageError for an extract over 10^6 samples a side.
+// One band of block samples (terrain and analysis extracts) written to the
+// request's GeoTIFF as `type`: pixel centres on the samples, neighbouring
+// blocks sharing their edge samples, NaN where there is no value.
+// `fill(id, samples)` sets a tile's block_size² values (row-major from the
+// north). Throws UsageError for an extract over 10^6 samples a side.
 struct SampleGrid {
   int width = 0, height = 0;
-  std::array<double, 6> gt{};
 };
-SampleGrid sample_grid(const tileformat::Tiling& tiling, const ExtractTiles& tiles, int zoom,
-                       int block_size);
+SampleGrid write_block_samples(
+    const ExtractRequest& request, const tileformat::Tiling& tiling, const ExtractTiles& tiles,
+    int block_size, GDALDataType type,
+    const std::function<void(tileformat::TileId, std::vector<double>& samples)>& fill);
 // The GeoTIFF an extract writes under a temporary name, renamed by commit().
 class ExtractTiff {
  public:
