@@ -92,18 +92,27 @@ class BlockAnalyzer {
     out.size = s;
     out.layers = layers;
     out.values.assign(layers.size(), std::vector<uint16_t>(size_t(s) * s, tileformat::kNoValue));
+    // Looked up once, not per sample; the 3 x 3 derivatives only when a
+    // layer draws on them (not for skyview alone).
+    std::vector<const tileformat::AnalysisLayerInfo*> info;
+    for (AnalysisLayer l : layers)
+      info.push_back(&tileformat::analysis_layer_info(l));
+    const bool local = layers.size() > (skyview ? 1u : 0u);
     for (int y = 0; y < s; ++y) {
       const GroundSpacing sp = ground_spacing(p_.tiling, id.z, n, id.y, y);
       std::optional<SkyViewScan> scan;
       if (skyview) scan.emplace(s_.skyview, sp);
       for (int x = 0; x < s; ++x) {
         if (!w.valid(x, y)) continue;
-        Window3 w3;
-        for (int j = 0; j < 3; ++j)
-          for (int i = 0; i < 3; ++i)
-            w3.z[j * 3 + i] =
-                w.valid(x + i - 1, y + j - 1) ? w.height(x + i - 1, y + j - 1) : w.height(x, y);
-        const Derivatives d = derivatives(w3, sp.dx, sp.dy);
+        Derivatives d;
+        if (local) {
+          Window3 w3;
+          for (int j = 0; j < 3; ++j)
+            for (int i = 0; i < 3; ++i)
+              w3.z[j * 3 + i] =
+                  w.valid(x + i - 1, y + j - 1) ? w.height(x + i - 1, y + j - 1) : w.height(x, y);
+          d = derivatives(w3, sp.dx, sp.dy);
+        }
         for (size_t l = 0; l < layers.size(); ++l) {
           double v = 0;
           switch (layers[l]) {
@@ -123,9 +132,7 @@ class BlockAnalyzer {
               v = scan->factor(w, x, y);
               break;
           }
-          if (!std::isnan(v))
-            out.values[l][size_t(y) * s + x] =
-                tileformat::quantize(tileformat::analysis_layer_info(layers[l]), v);
+          if (!std::isnan(v)) out.values[l][size_t(y) * s + x] = tileformat::quantize(*info[l], v);
         }
       }
     }
