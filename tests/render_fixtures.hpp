@@ -24,6 +24,23 @@ inline bool is_sky(const uint8_t* p) {
          std::abs(int(p[2]) - 209) < 4;
 }
 
+// Fractions of the terrain pixels (not sky) of an RGB snapshot that `pick`
+// accepts; `terrain` counts them.
+struct Census {
+  size_t terrain = 0;
+  template <class Pick>
+  double fraction(const std::vector<uint8_t>& rgb, Pick pick) {
+    size_t n = 0;
+    terrain = 0;
+    for (size_t i = 0; i + 2 < rgb.size(); i += 3) {
+      if (is_sky(&rgb[i])) continue;
+      ++terrain;
+      if (pick(&rgb[i])) ++n;
+    }
+    return terrain ? double(n) / terrain : 0;
+  }
+};
+
 inline std::vector<uint8_t> read_rgb(const std::string& path, int& w, int& h) {
   gdal_setup();
   GDALDatasetH ds = GDALOpen(path.c_str(), GA_ReadOnly);

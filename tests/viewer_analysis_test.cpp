@@ -57,13 +57,7 @@ int luminance(const uint8_t* p) {
 // The fraction of terrain pixels (not sky) that `pick` accepts.
 template <class Pick>
 double fraction(const std::vector<uint8_t>& rgb, Pick pick) {
-  size_t n = 0, terrain = 0;
-  for (size_t i = 0; i + 2 < rgb.size(); i += 3) {
-    if (is_sky(&rgb[i])) continue;
-    ++terrain;
-    if (pick(&rgb[i])) ++n;
-  }
-  return terrain ? double(n) / terrain : 0;
+  return Census().fraction(rgb, pick);
 }
 
 std::vector<uint8_t> snapshot(const std::string& args, const TempDir& dir,

@@ -43,21 +43,6 @@ RunResult view(const std::string& args, const fs::path& dir) {
   return run(viewer() + " --platform osmesa " + args, dir);
 }
 
-// Fractions of the terrain pixels (not sky) that `pick` accepts.
-struct Census {
-  size_t terrain = 0;
-  double fraction(const std::vector<uint8_t>& rgb, bool (*pick)(const uint8_t*)) {
-    size_t n = 0;
-    terrain = 0;
-    for (size_t i = 0; i + 2 < rgb.size(); i += 3) {
-      if (is_sky(&rgb[i])) continue;
-      ++terrain;
-      if (pick(&rgb[i])) ++n;
-    }
-    return terrain ? double(n) / terrain : 0;
-  }
-};
-
 bool blue(const uint8_t* p) {
   return p[2] > p[0] + 40 && p[2] > p[1];
 }
