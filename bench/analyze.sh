@@ -17,8 +17,7 @@ size=${1:-4096}
 runs=${BENCH_RUNS:-3}
 threads=$(nproc)
 
-seconds() { /usr/bin/time -f "%e %M" "$@" 2>&1 >/dev/null | tail -1; }  # "wall_s maxrss_kb"
-fastest() { awk 'NR == 1 || $1 < w { w = $1 } $2 > m { m = $2 } END { print w, m }'; }
+source bench/timing.sh
 
 row() { # name dem
   local name=$1 dem=$2

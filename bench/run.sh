@@ -16,13 +16,8 @@ scratch=bench/scratch
 mkdir -p "$scratch"
 threads=$(nproc)
 
-seconds() { /usr/bin/time -f "%e %M" "$@" 2>&1 >/dev/null | tail -1; }  # "wall_s maxrss_kb"
-# The machines are shared: each tool runs `runs` times, alternating with its
-# peer, and the fastest run of each counts (noise only ever adds time).
+source bench/timing.sh
 runs=${BENCH_RUNS:-3}
-fastest() { # "wall rss" lines on stdin -> the smallest wall time (and the largest rss)
-  awk 'NR == 1 || $1 < w { w = $1 } $2 > m { m = $2 } END { print w, m }'
-}
 
 # gdalwarp onto exactly the grid of an extracted zoom (pixel centres on samples).
 grid_of() { # tif -> "xmin ymin xmax ymax width height"

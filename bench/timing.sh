@@ -1,0 +1,7 @@
+# Timing helpers shared by the benchmark scripts (sourced, not run).
+# seconds CMD...: runs CMD, prints "wall_s maxrss_kb".
+seconds() { /usr/bin/time -f "%e %M" "$@" 2>&1 >/dev/null | tail -1; }
+# The machines are shared: each tool runs several times, alternating with its
+# peer, and the fastest run of each counts (noise only ever adds time).
+# fastest: "wall rss" lines on stdin -> the smallest wall time (and the largest rss).
+fastest() { awk 'NR == 1 || $1 < w { w = $1 } $2 > m { m = $2 } END { print w, m }'; }
