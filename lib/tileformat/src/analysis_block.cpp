@@ -17,7 +17,10 @@ const std::vector<AnalysisLayerInfo>& analysis_layers() {
       {AnalysisLayer::kAspect, "aspect", "degrees", 0.01, 0},
       {AnalysisLayer::kProfileCurvature, "profile_curvature", "1/m", 1e-6, -0.032767},
       {AnalysisLayer::kPlanCurvature, "plan_curvature", "1/m", 1e-6, -0.032767},
-      {AnalysisLayer::kSkyview, "skyview", "fraction", 1e-4, 0}};
+      {AnalysisLayer::kSkyview, "skyview", "fraction", 1e-4, 0},
+      {AnalysisLayer::kFlowDirection, "flow_direction", "D8 code", 1, 0},
+      // 2^-15 .. 2^50.5 m^2 (past the Earth's area) at 0.035 % steps.
+      {AnalysisLayer::kFlowAccumulation, "flow_accumulation", "m2", 1e-3, -15, true}};
   return layers;
 }
 
@@ -34,6 +37,7 @@ std::optional<AnalysisLayer> analysis_layer_by_name(const std::string& name) {
 }
 
 uint16_t quantize(const AnalysisLayerInfo& info, double value) {
+  if (info.log2) value = value > 0 ? std::log2(value) : -1e300;
   const double q = std::round((value - info.offset) / info.scale);
   if (!(q > 0)) return 0;  // also NaN, which callers mark kNoValue before
   return q >= kNoValue - 1 ? uint16_t{kNoValue - 1} : static_cast<uint16_t>(q);
