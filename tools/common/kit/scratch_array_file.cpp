@@ -1,0 +1,56 @@
+// Random-access scratch files (see scratch_array_file.hpp).
+#include "scratch_array_file.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+
+#include "errors.hpp"
+
+namespace globe {
+
+ScratchArrayFile::ScratchArrayFile(std::string path) : path_(std::move(path)) {
+  fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd_ < 0)
+    throw OutputError(path_ + ": cannot create scratch file (" + std::strerror(errno) +
+                      "); check free space and permissions next to the output");
+}
+
+ScratchArrayFile::~ScratchArrayFile() {
+  ::close(fd_);
+  std::error_code ec;
+  std::filesystem::remove(path_, ec);
+}
+
+void ScratchArrayFile::write_at(uint64_t offset, const void* data, size_t bytes) {
+  const auto* p = static_cast<const uint8_t*>(data);
+  while (bytes > 0) {
+    const ssize_t n = ::pwrite(fd_, p, bytes, static_cast<off_t>(offset));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0)
+      throw OutputError(path_ + ": cannot write scratch data (" +
+                        std::strerror(n < 0 ? errno : ENOSPC) + "); check free space");
+    p += n;
+    offset += uint64_t(n);
+    bytes -= size_t(n);
+  }
+}
+
+void ScratchArrayFile::read_at(uint64_t offset, void* data, size_t bytes) const {
+  auto* p = static_cast<uint8_t*>(data);
+  while (bytes > 0) {
+    const ssize_t n = ::pread(fd_, p, bytes, static_cast<off_t>(offset));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0)
+      throw OutputError(path_ + ": scratch file " + (n < 0 ? std::strerror(errno) : "truncated") +
+                        " while reading back");
+    p += n;
+    offset += uint64_t(n);
+    bytes -= size_t(n);
+  }
+}
+
+}  // namespace globe

@@ -1,0 +1,43 @@
+// A builder's transient random-access scratch file: fixed-size arrays written
+// and read back at byte offsets the caller lays out (pwrite/pread, so any
+// thread may read or write disjoint ranges at once). For work that does not
+// fit in memory and is revisited out of order (the flow solver's chunks).
+// The file is deleted when the object goes; a killed build leaves it behind
+// and a resumed build recreates it from the input (docs/robustness.md).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+
+namespace globe {
+
+class ScratchArrayFile {
+ public:
+  // Creates (or truncates) `path`; throws OutputError naming it.
+  explicit ScratchArrayFile(std::string path);
+  ~ScratchArrayFile();
+  ScratchArrayFile(const ScratchArrayFile&) = delete;
+  ScratchArrayFile& operator=(const ScratchArrayFile&) = delete;
+
+  // Throw OutputError naming the file (no space, a short read).
+  void write_at(uint64_t offset, const void* data, size_t bytes);
+  void read_at(uint64_t offset, void* data, size_t bytes) const;
+
+  template <typename T>
+  void write_array(uint64_t offset, std::span<const T> values) {
+    write_at(offset, values.data(), values.size_bytes());
+  }
+  template <typename T>
+  void read_array(uint64_t offset, std::span<T> values) const {
+    read_at(offset, values.data(), values.size_bytes());
+  }
+
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+};
+
+}  // namespace globe
