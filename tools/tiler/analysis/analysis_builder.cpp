@@ -9,7 +9,9 @@
 #include <mutex>
 #include <optional>
 
+#include "batch_blocks.hpp"
 #include "errors.hpp"
+#include "flow/flow_solver.hpp"
 #include "height_window.hpp"
 #include "package_output.hpp"
 #include "parallel_batches.hpp"
@@ -26,49 +28,14 @@ namespace {
 using tileformat::AnalysisLayer;
 using tileformat::TileId;
 
-// The terrain blocks one batch of work reads, each decoded once, by the
-// first worker that needs it.
-class BatchBlocks {
- public:
-  void add(TileId id, std::optional<std::vector<uint8_t>> blob) {
-    if (slots_.count(id)) return;
-    auto slot = std::make_unique<Slot>();
-    slot->blob = std::move(blob);
-    slots_.emplace(id, std::move(slot));
-  }
-  bool has(TileId id) const { return slots_.count(id) != 0; }
-  // Null where there is no tile. Throws InputError for a corrupt block.
-  const tileformat::MBlock* get(TileId id, const std::string& path) const {
-    const auto it = slots_.find(id);
-    if (it == slots_.end() || !it->second->blob) return nullptr;
-    Slot& s = *it->second;
-    std::call_once(s.once, [&] {
-      try {
-        s.block = tileformat::decode_mblock(*s.blob);
-      } catch (const tileformat::FormatError& e) {
-        throw InputError(path + ": tile " + id.str() + ": " + e.what() +
-                         "; rebuild the terrain package (globe-tiler validate lists bad tiles)");
-      }
-    });
-    return &s.block;
-  }
-
- private:
-  struct Slot {
-    std::optional<std::vector<uint8_t>> blob;
-    std::once_flag once;
-    tileformat::MBlock block;
-  };
-  std::map<TileId, std::unique_ptr<Slot>> slots_;
-};
-
 bool has_layer(const std::vector<AnalysisLayer>& layers, AnalysisLayer l) {
   return std::find(layers.begin(), layers.end(), l) != layers.end();
 }
 
 class BlockAnalyzer {
  public:
-  BlockAnalyzer(const TerrainPackage& p, const AnalysisSettings& s) : p_(p), s_(s) {}
+  BlockAnalyzer(const TerrainPackage& p, const AnalysisSettings& s, const flow::FlowPyramid* flow)
+      : p_(p), s_(s), flow_(flow) {}
 
   // Samples around a block that its layers read.
   int halo(TileId id) const {
@@ -88,6 +55,8 @@ class BlockAnalyzer {
                          [&](TileId t) { return blocks.get(t, s_.inputs[0]); });
     const std::vector<AnalysisLayer>& layers = s_.layers;
     const bool skyview = has_layer(layers, AnalysisLayer::kSkyview);
+    const bool flow = has_layer(layers, AnalysisLayer::kFlowDirection) ||
+                      has_layer(layers, AnalysisLayer::kFlowAccumulation);
     tileformat::AnalysisBlock out;
     out.size = s;
     out.layers = layers;
@@ -97,7 +66,12 @@ class BlockAnalyzer {
     std::vector<const tileformat::AnalysisLayerInfo*> info;
     for (AnalysisLayer l : layers)
       info.push_back(&tileformat::analysis_layer_info(l));
-    const bool local = layers.size() > (skyview ? 1u : 0u);
+    const bool local = std::any_of(layers.begin(), layers.end(), [](AnalysisLayer l) {
+      return l <= AnalysisLayer::kPlanCurvature;
+    });
+    std::vector<uint64_t> area;
+    std::vector<uint8_t> code;
+    if (flow) flow_->block(id, s, area, code);
     for (int y = 0; y < s; ++y) {
       const GroundSpacing sp = ground_spacing(p_.tiling, id.z, n, id.y, y);
       std::optional<SkyViewScan> scan;
@@ -131,17 +105,30 @@ class BlockAnalyzer {
             case AnalysisLayer::kSkyview:
               v = scan->factor(w, x, y);
               break;
+            case AnalysisLayer::kFlowDirection:
+            case AnalysisLayer::kFlowAccumulation:
+              continue;  // below: the flow has its own extent
           }
           if (!std::isnan(v)) out.values[l][size_t(y) * s + x] = tileformat::quantize(*info[l], v);
         }
       }
     }
+    if (flow)
+      for (size_t l = 0; l < layers.size(); ++l)
+        for (size_t i = 0; i < code.size(); ++i) {
+          if (code[i] == flow::kNoDataCode) continue;
+          if (layers[l] == AnalysisLayer::kFlowDirection) out.values[l][i] = code[i];
+          if (layers[l] == AnalysisLayer::kFlowAccumulation)
+            out.values[l][i] =
+                tileformat::quantize(*info[l], double(area[i]) / flow::kAreaUnitsPerM2);
+        }
     return tileformat::encode_analysis_block(out);
   }
 
  private:
   const TerrainPackage& p_;
   const AnalysisSettings& s_;
+  const flow::FlowPyramid* flow_;
 };
 
 tileformat::AnalysisMetadata analysis_metadata(const AnalysisSettings& s, const TerrainPackage& p) {
@@ -187,7 +174,23 @@ AnalysisSummary build_analysis(const AnalysisSettings& s, Progress& progress) {
     if (writer->resumed())
       for (int z = p.min_zoom; z <= p.max_zoom; ++z)
         first += writer->tiles_at_zoom(z);
-    const BlockAnalyzer analyzer(p, s);
+    // Flow first: the whole finest zoom, out of core, before any tile.
+    flow::FlowSolution flow;
+    if (has_layer(s.layers, AnalysisLayer::kFlowDirection) ||
+        has_layer(s.layers, AnalysisLayer::kFlowAccumulation)) {
+      flow::FlowSettings fs;
+      fs.memory_bytes = s.memory_mb << 20;
+      fs.threads = s.worker_threads();
+      fs.scratch_prefix = s.output + ".flow-";
+      fs.input = path;
+      flow = flow::solve_flow(p, fs, progress);
+      const flow::FlowGrid& g = *flow.grid;
+      sum.flow_note = "flow: " + std::to_string(g.width()) + " x " + std::to_string(g.height()) +
+                      " cells in " + std::to_string(g.chunks().size()) + " chunks of " +
+                      std::to_string(g.chunk_size()) + ", " + std::to_string(flow.watersheds) +
+                      " watersheds, " + std::to_string(flow.flat_rounds) + " flat rounds";
+    }
+    const BlockAnalyzer analyzer(p, s, flow.pyramid.get());
     progress.begin("analyze", items.size());
     progress.advance(first);
     parallel_batches<BatchBlocks, std::vector<uint8_t>>(
