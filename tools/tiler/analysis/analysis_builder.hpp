@@ -1,12 +1,15 @@
 // `globe-tiler analyze`: a terrain package -> an analysis package with the
 // same tiles, holding per-sample slope, aspect, curvature and sky-view factor computed from
 // the heights of each zoom (so every zoom's analytics match the heights drawn
-// at that zoom). Neighbouring blocks supply the samples past each block's
+// at that zoom), and flow direction and accumulation solved over the whole
+// finest zoom (flow/flow_solver.hpp) and carried to coarser zooms along the
+// rivers. Neighbouring blocks supply the samples past each block's
 // edges, so there are no seams; deterministic for any thread count;
 // resumable (docs/analysis.md).
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "build_options.hpp"
@@ -19,11 +22,13 @@ namespace globe {
 struct AnalysisSettings : BuildOptions {
   std::vector<tileformat::AnalysisLayer> layers;  // ascending ids
   SkyViewSettings skyview;
+  uint64_t memory_mb = 1024;  // the flow solver's working set (--memory-mb)
 };
 
 struct AnalysisSummary {
   uint64_t tiles = 0, unique_blobs = 0, file_bytes = 0;
   double seconds = 0;
+  std::string flow_note;  // with the flow layers: how the solve went
 };
 
 // Throws InputError (not a terrain package, a corrupt tile: naming the file

@@ -27,10 +27,15 @@ std::vector<tileformat::AnalysisLayer> parse_layers(const std::string& v) {
       layers.push_back(tileformat::AnalysisLayer::kPlanCurvature);
       continue;
     }
+    if (name == "flow") {  // direction and accumulation
+      layers.push_back(tileformat::AnalysisLayer::kFlowDirection);
+      layers.push_back(tileformat::AnalysisLayer::kFlowAccumulation);
+      continue;
+    }
     const auto l = tileformat::analysis_layer_by_name(name);
     if (!l)
       throw UsageError("--layers: unknown layer '" + name + "'; known: " + layer_names() +
-                       ", curvature (both curvatures)");
+                       ", curvature (both curvatures), flow (both flow layers)");
     layers.push_back(*l);
   }
   if (layers.empty()) throw UsageError("--layers: give at least one layer");
@@ -52,10 +57,15 @@ int run_analyze(const std::vector<std::string>& args) {
               "curvature in 1/m (positive where convex), and the sky-view factor (the share of\n"
               "the sky seen within a radius: ambient occlusion), with true ground distances in\n"
               "the geodetic and webmercator tilings. Blocks read their neighbours' samples, so\n"
-              "values at block edges are seamless. 'globe-tiler extract ANALYSIS --layer NAME'\n"
-              "writes one layer as a GeoTIFF.");
+              "values at block edges are seamless. Flow: D8 direction and accumulation (upstream\n"
+              "area in m^2) over the whole finest zoom, depressions filled by priority-flood and\n"
+              "flats crossed by the shortest way, out of core within --memory-mb; coarser zooms\n"
+              "follow the rivers. 'globe-tiler extract ANALYSIS --layer NAME' writes one layer\n"
+              "as a GeoTIFF.");
   cli.option("--layers", "LIST",
-             "comma-separated: " + layer_names() + ", or curvature (both); default slope,aspect",
+             "comma-separated: " + layer_names() +
+                 ", curvature (both curvatures), flow (direction and accumulation); default "
+                 "slope,aspect",
              [&](const std::string& v) { s.layers = parse_layers(v); });
   cli.option("--skyview-directions", "N", "azimuths of the sky-view horizon scan (default 16)",
              [&](const std::string& v) {
@@ -67,6 +77,12 @@ int run_analyze(const std::vector<std::string>& args) {
                s.skyview.radius_m = CliArgs::to_double("--skyview-radius", v);
                if (!(s.skyview.radius_m > 0 && s.skyview.radius_m <= 1e6))
                  throw UsageError("--skyview-radius: give metres, more than 0 and at most 1000000");
+             });
+  cli.option("--memory-mb", "MB",
+             "memory for the flow solver's working set (default 1024); a larger DEM is solved "
+             "out of core in chunks, with scratch files next to the output",
+             [&](const std::string& v) {
+               s.memory_mb = uint64_t(CliArgs::to_int("--memory-mb", v, 1, 1 << 22));
              });
   cli.option("-o,--output", "OUT.mbtiles", "output analysis package",
              [&](const std::string& v) { s.output = v; });
@@ -80,6 +96,7 @@ int run_analyze(const std::vector<std::string>& args) {
   o << std::fixed << "globe-tiler: wrote " << s.output << ": " << sum.tiles << " tiles ("
     << sum.unique_blobs << " unique), " << sum.file_bytes << " bytes, " << sum.seconds << " s";
   progress.note(o.str());
+  if (!sum.flow_note.empty()) progress.note("globe-tiler: " + sum.flow_note);
   return kExitOk;
 }
 

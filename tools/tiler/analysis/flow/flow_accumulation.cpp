@@ -1,0 +1,101 @@
+// Tiled flow accumulation (see flow_accumulation.hpp).
+#include "flow_accumulation.hpp"
+
+namespace globe::flow {
+
+std::vector<uint64_t> accumulate_chunk(const FlowGrid& g, const Chunk& c,
+                                       const std::vector<uint8_t>& rec,
+                                       const std::vector<uint64_t>& inflow,
+                                       PerimeterFlow* perimeter) {
+  const int w = c.w, h = c.h;
+  const size_t n = c.cells();
+  // Receiver index inside the chunk, or -1.
+  auto inside = [&](size_t i) -> int64_t {
+    const uint8_t d = rec[i];
+    if (d == kOutlet || d == kNoDataCode) return -1;
+    const int x = int(i % w) + kDx[d], y = int(i / w) + kDy[d];
+    if (x < 0 || y < 0 || x >= w || y >= h) return -1;
+    return int64_t(y) * w + x;
+  };
+  std::vector<uint64_t> acc(n, 0);
+  std::vector<uint8_t> donors(n, 0);
+  for (size_t i = 0; i < n; ++i) {
+    if (rec[i] == kNoDataCode) continue;
+    acc[i] = g.area_units(c.y0 + int64_t(i / w));
+    const int64_t r = inside(i);
+    if (r >= 0) ++donors[size_t(r)];
+  }
+  if (!inflow.empty())
+    for (int p = 0; p < c.perimeter_count(); ++p) {
+      int x, y;
+      c.perimeter_cell(p, x, y);
+      acc[size_t(y) * w + x] += inflow[size_t(p)];
+    }
+  // Kahn's order: a cell is final once all its donors have passed on.
+  std::vector<uint32_t> order;
+  order.reserve(n);
+  for (size_t i = 0; i < n; ++i)
+    if (rec[i] != kNoDataCode && donors[i] == 0) order.push_back(uint32_t(i));
+  for (size_t head = 0; head < order.size(); ++head) {
+    const size_t i = order[head];
+    const int64_t r = inside(i);
+    if (r < 0) continue;
+    acc[size_t(r)] += acc[i];
+    if (--donors[size_t(r)] == 0) order.push_back(uint32_t(r));
+  }
+  if (!perimeter) return acc;
+  // Downstream first: the first perimeter cell below each cell.
+  std::vector<int32_t> below(n, -1);
+  for (size_t k = order.size(); k-- > 0;) {
+    const size_t i = order[k];
+    const int64_t r = inside(i);
+    if (r < 0) continue;
+    const int rp = c.perimeter_index(int(r % w), int(r / w));
+    below[i] = rp >= 0 ? rp : below[size_t(r)];
+  }
+  const int count = c.perimeter_count();
+  perimeter->area.assign(size_t(count), 0);
+  perimeter->next.assign(size_t(count), -1);
+  perimeter->leaves.assign(size_t(count), 0);
+  for (int p = 0; p < count; ++p) {
+    int x, y;
+    c.perimeter_cell(p, x, y);
+    const size_t i = size_t(y) * w + x;
+    perimeter->area[size_t(p)] = acc[i];
+    perimeter->next[size_t(p)] = below[i];
+    const uint8_t d = rec[i];
+    perimeter->leaves[size_t(p)] = d != kOutlet && d != kNoDataCode && inside(i) < 0;
+  }
+  return acc;
+}
+
+std::vector<uint64_t> solve_inflows(const std::vector<uint64_t>& area,
+                                    const std::vector<int64_t>& successor,
+                                    const std::vector<uint8_t>& crosses) {
+  const size_t n = area.size();
+  std::vector<uint32_t> preds(n, 0);
+  for (size_t i = 0; i < n; ++i)
+    if (successor[i] != kNoNode) ++preds[size_t(successor[i])];
+  // received: from other chunks, directly or through perimeter cells
+  // upstream inside the own chunk; inflow: from other chunks directly.
+  std::vector<uint64_t> received(n, 0), inflow(n, 0);
+  std::vector<size_t> order;
+  order.reserve(n);
+  for (size_t i = 0; i < n; ++i)
+    if (preds[i] == 0) order.push_back(i);
+  for (size_t head = 0; head < order.size(); ++head) {
+    const size_t i = order[head];
+    const int64_t s = successor[i];
+    if (s == kNoNode) continue;
+    if (crosses[i]) {
+      inflow[size_t(s)] += area[i] + received[i];
+      received[size_t(s)] += area[i] + received[i];
+    } else {
+      received[size_t(s)] += received[i];
+    }
+    if (--preds[size_t(s)] == 0) order.push_back(size_t(s));
+  }
+  return inflow;
+}
+
+}  // namespace globe::flow

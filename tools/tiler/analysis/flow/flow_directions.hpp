@@ -1,0 +1,37 @@
+// D8 flow directions on the filled heights of one chunk (with the ring of
+// cells around it from its neighbours). A cell with a lower neighbour drains
+// to the steepest one (drop over true ground distance; ties to the first in
+// N, NE, E .. NW order). A cell next to no data without a lower neighbour is
+// an outlet. The rest lie on flats (filled depressions, level ground): each
+// drains towards the nearest cell of its flat that can drain (the distance
+// counted in D8 steps within the flat), so water crosses a flat by the
+// shortest way. Flats may span chunks: the distances of the ring come from
+// the neighbouring chunks and are iterated to a fixed point by the solver.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "chunk_heights.hpp"
+
+namespace globe::flow {
+
+inline constexpr uint32_t kFar = UINT32_MAX;  // no known way off the flat yet
+
+// A window cell that lies on a flat: data, not next to no data, no lower
+// neighbour.
+bool on_flat(const std::vector<int32_t>& filled_window, size_t k, int stride);
+
+// `filled`: the chunk's window of filled heights. `distance`: the window's
+// ring holds the neighbours' distances (0 off a flat, kFar unknown); the
+// chunk's cells are computed: 0 where the cell is not on a flat, else D8
+// steps to the nearest cell off the flat (through the ring as well).
+void flat_distances(const Chunk& chunk, const std::vector<int32_t>& filled,
+                    std::vector<uint32_t>& distance);
+
+// Receiver codes of the chunk's cells (w * h; kNoDataCode where no data).
+std::vector<uint8_t> d8_receivers(const FlowGrid& grid, const Chunk& chunk,
+                                  const std::vector<int32_t>& filled,
+                                  const std::vector<uint32_t>& distance);
+
+}  // namespace globe::flow

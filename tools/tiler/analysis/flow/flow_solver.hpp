@@ -1,0 +1,50 @@
+// Flow direction and accumulation of a whole terrain package's finest zoom,
+// out of core: the grid is cut into chunks sized to fit `memory_bytes`, each
+// pass streams the chunks (in parallel) and keeps in memory only the chunks'
+// perimeters and the small graphs that join them; per-cell intermediates go
+// to scratch files next to the output. The same answer, bit for bit, for any
+// chunk size and thread count (docs/analysis.md, "Flow"):
+//   1. fill: per-chunk priority-flood with watershed labels (depression_fill)
+//   2. spill levels of the watershed graph -> the filled heights
+//   3. flats: distances to the nearest draining cell, iterated across chunks
+//   4. D8 receivers, per-chunk accumulation, perimeter links (flow_directions,
+//      flow_accumulation)
+//   5. the perimeter graph -> each chunk's inflow
+//   6. final accumulation per chunk -> every zoom (flow_pyramid)
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "flow_grid.hpp"
+#include "flow_pyramid.hpp"
+#include "progress.hpp"
+#include "terrain_package.hpp"
+
+namespace globe::flow {
+
+struct FlowSettings {
+  uint64_t memory_bytes = uint64_t(1024) << 20;
+  int threads = 1;
+  std::string scratch_prefix;  // scratch files are this + a name
+  std::string input;           // the terrain package's path, for messages
+};
+
+struct FlowSolution {
+  std::unique_ptr<FlowGrid> grid;
+  std::unique_ptr<FlowPyramid> pyramid;
+  uint64_t watersheds = 0, perimeter_cells = 0;
+  int flat_rounds = 0;
+};
+
+// The chunk size (a power of two) whose working set fits the budget.
+int64_t chunk_size_for(const tileformat::Tiling& tiling, int zoom, int block_size,
+                       size_t finest_tiles, uint64_t memory_bytes, int threads);
+
+// Throws InputError for a corrupt terrain block, OutputError for scratch
+// files that cannot be written.
+FlowSolution solve_flow(const TerrainPackage& package, const FlowSettings& settings,
+                        Progress& progress);
+
+}  // namespace globe::flow
