@@ -22,6 +22,8 @@ packages=(
   python3
   # gdal2tiles.py (imagery benchmark peer)
   python3-gdal
+  # tests/flow_test.cpp: GRASS r.watershed, the flow accumulation peer
+  grass-core
   # tests/robustness_test.cpp: holds a build at one syscall (strace -e inject)
   strace
   # window tests under a virtual X server, keys sent with xdotool
