@@ -9,13 +9,16 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace globe {
 
 class ScratchArrayFile {
  public:
-  // Creates (or truncates) `path`; throws OutputError naming it.
-  explicit ScratchArrayFile(std::string path);
+  // Creates (or truncates) `path`; throws OutputError naming it. With
+  // `in_memory_bytes` > 0 nothing touches the disk: the arrays live in a
+  // buffer of that size (for work that turned out to fit the budget).
+  explicit ScratchArrayFile(std::string path, uint64_t in_memory_bytes = 0);
   ~ScratchArrayFile();
   ScratchArrayFile(const ScratchArrayFile&) = delete;
   ScratchArrayFile& operator=(const ScratchArrayFile&) = delete;
@@ -38,6 +41,7 @@ class ScratchArrayFile {
  private:
   std::string path_;
   int fd_ = -1;
+  std::vector<uint8_t> memory_;
 };
 
 }  // namespace globe

@@ -2,7 +2,6 @@
 #include "depression_fill.hpp"
 
 #include <algorithm>
-#include <deque>
 #include <queue>
 #include <unordered_map>
 
@@ -17,39 +16,47 @@ struct Open {
   bool operator>(const Open& o) const { return level != o.level ? level > o.level : seq > o.seq; }
 };
 
-enum : uint8_t { kNew = 0, kQueued = 1, kClosed = 2 };
+enum : uint8_t { kNew = 0, kQueued = 1, kClosed = 2, kOutside = 3 };
 
 }  // namespace
 
 ChunkFill fill_chunk(const Chunk& c, const std::vector<int32_t>& z) {
   const ChunkWindow win(c);
-  const int w = c.w, h = c.h;
+  const int stride = win.stride();
+  ptrdiff_t step[9];
+  for (int d = 1; d <= 8; ++d)
+    step[d] = ptrdiff_t(kDy[d]) * stride + kDx[d];
+  // Window-indexed state; the ring (the neighbours' cells) is never entered.
+  std::vector<int32_t> filled(win.size(), kNoData);
+  std::vector<uint32_t> label(win.size(), 0);
+  std::vector<uint8_t> state(win.size(), kOutside);
+  for (int y = 0; y < c.h; ++y)
+    for (int x = 0; x < c.w; ++x) {
+      const size_t k = win.at(x, y);
+      state[k] = z[k] == kNoData ? kOutside : kNew;
+    }
   ChunkFill out;
-  out.filled.assign(c.cells(), kNoData);
-  out.label.assign(c.cells(), 0);
-  std::vector<uint8_t> state(c.cells(), kNew);
   std::priority_queue<Open, std::vector<Open>, std::greater<Open>> open;
-  std::deque<uint32_t> pit;  // cells at the level being flooded: no heap needed
+  std::vector<uint32_t> pit;  // cells at the level being flooded: no heap needed
+  size_t pit_head = 0;
   uint32_t seq = 0;
-  auto seed = [&](int x, int y) {
-    const uint32_t i = uint32_t(y) * w + x;
-    const size_t k = win.at(x, y);
-    if (z[k] == kNoData || state[i] != kNew) return;
-    state[i] = kQueued;
-    out.filled[i] = z[k];
-    if (at_data_edge(z, k, win.stride())) out.label[i] = kEdgeLabel;
-    open.push({z[k], seq++, i});
+  auto seed = [&](size_t k) {
+    if (state[k] != kNew) return;
+    state[k] = kQueued;
+    filled[k] = z[k];
+    if (at_data_edge(z, k, stride)) label[k] = kEdgeLabel;
+    open.push({z[k], seq++, uint32_t(k)});
   };
   // Seeds: the cells next to no data (anywhere) and the chunk's perimeter.
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
+  for (int y = 0; y < c.h; ++y)
+    for (int x = 0; x < c.w; ++x) {
       const size_t k = win.at(x, y);
-      if (z[k] != kNoData && at_data_edge(z, k, win.stride())) seed(x, y);
+      if (state[k] == kNew && at_data_edge(z, k, stride)) seed(k);
     }
   for (int i = 0; i < c.perimeter_count(); ++i) {
     int x, y;
     c.perimeter_cell(i, x, y);
-    seed(x, y);
+    seed(win.at(x, y));
   }
   std::unordered_map<uint64_t, int32_t> spill;
   auto note_spill = [&](uint32_t a, uint32_t b, int32_t level) {
@@ -58,46 +65,50 @@ ChunkFill fill_chunk(const Chunk& c, const std::vector<int32_t>& z) {
     auto [it, fresh] = spill.emplace(key, level);
     if (!fresh && level < it->second) it->second = level;
   };
-  while (!pit.empty() || !open.empty()) {
-    uint32_t i;
-    if (!pit.empty()) {
-      i = pit.front();
-      pit.pop_front();
+  while (pit_head < pit.size() || !open.empty()) {
+    size_t k;
+    if (pit_head < pit.size()) {
+      k = pit[pit_head++];
+      if (pit_head == pit.size()) pit.clear(), pit_head = 0;
     } else {
-      i = open.top().cell;
+      k = open.top().cell;
       open.pop();
     }
-    if (state[i] == kClosed) continue;
-    state[i] = kClosed;
-    if (out.label[i] == 0) out.label[i] = out.labels++;
-    const int x = int(i % w), y = int(i / w);
-    const int32_t level = out.filled[i];
+    if (state[k] == kClosed) continue;
+    state[k] = kClosed;
+    if (label[k] == 0) label[k] = out.labels++;
+    const int32_t level = filled[k];
     for (int d = 1; d <= 8; ++d) {
-      const int nx = x + kDx[d], ny = y + kDy[d];
-      if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
-      const uint32_t n = uint32_t(ny) * w + nx;
-      const int32_t zn = z[win.at(nx, ny)];
-      if (zn == kNoData) continue;
-      if (state[n] == kClosed) {
-        if (out.label[n] != out.label[i])
-          note_spill(out.label[i], out.label[n], std::max(level, out.filled[n]));
-        continue;
-      }
-      if (state[n] == kQueued) {
-        // A perimeter seed not yet reached: it joins this watershed.
-        if (out.label[n] == 0) out.label[n] = out.label[i];
-        continue;
-      }
-      state[n] = kQueued;
-      out.label[n] = out.label[i];
-      if (zn <= level) {
-        out.filled[n] = level;
-        pit.push_back(n);
-      } else {
-        out.filled[n] = zn;
-        open.push({zn, seq++, n});
+      const size_t n = size_t(ptrdiff_t(k) + step[d]);
+      switch (state[n]) {
+        case kOutside:
+          break;
+        case kClosed:
+          if (label[n] != label[k]) note_spill(label[k], label[n], std::max(level, filled[n]));
+          break;
+        case kQueued:
+          // A perimeter seed not yet reached: it joins this watershed.
+          if (label[n] == 0) label[n] = label[k];
+          break;
+        default:  // kNew
+          state[n] = kQueued;
+          label[n] = label[k];
+          if (z[n] <= level) {
+            filled[n] = level;
+            pit.push_back(uint32_t(n));
+          } else {
+            filled[n] = z[n];
+            open.push({z[n], seq++, uint32_t(n)});
+          }
       }
     }
+  }
+  out.filled.resize(c.cells());
+  out.label.resize(c.cells());
+  for (int y = 0; y < c.h; ++y) {
+    const size_t from = win.at(0, y), to = size_t(y) * c.w;
+    std::copy_n(filled.begin() + ptrdiff_t(from), c.w, out.filled.begin() + ptrdiff_t(to));
+    std::copy_n(label.begin() + ptrdiff_t(from), c.w, out.label.begin() + ptrdiff_t(to));
   }
   out.edges.reserve(spill.size());
   for (const auto& [key, level] : spill)

@@ -9,21 +9,23 @@ std::vector<uint64_t> accumulate_chunk(const FlowGrid& g, const Chunk& c,
                                        PerimeterFlow* perimeter) {
   const int w = c.w, h = c.h;
   const size_t n = c.cells();
-  // Receiver index inside the chunk, or -1.
-  auto inside = [&](size_t i) -> int64_t {
-    const uint8_t d = rec[i];
-    if (d == kOutlet || d == kNoDataCode) return -1;
-    const int x = int(i % w) + kDx[d], y = int(i / w) + kDy[d];
-    if (x < 0 || y < 0 || x >= w || y >= h) return -1;
-    return int64_t(y) * w + x;
-  };
+  // Each cell's receiver inside the chunk, or -1; own areas; donor counts.
+  std::vector<int32_t> down(n, -1);
   std::vector<uint64_t> acc(n, 0);
   std::vector<uint8_t> donors(n, 0);
-  for (size_t i = 0; i < n; ++i) {
-    if (rec[i] == kNoDataCode) continue;
-    acc[i] = g.area_units(c.y0 + int64_t(i / w));
-    const int64_t r = inside(i);
-    if (r >= 0) ++donors[size_t(r)];
+  for (int y = 0; y < h; ++y) {
+    const uint64_t area = g.area_units(c.y0 + y);
+    for (int x = 0; x < w; ++x) {
+      const size_t i = size_t(y) * w + x;
+      const uint8_t d = rec[i];
+      if (d == kNoDataCode) continue;
+      acc[i] = area;
+      if (d == kOutlet) continue;
+      const int rx = x + kDx[d], ry = y + kDy[d];
+      if (rx < 0 || ry < 0 || rx >= w || ry >= h) continue;
+      down[i] = ry * w + rx;
+      ++donors[size_t(down[i])];
+    }
   }
   if (!inflow.empty())
     for (int p = 0; p < c.perimeter_count(); ++p) {
@@ -37,10 +39,9 @@ std::vector<uint64_t> accumulate_chunk(const FlowGrid& g, const Chunk& c,
   for (size_t i = 0; i < n; ++i)
     if (rec[i] != kNoDataCode && donors[i] == 0) order.push_back(uint32_t(i));
   for (size_t head = 0; head < order.size(); ++head) {
-    const size_t i = order[head];
-    const int64_t r = inside(i);
+    const int32_t r = down[order[head]];
     if (r < 0) continue;
-    acc[size_t(r)] += acc[i];
+    acc[size_t(r)] += acc[order[head]];
     if (--donors[size_t(r)] == 0) order.push_back(uint32_t(r));
   }
   if (!perimeter) return acc;
@@ -48,9 +49,9 @@ std::vector<uint64_t> accumulate_chunk(const FlowGrid& g, const Chunk& c,
   std::vector<int32_t> below(n, -1);
   for (size_t k = order.size(); k-- > 0;) {
     const size_t i = order[k];
-    const int64_t r = inside(i);
+    const int32_t r = down[i];
     if (r < 0) continue;
-    const int rp = c.perimeter_index(int(r % w), int(r / w));
+    const int rp = c.perimeter_index(r % w, r / w);
     below[i] = rp >= 0 ? rp : below[size_t(r)];
   }
   const int count = c.perimeter_count();
@@ -64,7 +65,7 @@ std::vector<uint64_t> accumulate_chunk(const FlowGrid& g, const Chunk& c,
     perimeter->area[size_t(p)] = acc[i];
     perimeter->next[size_t(p)] = below[i];
     const uint8_t d = rec[i];
-    perimeter->leaves[size_t(p)] = d != kOutlet && d != kNoDataCode && inside(i) < 0;
+    perimeter->leaves[size_t(p)] = d != kOutlet && d != kNoDataCode && down[i] < 0;
   }
   return acc;
 }

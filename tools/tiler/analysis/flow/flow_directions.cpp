@@ -21,36 +21,39 @@ void flat_distances(const Chunk& c, const std::vector<int32_t>& f, std::vector<u
   const int s = win.stride();
   // Dijkstra with unit steps from every cell off a flat (distance 0) and the
   // ring's known distances, into the chunk's flat cells of the same height.
-  using Item = std::pair<uint32_t, uint32_t>;  // distance, window index
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
+  std::vector<uint32_t> flats;
   for (int y = 0; y < c.h; ++y)
     for (int x = 0; x < c.w; ++x) {
       const size_t k = win.at(x, y);
-      dist[k] = on_flat(f, k, s) ? kFar : 0;
+      const bool flat = on_flat(f, k, s);
+      dist[k] = flat ? kFar : 0;
+      if (flat) flats.push_back(uint32_t(k));
     }
-  auto feeds_flat = [&](size_t k) {  // has a chunk cell on a flat of its height
-    const int x = int(k % s) - 1, y = int(k / s) - 1;
+  if (flats.empty()) return;
+  std::vector<uint8_t> open(win.size(), 0);  // the chunk's flat cells
+  for (uint32_t k : flats)
+    open[k] = 1;
+  using Item = std::pair<uint32_t, uint32_t>;  // distance, window index
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
+  // Sources: known cells (off a flat, or the ring's) next to a flat cell of
+  // their height; one met twice relaxes nothing the second time.
+  for (uint32_t k : flats)
     for (int d = 1; d <= 8; ++d) {
-      const int nx = x + kDx[d], ny = y + kDy[d];
-      if (nx < 0 || ny < 0 || nx >= c.w || ny >= c.h) continue;
-      const size_t n = win.at(nx, ny);
-      if (dist[n] == kFar && f[n] == f[k]) return true;
+      const size_t n = size_t(ptrdiff_t(k) + ptrdiff_t(kDy[d]) * s + kDx[d]);
+      if (f[n] == f[k] && dist[n] != kFar && !open[n]) q.push({dist[n], uint32_t(n)});
     }
-    return false;
-  };
-  for (size_t k = 0; k < win.size(); ++k)
-    if (f[k] != kNoData && dist[k] != kFar && feeds_flat(k)) q.push({dist[k], uint32_t(k)});
   while (!q.empty()) {
     const auto [d, k] = q.top();
     q.pop();
     if (d != dist[k]) continue;
-    const int x = int(k % s) - 1, y = int(k / s) - 1;
     for (int dir = 1; dir <= 8; ++dir) {
-      const int nx = x + kDx[dir], ny = y + kDy[dir];
-      if (nx < 0 || ny < 0 || nx >= c.w || ny >= c.h) continue;
-      const size_t n = win.at(nx, ny);
-      if (f[n] != f[k] || dist[n] <= d + 1) continue;  // (cells off a flat hold 0)
-      dist[n] = d + 1;
+      // A ring cell's outer neighbours lie off the window (or wrap to the
+      // ring's other side, which is never open).
+      const ptrdiff_t n = ptrdiff_t(k) + ptrdiff_t(kDy[dir]) * s + kDx[dir];
+      if (n < 0 || size_t(n) >= open.size() || !open[size_t(n)] || f[size_t(n)] != f[k] ||
+          dist[size_t(n)] <= d + 1)
+        continue;
+      dist[size_t(n)] = d + 1;
       q.push({d + 1, uint32_t(n)});
     }
   }

@@ -48,6 +48,32 @@ double zone(double phi) {
 
 }  // namespace
 
+std::vector<uint8_t> FlowGrid::present_chunks(const tileformat::Tiling& tiling, int zoom, int steps,
+                                              const std::vector<tileformat::TileId>& finest,
+                                              int64_t c, int64_t& chunks_x, int64_t& chunks_y) {
+  const bool wrap = tiling.wrap_tiles() != 0;
+  const int64_t cols = int64_t(tiling.tiles_x(zoom)) * steps;
+  const int64_t rows = int64_t(tiling.tiles_y(zoom)) * steps;
+  const int64_t width = wrap ? cols : cols + 1;
+  chunks_x = std::max<int64_t>(1, cols / c);
+  chunks_y = std::max<int64_t>(1, rows / c);
+  if (wrap && cols % c != 0) chunks_x = 1;  // (C is at most one zoom-0 root wide)
+  std::vector<uint8_t> present(size_t(chunks_x * chunks_y), 0);
+  // Every chunk a tile's cells (edges included) fall in; steps and C are
+  // powers of two, so the stride lands on the tile's end.
+  const int64_t stride = std::min<int64_t>(c, steps);
+  for (const tileformat::TileId& id : finest) {
+    const int64_t x0 = int64_t(id.x) * steps, y0 = int64_t(id.y) * steps;
+    for (int64_t y = y0; y <= y0 + steps; y += stride)
+      for (int64_t x = x0; x <= x0 + steps; x += stride) {
+        const int64_t xx = wrap ? x % width : x;
+        present[size_t(std::min(y / c, chunks_y - 1) * chunks_x + std::min(xx / c, chunks_x - 1))] =
+            1;
+      }
+  }
+  return present;
+}
+
 double cell_area_m2(const tileformat::Tiling& t, int zoom, int steps, int64_t y) {
   const double sp = t.sample_spacing(zoom, steps);
   if (t.scheme == tileformat::Scheme::kLocal) return sp * sp;
@@ -73,25 +99,8 @@ FlowGrid::FlowGrid(const tileformat::Tiling& tiling, int zoom, int block_size,
   const int64_t rows = int64_t(tiling.tiles_y(zoom)) * steps_;
   width_ = wrap_ ? cols : cols + 1;
   height_ = rows + 1;
-  chunks_x_ = std::max<int64_t>(1, cols / c_);
-  chunks_y_ = std::max<int64_t>(1, rows / c_);
-  if (wrap_ && cols % c_ != 0) chunks_x_ = 1;  // (C is at most one zoom-0 root wide)
-  std::vector<uint8_t> present(size_t(chunks_x_ * chunks_y_), 0);
-  auto mark = [&](int64_t x, int64_t y) {  // a cell range of a tile
-    present[size_t(std::min(y / c_, chunks_y_ - 1) * chunks_x_ + std::min(x / c_, chunks_x_ - 1))] =
-        1;
-  };
-  for (const tileformat::TileId& id : finest) {
-    const int64_t x0 = int64_t(id.x) * steps_, y0 = int64_t(id.y) * steps_;
-    // Every chunk the tile's cells (edges included) fall in.
-    // (steps and C are powers of two: the stride lands on the tile's end)
-    const int64_t stride = std::min<int64_t>(c_, steps_);
-    for (int64_t y = y0; y <= y0 + steps_; y += stride)
-      for (int64_t x = x0; x <= x0 + steps_; x += stride) {
-        int64_t xx = x;
-        if (normalise(xx, y)) mark(xx, y);
-      }
-  }
+  const std::vector<uint8_t> present =
+      present_chunks(tiling, zoom, steps_, finest, c_, chunks_x_, chunks_y_);
   slots_.assign(present.size(), -1);
   for (int64_t r = 0; r < chunks_y_; ++r)
     for (int64_t c = 0; c < chunks_x_; ++c) {

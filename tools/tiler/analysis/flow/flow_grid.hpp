@@ -83,6 +83,12 @@ class FlowGrid {
     return true;
   }
 
+  // The chunks (col, row) that tiles `finest` touch with chunk size `chunk`,
+  // as flags over chunks_x * chunks_y; and those counts.
+  static std::vector<uint8_t> present_chunks(const tileformat::Tiling& tiling, int zoom, int steps,
+                                             const std::vector<tileformat::TileId>& finest,
+                                             int64_t chunk, int64_t& chunks_x, int64_t& chunks_y);
+
   // Ground metres between cells of row y, and each cell's true area.
   double dx(int64_t y) const { return dx_[size_t(y)]; }
   double dy(int64_t y) const { return dy_[size_t(y)]; }

@@ -64,7 +64,8 @@ LevelGrid coarsen(const LevelGrid& c, const LevelShape& cs, const LevelShape& ps
   return p;
 }
 
-FlowPyramid::FlowPyramid(const FlowGrid& g, int min_zoom, const std::string& prefix) : grid_(g) {
+FlowPyramid::FlowPyramid(const FlowGrid& g, int min_zoom, const std::string& prefix, bool in_memory)
+    : grid_(g) {
   levels_ = g.zoom() - min_zoom + 1;
   int in_chunks = 1;
   while (in_chunks < levels_ && (int64_t(1) << in_chunks) <= g.chunk_size())
@@ -77,9 +78,11 @@ FlowPyramid::FlowPyramid(const FlowGrid& g, int min_zoom, const std::string& pre
       const Part pt = part(l, int(s));
       off[s + 1] = off[s] + uint64_t(pt.w) * pt.h * 9;
     }
+    const uint64_t bytes = off.back();
     offsets_.push_back(std::move(off));
     files_.push_back(
-        std::make_unique<ScratchArrayFile>(prefix + "level" + std::to_string(l) + ".bin"));
+        std::make_unique<ScratchArrayFile>(prefix + "level" + std::to_string(l) + ".bin",
+                                           in_memory ? std::max<uint64_t>(bytes, 1) : 0));
   }
   tops_.resize(chunks.size());
 }

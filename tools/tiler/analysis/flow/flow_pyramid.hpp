@@ -42,8 +42,10 @@ LevelGrid coarsen(const LevelGrid& child, const LevelShape& child_shape,
 
 class FlowPyramid {
  public:
-  // Zooms min_zoom .. grid.zoom(); scratch files at `scratch_prefix` + name.
-  FlowPyramid(const FlowGrid& grid, int min_zoom, const std::string& scratch_prefix);
+  // Zooms min_zoom .. grid.zoom(); scratch files at `scratch_prefix` + name,
+  // or in memory.
+  FlowPyramid(const FlowGrid& grid, int min_zoom, const std::string& scratch_prefix,
+              bool in_memory);
 
   // A chunk's finest cells (x0, y0, w, h of the chunk); any thread.
   void put_chunk(int slot, LevelGrid finest);

@@ -39,8 +39,8 @@ class Solver {
 
   FlowSolution run() {
     const std::vector<TileId> finest = p_.reader->tile_ids(p_.max_zoom);
-    const int64_t c = chunk_size_for(p_.tiling, p_.max_zoom, p_.block_size, finest.size(),
-                                     s_.memory_bytes, s_.threads);
+    const int64_t c =
+        chunk_size_for(p_.tiling, p_.max_zoom, p_.block_size, finest, s_.memory_bytes, s_.threads);
     out_.grid = std::make_unique<FlowGrid>(p_.tiling, p_.max_zoom, p_.block_size, finest, c);
     const FlowGrid& g = *out_.grid;
     const auto& chunks = g.chunks();
@@ -52,11 +52,17 @@ class Solver {
     }
     const size_t nodes = per_.base.back();
     out_.perimeter_cells = nodes;
-    fill_ = std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "fill.bin");
+    // One chunk fits the budget with room for its scratch data (21 bytes a
+    // cell against kBytesPerCell): then the scratch stays in memory.
+    const uint64_t cells = cell_base_.back();
+    const bool in_memory = chunks.size() == 1;
+    fill_ = std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "fill.bin",
+                                               in_memory ? cells * 8 : 0);
     fill_pass();
     route_flats();
-    dirs_ = std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "receivers.bin");
-    out_.pyramid = std::make_unique<FlowPyramid>(g, p_.min_zoom, s_.scratch_prefix);
+    dirs_ = std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "receivers.bin",
+                                               in_memory ? cells : 0);
+    out_.pyramid = std::make_unique<FlowPyramid>(g, p_.min_zoom, s_.scratch_prefix, in_memory);
     accumulate();
     dirs_.reset();
     out_.pyramid->finish();
@@ -268,7 +274,10 @@ class Solver {
     per_.distance.assign(nodes, kFar);
     per_.flat.assign(nodes, 0);
     per_.changed.assign(nodes, 0);
+    // A single chunk that does not wrap has no ring to wait for: the
+    // directions pass computes its distances once.
     std::vector<int> run = all_slots();
+    if (run.size() == 1 && !grid().wraps()) return;
     while (!run.empty()) {
       ++out_.flat_rounds;
       std::vector<std::pair<int, FlatResult>> results;
@@ -405,23 +414,35 @@ class Solver {
 
 }  // namespace
 
-int64_t chunk_size_for(const tileformat::Tiling& t, int zoom, int block_size, size_t finest_tiles,
-                       uint64_t memory_bytes, int threads) {
+int64_t chunk_size_for(const tileformat::Tiling& t, int zoom, int block_size,
+                       const std::vector<TileId>& finest, uint64_t memory_bytes, int threads) {
   const int64_t steps = block_size - 1;
   const int64_t cols = int64_t(t.tiles_x(zoom)) * steps, rows = int64_t(t.tiles_y(zoom)) * steps;
   const int64_t whole = std::max(cols, rows);
-  const uint64_t data_cells = uint64_t(finest_tiles) * uint64_t(steps * steps);
-  int64_t best = 64;
+  // Workers' chunks grow with C, the perimeters kept for the whole run
+  // shrink: the largest C that fits, else the cheapest.
+  int64_t best = 0, cheapest = 64;
+  uint64_t cheapest_bytes = UINT64_MAX, best_cells = UINT64_MAX;
   for (int64_t c = 64; c < 2 * whole; c *= 2) {
     const uint64_t side = uint64_t(std::min(c, whole) + 2);
     const uint64_t tiles = uint64_t(c / steps + 3) * uint64_t(c / steps + 3);
     const uint64_t worker = side * side * kBytesPerCell + tiles * block_size * block_size * 5;
-    const uint64_t chunks = std::max<uint64_t>(1, data_cells / uint64_t(c * c) + 1);
+    int64_t cx = 0, cy = 0;
+    const std::vector<uint8_t> present =
+        FlowGrid::present_chunks(t, zoom, int(steps), finest, c, cx, cy);
+    const uint64_t chunks =
+        std::max<uint64_t>(1, uint64_t(std::count(present.begin(), present.end(), 1)));
+    // Cost: the chunks' cells, and the samples of the tiles each decodes.
+    const uint64_t across = uint64_t(std::max<int64_t>(1, c / steps) + 1);
+    const uint64_t cells =
+        chunks * ((side - 2) * (side - 2) + across * across * uint64_t(block_size) * block_size);
     const uint64_t shared = chunks * 4 * uint64_t(c) * kBytesPerNode;
     const int busy = int(std::min<uint64_t>(uint64_t(std::max(1, threads)), chunks));
-    if (uint64_t(busy) * worker + shared > memory_bytes) break;
-    best = c;
+    const uint64_t bytes = uint64_t(busy) * worker + shared;
+    if (bytes <= memory_bytes && cells <= best_cells) best = c, best_cells = cells;
+    if (bytes < cheapest_bytes) cheapest_bytes = bytes, cheapest = c;
   }
+  if (best == 0) best = cheapest;
   return best;
 }
 

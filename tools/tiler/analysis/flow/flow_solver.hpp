@@ -38,9 +38,13 @@ struct FlowSolution {
   int flat_rounds = 0;
 };
 
-// The chunk size (a power of two) whose working set fits the budget.
+// The chunk size (a power of two): of those whose working set fits the
+// budget, the one that processes the fewest cells (chunks are whole even
+// where the data covers a corner; each decodes the tiles it touches), the
+// largest of equals.
 int64_t chunk_size_for(const tileformat::Tiling& tiling, int zoom, int block_size,
-                       size_t finest_tiles, uint64_t memory_bytes, int threads);
+                       const std::vector<tileformat::TileId>& finest, uint64_t memory_bytes,
+                       int threads);
 
 // Throws InputError for a corrupt terrain block, OutputError for scratch
 // files that cannot be written.
