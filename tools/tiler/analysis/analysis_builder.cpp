@@ -37,6 +37,13 @@ class BlockAnalyzer {
   BlockAnalyzer(const TerrainPackage& p, const AnalysisSettings& s, const flow::FlowPyramid* flow)
       : p_(p), s_(s), flow_(flow) {}
 
+  // Whether a layer reads the terrain's heights (the flow layers come from
+  // the solved grid).
+  bool reads_heights() const {
+    return std::any_of(s_.layers.begin(), s_.layers.end(),
+                       [](AnalysisLayer l) { return l <= AnalysisLayer::kSkyview; });
+  }
+
   // Samples around a block that its layers read.
   int halo(TileId id) const {
     const int n = p_.block_size - 1;
@@ -51,8 +58,6 @@ class BlockAnalyzer {
 
   std::vector<uint8_t> analyze(TileId id, const BatchBlocks& blocks) const {
     const int s = p_.block_size, n = s - 1;
-    const HeightWindow w(p_.tiling, id, s, halo(id),
-                         [&](TileId t) { return blocks.get(t, s_.inputs[0]); });
     const std::vector<AnalysisLayer>& layers = s_.layers;
     const bool skyview = has_layer(layers, AnalysisLayer::kSkyview);
     const bool flow = has_layer(layers, AnalysisLayer::kFlowDirection) ||
@@ -72,7 +77,12 @@ class BlockAnalyzer {
     std::vector<uint64_t> area;
     std::vector<uint8_t> code;
     if (flow) flow_->block(id, s, area, code);
-    for (int y = 0; y < s; ++y) {
+    std::optional<HeightWindow> window;
+    if (reads_heights())
+      window.emplace(p_.tiling, id, s, halo(id),
+                     [&](TileId t) { return blocks.get(t, s_.inputs[0]); });
+    for (int y = 0; window && y < s; ++y) {
+      const HeightWindow& w = *window;
       const GroundSpacing sp = ground_spacing(p_.tiling, id.z, n, id.y, y);
       std::optional<SkyViewScan> scan;
       if (skyview) scan.emplace(s_.skyview, sp);
@@ -197,7 +207,7 @@ AnalysisSummary build_analysis(const AnalysisSettings& s, Progress& progress) {
         items.size(), s.worker_threads(), 64,
         [&](size_t begin, size_t end) {
           BatchBlocks blocks;
-          for (size_t i = begin; i < end; ++i) {
+          for (size_t i = begin; i < end && analyzer.reads_heights(); ++i) {
             const int radius = HeightWindow::radius_for(p.block_size, analyzer.halo(items[i]));
             for (const TileId& t : tiles_around(p.tiling, items[i], radius))
               if (!blocks.has(t)) blocks.add(t, p.reader->tile(t));
