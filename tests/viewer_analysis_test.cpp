@@ -30,8 +30,8 @@ const Packages& packages() {
     k.other = (k.dir / "ba.mbtiles").string();
     for (const std::string& cmd :
          {tiler() + " terrain -q " + sample("jacksboro.tif").string() + " -o " + k.terrain,
-          tiler() + " analyze -q " + k.terrain + " --layers slope,aspect,curvature,skyview -o " +
-              k.all,
+          tiler() + " analyze -q " + k.terrain +
+              " --layers slope,aspect,curvature,skyview,flow -o " + k.all,
           tiler() + " analyze -q " + k.terrain + " --layers skyview -o " + k.skyview_only,
           tiler() + " terrain -q --tiling local " + sample("brasilia.tif").string() + " -o " +
               other_terrain,
@@ -96,6 +96,23 @@ TEST(ViewerAnalysis, EdgesMarkRidgesWarmAndValleysBlue) {
   expect_image((dir / "a.png").string(), "jacksboro_edges");
 }
 
+// Rivers from the flow accumulation: light blue where they begin, deep blue
+// downstream; the hillsides stay grey.
+TEST(ViewerAnalysis, FlowDrawsTheRiversBlue) {
+  TempDir dir;
+  const auto rgb =
+      snapshot(packages().terrain + " " + packages().all + " --shading flow", dir, "a");
+  const double river = fraction(rgb, [](const uint8_t* p) { return p[2] > p[0] + 60; });
+  const double deep = fraction(rgb, [](const uint8_t* p) { return p[2] > p[0] + 120; });
+  const double grey = fraction(rgb, [](const uint8_t* p) { return std::abs(p[2] - p[0]) < 8; });
+  std::printf("flow: river %.3f, deep %.3f, grey %.3f\n", river, deep, grey);
+  EXPECT_GT(river, 0.01);
+  EXPECT_LT(river, 0.3);
+  EXPECT_GT(deep, 0.001);
+  EXPECT_GT(grey, 0.6);
+  expect_image((dir / "a.png").string(), "jacksboro_flow");
+}
+
 TEST(ViewerAnalysis, AmbientOcclusionDarkensTheHollowsOnly) {
   TempDir dir;
   const std::string base = packages().terrain + " " + packages().all + " --shading elevation";
@@ -150,6 +167,9 @@ TEST(ViewerAnalysis, MissingLayersAndOtherTilingsAreClearErrors) {
   r = view(t + " " + packages().skyview_only + " --shading edges" + snap, dir.path());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("js.mbtiles has no plan_curvature layer"), std::string::npos) << r.err;
+  r = view(t + " " + packages().skyview_only + " --shading flow" + snap, dir.path());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--layers flow"), std::string::npos) << r.err;
   r = view(t + " " + packages().all + " --shading skyview --ambient-occlusion" + snap, dir.path());
   EXPECT_EQ(r.exit_code, 0) << r.err;
   fs::remove(dir / "a.png");

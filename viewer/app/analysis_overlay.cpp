@@ -33,10 +33,14 @@ std::string shading_needs(const ShadingSettings& s, const std::optional<std::str
   if (s.mode == Shading::kSkyview) need.emplace_back(AnalysisLayer::kSkyview, "--shading skyview");
   if (s.mode == Shading::kEdges)
     need.emplace_back(AnalysisLayer::kPlanCurvature, "--shading edges");
+  if (s.mode == Shading::kFlow)
+    need.emplace_back(AnalysisLayer::kFlowAccumulation, "--shading flow");
   if (s.ambient_occlusion) need.emplace_back(AnalysisLayer::kSkyview, "--ambient-occlusion");
   for (const auto& [layer, what] : need) {
     const std::string name = tileformat::analysis_layer_info(layer).name;
-    const std::string make = layer == AnalysisLayer::kPlanCurvature ? "curvature" : name;
+    const std::string make = layer == AnalysisLayer::kPlanCurvature      ? "curvature"
+                             : layer == AnalysisLayer::kFlowAccumulation ? "flow"
+                                                                         : name;
     if (!path)
       return what + " draws the " + name +
              " layer of an analysis package: give one (globe-tiler analyze TERRAIN --layers " +

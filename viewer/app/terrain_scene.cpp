@@ -151,6 +151,15 @@ void TerrainScene::upload_loaded() {
     if (edges_.add_samples(
             b, p.tiling.sample_spacing(b.id.z, p.block_size - 1) * world_->metres_per_crs_x()))
       renderer_->set_edge_scales(edges_.scales());
+    // Flow: the largest river loaded so far (coarser zooms keep the largest
+    // area of their footprint, so the first blocks already hold it) and eight
+    // doublings below it.
+    const float largest =
+        b.flow.empty() ? kNoFlow : *std::max_element(b.flow.begin(), b.flow.end());
+    if (largest > flow_largest_) {
+      flow_largest_ = largest;
+      renderer_->set_flow_range(largest - 8, largest);
+    }
     renderer_->upload(b);
   }
 }

@@ -84,6 +84,7 @@ class TerrainScene {
   EdgeScale edges_;                                         // the edges shading's stretch per zoom
   std::optional<std::string> analysis_path_;                // the analysis package, if any
   std::vector<tileformat::AnalysisLayer> analysis_layers_;  // and its layers
+  float flow_largest_ = kNoFlow;                            // log2 m^2: the flow shading's top
   int ramp_zoom_ = -1;  // zoom whose blocks feed the ramp's samples (-1: done)
   std::vector<tileformat::TileId> ramp_level_;  // its blocks loaded so far
 };

@@ -92,8 +92,9 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
   cli.option("--shading", "MODE",
              "hillshade (default; imagery is lit by it), imagery (imagery unlit), elevation, "
              "slope, aspect (from an analysis package when given, else from the heights), "
-             "skyview (sky-view factor) or edges (ridges and valleys from plan curvature); "
-             "skyview and edges need an analysis package (globe-tiler analyze)",
+             "skyview (sky-view factor), edges (ridges and valleys from plan curvature) or "
+             "flow (rivers by upstream area, log scale); skyview, edges and flow need an "
+             "analysis package (globe-tiler analyze)",
              [&](const std::string& v) {
                if (v == "hillshade")
                  s.shading.mode = Shading::kHillshade;
@@ -107,6 +108,8 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
                  s.shading.mode = Shading::kSkyview;
                else if (v == "edges")
                  s.shading.mode = Shading::kEdges;
+               else if (v == "flow")
+                 s.shading.mode = Shading::kFlow;
                else if (v == "imagery")
                  s.imagery_unlit = true;
                else

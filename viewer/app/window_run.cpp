@@ -95,12 +95,15 @@ int run_window(const ViewerSettings& settings) {
         break;
       case GLFW_KEY_5:
       case GLFW_KEY_6:
+      case GLFW_KEY_7:
       case GLFW_KEY_O: {  // only with the analysis layers they draw
         ShadingSettings next = s;
         if (key == GLFW_KEY_O)
           next.ambient_occlusion = !s.ambient_occlusion;
         else
-          next.mode = key == GLFW_KEY_5 ? Shading::kSkyview : Shading::kEdges;
+          next.mode = key == GLFW_KEY_5   ? Shading::kSkyview
+                      : key == GLFW_KEY_6 ? Shading::kEdges
+                                          : Shading::kFlow;
         if (const std::string e = scene->shading_problem(next); !e.empty())
           std::fprintf(stderr, "globe-view: %s\n", e.c_str());
         else

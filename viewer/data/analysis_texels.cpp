@@ -47,4 +47,12 @@ std::vector<float> analysis_texels(const tileformat::AnalysisBlock& b) {
   return t;
 }
 
+std::vector<float> flow_texels(const tileformat::AnalysisBlock& b) {
+  const std::vector<double> area = values(b, AnalysisLayer::kFlowAccumulation, 0);
+  std::vector<float> t(area.size());
+  for (size_t i = 0; i < area.size(); ++i)
+    t[i] = area[i] > 0 ? static_cast<float>(std::log2(area[i])) : kNoFlow;
+  return t;
+}
+
 }  // namespace globe::viewer

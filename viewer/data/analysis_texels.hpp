@@ -16,4 +16,9 @@ namespace globe::viewer {
 // size*size*4 floats, row-major from the north row.
 std::vector<float> analysis_texels(const tileformat::AnalysisBlock& block);
 
+// The flow shading's texels: log2 of the upstream area in m^2 per sample,
+// kNoFlow where the package has none (or no flow_accumulation layer).
+inline constexpr float kNoFlow = -100;
+std::vector<float> flow_texels(const tileformat::AnalysisBlock& block);
+
 }  // namespace globe::viewer

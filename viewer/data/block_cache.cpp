@@ -17,8 +17,8 @@ using tileformat::TileId;
 
 namespace {
 
-// The analysis texels of tile `id` (defaults where the package has no tile).
-std::vector<float> read_analysis(const AnalysisSource& a, TileId id, int block_size) {
+// The analysis block of tile `id` (no layers where the package has no tile).
+tileformat::AnalysisBlock read_analysis(const AnalysisSource& a, TileId id, int block_size) {
   const auto blob = a.reader->tile(id);
   tileformat::AnalysisBlock b;
   if (blob) {
@@ -32,7 +32,7 @@ std::vector<float> read_analysis(const AnalysisSource& a, TileId id, int block_s
   } else {
     b.size = block_size;
   }
-  return analysis_texels(b);
+  return b;
 }
 
 // Runs on the loader thread.
@@ -57,7 +57,11 @@ auto decode_block(int block_size, int lattice, const std::optional<AnalysisSourc
     d.meta.min_h = lo;
     d.meta.max_h = hi;
     d.meta.vertex_error = std::move(b.vertex_error);
-    if (analysis) d.block.analysis = read_analysis(*analysis, id, block_size);
+    if (analysis) {
+      const tileformat::AnalysisBlock a = read_analysis(*analysis, id, block_size);
+      d.block.analysis = analysis_texels(a);
+      d.block.flow = flow_texels(a);
+    }
     return d;
   };
 }

@@ -86,8 +86,10 @@ TerrainRenderer::TerrainRenderer(int block_size, int lattice, int slots, int wid
   if (analysis) {
     gl::CreateTextures(GL_TEXTURE_2D_ARRAY, 1, &layers_);
     gl::TextureStorage3D(layers_, 1, GL_RGBA16F, size_, size_, slots_);
+    gl::CreateTextures(GL_TEXTURE_2D_ARRAY, 1, &flow_);
+    gl::TextureStorage3D(flow_, 1, GL_R16F, size_, size_, slots_);
   }
-  for (GLuint t : {heights_, mask_, ramp_, layers_}) {
+  for (GLuint t : {heights_, mask_, ramp_, layers_, flow_}) {
     if (!t) continue;
     gl::TextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     gl::TextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -102,9 +104,9 @@ TerrainRenderer::TerrainRenderer(int block_size, int lattice, int slots, int wid
 TerrainRenderer::~TerrainRenderer() {
   gl::DeleteQueries(1, &timer_);
   gl::DeleteFramebuffers(1, &g_.fbo);
-  GLuint textures[10] = {heights_,  mask_,     ramp_,        g_.color, g_.position,
-                         g_.normal, g_.ground, g_.ground_dy, g_.depth, layers_};
-  gl::DeleteTextures(layers_ ? 10 : 9, textures);
+  GLuint textures[11] = {heights_,  mask_,        ramp_,    g_.color, g_.position, g_.normal,
+                         g_.ground, g_.ground_dy, g_.depth, layers_,  flow_};
+  gl::DeleteTextures(layers_ ? 11 : 9, textures);
   GLuint buffers[3] = {lattice_vbo_, index_buffer_, instance_buffer_};
   gl::DeleteBuffers(3, buffers);
   gl::DeleteVertexArrays(1, &vao_);
@@ -164,6 +166,8 @@ void TerrainRenderer::upload(const LoadedBlock& b) {
   if (layers_ && !b.analysis.empty())
     gl::TextureSubImage3D(layers_, 0, 0, 0, b.slot, size_, size_, 1, GL_RGBA, GL_FLOAT,
                           b.analysis.data());
+  if (flow_ && !b.flow.empty())
+    gl::TextureSubImage3D(flow_, 0, 0, 0, b.slot, size_, size_, 1, GL_RED, GL_FLOAT, b.flow.data());
 }
 
 void TerrainRenderer::upload_instances(const std::vector<Patch>& patches, const View& view,
@@ -261,6 +265,9 @@ RenderTimes TerrainRenderer::draw(const std::vector<Patch>& patches, const View&
   gl::Uniform1i(p.uniform("u_ao"), s.ambient_occlusion && layers_ ? 1 : 0);
   gl::Uniform1i(p.uniform("u_layers"), 3);
   gl::BindTextureUnit(3, layers_ ? layers_ : mask_);  // any array texture when unused
+  gl::Uniform1i(p.uniform("u_flow"), 4);
+  gl::BindTextureUnit(4, flow_ ? flow_ : mask_);
+  gl::Uniform2f(p.uniform("u_flow_range"), flow_lo_, flow_hi_);
   gl::BindVertexArray(vao_);
   gl::BeginQuery(GL_TIME_ELAPSED, timer_);
   if (!patches.empty())

@@ -29,6 +29,7 @@ enum class Shading {
   kAspect = 3,
   kSkyview = 4,  // the sky-view factor, white on open ground
   kEdges = 5,    // hillshade with ridges warm and valleys blue (plan curvature)
+  kFlow = 6,     // hillshade with rivers blue by upstream area, on a log scale
 };
 
 struct ShadingSettings {
@@ -92,6 +93,9 @@ class TerrainRenderer {
   void set_gradient_from_layers(bool on) { gradient_from_layers_ = on; }
   // Per zoom: plan curvature x sample spacing where the edges shading saturates.
   void set_edge_scales(const std::array<float, 32>& scales) { edge_scales_ = scales; }
+  // log2 of the upstream areas (m^2) where rivers start to show and where
+  // they are darkest.
+  void set_flow_range(float lo, float hi) { flow_lo_ = lo, flow_hi_ = hi; }
   // Draws into the offscreen framebuffer; waits for the GPU and returns its time.
   RenderTimes draw(const std::vector<Patch>& patches, const View& view, const WorldFrame& frame,
                    const ShadingSettings& shading);
@@ -114,7 +118,9 @@ class TerrainRenderer {
   GLsizei index_count_ = 0;
   GlProgram draw_program_, capture_program_;
   GLuint vao_ = 0, lattice_vbo_ = 0, index_buffer_ = 0, instance_buffer_ = 0;
-  GLuint heights_ = 0, mask_ = 0, ramp_ = 0, layers_ = 0;  // layers_: 0 without analysis
+  GLuint heights_ = 0, mask_ = 0, ramp_ = 0;
+  GLuint layers_ = 0, flow_ = 0;  // 0 without analysis
+  float flow_lo_ = 10, flow_hi_ = 20;
   double ramp_lo_ = 0, ramp_hi_ = 1;
   std::array<float, 32> edge_scales_;
   bool gradient_from_layers_ = false;

@@ -120,10 +120,10 @@ void main() {
 )";
 
 // Shading modes: 0 hillshade, 1 elevation ramp, 2 slope, 3 aspect, 4 sky
-// view, 5 edges (Shading). With an analysis package, u_layers holds per
-// sample the sky-view factor, plan curvature and downhill gradient
-// (data/analysis_texels.hpp). Also writes the G-buffer the line pass reads:
-// position and surface plane.
+// view, 5 edges, 6 flow (Shading). With an analysis package, u_layers holds
+// per sample the sky-view factor, plan curvature and downhill gradient, and
+// u_flow log2 of the upstream area (data/analysis_texels.hpp). Also writes the G-buffer the line
+// pass reads: position and surface plane.
 inline constexpr const char* kTerrainFragment = R"(#version 450 core
 in vec3 v_world;
 in vec2 v_ground;
@@ -144,6 +144,8 @@ uniform int u_has_gradient;  // 1: u_layers holds the analysis package's slope a
 uniform int u_ao;          // 1: multiply the sky-view factor onto the colour
 uniform float u_edge_scale[32]; // per zoom: plan curvature x spacing where edge colours saturate
 uniform int u_key_zoom;
+uniform sampler2DArray u_flow;
+uniform vec2 u_flow_range;  // log2 upstream areas: rivers begin to show, darkest
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_position;  // G-buffer: world point, w = 1 on terrain
 layout(location = 2) out vec4 o_normal;    // G-buffer: plane of the drawn triangle
@@ -193,6 +195,13 @@ void main() {
     color = mix(vec3(0.85), hue(aspect), clamp(length(a) * 4.0, 0.0, 1.0));
   } else if (u_mode == 4) {
     color = vec3(sky_light(layers_at(v_sample).r));
+  } else if (u_mode == 6) {
+    // Rivers: light blue where they begin, deep blue for the largest.
+    float a = texture(u_flow, vec3((v_sample + 0.5) / u_size, float(v_layer))).r;
+    float t = (a - u_flow_range.x) / max(u_flow_range.y - u_flow_range.x, 1e-3);
+    color = vec3(0.3 + 0.65 * shade);
+    if (t > 0.0) color = mix(color, mix(vec3(0.45, 0.75, 1.0), vec3(0.0, 0.15, 0.65), min(t, 1.0)),
+                             0.4 + 0.6 * min(t, 1.0));
   } else {
     // Plan curvature times the sample spacing (the change of grade across
     // the slope per sample), stretched by the data's 95th percentile.

@@ -13,10 +13,10 @@ for mode in elevation slope aspect; do
   build/viewer/globe-view "$tmp/j.mbtiles" --snapshot $out/jacksboro_fit_$mode.png --size 320x180 \
     --fit --shading $mode
 done
-# Analysis (tests/viewer_analysis_test.cpp): sky view and edges of the same DEM.
-build/tools/tiler/globe-tiler analyze -q "$tmp/j.mbtiles" --layers slope,aspect,curvature,skyview \
-  -o "$tmp/ja.mbtiles"
-for mode in skyview edges; do
+# Analysis (tests/viewer_analysis_test.cpp): sky view, edges and flow of the same DEM.
+build/tools/tiler/globe-tiler analyze -q "$tmp/j.mbtiles" \
+  --layers slope,aspect,curvature,skyview,flow -o "$tmp/ja.mbtiles"
+for mode in skyview edges flow; do
   build/viewer/globe-view "$tmp/j.mbtiles" "$tmp/ja.mbtiles" --snapshot $out/jacksboro_$mode.png \
     --size 480x360 --fit --shading $mode
 done
