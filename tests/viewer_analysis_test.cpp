@@ -169,7 +169,10 @@ TEST(ViewerAnalysis, MissingLayersAndOtherTilingsAreClearErrors) {
   EXPECT_NE(r.err.find("js.mbtiles has no plan_curvature layer"), std::string::npos) << r.err;
   r = view(t + " " + packages().skyview_only + " --shading flow" + snap, dir.path());
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("--layers flow"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("js.mbtiles has no flow_accumulation layer; rebuild it with globe-tiler "
+                       "analyze --layers ...,flow"),
+            std::string::npos)
+      << r.err;
   r = view(t + " " + packages().all + " --shading skyview --ambient-occlusion" + snap, dir.path());
   EXPECT_EQ(r.exit_code, 0) << r.err;
   fs::remove(dir / "a.png");
