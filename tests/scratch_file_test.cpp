@@ -1,10 +1,12 @@
-// Scratch record files: records come back in order and intact, a file cut
-// inside a record is an error naming it, and the file goes with the object.
+// Scratch files: records come back in order and intact, a file cut inside a
+// record is an error naming it, and the file goes with the object; arrays
+// come back from their offsets, on disk and in memory.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
 #include "errors.hpp"
+#include "scratch_array_file.hpp"
 #include "scratch_file.hpp"
 #include "test_support.hpp"
 
@@ -54,4 +56,38 @@ TEST(ScratchFile, ATruncatedRecordIsAnErrorNamingTheFile) {
 TEST(ScratchFile, AnUncreatableFileIsAnOutputError) {
   TempDir dir;
   EXPECT_THROW(globe::ScratchFile((dir / "missing" / "x").string()), globe::OutputError);
+}
+
+// Random-access scratch: arrays written at offsets come back from any order,
+// on disk and in memory alike; a read past the end is an error naming the
+// file; the file goes with the object.
+TEST(ScratchArrayFile, ArraysComeBackFromTheirOffsetsOnDiskAndInMemory) {
+  TempDir dir;
+  for (const uint64_t in_memory : {uint64_t{0}, uint64_t{1 << 20}}) {
+    const fs::path path = dir / (in_memory ? "m.bin" : "d.bin");
+    {
+      globe::ScratchArrayFile f(path.string(), in_memory);
+      std::vector<int32_t> a(1000), b(300);
+      for (size_t i = 0; i < a.size(); ++i)
+        a[i] = int32_t(i * 7) - 3000;
+      for (size_t i = 0; i < b.size(); ++i)
+        b[i] = int32_t(i) * -11;
+      f.write_array<int32_t>(8000, b);  // past the first, written first
+      f.write_array<int32_t>(0, a);
+      std::vector<int32_t> ra(a.size()), rb(b.size());
+      f.read_array<int32_t>(8000, rb);
+      f.read_array<int32_t>(0, ra);
+      EXPECT_EQ(ra, a);
+      EXPECT_EQ(rb, b);
+      EXPECT_EQ(fs::exists(path), in_memory == 0);
+      std::vector<uint8_t> past(16);
+      try {
+        f.read_array<uint8_t>(in_memory ? (1 << 20) - 8 : 9200 - 8, past);
+        ADD_FAILURE() << "a read past the end did not throw";
+      } catch (const globe::OutputError& e) {
+        EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+      }
+    }
+    EXPECT_FALSE(fs::exists(path));
+  }
 }
