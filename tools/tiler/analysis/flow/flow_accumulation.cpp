@@ -80,10 +80,10 @@ std::vector<uint64_t> solve_inflows(const std::vector<uint64_t>& area,
   // received: from other chunks, directly or through perimeter cells
   // upstream inside the own chunk; inflow: from other chunks directly.
   std::vector<uint64_t> received(n, 0), inflow(n, 0);
-  std::vector<size_t> order;
+  std::vector<uint32_t> order;  // (perimeter cells are far fewer than 2^32)
   order.reserve(n);
   for (size_t i = 0; i < n; ++i)
-    if (preds[i] == 0) order.push_back(i);
+    if (preds[i] == 0) order.push_back(uint32_t(i));
   for (size_t head = 0; head < order.size(); ++head) {
     const size_t i = order[head];
     const int64_t s = successor[i];
@@ -94,7 +94,7 @@ std::vector<uint64_t> solve_inflows(const std::vector<uint64_t>& area,
     } else {
       received[size_t(s)] += received[i];
     }
-    if (--preds[size_t(s)] == 0) order.push_back(size_t(s));
+    if (--preds[size_t(s)] == 0) order.push_back(uint32_t(s));
   }
   return inflow;
 }

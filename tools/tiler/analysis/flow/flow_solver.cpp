@@ -2,6 +2,7 @@
 #include "flow_solver.hpp"
 
 #include <algorithm>
+#include <unordered_map>
 
 #include "batch_blocks.hpp"
 #include "chunk_heights.hpp"
@@ -15,10 +16,12 @@ namespace globe::flow {
 
 namespace {
 
-// Bytes a worker holds per chunk cell at the busiest pass (windows of
-// heights and distances, receivers, areas, Kahn's order, the flood's queue).
-constexpr uint64_t kBytesPerCell = 48;
-// Bytes per perimeter cell kept for the whole run.
+// Bytes a worker holds per chunk cell at the busiest pass (the directions:
+// filled heights read back and windowed, distances, the flat cells' queue,
+// receivers, areas, Kahn's order and links).
+constexpr uint64_t kBytesPerCell = 56;
+// Bytes per perimeter cell at the busiest moment of the run (the perimeter
+// graph's solve; the watershed graph's edges are deduplicated per chunk).
 constexpr uint64_t kBytesPerNode = 64;
 
 using tileformat::TileId;
@@ -203,9 +206,14 @@ class Solver {
         const int64_t n = per_.node(int(k), i);
         per_.label[size_t(n)] = global_label(int(k), local_label[size_t(n)]);
       }
-    // Spills across chunk edges, between touching perimeter cells.
+    std::vector<uint32_t>().swap(local_label);
+    // Spills across chunk edges, between touching perimeter cells: the
+    // lowest per pair of watersheds, gathered chunk by chunk (a chunk's
+    // border cells mostly share a few watersheds).
+    std::unordered_map<uint64_t, int32_t> pairs;
     for (size_t k = 0; k < g.chunks().size(); ++k) {
       const Chunk& c = chunk(int(k));
+      pairs.clear();
       for (int i = 0; i < c.perimeter_count(); ++i) {
         const int64_t n = per_.node(int(k), i);
         if (per_.height[size_t(n)] == kNoData) continue;
@@ -218,16 +226,22 @@ class Solver {
           if (m <= n || per_.height[size_t(m)] == kNoData) continue;  // each pair once
           const uint32_t a = per_.label[size_t(n)], b = per_.label[size_t(m)];
           if (a == b) continue;
-          all.push_back({std::min(a, b), std::max(a, b),
-                         std::max(per_.height[size_t(n)], per_.height[size_t(m)])});
+          const int32_t level = std::max(per_.height[size_t(n)], per_.height[size_t(m)]);
+          const uint64_t key = (uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+          auto [it, fresh] = pairs.emplace(key, level);
+          if (!fresh && level < it->second) it->second = level;
         }
       }
+      for (const auto& [key, level] : pairs)
+        all.push_back({uint32_t(key >> 32), uint32_t(key), level});
     }
     spill_ = spill_levels(next, all);
-    per_.filled.assign(nodes, kNoData);
+    std::vector<SpillEdge>().swap(all);
+    // Perimeter cells keep only their filled height and watershed.
+    per_.filled = std::move(per_.height);
     for (size_t n = 0; n < nodes; ++n)
-      if (per_.height[n] != kNoData)
-        per_.filled[n] = std::max(per_.height[n], spill_[per_.label[n]]);
+      if (per_.filled[n] != kNoData)
+        per_.filled[n] = std::max(per_.filled[n], spill_[per_.label[n]]);
   }
 
   uint32_t global_label(int slot, uint32_t local) const {
@@ -347,6 +361,9 @@ class Solver {
     std::vector<uint64_t> area(nodes, 0);
     std::vector<int64_t> successor(nodes, kNoNode);
     std::vector<uint8_t> crosses(nodes, 0);
+    // A single chunk that does not wrap receives nothing from outside: its
+    // own accumulation is final and goes straight to the pyramid.
+    const bool alone = grid().chunks().size() == 1 && !grid().wraps();
     each_chunk<LinkResult>(
         "flow: directions", all_slots(),
         [&](int slot, const BatchBlocks&) {
@@ -355,9 +372,17 @@ class Solver {
           const std::vector<int32_t> f = filled_window(slot, ring);
           const std::vector<uint32_t> d = distance_window(slot, ring, f);
           const std::vector<uint8_t> rec = d8_receivers(grid(), c, f, d);
-          dirs_->write_array<uint8_t>(cell_base_[size_t(slot)], rec);
           LinkResult r;
-          accumulate_chunk(grid(), c, rec, {}, &r.flow);
+          std::vector<uint64_t> acc = accumulate_chunk(grid(), c, rec, {}, &r.flow);
+          if (alone) {
+            LevelGrid level;
+            level.x0 = c.x0, level.y0 = c.y0, level.w = c.w, level.h = c.h;
+            level.area = std::move(acc);
+            level.code = rec;
+            out_.pyramid->put_chunk(slot, std::move(level));
+          } else {
+            dirs_->write_array<uint8_t>(cell_base_[size_t(slot)], rec);
+          }
           r.target.assign(r.flow.leaves.size(), kNoNode);
           for (size_t i = 0; i < r.flow.leaves.size(); ++i) {
             if (!r.flow.leaves[i]) continue;
@@ -381,7 +406,12 @@ class Solver {
           }
         },
         false);
-    fill_.reset();  // the filled heights are no longer needed
+    fill_.reset();  // the filled heights are no longer needed, nor the perimeters' state
+    Perimeters kept;
+    kept.base = std::move(per_.base);
+    per_ = std::move(kept);
+    std::vector<int32_t>().swap(spill_);
+    if (alone) return;
     const std::vector<uint64_t> inflow = solve_inflows(area, successor, crosses);
     each_chunk<int>(
         "flow: accumulate", all_slots(),
