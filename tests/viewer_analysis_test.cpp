@@ -113,6 +113,36 @@ TEST(ViewerAnalysis, FlowDrawsTheRiversBlue) {
   expect_image((dir / "a.png").string(), "jacksboro_flow");
 }
 
+// --colormap colours the analysis layers too, each over its own values: a
+// gdaldem file in degrees for slope (green flats, yellow hillsides), one in
+// m^2 for flow (log scale: pale hillsides, navy rivers).
+TEST(ViewerAnalysis, ColormapFilesColourSlopeAndFlow) {
+  TempDir dir;
+  const fs::path data = fs::path(GLOBE_TEST_DATA_DIR) / "render";
+  const auto slope =
+      snapshot(packages().terrain + " " + packages().all + " --shading slope --colormap " +
+                   (data / "slope_colormap.txt").string(),
+               dir, "slope");
+  const double green = fraction(slope, [](const uint8_t* p) { return p[1] > p[0] + 40; });
+  const double yellow =
+      fraction(slope, [](const uint8_t* p) { return p[0] > 150 && p[1] > 130 && p[2] < 90; });
+  const auto flow =
+      snapshot(packages().terrain + " " + packages().all + " --shading flow --colormap " +
+                   (data / "flow_colormap.txt").string(),
+               dir, "flow");
+  const double navy = fraction(flow, [](const uint8_t* p) { return p[2] > p[0] + 100; });
+  // Pale blue (grey in the built-in flow shading): the file's first stop.
+  const double pale = fraction(
+      flow, [](const uint8_t* p) { return p[2] - p[0] > 10 && p[2] - p[0] < 60 && p[1] > p[0]; });
+  std::printf("colormap: slope green %.3f, yellow %.3f; flow navy %.3f, pale %.3f\n", green, yellow,
+              navy, pale);
+  EXPECT_GT(green, 0.3);
+  EXPECT_GT(yellow, 0.05);
+  EXPECT_GT(navy, 0.01);
+  EXPECT_GT(pale, 0.2);
+  expect_image((dir / "slope.png").string(), "jacksboro_slope_colormap");
+}
+
 TEST(ViewerAnalysis, AmbientOcclusionDarkensTheHollowsOnly) {
   TempDir dir;
   const std::string base = packages().terrain + " " + packages().all + " --shading elevation";

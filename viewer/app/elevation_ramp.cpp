@@ -1,6 +1,7 @@
 // The session's elevation ramp (see elevation_ramp.hpp).
 #include "app/elevation_ramp.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <system_error>
 #include <tuple>
@@ -32,14 +33,21 @@ void ElevationRamp::finish() {
   finished_ = true;
 }
 
-RampTable ElevationRamp::table() const {
-  RampTable t = file_ ? tabulate(file_->ramp, lo_, hi_)
-                      : tabulate(builtin_ramp(settings_.colormap, lo_, hi_), lo_, hi_);
-  // Shift and stretch about the middle of the data range: the table is
-  // linear in height, so moving its ends moves every stop alike.
-  const double c = (lo_ + hi_) / 2;
-  t.lo = c + (t.lo - c) * stretch_ + shift_;
-  t.hi = c + (t.hi - c) * stretch_ + shift_;
+RampTable ElevationRamp::table(Shading mode, float flow_top) const {
+  double lo = lo_, hi = hi_;
+  if (mode == Shading::kSlope) lo = 0, hi = 90;
+  if (mode == Shading::kSkyview) lo = 0, hi = 1;
+  if (mode == Shading::kFlow) lo = flow_top - 16.0, hi = flow_top;
+  ColorRamp ramp = file_ ? file_->ramp : builtin_ramp(settings_.colormap, lo, hi);
+  if (file_ && mode == Shading::kFlow)  // the file's areas in m^2, the table in log2
+    for (RampStop& stop : ramp.stops)
+      if (!stop.percent) stop.value = stop.value > 0 ? std::log2(stop.value) : lo;
+  RampTable t = tabulate(ramp, lo, hi);
+  // Shift and stretch about the middle of the domain: the table is linear
+  // in the value, so moving its ends moves every stop alike.
+  const double c = (lo + hi) / 2;
+  t.lo = c + (t.lo - c) * stretch_ + shift_ * (hi - lo);
+  t.hi = c + (t.hi - c) * stretch_ + shift_ * (hi - lo);
   return t;
 }
 

@@ -1,8 +1,11 @@
-// The elevation shading's transfer function for one session: which ramp
-// (built-in or a gdaldem color-relief file, reloaded when it changes), over
-// which heights (the data's own: the valid samples of the coarsest blocks,
-// clipped to percentiles, unless --height-range), and the window's shift
-// and stretch of it (the thesis's transfer-function editor).
+// The session's transfer function: which ramp (built-in or a gdaldem
+// color-relief file, reloaded when it changes), over which values, and the
+// window's shift and stretch of it (the thesis's transfer-function editor).
+// Elevation spans the data's own heights (the valid samples of the coarsest
+// blocks, clipped to percentiles, unless --height-range); with --colormap the
+// other layers take the ramp over their natural domains: slope 0..90
+// degrees, sky view 0..1, flow log2 of the upstream area over the 16
+// doublings below the largest (a file's values are in m^2 there).
 #pragma once
 
 #include <filesystem>
@@ -32,11 +35,14 @@ class ElevationRamp {
   bool finished() const { return finished_; }
   std::pair<double, double> data_range() const { return {lo_, hi_}; }
 
-  RampTable table() const;
+  RampTable table() const { return table(Shading::kElevation, 0); }
+  // The table for a shading mode's values; flow_top: log2 of the largest
+  // upstream area (m^2) loaded.
+  RampTable table(Shading mode, float flow_top) const;
 
   // Window edits, as fractions of the data range: shift moves the ramp up,
   // stretch > 1 spreads it over more metres. reset() undoes them.
-  void shift(double fraction) { shift_ += fraction * (hi_ - lo_); }
+  void shift(double fraction) { shift_ += fraction; }
   void stretch(double factor) { stretch_ *= factor; }
   void reset() { shift_ = 0, stretch_ = 1; }
 
@@ -52,7 +58,7 @@ class ElevationRamp {
   std::vector<float> samples_;
   bool finished_ = false;
   double lo_ = 0, hi_ = 1;
-  double shift_ = 0, stretch_ = 1;
+  double shift_ = 0, stretch_ = 1;  // shift: a fraction of the domain
 };
 
 }  // namespace globe::viewer

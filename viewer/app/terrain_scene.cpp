@@ -159,6 +159,7 @@ void TerrainScene::upload_loaded() {
     if (largest > flow_largest_) {
       flow_largest_ = largest;
       renderer_->set_flow_range(largest - 8, largest);
+      if (ramp_->finished() && ramp_mode_ == Shading::kFlow) apply_ramp();
     }
     renderer_->upload(b);
   }
@@ -232,6 +233,7 @@ FrameResult TerrainScene::frame(const CameraPose& pose, Loading loading, Output 
     cache_->wait_for_loader();
   }
   if (output == Output::kSelectOnly) return f;
+  if (ramp_->finished() && settings_.shading.mode != ramp_mode_) apply_ramp();
   f.terrain_ms = renderer_->draw(f.patches, f.view, *world_, settings_.shading).terrain_ms;
   if (caps_) {
     // Flat ground's hillshade, a little towards white: ice, plainly.

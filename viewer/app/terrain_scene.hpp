@@ -60,9 +60,13 @@ class TerrainScene {
   const TerrainPackage& package() const { return cache_->package(); }
   ViewerSettings& settings() { return settings_; }
   double top_height_m() { return selector_->top_height_m(*cache_); }
-  // The elevation ramp; after an edit, apply_ramp() hands it to the renderer.
+  // The colour ramp; after an edit, apply_ramp() hands the table for the
+  // current shading mode to the renderer.
   ElevationRamp& ramp() { return *ramp_; }
-  void apply_ramp() { renderer_->set_ramp(ramp_->table()); }
+  void apply_ramp() {
+    ramp_mode_ = settings_.shading.mode;
+    renderer_->set_ramp(ramp_->table(ramp_mode_, flow_largest_));
+  }
   // "" when `shading` can be drawn (its analysis layers are there), else why not.
   std::string shading_problem(const ShadingSettings& shading) const;
 
@@ -85,6 +89,7 @@ class TerrainScene {
   std::optional<std::string> analysis_path_;                // the analysis package, if any
   std::vector<tileformat::AnalysisLayer> analysis_layers_;  // and its layers
   float flow_largest_ = kNoFlow;                            // log2 m^2: the flow shading's top
+  Shading ramp_mode_ = Shading::kElevation;                 // the mode the ramp was tabulated for
   int ramp_zoom_ = -1;  // zoom whose blocks feed the ramp's samples (-1: done)
   std::vector<tileformat::TileId> ramp_level_;  // its blocks loaded so far
 };

@@ -120,11 +120,15 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
            "by it)",
            [&] { s.shading.ambient_occlusion = true; });
   cli.option("--colormap", "NAME|FILE",
-             "the elevation ramp: hypsometric (default: bathymetry below 0 m, land above), "
-             "gray, or a gdaldem color-relief file (VALUE R G B [A] per line; VALUE in metres, "
-             "a percentage of the height range, or nv); the window reloads the file when it "
-             "changes",
-             [&](const std::string& v) { s.shading.colormap = v; });
+             "the colour ramp: hypsometric (default: bathymetry below 0 m, land above), "
+             "gray, or a gdaldem color-relief file (VALUE R G B [A] per line; VALUE in the "
+             "layer's unit, a percentage of its range, or nv); the window reloads the file when "
+             "it changes. Elevation always uses it; given, it also colours slope (0..90 "
+             "degrees), skyview (0..1) and flow (upstream area in m^2, log scale)",
+             [&](const std::string& v) {
+               s.shading.colormap = v;
+               s.shading.colormap_given = true;
+             });
   cli.option("--height-range", "MIN,MAX",
              "heights in metres the elevation ramp spans (default: the data's own heights, "
              "from the coarsest blocks)",

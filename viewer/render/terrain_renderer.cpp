@@ -268,6 +268,7 @@ RenderTimes TerrainRenderer::draw(const std::vector<Patch>& patches, const View&
   gl::Uniform1i(p.uniform("u_flow"), 4);
   gl::BindTextureUnit(4, flow_ ? flow_ : mask_);
   gl::Uniform2f(p.uniform("u_flow_range"), flow_lo_, flow_hi_);
+  gl::Uniform1i(p.uniform("u_layer_ramp"), s.colormap_given ? 1 : 0);
   gl::BindVertexArray(vao_);
   gl::BeginQuery(GL_TIME_ELAPSED, timer_);
   if (!patches.empty())

@@ -41,6 +41,7 @@ struct ShadingSettings {
   // the data's real heights (the coarsest blocks' samples, clipped to the
   // percentiles) unless height_range is given.
   std::string colormap = "hypsometric";
+  bool colormap_given = false;  // --colormap: slope, skyview and flow use the ramp too
   std::optional<std::pair<double, double>> height_range;
   double height_percentile = 0;
 };

@@ -146,6 +146,7 @@ uniform float u_edge_scale[32]; // per zoom: plan curvature x spacing where edge
 uniform int u_key_zoom;
 uniform sampler2DArray u_flow;
 uniform vec2 u_flow_range;  // log2 upstream areas: rivers begin to show, darkest
+uniform int u_layer_ramp;   // 1: slope, sky view and flow through the colour ramp (--colormap)
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_position;  // G-buffer: world point, w = 1 on terrain
 layout(location = 2) out vec4 o_normal;    // G-buffer: plane of the drawn triangle
@@ -186,7 +187,9 @@ void main() {
   } else if (u_mode == 2) {
     float slope = u_has_gradient != 0 ? degrees(atan(length(layers_at(v_sample).ba)))
                                     : degrees(acos(clamp(n.z, 0.0, 1.0)));
-    color = mix(vec3(1.0, 1.0, 0.85), vec3(0.75, 0.1, 0.05), clamp(slope / 45.0, 0.0, 1.0));
+    color = u_layer_ramp != 0
+                ? ramp(slope) * (0.55 + 0.45 * shade / max(u_sun.z, 0.2))
+                : mix(vec3(1.0, 1.0, 0.85), vec3(0.75, 0.1, 0.05), clamp(slope / 45.0, 0.0, 1.0));
   } else if (u_mode == 3) {
     // The downhill direction and steepness: from the analysis package's
     // gradient, else from the drawn triangle's normal.
@@ -194,14 +197,18 @@ void main() {
     float aspect = atan(a.x, a.y) / 6.2831853 + 0.5;
     color = mix(vec3(0.85), hue(aspect), clamp(length(a) * 4.0, 0.0, 1.0));
   } else if (u_mode == 4) {
-    color = vec3(sky_light(layers_at(v_sample).r));
+    float svf = layers_at(v_sample).r;
+    color = u_layer_ramp != 0 ? ramp(svf) : vec3(sky_light(svf));
   } else if (u_mode == 6) {
     // Rivers: light blue where they begin, deep blue for the largest.
     float a = texture(u_flow, vec3((v_sample + 0.5) / u_size, float(v_layer))).r;
     float t = (a - u_flow_range.x) / max(u_flow_range.y - u_flow_range.x, 1e-3);
     color = vec3(0.3 + 0.65 * shade);
-    if (t > 0.0) color = mix(color, mix(vec3(0.45, 0.75, 1.0), vec3(0.0, 0.15, 0.65), min(t, 1.0)),
-                             0.4 + 0.6 * min(t, 1.0));
+    if (u_layer_ramp != 0)
+      color = ramp(a) * (0.55 + 0.45 * shade / max(u_sun.z, 0.2));
+    else if (t > 0.0)
+      color = mix(color, mix(vec3(0.45, 0.75, 1.0), vec3(0.0, 0.15, 0.65), min(t, 1.0)),
+                  0.4 + 0.6 * min(t, 1.0));
   } else {
     // Plan curvature times the sample spacing (the change of grade across
     // the slope per sample), stretched by the data's 95th percentile.

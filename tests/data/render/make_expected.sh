@@ -20,6 +20,9 @@ for mode in skyview edges flow; do
   build/viewer/globe-view "$tmp/j.mbtiles" "$tmp/ja.mbtiles" --snapshot $out/jacksboro_$mode.png \
     --size 480x360 --fit --shading $mode
 done
+build/viewer/globe-view "$tmp/j.mbtiles" "$tmp/ja.mbtiles" --snapshot \
+  $out/jacksboro_slope_colormap.png --size 480x360 --fit --shading slope \
+  --colormap tests/data/render/slope_colormap.txt
 # Lines (tests/viewer_lines_test.cpp): 50 m contours of the same DEM.
 gdal_contour -q -i 50 -a elev samples/data/jacksboro.tif "$tmp/c50.shp"
 build/tools/vectorize/globe-vectorize lines -q "$tmp/c50.shp" -o "$tmp/c.mbtiles" \
