@@ -114,7 +114,8 @@ INSTANTIATE_TEST_SUITE_P(Samples, AnalyzeVsGdaldem,
                          });
 
 // Planar ramps in longitude/latitude on the geodetic tiling: the slope
-// follows from the WGS84 radii of curvature (textbook formulas, here). At
+// follows from the WGS84 radii of curvature (textbook formulas, here), and
+// the sky view from the plane's horizon in each direction. At
 // mid-latitudes, next to the north and south poles (where a degree of
 // longitude is a few kilometres), and across the antimeridian, where the
 // samples at 180 degrees east read their eastern neighbours from the tiles
@@ -145,9 +146,13 @@ TEST_P(AnalyzeGeodetic, RampSlopesFollowTheEllipsoid) {
       run(tiler() + " terrain -q --tiling geodetic --max-zoom 8 " + src + " -o " + pkg, dir.path())
           .exit_code,
       0);
-  ASSERT_EQ(run(tiler() + " analyze -q " + pkg + " -o " + ana, dir.path()).exit_code, 0);
+  ASSERT_EQ(run(tiler() + " analyze -q --layers slope,skyview --skyview-radius 1000 " + pkg +
+                    " -o " + ana,
+                dir.path())
+                .exit_code,
+            0);
   size_t checked = 0, seam = 0;
-  double worst = 0;
+  double worst = 0, worst_sky = 0;
   for (const std::string& bbox : ramp.bboxes) {
     const std::string out = (dir / "slope.tif").string();
     const RunResult e = run(tiler() + " extract --force " + ana + " --zoom 8 --layer slope" +
@@ -155,6 +160,13 @@ TEST_P(AnalyzeGeodetic, RampSlopesFollowTheEllipsoid) {
                             dir.path());
     ASSERT_EQ(e.exit_code, 0) << e.err;
     const Raster r = read_raster(out);
+    const std::string sky_out = (dir / "sky.tif").string();
+    ASSERT_EQ(run(tiler() + " extract --force " + ana + " --zoom 8 --layer skyview" +
+                      (bbox.empty() ? "" : " --bbox=" + bbox) + " -o " + sky_out,
+                  dir.path())
+                  .exit_code,
+              0);
+    const Raster sky = read_raster(sky_out);
     // Interior samples (three source pixels from the data's edges): the ramp
     // rises 5 m per 0.01 degree. (Next to the south pole the worst, 0.035
     // degrees of a 13-degree slope, is in the column next to that margin.)
@@ -174,12 +186,29 @@ TEST_P(AnalyzeGeodetic, RampSlopesFollowTheEllipsoid) {
         const double metres_per_deg = ramp.east ? n * std::cos(lat * deg) * deg : m * deg;
         const double want = std::atan(5.0 / 0.01 / metres_per_deg) / deg;
         worst = std::max(worst, std::abs(r.at(x, y) - want));
+        // The sky view of a plane: along azimuth a the horizon is the plane
+        // itself, atan(tan(slope) cos(a - uphill)) where positive; 16
+        // azimuths clockwise from north.
+        const double uphill = ramp.east ? 0.5 * std::numbers::pi : 0;
+        double blocked = 0;
+        for (int k = 0; k < 16; ++k) {
+          const double a = 2 * std::numbers::pi * k / 16;
+          blocked +=
+              std::sin(std::max(0.0, std::atan(std::tan(want * deg) * std::cos(a - uphill))));
+        }
+        // Within 0.0003 (three quanta) and 3 % of the share of sky the plane
+        // hides: a gentle ramp hides 0.0014, so a sky view of 1 fails too.
+        const double hidden = blocked / 16;
+        worst_sky =
+            std::max(worst_sky, std::abs(sky.at(x, y) - (1 - hidden)) / (0.0003 + 0.03 * hidden));
         ++checked;
         if (x == 0 || x + 1 == r.width) ++seam;
       }
   }
-  std::printf("%s: %zu samples (%zu on an extract's edge column), worst slope error %.4f deg\n",
-              ramp.name, checked, seam, worst);
+  std::printf(
+      "%s: %zu samples (%zu on an extract's edge column), worst slope error %.4f deg, sky view "
+      "error %.2f of its bound\n",
+      ramp.name, checked, seam, worst, worst_sky);
   EXPECT_GT(checked, 1000u);
   if (ramp.bboxes.size() > 1) {
     EXPECT_GT(seam, 100u) << "the antimeridian column was not checked";
@@ -187,6 +216,7 @@ TEST_P(AnalyzeGeodetic, RampSlopesFollowTheEllipsoid) {
   // Bilinear resampling keeps the ramp linear; heights are quantized to the
   // package's height step.
   EXPECT_LT(worst, 0.05);
+  EXPECT_LE(worst_sky, 1.0);
 }
 
 INSTANTIATE_TEST_SUITE_P(
