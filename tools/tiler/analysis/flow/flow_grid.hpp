@@ -8,6 +8,7 @@
 // per row. Pure geometry, no I/O (docs/analysis.md, "Flow").
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
