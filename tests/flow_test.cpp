@@ -50,11 +50,12 @@ struct GrassCase {
   const char* file;
   const char* tiling;
   // Shares of stream cells matched within one cell: GRASS's by ours, ours
-  // by GRASS's. Measured 85 % / 73 % (brasilia), 94 % / 94 % (jacksboro):
-  // below the 95 % goal. r.watershed does not fill depressions (its
-  // A* search runs down into a pit and out along the search path) and breaks
-  // ties by search order, where we fill and cross flats by the shortest way
-  // (docs/analysis.md, "Flow against GRASS").
+  // by GRASS's. Measured 90.6 % / 79.9 % (brasilia), 93.9 % / 94.0 %
+  // (jacksboro): below the 95 % goal. r.watershed does not fill
+  // depressions (its A* search runs down into a pit and out along the search
+  // path), where we fill and cross flats by the shortest way; and broad
+  // valley floors a few centimetres deep carry the same river a few cells
+  // apart (docs/analysis.md, "Checked").
   double peer_share, our_share;
 };
 
@@ -151,7 +152,7 @@ TEST_P(FlowVsGrass, StreamsAndTheLargestOutletAgree) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Samples, FlowVsGrass,
-                         ::testing::Values(GrassCase{"brasilia.tif", "local", 0.83, 0.70},
+                         ::testing::Values(GrassCase{"brasilia.tif", "local", 0.88, 0.77},
                                            GrassCase{"jacksboro.tif", "geodetic", 0.92, 0.92}),
                          [](const auto& info) {
                            std::string n = info.param.file;

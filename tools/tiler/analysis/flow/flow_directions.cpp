@@ -16,23 +16,33 @@ bool on_flat(const std::vector<int32_t>& f, size_t k, int stride) {
   return true;
 }
 
-void flat_distances(const Chunk& c, const std::vector<int32_t>& f, std::vector<uint32_t>& dist) {
+void flat_distances(const Chunk& c, const std::vector<int32_t>& f, std::vector<uint32_t>& dist,
+                    std::vector<int32_t>& key) {
   const ChunkWindow win(c);
   const int s = win.stride();
-  // Dijkstra with unit steps from every cell off a flat (distance 0) and the
-  // ring's known distances, into the chunk's flat cells of the same height.
   std::vector<uint32_t> flats;
   for (int y = 0; y < c.h; ++y)
     for (int x = 0; x < c.w; ++x) {
       const size_t k = win.at(x, y);
-      const bool flat = on_flat(f, k, s);
+      if (f[k] == kNoData) continue;
+      int32_t lowest = f[k];
+      bool edge = false;
+      for (int d = 1; d <= 8; ++d) {
+        const int32_t fn = f[k + ptrdiff_t(kDy[d]) * s + kDx[d]];
+        edge |= fn == kNoData;
+        if (fn != kNoData && fn < lowest) lowest = fn;
+      }
+      const bool flat = !edge && lowest == f[k];
       dist[k] = flat ? kFar : 0;
+      key[k] = flat ? kNoKey : lowest;
       if (flat) flats.push_back(uint32_t(k));
     }
   if (flats.empty()) return;
   std::vector<uint8_t> open(win.size(), 0);  // the chunk's flat cells
   for (uint32_t k : flats)
     open[k] = 1;
+  // Dijkstra with unit steps from every cell off a flat (distance 0) and the
+  // ring's known distances, into the chunk's flat cells of the same height.
   using Item = std::pair<uint32_t, uint32_t>;  // distance, window index
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
   // Sources: known cells (off a flat, or the ring's) next to a flat cell of
@@ -42,10 +52,12 @@ void flat_distances(const Chunk& c, const std::vector<int32_t>& f, std::vector<u
       const size_t n = size_t(ptrdiff_t(k) + ptrdiff_t(kDy[d]) * s + kDx[d]);
       if (f[n] == f[k] && dist[n] != kFar && !open[n]) q.push({dist[n], uint32_t(n)});
     }
+  std::vector<uint32_t> settled;  // flat cells in the order their distance became final
   while (!q.empty()) {
     const auto [d, k] = q.top();
     q.pop();
     if (d != dist[k]) continue;
+    if (open[k]) settled.push_back(k);
     for (int dir = 1; dir <= 8; ++dir) {
       // A ring cell's outer neighbours lie off the window (or wrap to the
       // ring's other side, which is never open).
@@ -57,10 +69,20 @@ void flat_distances(const Chunk& c, const std::vector<int32_t>& f, std::vector<u
       q.push({d + 1, uint32_t(n)});
     }
   }
+  // Keys, nearest first: the least of the neighbours one step nearer.
+  for (uint32_t k : settled) {
+    int32_t least = kNoKey;
+    for (int dir = 1; dir <= 8; ++dir) {
+      const size_t n = size_t(ptrdiff_t(k) + ptrdiff_t(kDy[dir]) * s + kDx[dir]);
+      if (f[n] == f[k] && dist[n] + 1 == dist[k]) least = std::min(least, key[n]);
+    }
+    key[k] = least;
+  }
 }
 
 std::vector<uint8_t> d8_receivers(const FlowGrid& g, const Chunk& c, const std::vector<int32_t>& f,
-                                  const std::vector<uint32_t>& dist) {
+                                  const std::vector<uint32_t>& dist,
+                                  const std::vector<int32_t>& key) {
   const ChunkWindow win(c);
   const int s = win.stride();
   std::vector<uint8_t> out(c.cells(), kNoDataCode);
@@ -81,14 +103,16 @@ std::vector<uint8_t> d8_receivers(const FlowGrid& g, const Chunk& c, const std::
           best = uint8_t(d);
         }
       }
-      if (best == kOutlet && !at_data_edge(f, k, s) && dist[k] != kFar && dist[k] > 0)
+      if (best == kOutlet && !at_data_edge(f, k, s) && dist[k] != kFar && dist[k] > 0) {
+        int32_t least = 0;
         for (int d = 1; d <= 8; ++d) {
           const size_t n = size_t(ptrdiff_t(k) + ptrdiff_t(kDy[d]) * s + kDx[d]);
-          if (f[n] == f[k] && dist[n] + 1 == dist[k]) {
+          if (f[n] == f[k] && dist[n] + 1 == dist[k] && (best == kOutlet || key[n] < least)) {
             best = uint8_t(d);
-            break;
+            least = key[n];
           }
         }
+      }
       out[size_t(y) * c.w + x] = best;
     }
   }

@@ -5,8 +5,12 @@
 // an outlet. The rest lie on flats (filled depressions, level ground): each
 // drains towards the nearest cell of its flat that can drain (the distance
 // counted in D8 steps within the flat), so water crosses a flat by the
-// shortest way. Flats may span chunks: the distances of the ring come from
-// the neighbouring chunks and are iterated to a fixed point by the solver.
+// shortest way; of the neighbours one step nearer it takes the one whose way
+// off the flat leads lowest (the least key: a draining cell's key is the
+// height of its lowest lower neighbour), as a search in height order (GRASS
+// r.watershed's) would. Flats may span chunks: the distances and keys of the
+// ring come from the neighbouring chunks and are iterated to a fixed point by
+// the solver.
 #pragma once
 
 #include <cstdint>
@@ -17,21 +21,25 @@
 namespace globe::flow {
 
 inline constexpr uint32_t kFar = UINT32_MAX;  // no known way off the flat yet
+inline constexpr int32_t kNoKey = INT32_MAX;  // no known key yet
 
 // A window cell that lies on a flat: data, not next to no data, no lower
 // neighbour.
 bool on_flat(const std::vector<int32_t>& filled_window, size_t k, int stride);
 
-// `filled`: the chunk's window of filled heights. `distance`: the window's
-// ring holds the neighbours' distances (0 off a flat, kFar unknown); the
-// chunk's cells are computed: 0 where the cell is not on a flat, else D8
-// steps to the nearest cell off the flat (through the ring as well).
+// `filled`: the chunk's window of filled heights. `distance` and `key`: the
+// window's ring holds the neighbours' (0 off a flat, kFar unknown; kNoKey);
+// the chunk's cells are computed: distance 0 where the cell is not on a flat,
+// else D8 steps to the nearest cell off the flat (through the ring as well);
+// key as above (for a cell next to no data without a lower neighbour, its
+// own height).
 void flat_distances(const Chunk& chunk, const std::vector<int32_t>& filled,
-                    std::vector<uint32_t>& distance);
+                    std::vector<uint32_t>& distance, std::vector<int32_t>& key);
 
 // Receiver codes of the chunk's cells (w * h; kNoDataCode where no data).
 std::vector<uint8_t> d8_receivers(const FlowGrid& grid, const Chunk& chunk,
                                   const std::vector<int32_t>& filled,
-                                  const std::vector<uint32_t>& distance);
+                                  const std::vector<uint32_t>& distance,
+                                  const std::vector<int32_t>& key);
 
 }  // namespace globe::flow

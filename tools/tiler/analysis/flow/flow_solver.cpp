@@ -31,6 +31,7 @@ struct Perimeters {            // per node (perimeter cell of a chunk), in slot 
   std::vector<int32_t> height, filled;
   std::vector<uint32_t> label;  // global watershed
   std::vector<uint32_t> distance;
+  std::vector<int32_t> key;  // flats: the height the way off the flat leads to
   std::vector<uint8_t> flat, changed;
   int64_t node(int slot, int index) const { return int64_t(base[size_t(slot)]) + index; }
 };
@@ -268,24 +269,28 @@ class Solver {
     return f;
   }
 
-  std::vector<uint32_t> distance_window(int slot, const std::vector<int64_t>& ring,
-                                        const std::vector<int32_t>& f) const {
+  // The chunk's windows of flat distances and keys.
+  void flat_windows(int slot, const std::vector<int64_t>& ring, const std::vector<int32_t>& f,
+                    std::vector<uint32_t>& d, std::vector<int32_t>& key) const {
     const Chunk& c = chunk(slot);
-    std::vector<uint32_t> d(ChunkWindow(c).size(), kFar);
+    d.assign(ChunkWindow(c).size(), kFar);
+    key.assign(d.size(), kNoKey);
     put_ring(c, d, ring, [&](int64_t n) { return n < 0 ? kFar : per_.distance[size_t(n)]; });
-    flat_distances(c, f, d);
-    return d;
+    put_ring(c, key, ring, [&](int64_t n) { return n < 0 ? kNoKey : per_.key[size_t(n)]; });
+    flat_distances(c, f, d, key);
   }
 
   // ---- 3: flats, iterated until the distances at chunk edges settle ----
   struct FlatResult {
     std::vector<uint32_t> distance;
+    std::vector<int32_t> key;
     std::vector<uint8_t> flat;
   };
 
   void route_flats() {
     const size_t nodes = per_.base.back();
     per_.distance.assign(nodes, kFar);
+    per_.key.assign(nodes, kNoKey);
     per_.flat.assign(nodes, 0);
     per_.changed.assign(nodes, 0);
     // A single chunk that does not wrap has no ring to wait for: the
@@ -302,12 +307,15 @@ class Solver {
             const ChunkWindow win(c);
             const std::vector<int64_t> ring = ring_nodes(c);
             const std::vector<int32_t> f = filled_window(slot, ring);
-            const std::vector<uint32_t> d = distance_window(slot, ring, f);
+            std::vector<uint32_t> d;
+            std::vector<int32_t> key;
+            flat_windows(slot, ring, f, d, key);
             FlatResult r;
             for (int i = 0; i < c.perimeter_count(); ++i) {
               int x, y;
               c.perimeter_cell(i, x, y);
               r.distance.push_back(d[win.at(x, y)]);
+              r.key.push_back(key[win.at(x, y)]);
               r.flat.push_back(on_flat(f, win.at(x, y), win.stride()));
             }
             return r;
@@ -319,8 +327,9 @@ class Solver {
         for (size_t i = 0; i < r.distance.size(); ++i) {
           const size_t n = size_t(per_.node(slot, int(i)));
           per_.flat[n] = r.flat[i];
-          if (per_.distance[n] != r.distance[i]) {
+          if (per_.distance[n] != r.distance[i] || per_.key[n] != r.key[i]) {
             per_.distance[n] = r.distance[i];
+            per_.key[n] = r.key[i];
             per_.changed[n] = 1;
           }
         }
@@ -370,8 +379,10 @@ class Solver {
           const Chunk& c = chunk(slot);
           const std::vector<int64_t> ring = ring_nodes(c);
           const std::vector<int32_t> f = filled_window(slot, ring);
-          const std::vector<uint32_t> d = distance_window(slot, ring, f);
-          const std::vector<uint8_t> rec = d8_receivers(grid(), c, f, d);
+          std::vector<uint32_t> d;
+          std::vector<int32_t> key;
+          flat_windows(slot, ring, f, d, key);
+          const std::vector<uint8_t> rec = d8_receivers(grid(), c, f, d, key);
           LinkResult r;
           std::vector<uint64_t> acc = accumulate_chunk(grid(), c, rec, {}, &r.flow);
           if (alone) {
