@@ -17,9 +17,9 @@ namespace globe::flow {
 namespace {
 
 // Bytes a worker holds per chunk cell at the busiest pass (the directions:
-// filled heights read back and windowed, distances, the flat cells' queue,
-// receivers, areas, Kahn's order and links).
-constexpr uint64_t kBytesPerCell = 56;
+// filled heights read back and windowed, distances and keys, the flat
+// cells' queue, receivers, areas, Kahn's order and links).
+constexpr uint64_t kBytesPerCell = 60;
 // Bytes per perimeter cell at the busiest moment of the run (the perimeter
 // graph's solve; the watershed graph's edges are deduplicated per chunk).
 constexpr uint64_t kBytesPerNode = 64;
