@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <queue>
-#include <unordered_map>
 
 namespace globe::flow {
 
@@ -58,13 +57,7 @@ ChunkFill fill_chunk(const Chunk& c, const std::vector<int32_t>& z) {
     c.perimeter_cell(i, x, y);
     seed(win.at(x, y));
   }
-  std::unordered_map<uint64_t, int32_t> spill;
-  auto note_spill = [&](uint32_t a, uint32_t b, int32_t level) {
-    if (a > b) std::swap(a, b);
-    const uint64_t key = (uint64_t(a) << 32) | b;
-    auto [it, fresh] = spill.emplace(key, level);
-    if (!fresh && level < it->second) it->second = level;
-  };
+  SpillPairs spill;
   while (pit_head < pit.size() || !open.empty()) {
     size_t k;
     if (pit_head < pit.size()) {
@@ -84,7 +77,7 @@ ChunkFill fill_chunk(const Chunk& c, const std::vector<int32_t>& z) {
         case kOutside:
           break;
         case kClosed:
-          if (label[n] != label[k]) note_spill(label[k], label[n], std::max(level, filled[n]));
+          if (label[n] != label[k]) spill.note(label[k], label[n], std::max(level, filled[n]));
           break;
         case kQueued:
           // A perimeter seed not yet reached: it joins this watershed.
@@ -110,13 +103,24 @@ ChunkFill fill_chunk(const Chunk& c, const std::vector<int32_t>& z) {
     std::copy_n(filled.begin() + ptrdiff_t(from), c.w, out.filled.begin() + ptrdiff_t(to));
     std::copy_n(label.begin() + ptrdiff_t(from), c.w, out.label.begin() + ptrdiff_t(to));
   }
-  out.edges.reserve(spill.size());
-  for (const auto& [key, level] : spill)
-    out.edges.push_back({uint32_t(key >> 32), uint32_t(key), level});
-  std::sort(out.edges.begin(), out.edges.end(), [](const SpillEdge& p, const SpillEdge& q) {
-    return p.a != q.a ? p.a < q.a : p.b < q.b;
-  });
+  spill.append_to(out.edges);
   return out;
+}
+
+void SpillPairs::note(uint32_t a, uint32_t b, int32_t level) {
+  if (a > b) std::swap(a, b);
+  auto [it, fresh] = lowest_.emplace((uint64_t(a) << 32) | b, level);
+  if (!fresh && level < it->second) it->second = level;
+}
+
+void SpillPairs::append_to(std::vector<SpillEdge>& edges) const {
+  const size_t first = edges.size();
+  for (const auto& [key, level] : lowest_)
+    edges.push_back({uint32_t(key >> 32), uint32_t(key), level});
+  // Sorted, so that the edges do not depend on the hash map's layout.
+  std::sort(
+      edges.begin() + ptrdiff_t(first), edges.end(),
+      [](const SpillEdge& p, const SpillEdge& q) { return p.a != q.a ? p.a < q.a : p.b < q.b; });
 }
 
 std::vector<int32_t> spill_levels(size_t nodes, const std::vector<SpillEdge>& edges) {

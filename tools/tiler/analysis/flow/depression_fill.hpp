@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include "chunk_heights.hpp"
@@ -23,6 +24,18 @@ inline constexpr uint32_t kEdgeLabel = 1;
 struct SpillEdge {
   uint32_t a, b;  // labels, a < b
   int32_t level;  // the lowest height over which one spills into the other
+};
+
+// The lowest spill noted per pair of labels (in a chunk's flood, or across
+// chunk edges), then as edges sorted by label pair.
+class SpillPairs {
+ public:
+  void note(uint32_t a, uint32_t b, int32_t level);
+  void clear() { lowest_.clear(); }
+  void append_to(std::vector<SpillEdge>& edges) const;
+
+ private:
+  std::unordered_map<uint64_t, int32_t> lowest_;  // key: a << 32 | b, a < b
 };
 
 struct ChunkFill {

@@ -9,13 +9,6 @@
 
 namespace globe::flow {
 
-bool on_flat(const std::vector<int32_t>& f, size_t k, int stride) {
-  if (f[k] == kNoData || at_data_edge(f, k, stride)) return false;
-  for (int d = 1; d <= 8; ++d)
-    if (f[k + ptrdiff_t(kDy[d]) * stride + kDx[d]] < f[k]) return false;
-  return true;
-}
-
 void flat_distances(const Chunk& c, const std::vector<int32_t>& f, std::vector<uint32_t>& dist,
                     std::vector<int32_t>& key) {
   const ChunkWindow win(c);

@@ -23,10 +23,6 @@ namespace globe::flow {
 inline constexpr uint32_t kFar = UINT32_MAX;  // no known way off the flat yet
 inline constexpr int32_t kNoKey = INT32_MAX;  // no known key yet
 
-// A window cell that lies on a flat: data, not next to no data, no lower
-// neighbour.
-bool on_flat(const std::vector<int32_t>& filled_window, size_t k, int stride);
-
 // `filled`: the chunk's window of filled heights. `distance` and `key`: the
 // window's ring holds the neighbours' (0 off a flat, kFar unknown; kNoKey);
 // the chunk's cells are computed: distance 0 where the cell is not on a flat,

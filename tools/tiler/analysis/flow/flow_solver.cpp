@@ -2,7 +2,6 @@
 #include "flow_solver.hpp"
 
 #include <algorithm>
-#include <unordered_map>
 
 #include "batch_blocks.hpp"
 #include "chunk_heights.hpp"
@@ -119,6 +118,21 @@ class Solver {
     return i < 0 ? -1 : per_.node(slot, i);
   }
 
+  // Calls fn(m) for the node m of each cell of another chunk (or of this one,
+  // across the wrap) that touches perimeter cell i of the chunk.
+  template <typename F>
+  void outer_neighbours(int slot, int i, F fn) const {
+    const Chunk& c = chunk(slot);
+    int x, y;
+    c.perimeter_cell(i, x, y);
+    for (int d = 1; d <= 8; ++d) {
+      const int nx = x + kDx[d], ny = y + kDy[d];
+      if (nx >= 0 && ny >= 0 && nx < c.w && ny < c.h) continue;
+      const int64_t m = node_at(c.x0 + nx, c.y0 + ny);
+      if (m >= 0) fn(m);
+    }
+  }
+
   // The nodes of the window ring of a chunk (-1 where none), in ring order:
   // north row, south row, west column, east column (corners in the rows).
   std::vector<int64_t> ring_nodes(const Chunk& c) const {
@@ -211,30 +225,19 @@ class Solver {
     // Spills across chunk edges, between touching perimeter cells: the
     // lowest per pair of watersheds, gathered chunk by chunk (a chunk's
     // border cells mostly share a few watersheds).
-    std::unordered_map<uint64_t, int32_t> pairs;
+    SpillPairs pairs;
     for (size_t k = 0; k < g.chunks().size(); ++k) {
-      const Chunk& c = chunk(int(k));
       pairs.clear();
-      for (int i = 0; i < c.perimeter_count(); ++i) {
+      for (int i = 0; i < chunk(int(k)).perimeter_count(); ++i) {
         const int64_t n = per_.node(int(k), i);
         if (per_.height[size_t(n)] == kNoData) continue;
-        int x, y;
-        c.perimeter_cell(i, x, y);
-        for (int d = 1; d <= 8; ++d) {
-          const int nx = x + kDx[d], ny = y + kDy[d];
-          if (nx >= 0 && ny >= 0 && nx < c.w && ny < c.h) continue;
-          const int64_t m = node_at(c.x0 + nx, c.y0 + ny);
-          if (m <= n || per_.height[size_t(m)] == kNoData) continue;  // each pair once
+        outer_neighbours(int(k), i, [&](int64_t m) {
+          if (m <= n || per_.height[size_t(m)] == kNoData) return;  // each pair once
           const uint32_t a = per_.label[size_t(n)], b = per_.label[size_t(m)];
-          if (a == b) continue;
-          const int32_t level = std::max(per_.height[size_t(n)], per_.height[size_t(m)]);
-          const uint64_t key = (uint64_t(std::min(a, b)) << 32) | std::max(a, b);
-          auto [it, fresh] = pairs.emplace(key, level);
-          if (!fresh && level < it->second) it->second = level;
-        }
+          if (a != b) pairs.note(a, b, std::max(per_.height[size_t(n)], per_.height[size_t(m)]));
+        });
       }
-      for (const auto& [key, level] : pairs)
-        all.push_back({uint32_t(key >> 32), uint32_t(key), level});
+      pairs.append_to(all);
     }
     spill_ = spill_levels(next, all);
     std::vector<SpillEdge>().swap(all);
@@ -316,7 +319,8 @@ class Solver {
               c.perimeter_cell(i, x, y);
               r.distance.push_back(d[win.at(x, y)]);
               r.key.push_back(key[win.at(x, y)]);
-              r.flat.push_back(on_flat(f, win.at(x, y), win.stride()));
+              // (flat_distances leaves 0 off a flat, kFar where no data)
+              r.flat.push_back(f[win.at(x, y)] != kNoData && d[win.at(x, y)] != 0);
             }
             return r;
           },
@@ -342,21 +346,15 @@ class Solver {
   // Whether a flat perimeter cell of the chunk touches a cell of another
   // chunk at its height whose distance changed in the last round.
   bool ring_changed_on_flat(int slot) const {
-    const Chunk& c = chunk(slot);
-    for (int i = 0; i < c.perimeter_count(); ++i) {
+    bool changed = false;
+    for (int i = 0; i < chunk(slot).perimeter_count() && !changed; ++i) {
       const int64_t n = per_.node(slot, i);
       if (!per_.flat[size_t(n)]) continue;
-      int x, y;
-      c.perimeter_cell(i, x, y);
-      for (int d = 1; d <= 8; ++d) {
-        const int nx = x + kDx[d], ny = y + kDy[d];
-        if (nx >= 0 && ny >= 0 && nx < c.w && ny < c.h) continue;
-        const int64_t m = node_at(c.x0 + nx, c.y0 + ny);
-        if (m >= 0 && per_.changed[size_t(m)] && per_.filled[size_t(m)] == per_.filled[size_t(n)])
-          return true;
-      }
+      outer_neighbours(slot, i, [&](int64_t m) {
+        changed |= per_.changed[size_t(m)] && per_.filled[size_t(m)] == per_.filled[size_t(n)];
+      });
     }
-    return false;
+    return changed;
   }
 
   // ---- 4, 5, 6: receivers, accumulation ----
