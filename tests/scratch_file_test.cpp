@@ -66,7 +66,8 @@ TEST(ScratchArrayFile, ArraysComeBackFromTheirOffsetsOnDiskAndInMemory) {
   for (const uint64_t in_memory : {uint64_t{0}, uint64_t{1 << 20}}) {
     const fs::path path = dir / (in_memory ? "m.bin" : "d.bin");
     {
-      globe::ScratchArrayFile f(path.string(), in_memory);
+      globe::ScratchArrayFile f(path.string(),
+                                in_memory ? std::optional<uint64_t>(in_memory) : std::nullopt);
       std::vector<int32_t> a(1000), b(300);
       for (size_t i = 0; i < a.size(); ++i)
         a[i] = int32_t(i * 7) - 3000;

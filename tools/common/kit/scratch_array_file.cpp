@@ -12,10 +12,10 @@
 
 namespace globe {
 
-ScratchArrayFile::ScratchArrayFile(std::string path, uint64_t in_memory_bytes)
+ScratchArrayFile::ScratchArrayFile(std::string path, std::optional<uint64_t> in_memory_bytes)
     : path_(std::move(path)) {
-  if (in_memory_bytes > 0) {
-    memory_.resize(in_memory_bytes);
+  if (in_memory_bytes) {
+    memory_.resize(*in_memory_bytes);
     return;
   }
   fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -16,9 +17,11 @@ namespace globe {
 class ScratchArrayFile {
  public:
   // Creates (or truncates) `path`; throws OutputError naming it. With
-  // `in_memory_bytes` > 0 nothing touches the disk: the arrays live in a
-  // buffer of that size (for work that turned out to fit the budget).
-  explicit ScratchArrayFile(std::string path, uint64_t in_memory_bytes = 0);
+  // `in_memory_bytes` nothing touches the disk: the arrays live in a buffer
+  // of that size (for work that turned out to fit the budget); `path` only
+  // names it in messages.
+  explicit ScratchArrayFile(std::string path,
+                            std::optional<uint64_t> in_memory_bytes = std::nullopt);
   ~ScratchArrayFile();
   ScratchArrayFile(const ScratchArrayFile&) = delete;
   ScratchArrayFile& operator=(const ScratchArrayFile&) = delete;

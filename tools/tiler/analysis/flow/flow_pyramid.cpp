@@ -82,7 +82,7 @@ FlowPyramid::FlowPyramid(const FlowGrid& g, int min_zoom, const std::string& pre
     offsets_.push_back(std::move(off));
     files_.push_back(
         std::make_unique<ScratchArrayFile>(prefix + "level" + std::to_string(l) + ".bin",
-                                           in_memory ? std::max<uint64_t>(bytes, 1) : 0));
+                                           in_memory ? std::optional(bytes) : std::nullopt));
   }
   tops_.resize(chunks.size());
 }
@@ -94,9 +94,6 @@ FlowPyramid::Part FlowPyramid::part(int level, int slot) const {
   p.x0 = c.x0 / f, p.y0 = c.y0 / f;
   p.w = int((c.x0 + c.w - 1) / f - p.x0 + 1);
   p.h = int((c.y0 + c.h - 1) / f - p.y0 + 1);
-  p.offset = offsets_.empty() || size_t(level) >= offsets_.size()
-                 ? 0
-                 : offsets_[size_t(level)][size_t(slot)];
   return p;
 }
 
@@ -107,8 +104,8 @@ void FlowPyramid::put_chunk(int slot, LevelGrid g) {
                   level_shape(grid_, int64_t(1) << l));
     const Part p = part(l, slot);
     const size_t n = size_t(p.w) * p.h;
-    files_[size_t(l)]->write_array<uint64_t>(p.offset, g.area);
-    files_[size_t(l)]->write_array<uint8_t>(p.offset + n * 8, g.code);
+    files_[size_t(l)]->write_array<uint64_t>(offset(l, slot), g.area);
+    files_[size_t(l)]->write_array<uint8_t>(offset(l, slot) + n * 8, g.code);
   }
   std::lock_guard lock(mutex_);
   tops_[size_t(slot)] = std::move(g);
@@ -177,8 +174,9 @@ void FlowPyramid::block(tileformat::TileId id, int size, std::vector<uint64_t>& 
       const int run = int(std::min<int64_t>(size - x, p.x0 + p.w - gx));
       const size_t n = size_t(p.w) * p.h, at = size_t(gy - p.y0) * p.w + size_t(gx - p.x0);
       const size_t out = size_t(y) * size + x;
-      file.read_array<uint64_t>(p.offset + at * 8, std::span(area.data() + out, size_t(run)));
-      file.read_array<uint8_t>(p.offset + n * 8 + at, std::span(code.data() + out, size_t(run)));
+      const uint64_t base = offset(level, slot);
+      file.read_array<uint64_t>(base + at * 8, std::span(area.data() + out, size_t(run)));
+      file.read_array<uint8_t>(base + n * 8 + at, std::span(code.data() + out, size_t(run)));
       x += run;
     }
   }

@@ -58,12 +58,13 @@ class FlowPyramid {
              std::vector<uint8_t>& code) const;
 
  private:
+  // A chunk's samples of a level kept per chunk, and where they are stored.
   struct Part {
     int64_t x0, y0;
     int w, h;
-    uint64_t offset;
   };
   Part part(int level, int slot) const;
+  uint64_t offset(int level, int slot) const { return offsets_[size_t(level)][size_t(slot)]; }
 
   const FlowGrid& grid_;
   int levels_;     // zooms: grid.zoom() - levels_ + 1 .. grid.zoom()

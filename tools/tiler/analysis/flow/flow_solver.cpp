@@ -59,12 +59,13 @@ class Solver {
     // cell against kBytesPerCell): then the scratch stays in memory.
     const uint64_t cells = cell_base_.back();
     const bool in_memory = chunks.size() == 1;
-    fill_ = std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "fill.bin",
-                                               in_memory ? cells * 8 : 0);
+    auto memory = [&](uint64_t bytes) {
+      return in_memory ? std::optional<uint64_t>(bytes) : std::nullopt;
+    };
+    fill_ = std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "fill.bin", memory(cells * 8));
     fill_pass();
     route_flats();
-    dirs_ = std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "receivers.bin",
-                                               in_memory ? cells : 0);
+    dirs_ = std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "receivers.bin", memory(cells));
     out_.pyramid = std::make_unique<FlowPyramid>(g, p_.min_zoom, s_.scratch_prefix, in_memory);
     accumulate();
     dirs_.reset();
