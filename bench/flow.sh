@@ -20,10 +20,7 @@ mkdir -p "$scratch"
 runs=${BENCH_RUNS:-3}
 threads=$(nproc)
 
-# usage CMD...: runs CMD, prints "wall_s maxrss_kb cpu_s".
-usage() { /usr/bin/time -f "%e %M %U %S" "$@" 2>&1 >/dev/null | tail -1 | awk '{ print $1, $2, $3 + $4 }'; }
-# fastest_cpu: "wall rss cpu" lines -> the smallest cpu (with its wall) and the largest rss.
-fastest_cpu() { awk 'NR == 1 || $3 < c { c = $3; w = $1 } $2 > m { m = $2 } END { print w, m, c }'; }
+source bench/timing.sh
 
 terrain() { # name dem -> the package path
   local pkg="$scratch/$1.terrain.mbtiles"
