@@ -68,11 +68,7 @@ class AnalyzeVsGdaldem : public ::testing::TestWithParam<Sample> {};
 TEST_P(AnalyzeVsGdaldem, SlopeAndAspectWithinATenthOfADegree) {
   TempDir dir;
   const std::string pkg = (dir / "t.mbtiles").string(), ana = (dir / "a.mbtiles").string();
-  ASSERT_EQ(
-      run(tiler() + " terrain -q --tiling local " + sample(GetParam().file).string() + " -o " + pkg,
-          dir.path())
-          .exit_code,
-      0);
+  ASSERT_TRUE(build_terrain("--tiling local", sample(GetParam().file).string(), pkg, dir.path()));
   const RunResult a = run(tiler() + " analyze -q " + pkg + " -o " + ana, dir.path());
   ASSERT_EQ(a.exit_code, 0) << a.err;
   // Every zoom: each is analysed from its own heights. Brasilia's zoom 1 is
@@ -142,10 +138,7 @@ TEST_P(AnalyzeGeodetic, RampSlopesFollowTheEllipsoid) {
                     ana = (dir / "a.mbtiles").string();
   write_dem(src, 200, 200, gt, "EPSG:4326", GDT_Float32,
             [&](int x, int y) { return ramp.east ? 1000 + 5.0 * x : 2000 - 5.0 * y; });
-  ASSERT_EQ(
-      run(tiler() + " terrain -q --tiling geodetic --max-zoom 8 " + src + " -o " + pkg, dir.path())
-          .exit_code,
-      0);
+  ASSERT_TRUE(build_terrain("--tiling geodetic --max-zoom 8", src, pkg, dir.path()));
   ASSERT_EQ(run(tiler() + " analyze -q --layers slope,skyview --skyview-radius 1000 " + pkg +
                     " -o " + ana,
                 dir.path())
@@ -256,11 +249,8 @@ double brute_force_sky_view(const Raster& dem, int x, int y, double radius_m) {
 TEST(AnalyzeSkyview, MatchesABruteForceHorizonScan) {
   TempDir dir;
   const std::string pkg = (dir / "t.mbtiles").string(), ana = (dir / "a.mbtiles").string();
-  ASSERT_EQ(run(tiler() + " terrain -q --tiling local --block-size 65 " +
-                    sample("brasilia.tif").string() + " -o " + pkg,
-                dir.path())
-                .exit_code,
-            0);
+  ASSERT_TRUE(build_terrain("--tiling local --block-size 65", sample("brasilia.tif").string(), pkg,
+                            dir.path()));
   const RunResult a =
       run(tiler() + " analyze -q --layers skyview --skyview-radius 3000 " + pkg + " -o " + ana,
           dir.path());
@@ -306,11 +296,7 @@ TEST(AnalyzeSkyview, MatchesABruteForceHorizonScan) {
 TEST(Analyze, ThreadCountsGiveIdenticalBytes) {
   TempDir dir;
   const std::string pkg = (dir / "t.mbtiles").string();
-  ASSERT_EQ(
-      run(tiler() + " terrain -q --tiling local " + sample("brasilia.tif").string() + " -o " + pkg,
-          dir.path())
-          .exit_code,
-      0);
+  ASSERT_TRUE(build_terrain("--tiling local", sample("brasilia.tif").string(), pkg, dir.path()));
   // The same output path (it is in the recorded command line), one after the other.
   std::string bytes[2];
   for (int j = 1; j <= 2; ++j) {
@@ -329,11 +315,7 @@ TEST(Analyze, ThreadCountsGiveIdenticalBytes) {
 TEST(Analyze, BadInputIsAClearError) {
   TempDir dir;
   const std::string pkg = (dir / "t.mbtiles").string(), ana = (dir / "a.mbtiles").string();
-  ASSERT_EQ(
-      run(tiler() + " terrain -q --tiling local " + sample("olinda.tif").string() + " -o " + pkg,
-          dir.path())
-          .exit_code,
-      0);
+  ASSERT_TRUE(build_terrain("--tiling local", sample("olinda.tif").string(), pkg, dir.path()));
   RunResult r =
       run(tiler() + " analyze " + sample("olinda.tif").string() + " -o " + ana, dir.path());
   EXPECT_EQ(r.exit_code, 1) << r.err;

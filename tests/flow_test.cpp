@@ -73,11 +73,8 @@ TEST_P(FlowVsGrass, StreamsAndTheLargestOutletAgree) {
   TempDir dir;
   const std::string pkg = (dir / "t.mbtiles").string(), ana = (dir / "a.mbtiles").string();
   const std::string dem = (dir / "dem.tif").string(), acc = (dir / "acc.tif").string();
-  ASSERT_EQ(run(tiler() + " terrain -q --tiling " + GetParam().tiling + " " +
-                    sample(GetParam().file).string() + " -o " + pkg,
-                dir.path())
-                .exit_code,
-            0);
+  ASSERT_TRUE(build_terrain(std::string("--tiling ") + GetParam().tiling,
+                            sample(GetParam().file).string(), pkg, dir.path()));
   const RunResult a = run(tiler() + " analyze -q --layers flow " + pkg + " -o " + ana, dir.path());
   ASSERT_EQ(a.exit_code, 0) << a.err;
   const RunResult info = run(tiler() + " info " + pkg, dir.path());
@@ -196,11 +193,7 @@ int chunks_in(const std::string& stderr_text) {
 TEST(FlowOutOfCore, EqualsTheInMemorySolve) {
   TempDir dir;
   const std::string pkg = (dir / "t.mbtiles").string();
-  ASSERT_EQ(
-      run(tiler() + " terrain -q --tiling local " + sample("brasilia.tif").string() + " -o " + pkg,
-          dir.path())
-          .exit_code,
-      0);
+  ASSERT_TRUE(build_terrain("--tiling local", sample("brasilia.tif").string(), pkg, dir.path()));
   const std::string whole = (dir / "whole.mbtiles").string(), ooc = (dir / "ooc.mbtiles").string();
   const RunResult a = run(tiler() + " analyze --layers flow " + pkg + " -o " + whole, dir.path());
   ASSERT_EQ(a.exit_code, 0) << a.err;
@@ -225,11 +218,7 @@ TEST(FlowOutOfCore, EqualsTheInMemorySolve) {
 TEST(FlowOutOfCore, ConservesWater) {
   TempDir dir;
   const std::string pkg = (dir / "t.mbtiles").string(), ana = (dir / "a.mbtiles").string();
-  ASSERT_EQ(
-      run(tiler() + " terrain -q --tiling local " + sample("brasilia.tif").string() + " -o " + pkg,
-          dir.path())
-          .exit_code,
-      0);
+  ASSERT_TRUE(build_terrain("--tiling local", sample("brasilia.tif").string(), pkg, dir.path()));
   ASSERT_EQ(
       run(tiler() + " analyze -q --layers flow --memory-mb 1 " + pkg + " -o " + ana, dir.path())
           .exit_code,
@@ -285,8 +274,7 @@ TEST(FlowOutOfCore, PeakMemoryStaysWithinTheBudget) {
     return 800 - 0.05 * x - 0.03 * y + 40 * std::sin(x * 0.021) * std::cos(y * 0.017) +
            15 * std::sin((x + 2 * y) * 0.073);
   });
-  ASSERT_EQ(run(tiler() + " terrain -q --tiling local " + src + " -o " + pkg, dir.path()).exit_code,
-            0);
+  ASSERT_TRUE(build_terrain("--tiling local", src, pkg, dir.path()));
   const std::string whole = (dir / "whole.mbtiles").string(), ooc = (dir / "ooc.mbtiles").string();
   const double default_budget =
       peak_rss_mb(tiler() + " analyze -q --layers flow " + pkg + " -o " + whole, dir.path());
@@ -323,10 +311,7 @@ TEST_P(FlowGeodetic, UpstreamAreasOfAPlane) {
                     ana = (dir / "a.mbtiles").string();
   write_dem(src, 200, 200, gt, "EPSG:4326", GDT_Float32,
             [&](int x, int y) { return ex.east ? 2000 - 5.0 * x : 2000 - 5.0 * y; });
-  ASSERT_EQ(
-      run(tiler() + " terrain -q --tiling geodetic --max-zoom 8 " + src + " -o " + pkg, dir.path())
-          .exit_code,
-      0);
+  ASSERT_TRUE(build_terrain("--tiling geodetic --max-zoom 8", src, pkg, dir.path()));
   const RunResult a =
       run(tiler() + " analyze -q --layers flow --memory-mb 1 " + pkg + " -o " + ana, dir.path());
   ASSERT_EQ(a.exit_code, 0) << a.err;

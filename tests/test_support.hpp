@@ -106,4 +106,16 @@ inline fs::path sample(const std::string& name) {
   return p;
 }
 
+// `globe-tiler terrain -q OPTIONS INPUT -o OUT` run in `dir`, as a user
+// runs it; for ASSERT_TRUE, failing with the tool's stderr.
+inline ::testing::AssertionResult build_terrain(const std::string& options,
+                                                const std::string& input, const std::string& out,
+                                                const fs::path& dir) {
+  const RunResult r = run(tiler() + " terrain -q " + options + " " + input + " -o " + out, dir);
+  if (r.exit_code == 0) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure()
+         << "terrain " << options << " " << input << ": exit " << r.exit_code << "\n"
+         << r.err;
+}
+
 }  // namespace globe_test
