@@ -207,7 +207,8 @@ AnalysisSummary build_analysis(const AnalysisSettings& s, Progress& progress) {
         items.size(), s.worker_threads(), 64,
         [&](size_t begin, size_t end) {
           BatchBlocks blocks;
-          for (size_t i = begin; i < end && analyzer.reads_heights(); ++i) {
+          if (!analyzer.reads_heights()) return blocks;  // flow layers only
+          for (size_t i = begin; i < end; ++i) {
             const int radius = HeightWindow::radius_for(p.block_size, analyzer.halo(items[i]));
             for (const TileId& t : tiles_around(p.tiling, items[i], radius))
               if (!blocks.has(t)) blocks.add(t, p.reader->tile(t));
