@@ -3,7 +3,8 @@
 // two real DEMs; the out-of-core solve equal to the in-memory one; water
 // conserved; upstream areas across the antimeridian and next to a pole
 // against a brute force written here (cells counted upstream, their areas on
-// the WGS84 ellipsoid); peak memory within --memory-mb.
+// the WGS84 ellipsoid); the whole world drained only at its polar rows;
+// peak memory within --memory-mb.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,16 +20,21 @@ using namespace globe_test;
 
 constexpr double kDeg = std::numbers::pi / 180;
 
-// The area of a geodetic cell centred at `lat` (degrees), `sp` degrees a
-// side, on the WGS84 ellipsoid (the authalic zone formula).
-double ellipsoid_cell_area(double lat, double sp) {
+// The area of the WGS84 ellipsoid between two latitudes (degrees) over
+// `dlon` degrees of longitude (the authalic zone formula).
+double ellipsoid_zone_area(double north, double south, double dlon) {
   const double a = 6378137.0, f = 1 / 298.257223563, b = a * (1 - f), e2 = f * (2 - f);
   const double e = std::sqrt(e2);
   auto zone = [&](double phi) {
     const double s = std::sin(std::clamp(phi, -90.0, 90.0) * kDeg);
     return b * b / 2 * (s / (1 - e2 * s * s) + std::log((1 + e * s) / (1 - e * s)) / (2 * e));
   };
-  return sp * kDeg * std::abs(zone(lat + sp / 2) - zone(lat - sp / 2));
+  return dlon * kDeg * std::abs(zone(north) - zone(south));
+}
+
+// A geodetic cell centred at `lat`, `sp` degrees a side.
+double ellipsoid_cell_area(double lat, double sp) {
+  return ellipsoid_zone_area(lat + sp / 2, lat - sp / 2, sp);
 }
 
 // Runs GRASS's r.watershed -s on a GeoTIFF in a throwaway location; returns
@@ -386,6 +392,59 @@ INSTANTIATE_TEST_SUITE_P(
                       Extent{
                           "east_antimeridian", 179, 1, true, {"179,-1,180,1", "-180,-1,-179,1"}}),
     [](const auto& info) { return std::string(info.param.name); });
+
+// The whole world (etopo20 on the web-mercator tiling, which wraps east-west
+// and ends at 85 degrees): water leaves only through the first and last rows
+// - the 180-degree columns are interior, so no outlet lies on them - and the
+// outlets drain the area of every cell, each cell's area summed here from its
+// mercator row's latitudes on the ellipsoid.
+TEST(FlowGlobal, TheWholeWorldDrainsOnlyAtItsPolarRowsAndConservesWater) {
+  TempDir dir;
+  const std::string pkg = (dir / "t.mbtiles").string(), ana = (dir / "a.mbtiles").string();
+  ASSERT_TRUE(build_terrain("--max-zoom 3", sample("etopo20.tif").string(), pkg, dir.path()));
+  ASSERT_EQ(run(tiler() + " analyze -q --layers flow " + pkg + " -o " + ana, dir.path()).exit_code,
+            0);
+  const std::string d_tif = (dir / "d.tif").string(), a_tif = (dir / "acc.tif").string();
+  ASSERT_EQ(
+      run(tiler() + " extract " + ana + " --zoom 3 --layer flow_direction -o " + d_tif, dir.path())
+          .exit_code,
+      0);
+  ASSERT_EQ(run(tiler() + " extract " + ana + " --zoom 3 --layer flow_accumulation -o " + a_tif,
+                dir.path())
+                .exit_code,
+            0);
+  const Raster d = read_raster(d_tif), acc = read_raster(a_tif);
+  // The extract's last column repeats the first (180 degrees east = west).
+  const int w = d.width - 1, h = d.height;
+  ASSERT_NEAR(d.gt[0] + (w + 0.5) * d.gt[1], -(d.gt[0] + 0.5 * d.gt[1]), d.gt[1] / 2)
+      << "a whole-world extract expected (sample columns at -180 and +180 degrees)";
+  const double r = 6378137.0;
+  auto lat = [&](double y) {
+    return (2 * std::atan(std::exp(y / r)) - std::numbers::pi / 2) / kDeg;
+  };
+  size_t outlets = 0, off_polar_rows = 0, cells = 0;
+  double drained = 0, total = 0;
+  for (int y = 0; y < h; ++y) {
+    const double top = d.gt[3] + y * d.gt[5];  // pixel edges: the cell around the sample
+    const double cell = ellipsoid_zone_area(lat(top), lat(top + d.gt[5]), d.gt[1] / r / kDeg);
+    for (int x = 0; x < w; ++x) {
+      if (std::isnan(d.at(x, y))) continue;
+      ++cells;
+      total += cell;
+      if (d.at(x, y) != 0) continue;
+      ++outlets;
+      drained += acc.at(x, y);
+      if (y != 0 && y != h - 1) ++off_polar_rows;
+    }
+  }
+  std::printf(
+      "whole world: %zu cells, %zu outlets (%zu off the polar rows), drained %.6g of %.6g m^2\n",
+      cells, outlets, off_polar_rows, drained, total);
+  EXPECT_EQ(cells, size_t(w) * h);
+  EXPECT_GT(outlets, 100u);
+  EXPECT_EQ(off_polar_rows, 0u);
+  EXPECT_NEAR(drained, total, 0.0004 * total);
+}
 
 TEST(FlowErrors, BadMemoryBudget) {
   TempDir dir;
