@@ -106,6 +106,21 @@ inline fs::path sample(const std::string& name) {
   return p;
 }
 
+// The integer that follows the first `label` in `text` (spaces skipped), or
+// -1 when there is none. Plain string search: GCC 12 warns inside std::regex
+// in the sanitizer build, which CI compiles with -Werror.
+inline long long integer_after(const std::string& text, const std::string& label) {
+  size_t at = text.find(label);
+  if (at == std::string::npos) return -1;
+  at += label.size();
+  while (at < text.size() && text[at] == ' ')
+    ++at;
+  size_t end = at;
+  while (end < text.size() && text[end] >= '0' && text[end] <= '9')
+    ++end;
+  return end == at ? -1 : std::stoll(text.substr(at, end - at));
+}
+
 // `globe-tiler terrain -q OPTIONS INPUT -o OUT` run in `dir`, as a user
 // runs it; for ASSERT_TRUE, failing with the tool's stderr.
 inline ::testing::AssertionResult build_terrain(const std::string& options,
