@@ -81,8 +81,10 @@ SqliteStatement& SqliteStatement::bind(int index, const std::string& value) {
   return *this;
 }
 SqliteStatement& SqliteStatement::bind(int index, std::span<const uint8_t> blob) {
-  if (sqlite3_bind_blob(stmt_, index, blob.data(), static_cast<int>(blob.size()),
-                        SQLITE_TRANSIENT) != SQLITE_OK)
+  // An empty span may have no data pointer, which SQLite would store as NULL.
+  static const uint8_t kEmpty = 0;
+  if (sqlite3_bind_blob(stmt_, index, blob.empty() ? &kEmpty : blob.data(),
+                        static_cast<int>(blob.size()), SQLITE_TRANSIENT) != SQLITE_OK)
     db_.fail("bind", sql_);
   return *this;
 }
