@@ -77,6 +77,7 @@ bool parse_build_command(CliArgs& cli, BuildOptions& o, const std::vector<std::s
   if (o.min_zoom && o.max_zoom && *o.min_zoom > *o.max_zoom)
     throw UsageError("--min-zoom " + std::to_string(*o.min_zoom) + " is larger than --max-zoom " +
                      std::to_string(*o.max_zoom));
+  if (o.split_zoom && !o.shard) throw UsageError("--split-zoom needs --shard I/N");
   if (o.quiet) o.progress = ProgressMode::kQuiet;
   o.command_line = CliArgs::reproducible_command_line(program, args);
   return true;

@@ -11,6 +11,7 @@
 
 #include "cli_args.hpp"
 #include "progress.hpp"
+#include "shard_plan.hpp"
 #include "tileformat/tiling.hpp"
 
 namespace globe {
@@ -28,7 +29,9 @@ struct BuildOptions {
   bool resume = false;  // continue an interrupted build's OUT.tmp
   bool quiet = false;
   ProgressMode progress = ProgressMode::kAuto;
-  std::string command_line;  // recorded in metadata (see reproducible_command_line)
+  std::string command_line;        // recorded in metadata (see reproducible_command_line)
+  std::optional<ShardSpec> shard;  // --shard I/N (builders that support it)
+  std::optional<int> split_zoom;   // --split-zoom
 
   // -j, or all cores when not given.
   int worker_threads() const {

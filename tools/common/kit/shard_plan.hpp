@@ -1,0 +1,59 @@
+// Sharded builds (docs/scale-out.md): `--shard I/N` builds only the subtrees
+// below a split zoom that fall to shard I. Subtrees are ordered along the
+// Morton curve (so a shard's subtrees are mostly neighbours and its border
+// short) and cut into N runs of about equal estimated work. Every shard
+// computes the same cut from the same inputs, so shards never talk to each
+// other; `merge` joins them.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tileformat/tile_id.hpp"
+
+namespace globe {
+
+class CliArgs;
+struct BuildOptions;
+
+struct ShardSpec {
+  int index = 0, count = 1;  // I/N, 0 <= I < N
+};
+
+// "I/N"; throws UsageError naming --shard.
+ShardSpec parse_shard(const std::string& text);
+// --shard I/N and --split-zoom Z, into o.shard and o.split_zoom.
+void declare_shard_options(CliArgs& cli, BuildOptions& o);
+
+// Work of one tile of the finest zoom (what the estimate counts: data tiles,
+// input pixels or vertices).
+struct TileWork {
+  tileformat::TileId id;
+  uint64_t work = 1;
+};
+
+struct ShardPlan {
+  int split_zoom = 0;
+  uint64_t roots_total = 0;               // subtrees with work, all shards
+  std::vector<tileformat::TileId> roots;  // this shard's, sorted
+  uint64_t work = 0, work_total = 0;      // this shard's estimate, and all shards'
+
+  // Whether the tile (zoom >= split_zoom) lies in one of this shard's subtrees.
+  bool contains(tileformat::TileId id) const;
+};
+
+// The subtrees of `tiles` (all of one zoom >= min_zoom) below the split zoom
+// (given, or the coarsest zoom >= min_zoom with at least 16 subtrees per
+// shard) and shard spec.index's run of them. Throws UsageError for a split
+// zoom finer than the tiles or coarser than min_zoom.
+ShardPlan plan_shard(const std::vector<TileWork>& tiles, int min_zoom,
+                     std::optional<int> split_zoom, ShardSpec spec);
+
+// What identifies a build across its shards: the reproducible command line
+// without --shard and -o, and each input's size and modification time;
+// hashed (16 hex digits).
+std::string shard_build_id(const BuildOptions& o);
+
+}  // namespace globe
