@@ -11,6 +11,7 @@ namespace globe {
 int run_terrain(const std::vector<std::string>& args);
 int run_imagery(const std::vector<std::string>& args);
 int run_analyze(const std::vector<std::string>& args);
+int run_merge(const std::vector<std::string>& args);
 int run_info(const std::vector<std::string>& args);
 int run_validate(const std::vector<std::string>& args);
 int run_extract(const std::vector<std::string>& args);

@@ -14,7 +14,8 @@ const char* kUsage =
     "commands:\n"
     "  terrain INPUT... -o OUT.mbtiles   DEMs (any GDAL raster, any CRS) -> terrain package\n"
     "  imagery INPUT... -o OUT.mbtiles   images (any GDAL raster, any CRS) -> image package\n"
-    "  analyze TERRAIN -o OUT.mbtiles    slope, aspect, curvature per sample -> analysis package\n"
+    "  analyze TERRAIN -o OUT.mbtiles    slope, aspect, curvature, sky view, flow -> analysis\n"
+    "  merge SHARD... -o OUT.mbtiles     shards of a --shard I/N build -> one package\n"
     "  info PACKAGE                      metadata, zoom range, tile counts and sizes\n"
     "  validate PACKAGE                  decode every tile, check schema and invariants\n"
     "  extract PACKAGE --zoom Z -o OUT.tif   one zoom as a GeoTIFF (heights, pixels or a layer)\n"
@@ -36,6 +37,7 @@ int main(int argc, char** argv) {
                                  {{"terrain", globe::run_terrain},
                                   {"imagery", globe::run_imagery},
                                   {"analyze", globe::run_analyze},
+                                  {"merge", globe::run_merge},
                                   {"info", globe::run_info},
                                   {"validate", globe::run_validate},
                                   {"extract", globe::run_extract}},

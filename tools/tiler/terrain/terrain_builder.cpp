@@ -16,6 +16,7 @@
 #include "parallel_batches.hpp"
 #include "raster_metadata.hpp"
 #include "raster_stages.hpp"
+#include "shard_plan.hpp"
 #include "terrain_stages.hpp"
 #include "tile_groups.hpp"
 #include "tile_warper.hpp"
@@ -25,6 +26,7 @@
 #include "tileformat/mblock.hpp"
 #include "tileformat/metadata.hpp"
 #include "tileformat/package.hpp"
+#include "tileformat/shard_table.hpp"
 
 namespace globe {
 namespace {
@@ -40,16 +42,22 @@ constexpr int kFinalZstdLevel = 9;
 // the package itself.
 enum Pass : int { kPassRaw = 0, kPassFinal = 1, kPassEncode = 2 };
 
+// A shard's staged first rows and columns of the tiles just outside its
+// subtrees (east, south, south-east of them) at the finest zoom.
+constexpr tileformat::StageTag kHaloEdges = 16;
+
 class Builder {
  public:
-  Builder(const DemPlan& plan, const TerrainSettings& s, Progress& progress)
+  Builder(const DemPlan& plan, const TerrainSettings& s, Progress& progress,
+          const ShardPlan* shard = nullptr)
       : plan_(plan),
         s_(s),
         progress_(progress),
         size_(plan.steps + 1),
         layouts_{KPatchLayout(plan.steps, s.lattice, 0), KPatchLayout(plan.steps, s.lattice, 1)},
         threads_(s.worker_threads()),
-        global_(plan.tiling.scheme != tileformat::Scheme::kLocal) {}
+        global_(plan.tiling.scheme != tileformat::Scheme::kLocal),
+        shard_(shard) {}
 
   BuildSummary run() {
     const auto start = std::chrono::steady_clock::now();
@@ -58,48 +66,19 @@ class Builder {
       StagingStore stage(
           s_.output + ".staging", writer->key_hash(),
           writer->resumed() ? tileformat::Resume::kContinue : tileformat::Resume::kStartAfresh);
-      // Where to start. Without the stage's checkpoint (none kept), every
-      // level is computed again and only the package's committed tiles are
-      // skipped.
-      StageCheckpoint start{plan_.max_zoom, kPassRaw, 0};
-      if (writer->resumed())
-        if (const std::optional<StageCheckpoint> at = stage.checkpoint()) {
-          start = *at;
-          static const char* const kPassNames[] = {"samples", "errors", "encoding"};
-          if (start.z < plan_.max_zoom || start.pass > kPassRaw || start.done > 0)
-            progress_.note("continuing at zoom " + std::to_string(start.z) + ", " +
-                           kPassNames[std::clamp(start.pass, 0, 2)] + " pass, after " +
-                           std::to_string(start.done) + " items");
-        }
-      warpers_.resize(threads_);
-      for (int z = plan_.max_zoom; z >= plan_.min_zoom; --z) {
-        if (z > start.z) {  // finished before the interruption
-          if (writer->tiles_at_zoom(z) > 0) coarsest_written_ = z;
-          continue;
-        }
-        const StageCheckpoint from = z == start.z ? start : StageCheckpoint{z, kPassRaw, 0};
-        if (from.pass <= kPassRaw) pass_raw(stage, z, from.pass == kPassRaw ? from.done : 0);
-        if (from.pass <= kPassFinal) {
-          pass_final(stage, z, from.pass == kPassFinal ? from.done : 0);
-          stage.drop(Stage::kRaw, z);
-          stage.drop(Stage::kEdges, z);
-          stage.drop(Stage::kFinal, z + 1);
-          stage.drop(Stage::kNodeErrors, z + 1);
-          stage.drop(Stage::kQuarter, z + 1);
-          stage.commit({z, kPassEncode, 0});
-        }
-        pass_encode(stage, *writer, z);
-        // The package holds level z before the stage forgets its inputs.
-        writer->checkpoint();
-        stage.commit({z - 1, kPassRaw, 0});
+      if (shard_) {
+        parts_.emplace(*writer);
+        for (const TileId& root : shard_->roots)
+          parts_->put(tileformat::kShardRoot, root, {});
       }
-      warpers_.clear();
+      levels(*writer, stage, plan_.max_zoom, shard_ ? shard_->split_zoom : plan_.min_zoom);
+      parts_.reset();
     } catch (const tileformat::PackageError& e) {
       // Only the output and scratch databases are written here: a failure is
       // an output problem (disk full, folder removed), not bad input.
       throw build_write_error(s_.output, e);
     }
-    if (writer->tiles_written() == 0)
+    if (writer->tiles_written() == 0 && !shard_)  // a shard may hold no data
       throw InputError(plan_.sources[0].path + ": no tile holds valid data in the requested area" +
                        (s_.bbox ? " (check --bbox)" : "") + "; nothing written");
     write_metadata(*writer);
@@ -113,7 +92,70 @@ class Builder {
     return sum;
   }
 
+  // Zooms top down to bottom (inclusive); the stage holds what level top + 1
+  // left (nothing at the finest zoom), or is a resumed build's.
+  void levels(tileformat::PackageWriter& writer, StagingStore& stage, int top, int bottom) {
+    // Where to start. Without the stage's checkpoint (none kept), every
+    // level is computed again and only the package's committed tiles are
+    // skipped.
+    StageCheckpoint start{top, kPassRaw, 0};
+    if (writer.resumed())
+      if (const std::optional<StageCheckpoint> at = stage.checkpoint()) {
+        start = *at;
+        static const char* const kPassNames[] = {"samples", "errors", "encoding"};
+        if (start.z < top || start.pass > kPassRaw || start.done > 0)
+          progress_.note("continuing at zoom " + std::to_string(start.z) + ", " +
+                         kPassNames[std::clamp(start.pass, 0, 2)] + " pass, after " +
+                         std::to_string(start.done) + " items");
+      }
+    warpers_.resize(threads_);
+    for (int z = top; z >= bottom; --z) {
+      if (z > start.z) {  // finished before the interruption
+        if (writer.tiles_at_zoom(z) > 0) coarsest_written_ = z;
+        continue;
+      }
+      const StageCheckpoint from = z == start.z ? start : StageCheckpoint{z, kPassRaw, 0};
+      if (from.pass <= kPassRaw) pass_raw(stage, z, from.pass == kPassRaw ? from.done : 0);
+      if (from.pass <= kPassFinal) {
+        pass_final(stage, z, from.pass == kPassFinal ? from.done : 0);
+        stage.drop(Stage::kRaw, z);
+        stage.drop(Stage::kEdges, z);
+        stage.drop(Stage::kFinal, z + 1);
+        stage.drop(Stage::kNodeErrors, z + 1);
+        stage.drop(Stage::kQuarter, z + 1);
+        stage.commit({z, kPassEncode, 0});
+      }
+      pass_encode(stage, writer, z);
+      // The package holds level z before the stage forgets its inputs.
+      writer.checkpoint();
+      stage.commit({z - 1, kPassRaw, 0});
+    }
+    warpers_.clear();
+  }
+
+  int coarsest_written() const { return coarsest_written_; }
+
  private:
+  // Whether this build computes the tile (zoom >= the split zoom for a shard).
+  bool in_region(TileId id) const { return !shard_ || shard_->contains(id); }
+  // A shard's tile just outside its subtrees whose first row or column a
+  // tile inside takes (east, south or south-east of one).
+  bool in_halo(TileId id) const {
+    if (!shard_ || shard_->contains(id)) return false;
+    for (auto [dx, dy] : {std::pair{-1, 0}, std::pair{0, -1}, std::pair{-1, -1}})
+      if (auto nb = neighbour(id, dx, dy); nb && shard_->contains(*nb)) return true;
+    return false;
+  }
+  // A shard's tile with a tile of another shard within `reach` tiles: its
+  // vertex errors (reach 1) or its node errors (reach 2, read by those) are
+  // completed by the merge.
+  bool near_border(TileId id, int reach) const {
+    for (int dy = -reach; dy <= reach; ++dy)
+      for (int dx = -reach; dx <= reach; ++dx)
+        if (auto nb = neighbour(id, dx, dy); nb && !shard_->contains(*nb)) return true;
+    return false;
+  }
+
   // Final blocks: the best height coding, encoded once here (pass 3 only
   // swaps in the error tree).
   std::vector<uint8_t> encode_final(const Block& b) const {
@@ -179,8 +221,18 @@ class Builder {
   void pass_warp(StagingStore& stage, int z, size_t first) {
     const std::vector<TileId> tiles = tiles_in_areas(plan_.tiling, plan_.data_areas, z);
     const int g = plan_.tiling.tiles_x(z) >= 16 ? TileWarper::kMaxGroup : 1;
-    const std::vector<WarpGroup> groups = group_tiles(tiles, g);
-    progress_.begin("z" + std::to_string(z) + " warp", tiles.size());
+    // The same groups as the whole build (a group's GDAL call decides its
+    // samples); a shard warps those holding its tiles or its halo.
+    std::vector<WarpGroup> groups = group_tiles(tiles, g);
+    if (shard_)
+      std::erase_if(groups, [&](const WarpGroup& group) {
+        return std::none_of(group.members.begin(), group.members.end(),
+                            [&](TileId id) { return in_region(id) || in_halo(id); });
+      });
+    size_t members = 0;
+    for (const WarpGroup& group : groups)
+      members += group.members.size();
+    progress_.begin("z" + std::to_string(z) + " warp", members);
     for (size_t i = 0; i < first && i < groups.size(); ++i)
       progress_.advance(groups[i].members.size());
     parallel_batches<NoInputs, std::vector<RawOut>>(
@@ -192,7 +244,11 @@ class Builder {
         },
         [&](size_t i, std::vector<RawOut>&& outs) {
           for (size_t k = 0; k < outs.size(); ++k) {
-            store_raw(stage, groups[i].members[k], outs[k]);
+            const TileId id = groups[i].members[k];
+            if (in_region(id))
+              store_raw(stage, id, outs[k]);
+            else if (in_halo(id) && !outs[k].edges.empty())
+              stage.put(kHaloEdges, id, outs[k].edges);
             progress_.advance();
           }
         },
@@ -299,9 +355,12 @@ class Builder {
           for (size_t i = begin; i < end; ++i) {
             if (auto b = stage.get(Stage::kRaw, tiles[i])) in.raw.emplace(tiles[i], std::move(*b));
             for (auto [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}, std::pair{1, 1}})
-              if (auto nb = neighbour(tiles[i], dx, dy); nb && !in.edges.count(*nb))
-                if (auto e = stage.get(Stage::kEdges, *nb))
+              if (auto nb = neighbour(tiles[i], dx, dy); nb && !in.edges.count(*nb)) {
+                if (!in_region(*nb))
+                  in.edges.emplace(*nb, halo_edges(stage, *nb));
+                else if (auto e = stage.get(Stage::kEdges, *nb))
                   in.edges.emplace(*nb, unpack_edges(*e, size_));
+              }
             if (z < plan_.max_zoom)
               for (const TileId& c : tiles[i].children())
                 if (auto e = stage.get(Stage::kNodeErrors, c))
@@ -325,6 +384,53 @@ class Builder {
         },
         first);
     progress_.end();
+  }
+
+  // The first row and column of a tile outside the shard, as the whole
+  // build's pass 1 gives them: every sample there is the finest zoom's
+  // sample at the same place (coarse samples equal fine ones), taken from
+  // the staged halo edges of the finest tile that owns it (invalid where
+  // that tile has no data).
+  Block halo_edges(StagingStore& stage, TileId id) const {
+    const int n = plan_.steps, zmax = plan_.max_zoom;
+    const int up = zmax - id.z;
+    const uint64_t cols = plan_.tiling.tiles_x(zmax), rows = plan_.tiling.tiles_y(zmax);
+    std::map<TileId, std::optional<Block>> finest;
+    Block e{std::vector<int32_t>(2 * size_t(size_), 0), std::vector<uint8_t>(2 * size_t(size_), 0)};
+    for (size_t k = 0; k < 2 * size_t(size_); ++k) {
+      const bool row = k < size_t(size_);
+      const uint64_t sx = uint64_t{id.x} * n + (row ? k : 0),
+                     sy = uint64_t{id.y} * n + (row ? 0 : k - size_);
+      uint64_t gx = sx << up, gy = sy << up;
+      uint64_t fx = gx / n, fy = gy / n, lx = gx % n, ly = gy % n;
+      if (fx >= cols) {  // the east edge of the tiling: wraps, or the last tile owns it
+        if (global_) {
+          gx -= cols * n;
+          fx = gx / n;
+        } else {
+          fx = cols - 1;
+          lx = n;
+        }
+      }
+      if (fy >= rows) {
+        fy = rows - 1;
+        ly = n;
+      }
+      const TileId f{zmax, static_cast<uint32_t>(fx), static_cast<uint32_t>(fy)};
+      auto it = finest.find(f);
+      if (it == finest.end()) {
+        std::optional<Block> b;
+        if (auto bytes = stage.get(kHaloEdges, f)) b = unpack_edges(*bytes, size_);
+        it = finest.emplace(f, std::move(b)).first;
+      }
+      if (!it->second) continue;
+      // Samples on a tile's first row or column: the places pass 2 reads.
+      const size_t src = ly == 0 ? size_t(lx) : lx == 0 ? size_t(size_) + ly : SIZE_MAX;
+      if (src == SIZE_MAX) continue;
+      e.q[k] = it->second->q[src];
+      e.valid[k] = it->second->valid[src];
+    }
+    return e;
   }
 
   struct FinalOut {
@@ -414,11 +520,23 @@ class Builder {
         },
         [&](size_t i, std::vector<uint8_t>&& blob) {
           writer.put_tile(tiles[i], blob);
+          if (parts_) put_shard_parts(stage, tiles[i]);
           coarsest_written_ = z;
           progress_.advance();
         },
         [](size_t) {}, first);
     progress_.end();
+  }
+
+  // What the merge needs of a shard's tile besides the tile: node errors
+  // near the shard's border (the merge recomputes the vertex errors there)
+  // and at the split zoom (with the quarter: the input of the zooms above).
+  void put_shard_parts(StagingStore& stage, TileId id) {
+    const bool split = id.z == shard_->split_zoom;
+    if (split || near_border(id, 2))
+      if (auto e = stage.get(Stage::kNodeErrors, id)) parts_->put(kShardNodeErrors, id, *e);
+    if (split)
+      if (auto q = stage.get(Stage::kQuarter, id)) parts_->put(kShardQuarter, id, *q);
   }
 
   void write_metadata(tileformat::PackageWriter& w) const {
@@ -436,6 +554,15 @@ class Builder {
     m.height_step = plan_.step_m;
     m.fill_height = plan_.fill_q * plan_.step_m;
     w.set_metadata(tileformat::to_metadata(m));
+    if (shard_) {
+      tileformat::ShardMetadata sm{s_.shard->index,     s_.shard->count,    shard_->split_zoom,
+                                   shard_->roots_total, shard_build_id(s_), plan_.min_zoom};
+      // Terrain has tiles down to the coarsest zoom wherever it has data.
+      sm.center_zoom =
+          raster_common_metadata({s_.output, "", "", "", plan_.min_zoom, plan_.max_zoom}, {}, plan_)
+              .center_zoom;
+      w.set_metadata(tileformat::to_metadata(sm));
+    }
   }
 
   size_t batch_size() const { return static_cast<size_t>(8 * threads_); }
@@ -447,6 +574,8 @@ class Builder {
   const std::array<KPatchLayout, 2> layouts_;
   const int threads_;
   const bool global_;
+  const ShardPlan* shard_;
+  std::optional<tileformat::ShardTableWriter> parts_;
   std::vector<std::unique_ptr<TileWarper>> warpers_;
   int coarsest_written_ = 0;
 };
@@ -455,7 +584,26 @@ class Builder {
 
 BuildSummary build_terrain(const DemPlan& plan, const TerrainSettings& settings,
                            Progress& progress) {
-  return Builder(plan, settings, progress).run();
+  if (!settings.shard) return Builder(plan, settings, progress).run();
+  // Work per subtree: the finest tiles over data (each costs one warped block).
+  std::vector<TileWork> work;
+  for (const TileId& id : tiles_in_areas(plan.tiling, plan.data_areas, plan.max_zoom))
+    work.push_back({id, 1});
+  const ShardPlan shard = plan_shard(work, plan.min_zoom, settings.split_zoom, *settings.shard);
+  progress.note("shard " + std::to_string(settings.shard->index) + "/" +
+                std::to_string(settings.shard->count) + ": " + std::to_string(shard.roots.size()) +
+                " of " + std::to_string(shard.roots_total) + " subtrees below zoom " +
+                std::to_string(shard.split_zoom) + ", " + std::to_string(shard.work) + " of " +
+                std::to_string(shard.work_total) + " finest tiles");
+  return Builder(plan, settings, progress, &shard).run();
+}
+
+int build_terrain_levels(const DemPlan& plan, const TerrainSettings& settings,
+                         tileformat::PackageWriter& writer, StagingStore& stage, int top,
+                         Progress& progress) {
+  Builder b(plan, settings, progress);
+  b.levels(writer, stage, top, plan.min_zoom);
+  return b.coarsest_written();
 }
 
 }  // namespace globe

@@ -16,7 +16,9 @@
 
 #include "dem_plan.hpp"
 #include "progress.hpp"
+#include "raster_stages.hpp"
 #include "terrain_settings.hpp"
+#include "tileformat/package.hpp"
 
 namespace globe {
 
@@ -26,7 +28,23 @@ struct BuildSummary {
   double seconds = 0;
 };
 
+// The whole build, or with settings.shard one shard of it: the subtrees
+// below the split zoom that fall to it, warping the first row and column of
+// the tiles just east and south of them (the halo, from the inputs), plus
+// the shard table (tileformat/shard_table.hpp) the merge needs: node errors
+// near the shard's border and at the split zoom, the split zoom's quarters.
+// A shard's tiles on its border carry vertex errors that ignore the other
+// shards; the merge recomputes them.
 BuildSummary build_terrain(const DemPlan& plan, const TerrainSettings& settings,
                            Progress& progress);
+
+// The merge's share (terrain_merge.hpp): zooms `top` down to plan.min_zoom
+// into `writer`, from a stage holding level top + 1's final blocks
+// (Stage::kFinal, any bytes: only listed), node errors and quarters; resumes
+// from the stage's checkpoint when the writer was resumed. Returns the
+// coarsest zoom written.
+int build_terrain_levels(const DemPlan& plan, const TerrainSettings& settings,
+                         tileformat::PackageWriter& writer, StagingStore& stage, int top,
+                         Progress& progress);
 
 }  // namespace globe

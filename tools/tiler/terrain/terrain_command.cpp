@@ -34,6 +34,7 @@ int run_terrain(const std::vector<std::string>& args) {
   cli.option("--nodata", "VALUE", "input value meaning 'no data' (overrides the files' own)",
              [&](const std::string& v) { s.nodata = CliArgs::to_double("--nodata", v); });
   declare_run_options(cli, s);
+  declare_shard_options(cli, s);
   if (!parse_build_command(cli, s, args, "globe-tiler terrain", "input DEM (see --help)"))
     return kExitOk;
 

@@ -10,7 +10,14 @@
 #include <span>
 #include <vector>
 
+#include "tileformat/shard_table.hpp"
+
 namespace globe {
+
+// Parts of a terrain shard's table (tileformat/shard_table.hpp), coded as
+// the stages of the same name: node errors near the shard's border and at
+// the split zoom, quarters at the split zoom.
+enum TerrainShardPart : tileformat::ShardPartTag { kShardNodeErrors = 1, kShardQuarter = 2 };
 
 // A block of height quanta and validity flags, size x size, row-major.
 struct Block {

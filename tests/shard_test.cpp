@@ -1,0 +1,186 @@
+// Sharded builds (docs/scale-out.md): the shards of `terrain --shard I/N`,
+// joined by `merge`, give the package one machine builds from the same
+// command: the same tiles (bytes) and metadata but the command line. The
+// reference is that one-machine build, run as a user runs it. Extents users
+// have: a UTM sample, local tilings, the whole world in both global tilings
+// (the antimeridian seam and the polar rows), holes of nodata across shard
+// borders. Bad sets of shards are clear errors that write nothing.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "raster_fixtures.hpp"
+#include "test_support.hpp"
+#include "tileformat/package.hpp"
+
+using namespace globe_test;
+
+namespace {
+
+// Every tile (same bytes) and metadata value (but globe:command_line and
+// the file name) of `ours` equal `ref`'s.
+void expect_same_package(const std::string& ours, const std::string& ref) {
+  tileformat::PackageReader a(ours), b(ref);
+  auto meta = [](tileformat::PackageReader& r) {
+    auto m = r.metadata();
+    m.erase("globe:command_line");
+    m.erase("name");
+    return m;
+  };
+  EXPECT_EQ(meta(a), meta(b));
+  std::map<tileformat::TileId, std::vector<uint8_t>> tiles;
+  b.for_each_tile([&](tileformat::TileId id, std::span<const uint8_t> blob) {
+    tiles.emplace(id, std::vector<uint8_t>(blob.begin(), blob.end()));
+  });
+  size_t same = 0, differ = 0, extra = 0;
+  a.for_each_tile([&](tileformat::TileId id, std::span<const uint8_t> blob) {
+    auto it = tiles.find(id);
+    if (it == tiles.end()) {
+      ++extra;
+      return;
+    }
+    if (std::equal(blob.begin(), blob.end(), it->second.begin(), it->second.end()))
+      ++same;
+    else if (differ++ < 5)
+      ADD_FAILURE() << "tile " << id.str() << " differs";
+    tiles.erase(it);
+  });
+  EXPECT_EQ(differ, 0u);
+  EXPECT_EQ(extra, 0u) << "tiles the one-machine build does not have";
+  EXPECT_EQ(tiles.size(), 0u) << "tiles missing, e.g. "
+                              << (tiles.empty() ? "" : tiles.begin()->first.str());
+  EXPECT_GT(same, 0u);
+}
+
+// Builds `input` with `options` on one machine and as `n` shards (each with
+// `shard_options`), merges, and compares.
+void expect_shards_merge_to_one_build(const std::string& input, const std::string& options, int n,
+                                      const std::string& shard_options, const fs::path& dir) {
+  ASSERT_TRUE(build_terrain(options, input, (dir / "one.mbtiles").string(), dir));
+  std::string shards;
+  for (int i = 0; i < n; ++i) {
+    const std::string out = (dir / ("s" + std::to_string(i) + ".mbtiles")).string();
+    const std::string spec = std::to_string(i) + "/" + std::to_string(n);
+    ASSERT_TRUE(build_terrain(options + " --shard " + spec + " " + shard_options, input, out, dir));
+    shards += " " + out;
+  }
+  const RunResult m =
+      run(tiler() + " merge -q" + shards + " -o " + (dir / "m.mbtiles").string(), dir);
+  ASSERT_EQ(m.exit_code, 0) << m.err;
+  expect_same_package((dir / "m.mbtiles").string(), (dir / "one.mbtiles").string());
+}
+
+struct ShardCase {
+  const char* name;
+  const char* file;
+  const char* options;
+  int shards;
+  const char* shard_options;
+};
+
+class ShardedTerrain : public ::testing::TestWithParam<ShardCase> {};
+
+}  // namespace
+
+TEST_P(ShardedTerrain, MergesToTheOneMachineBuild) {
+  TempDir dir;
+  const ShardCase& c = GetParam();
+  expect_shards_merge_to_one_build(sample(c.file).string(), c.options, c.shards, c.shard_options,
+                                   dir.path());
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Samples, ShardedTerrain,
+    ::testing::Values(
+        ShardCase{"brasilia_one_shard", "brasilia.tif", "", 1, ""},
+        ShardCase{"brasilia_2", "brasilia.tif", "", 2, "--split-zoom 11"},
+        ShardCase{"brasilia_local_3", "brasilia.tif", "--tiling local", 3, ""},
+        ShardCase{"jacksboro_3", "jacksboro.tif", "", 3, "--split-zoom 9"},
+        ShardCase{"jacksboro_geodetic_7", "jacksboro.tif", "--tiling geodetic", 7, ""},
+        ShardCase{"world_webmercator_3", "etopo20.tif", "--max-zoom 4", 3, "--split-zoom 2"},
+        ShardCase{"world_geodetic_7", "etopo20.tif", "--tiling geodetic --max-zoom 4", 7,
+                  "--split-zoom 1"}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+// Holes of nodata on both sides of shard borders (and whole subtrees without
+// data) in a UTM DEM: the halo rows and columns a shard warps carry the
+// holes as the one-machine build sees them.
+TEST(ShardedTerrainHoles, MergeToTheOneMachineBuild) {
+  TempDir dir;
+  const std::string dem = (dir / "holes.tif").string();
+  const double gt[6] = {500000, 30, 0, 4000000, 0, -30};
+  const double nodata = -9999;
+  write_dem(
+      dem, 1200, 1000, gt, "EPSG:32633", GDT_Float32,
+      [&](int x, int y) {
+        if ((x / 97 + y / 83) % 3 == 0 || (x > 700 && y > 600)) return nodata;
+        return 200 + 150 * std::sin(x * 0.013) * std::cos(y * 0.011) + 0.37 * x;
+      },
+      &nodata);
+  expect_shards_merge_to_one_build(dem, "--precision 0.1", 3, "", dir.path());
+}
+
+// Work is shared by estimated work, in runs along the Morton curve: every
+// shard builds something, none builds much more than its share, and the
+// shards' tiles at the finest zoom partition the one-machine build's.
+TEST(ShardedTerrainPlan, ShardsShareTheWork) {
+  TempDir dir;
+  const std::string dem = sample("jacksboro.tif").string();
+  size_t total = 0;
+  std::vector<size_t> counts;
+  for (int i = 0; i < 4; ++i) {
+    const std::string out = (dir / ("s" + std::to_string(i) + ".mbtiles")).string();
+    ASSERT_TRUE(build_terrain("--shard " + std::to_string(i) + "/4", dem, out, dir.path()));
+    tileformat::PackageReader r(out);
+    const int maxzoom = std::stoi(*r.meta("maxzoom"));
+    counts.push_back(r.tile_ids(maxzoom).size());
+    total += counts.back();
+  }
+  for (size_t c : counts) {
+    EXPECT_GT(c, 0u);
+    EXPECT_LE(c, total / 4 + 8) << "a shard took much more than its share of " << total;
+  }
+}
+
+TEST(ShardedTerrainErrors, BadShardSetsAreClearErrors) {
+  TempDir dir;
+  const std::string dem = sample("brasilia.tif").string();
+  auto shard = [&](const std::string& spec, const std::string& name, const std::string& extra) {
+    return build_terrain("--shard " + spec + " --split-zoom 12 " + extra, dem,
+                         (dir / name).string(), dir.path());
+  };
+  ASSERT_TRUE(shard("0/3", "a.mbtiles", ""));
+  ASSERT_TRUE(shard("1/3", "b.mbtiles", ""));
+  ASSERT_TRUE(shard("2/3", "c.mbtiles", ""));
+  ASSERT_TRUE(shard("2/3", "other.mbtiles", "--precision 0.5"));
+  ASSERT_TRUE(build_terrain("", dem, (dir / "whole.mbtiles").string(), dir.path()));
+  auto merge = [&](const std::string& shards, int code, const std::string& says) {
+    const RunResult r =
+        run("cd " + dir.path().string() + " && " + tiler() + " merge " + shards + " -o out.mbtiles",
+            dir.path());
+    EXPECT_EQ(r.exit_code, code) << shards << "\n" << r.err;
+    EXPECT_NE(r.err.find(says), std::string::npos) << shards << "\n" << r.err;
+    EXPECT_FALSE(fs::exists(dir / "out.mbtiles")) << shards;
+    EXPECT_FALSE(fs::exists(dir / "out.mbtiles.tmp")) << shards;
+  };
+  merge("a.mbtiles b.mbtiles", 1, "shard 2/3 is missing");
+  merge("a.mbtiles b.mbtiles other.mbtiles", 1, "other.mbtiles: shard 2/3 of another build");
+  merge("a.mbtiles b.mbtiles b.mbtiles c.mbtiles", 1, "are both shard 1/3");
+  merge("a.mbtiles whole.mbtiles", 1, "whole.mbtiles: not a shard");
+  merge("a.mbtiles missing.mbtiles", 1, "missing.mbtiles");
+  const RunResult onto = run("cd " + dir.path().string() + " && " + tiler() +
+                                 " merge a.mbtiles b.mbtiles c.mbtiles -o ./a.mbtiles --force",
+                             dir.path());
+  EXPECT_EQ(onto.exit_code, 2) << onto.err;
+  EXPECT_NE(onto.err.find("is one of the shards"), std::string::npos) << onto.err;
+
+  auto usage = [&](const std::string& options, const std::string& says) {
+    const RunResult r = run(tiler() + " terrain " + dem + " -o x.mbtiles " + options, dir.path());
+    EXPECT_EQ(r.exit_code, 2) << options << "\n" << r.err;
+    EXPECT_NE(r.err.find(says), std::string::npos) << options << "\n" << r.err;
+  };
+  usage("--shard 3/3", "--shard: expected I/N");
+  usage("--shard 1", "--shard: expected I/N");
+  usage("--split-zoom 3", "--split-zoom needs --shard");
+  usage("--shard 0/2 --split-zoom 20", "--split-zoom 20 is finer");
+}

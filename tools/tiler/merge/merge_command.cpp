@@ -1,0 +1,50 @@
+// `globe-tiler merge SHARD... -o OUT.mbtiles`: joins the shards of one
+// sharded build (`--shard I/N`) into the package one machine would build
+// (docs/scale-out.md), by the shards' kind.
+#include <filesystem>
+#include <sstream>
+
+#include "cli_args.hpp"
+#include "commands.hpp"
+#include "errors.hpp"
+#include "shard_set.hpp"
+#include "terrain_merge.hpp"
+
+namespace globe {
+
+int run_merge(const std::vector<std::string>& args) {
+  BuildOptions o;
+  CliArgs cli("globe-tiler merge",
+              "globe-tiler merge SHARD... -o OUT.mbtiles [options]\n\n"
+              "Joins the N shards of a build run with --shard 0/N ... N-1/N (for example a Slurm\n"
+              "array job, docs/scale-out.md) into the package the same command builds on one\n"
+              "machine: the same tiles and metadata (only globe:command_line differs). Checks\n"
+              "that the shards come from one build and cover it exactly once, and builds the\n"
+              "zooms above the split zoom. Terrain shards.");
+  cli.option("-o,--output", "OUT.mbtiles",
+             "merged package (written as OUT.mbtiles.tmp, renamed when complete)",
+             [&o](const std::string& v) { o.output = v; });
+  declare_run_options(cli, o);
+  if (!parse_build_command(cli, o, args, "globe-tiler merge", "shard package (see --help)"))
+    return kExitOk;
+  for (const std::string& in : o.inputs)
+    if (std::filesystem::weakly_canonical(in) == std::filesystem::weakly_canonical(o.output))
+      throw UsageError("-o " + o.output + " is one of the shards; write the merge elsewhere");
+
+  Progress progress(o.progress);
+  ShardSet shards(o.inputs);
+  if (shards.kind() != tileformat::PackageKind::kTerrain)
+    throw InputError(shards.path(0) + ": a " + tileformat::package_kind_name(shards.kind()) +
+                     " shard; merge joins terrain shards so far");
+  progress.note("globe-tiler: merging " + std::to_string(shards.count()) +
+                " terrain shards split below zoom " + std::to_string(shards.split_zoom()));
+  const BuildSummary sum = merge_terrain(shards, o, progress);
+  std::ostringstream out;
+  out.precision(3);
+  out << std::fixed << "globe-tiler: wrote " << o.output << ": " << sum.tiles << " tiles ("
+      << sum.unique_blobs << " unique), " << sum.file_bytes << " bytes, " << sum.seconds << " s";
+  progress.note(out.str());
+  return kExitOk;
+}
+
+}  // namespace globe
