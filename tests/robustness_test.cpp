@@ -171,6 +171,25 @@ TEST(CrashSafety, AnalyzeResumesToTheSameBytes) {
                   std::chrono::milliseconds(2500));
 }
 
+// A shard is a build like any other (docs/scale-out.md: a failed array task
+// is re-run with --resume), and so is the merge.
+TEST(CrashSafety, TerrainShardResumesToTheSameBytes) {
+  kill_and_resume(terrain_build() + " --shard 1/3 --split-zoom 2", 10,
+                  std::chrono::milliseconds(2000));
+}
+
+TEST(CrashSafety, MergeResumesToTheSameBytes) {
+  const TempDir shards("-shards");
+  std::string list;
+  for (int i = 0; i < 3; ++i) {
+    const std::string out = (shards / ("s" + std::to_string(i) + ".mbtiles")).string();
+    ASSERT_TRUE(build_terrain("--max-zoom 5 --split-zoom 3 --shard " + std::to_string(i) + "/3",
+                              sample("etopo20.tif").string(), out, shards.path()));
+    list += " " + out;
+  }
+  kill_and_resume(tiler() + " merge" + list, 10, std::chrono::milliseconds(800));
+}
+
 // The one moment random kills rarely hit: after the last level, before the
 // staging file is removed and the package renamed. strace holds the build
 // there (a delay injected into the staging file's second unlink, its

@@ -79,7 +79,8 @@ MetadataMap without_shard_keys(MetadataMap meta) {
 }
 
 ShardTableWriter::ShardTableWriter(PackageWriter& writer) {
-  if (!(writer.resumed() && has_shard_table(writer.db())))
+  continued_ = writer.resumed() && has_shard_table(writer.db());
+  if (!continued_)
     writer.db().exec(
         "CREATE TABLE shard_parts (part INTEGER NOT NULL, zoom_level INTEGER NOT NULL, "
         "tile_column INTEGER NOT NULL, tile_row INTEGER NOT NULL, data BLOB NOT NULL, "

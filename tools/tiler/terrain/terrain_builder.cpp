@@ -66,13 +66,17 @@ class Builder {
       StagingStore stage(
           s_.output + ".staging", writer->key_hash(),
           writer->resumed() ? tileformat::Resume::kContinue : tileformat::Resume::kStartAfresh);
+      // (Its statement ends before the writer closes the file.)
+      std::optional<tileformat::ShardTableWriter> parts;
       if (shard_) {
-        parts_.emplace(*writer);
-        for (const TileId& root : shard_->roots)
-          parts_->put(tileformat::kShardRoot, root, {});
+        parts.emplace(*writer);
+        if (!parts->continued())
+          for (const TileId& root : shard_->roots)
+            parts->put(tileformat::kShardRoot, root, {});
+        parts_ = &*parts;
       }
       levels(*writer, stage, plan_.max_zoom, shard_ ? shard_->split_zoom : plan_.min_zoom);
-      parts_.reset();
+      parts_ = nullptr;
     } catch (const tileformat::PackageError& e) {
       // Only the output and scratch databases are written here: a failure is
       // an output problem (disk full, folder removed), not bad input.
@@ -575,7 +579,7 @@ class Builder {
   const int threads_;
   const bool global_;
   const ShardPlan* shard_;
-  std::optional<tileformat::ShardTableWriter> parts_;
+  tileformat::ShardTableWriter* parts_ = nullptr;  // a shard's, while its levels are built
   std::vector<std::unique_ptr<TileWarper>> warpers_;
   int coarsest_written_ = 0;
 };

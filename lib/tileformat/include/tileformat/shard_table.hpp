@@ -46,10 +46,14 @@ class ShardTableWriter {
   // they are committed with the tiles put before them.
   explicit ShardTableWriter(PackageWriter& writer);
   ~ShardTableWriter();
+  // Whether a resumed build's file already held the table (with every row
+  // put before the table's first commit, such as the roots).
+  bool continued() const { return continued_; }
   void put(ShardPartTag tag, TileId id, std::span<const uint8_t> data);
 
  private:
   std::unique_ptr<SqliteStatement> insert_;
+  bool continued_ = false;
 };
 
 class ShardTableReader {
