@@ -134,6 +134,14 @@ void GdalDataset::read_rows(int band_index, int y, int rows, double* out) const 
                      "); the file may be truncated or corrupt");
 }
 
+void GdalDataset::read_shrunk(int band_index, int out_w, int out_h, double* out) const {
+  if (GDALRasterIO(band(band_index), GF_Read, 0, 0, width(), height(), out, out_w, out_h,
+                   GDT_Float64, 0, 0) != CE_None)
+    throw InputError(name_ + ": cannot read a " + std::to_string(out_w) + " x " +
+                     std::to_string(out_h) + " overview (" + gdal_last_error() +
+                     "); the file may be truncated or corrupt");
+}
+
 void GdalDataset::set_geotransform(const std::array<double, 6>& gt) {
   std::array<double, 6> copy = gt;
   gdal_check(GDALSetGeoTransform(h_, copy.data()), name_ + ": setting the geotransform");

@@ -76,6 +76,9 @@ class GdalDataset {
   // Reads `rows` whole rows from row `y` as float64; throws InputError
   // naming the file and the row.
   void read_rows(int band_index, int y, int rows, double* out) const;
+  // The whole band shrunk to out_w x out_h pixels (nearest neighbour; from
+  // the file's overviews when it has them), as float64; throws InputError.
+  void read_shrunk(int band_index, int out_w, int out_h, double* out) const;
 
   // Setters and writes: each checks GDAL's result and throws OutputError
   // naming the dataset and what it was setting.

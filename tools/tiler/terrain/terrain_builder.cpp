@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "block_fill.hpp"
+#include "data_probe.hpp"
 #include "error_tree.hpp"
 #include "errors.hpp"
 #include "package_output.hpp"
@@ -589,16 +590,20 @@ class Builder {
 BuildSummary build_terrain(const DemPlan& plan, const TerrainSettings& settings,
                            Progress& progress) {
   if (!settings.shard) return Builder(plan, settings, progress).run();
-  // Work per subtree: the finest tiles over data (each costs one warped block).
-  std::vector<TileWork> work;
-  for (const TileId& id : tiles_in_areas(plan.tiling, plan.data_areas, plan.max_zoom))
-    work.push_back({id, 1});
+  // Work per subtree: its finest tiles, weighted by how much valid data
+  // they hold.
+  std::vector<RasterSource> sources(plan.sources.begin(), plan.sources.end());
+  std::vector<std::optional<double>> nodata;
+  for (const DemSource& src : plan.sources)
+    nodata.push_back(src.nodata);
+  const std::vector<TileWork> work = probe_tile_work(
+      plan, sources, nodata, tiles_in_areas(plan.tiling, plan.data_areas, plan.max_zoom));
   const ShardPlan shard = plan_shard(work, plan.min_zoom, settings.split_zoom, *settings.shard);
   progress.note("shard " + std::to_string(settings.shard->index) + "/" +
                 std::to_string(settings.shard->count) + ": " + std::to_string(shard.roots.size()) +
                 " of " + std::to_string(shard.roots_total) + " subtrees below zoom " +
                 std::to_string(shard.split_zoom) + ", " + std::to_string(shard.work) + " of " +
-                std::to_string(shard.work_total) + " finest tiles");
+                std::to_string(shard.work_total) + " units of estimated work");
   return Builder(plan, settings, progress, &shard).run();
 }
 
