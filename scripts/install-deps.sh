@@ -24,6 +24,8 @@ packages=(
   python3-gdal
   # tests/flow_test.cpp: GRASS r.watershed, the flow accumulation peer
   grass-core
+  # tests/cluster_test.cpp: a single-node Slurm cluster (scripts/slurm/local-cluster.sh)
+  slurm-wlm munge
   # tests/robustness_test.cpp: holds a build at one syscall (strace -e inject)
   strace
   # window tests under a virtual X server, keys sent with xdotool

@@ -9,6 +9,7 @@
 
 #include <cmath>
 
+#include "package_compare.hpp"
 #include "raster_fixtures.hpp"
 #include "test_support.hpp"
 #include "tileformat/package.hpp"
@@ -16,41 +17,6 @@
 using namespace globe_test;
 
 namespace {
-
-// Every tile (same bytes) and metadata value (but globe:command_line and
-// the file name) of `ours` equal `ref`'s.
-void expect_same_package(const std::string& ours, const std::string& ref) {
-  tileformat::PackageReader a(ours), b(ref);
-  auto meta = [](tileformat::PackageReader& r) {
-    auto m = r.metadata();
-    m.erase("globe:command_line");
-    m.erase("name");
-    return m;
-  };
-  EXPECT_EQ(meta(a), meta(b));
-  std::map<tileformat::TileId, std::vector<uint8_t>> tiles;
-  b.for_each_tile([&](tileformat::TileId id, std::span<const uint8_t> blob) {
-    tiles.emplace(id, std::vector<uint8_t>(blob.begin(), blob.end()));
-  });
-  size_t same = 0, differ = 0, extra = 0;
-  a.for_each_tile([&](tileformat::TileId id, std::span<const uint8_t> blob) {
-    auto it = tiles.find(id);
-    if (it == tiles.end()) {
-      ++extra;
-      return;
-    }
-    if (std::equal(blob.begin(), blob.end(), it->second.begin(), it->second.end()))
-      ++same;
-    else if (differ++ < 5)
-      ADD_FAILURE() << "tile " << id.str() << " differs";
-    tiles.erase(it);
-  });
-  EXPECT_EQ(differ, 0u);
-  EXPECT_EQ(extra, 0u) << "tiles the one-machine build does not have";
-  EXPECT_EQ(tiles.size(), 0u) << "tiles missing, e.g. "
-                              << (tiles.empty() ? "" : tiles.begin()->first.str());
-  EXPECT_GT(same, 0u);
-}
 
 // Builds `input` with `options` on one machine and as `n` shards (each with
 // `shard_options`), merges, and compares.
@@ -77,6 +43,10 @@ struct ShardCase {
   int shards;
   const char* shard_options;
 };
+
+void PrintTo(const ShardCase& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class ShardedTerrain : public ::testing::TestWithParam<ShardCase> {};
 
