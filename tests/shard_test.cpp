@@ -1,6 +1,6 @@
-// Sharded builds (docs/scale-out.md): the shards of `terrain --shard I/N`,
-// joined by `merge`, give the package one machine builds from the same
-// command: the same tiles (bytes) and metadata but the command line. The
+// Sharded builds (docs/scale-out.md): the shards of `terrain` and `imagery`
+// with `--shard I/N`, joined by `merge`, give the package one machine builds
+// from the same command: the same tiles (bytes) and metadata but the command line. The
 // reference is that one-machine build, run as a user runs it. Extents users
 // have: a UTM sample, local tilings, the whole world in both global tilings
 // (the antimeridian seam and the polar rows), holes of nodata across shard
@@ -18,17 +18,26 @@ using namespace globe_test;
 
 namespace {
 
-// Builds `input` with `options` on one machine and as `n` shards (each with
-// `shard_options`), merges, and compares.
-void expect_shards_merge_to_one_build(const std::string& input, const std::string& options, int n,
+// Builds `input` with `command` (terrain, imagery) and `options` on one
+// machine and as `n` shards (each with `shard_options`), merges, and
+// compares.
+void expect_shards_merge_to_one_build(const std::string& command, const std::string& input,
+                                      const std::string& options, int n,
                                       const std::string& shard_options, const fs::path& dir) {
-  ASSERT_TRUE(build_terrain(options, input, (dir / "one.mbtiles").string(), dir));
+  auto build = [&](const std::string& more, const std::string& out) {
+    const RunResult r = run(tiler() + " " + command + " -q " + input + " " + options + " " + more +
+                                " -o " + (dir / out).string(),
+                            dir);
+    EXPECT_EQ(r.exit_code, 0) << command << " " << options << " " << more << "\n" << r.err;
+    return r.exit_code == 0;
+  };
+  ASSERT_TRUE(build("", "one.mbtiles"));
   std::string shards;
   for (int i = 0; i < n; ++i) {
-    const std::string out = (dir / ("s" + std::to_string(i) + ".mbtiles")).string();
-    const std::string spec = std::to_string(i) + "/" + std::to_string(n);
-    ASSERT_TRUE(build_terrain(options + " --shard " + spec + " " + shard_options, input, out, dir));
-    shards += " " + out;
+    const std::string out = "s" + std::to_string(i) + ".mbtiles";
+    ASSERT_TRUE(
+        build("--shard " + std::to_string(i) + "/" + std::to_string(n) + " " + shard_options, out));
+    shards += " " + (dir / out).string();
   }
   const RunResult m =
       run(tiler() + " merge -q" + shards + " -o " + (dir / "m.mbtiles").string(), dir);
@@ -38,6 +47,7 @@ void expect_shards_merge_to_one_build(const std::string& input, const std::strin
 
 struct ShardCase {
   const char* name;
+  const char* command;
   const char* file;
   const char* options;
   int shards;
@@ -55,21 +65,28 @@ class ShardedTerrain : public ::testing::TestWithParam<ShardCase> {};
 TEST_P(ShardedTerrain, MergesToTheOneMachineBuild) {
   TempDir dir;
   const ShardCase& c = GetParam();
-  expect_shards_merge_to_one_build(sample(c.file).string(), c.options, c.shards, c.shard_options,
-                                   dir.path());
+  expect_shards_merge_to_one_build(c.command, sample(c.file).string(), c.options, c.shards,
+                                   c.shard_options, dir.path());
 }
 
 INSTANTIATE_TEST_SUITE_P(
     Samples, ShardedTerrain,
     ::testing::Values(
-        ShardCase{"brasilia_one_shard", "brasilia.tif", "", 1, ""},
-        ShardCase{"brasilia_2", "brasilia.tif", "", 2, "--split-zoom 11"},
-        ShardCase{"brasilia_local_3", "brasilia.tif", "--tiling local", 3, ""},
-        ShardCase{"jacksboro_3", "jacksboro.tif", "", 3, "--split-zoom 9"},
-        ShardCase{"jacksboro_geodetic_7", "jacksboro.tif", "--tiling geodetic", 7, ""},
-        ShardCase{"world_webmercator_3", "etopo20.tif", "--max-zoom 4", 3, "--split-zoom 2"},
-        ShardCase{"world_geodetic_7", "etopo20.tif", "--tiling geodetic --max-zoom 4", 7,
-                  "--split-zoom 1"}),
+        ShardCase{"brasilia_one_shard", "terrain", "brasilia.tif", "", 1, ""},
+        ShardCase{"brasilia_2", "terrain", "brasilia.tif", "", 2, "--split-zoom 11"},
+        ShardCase{"brasilia_local_3", "terrain", "brasilia.tif", "--tiling local", 3, ""},
+        ShardCase{"jacksboro_3", "terrain", "jacksboro.tif", "", 3, "--split-zoom 9"},
+        ShardCase{"jacksboro_geodetic_7", "terrain", "jacksboro.tif", "--tiling geodetic", 7, ""},
+        ShardCase{"world_webmercator_3", "terrain", "etopo20.tif", "--max-zoom 4", 3,
+                  "--split-zoom 2"},
+        ShardCase{"world_geodetic_7", "terrain", "etopo20.tif", "--tiling geodetic --max-zoom 4", 7,
+                  "--split-zoom 1"},
+        ShardCase{"images_world_3", "imagery", "bluemarble.tif", "--max-zoom 4", 3,
+                  "--split-zoom 2"},
+        ShardCase{"images_world_geodetic_jpg_2", "imagery", "bluemarble.tif",
+                  "--max-zoom 3 --tiling geodetic --format jpg", 2, "--split-zoom 1"},
+        ShardCase{"images_landsat_2", "imagery", "landsat.tif", "", 2, ""},
+        ShardCase{"images_cbers_7", "imagery", "cbers20.tif", "", 7, ""}),
     [](const auto& info) { return std::string(info.param.name); });
 
 // Holes of nodata on both sides of shard borders (and whole subtrees without
@@ -87,7 +104,7 @@ TEST(ShardedTerrainHoles, MergeToTheOneMachineBuild) {
         return 200 + 150 * std::sin(x * 0.013) * std::cos(y * 0.011) + 0.37 * x;
       },
       &nodata);
-  expect_shards_merge_to_one_build(dem, "--precision 0.1", 3, "", dir.path());
+  expect_shards_merge_to_one_build("terrain", dem, "--precision 0.1", 3, "", dir.path());
 }
 
 // Work is shared by estimated work, in runs along the Morton curve: every

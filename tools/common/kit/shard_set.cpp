@@ -110,16 +110,15 @@ std::vector<TileId> ShardSet::tiles(int z) {
   return all;
 }
 
-std::string ShardSet::merge_key() const {
-  std::string key;
-  for (const Shard& s : shards_) {
-    std::error_code ec;
-    const auto bytes = std::filesystem::file_size(s.path, ec);
-    const auto time = std::filesystem::last_write_time(s.path, ec);
-    key += s.path + " " + std::to_string(ec ? 0 : bytes) + " " +
-           std::to_string(ec ? 0 : time.time_since_epoch().count()) + "\n";
-  }
-  return key;
+tileformat::MetadataMap ShardSet::merged_metadata(const std::string& output, int coarsest,
+                                                  const std::string& command_line) const {
+  tileformat::MetadataMap m = tileformat::without_shard_keys(metadata());
+  m["name"] = std::filesystem::path(output).stem().string();
+  m["minzoom"] = std::to_string(coarsest);
+  const std::string center = m["center"];
+  m["center"] = center.substr(0, center.rfind(',') + 1) + std::to_string(meta_.center_zoom);
+  m["globe:command_line"] = command_line;
+  return m;
 }
 
 }  // namespace globe

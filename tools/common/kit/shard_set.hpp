@@ -6,6 +6,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,9 +38,11 @@ class ShardSet {
   int owner(tileformat::TileId id) const;
   // Every shard's tiles of zoom z (>= split zoom), sorted by (y, x).
   std::vector<tileformat::TileId> tiles(int z);
-  // What identifies this merge for --resume: each shard's path, size and
-  // modification time.
-  std::string merge_key() const;
+  // The metadata of the merged package: the shards' keys as the whole build
+  // writes them (its own name, `coarsest` zoom and center zoom, the merge's
+  // command line), without the shard keys.
+  tileformat::MetadataMap merged_metadata(const std::string& output, int coarsest,
+                                          const std::string& command_line) const;
 
  private:
   struct Shard {

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <thread>
 
+#include "data_probe.hpp"
 #include "errors.hpp"
 #include "image_codec.hpp"
 #include "image_pyramid.hpp"
@@ -19,9 +20,11 @@
 #include "parallel_batches.hpp"
 #include "raster_metadata.hpp"
 #include "raster_stages.hpp"
+#include "shard_plan.hpp"
 #include "tile_groups.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/package.hpp"
+#include "tileformat/shard_table.hpp"
 #include "tileformat/zstd_codec.hpp"
 
 namespace globe {
@@ -39,8 +42,9 @@ struct TileOut {
 
 class Builder {
  public:
-  Builder(const ImagePlan& plan, const ImageSettings& s, Progress& progress)
-      : plan_(plan), s_(s), progress_(progress), threads_(s.worker_threads()) {}
+  Builder(const ImagePlan& plan, const ImageSettings& s, Progress& progress,
+          const ShardPlan* shard = nullptr)
+      : plan_(plan), s_(s), progress_(progress), threads_(s.worker_threads()), shard_(shard) {}
 
   ImageSummary run() {
     const auto start = std::chrono::steady_clock::now();
@@ -49,30 +53,21 @@ class Builder {
       StagingStore stage(
           s_.output + ".staging", writer->key_hash(),
           writer->resumed() ? tileformat::Resume::kContinue : tileformat::Resume::kStartAfresh);
-      const StageCheckpoint start = resume_point(stage, *writer);
-      if (start.z < plan_.max_zoom) count_finished_levels(*writer, start.z);
-      warpers_.resize(threads_);
-      for (int z = plan_.max_zoom; z >= plan_.min_zoom; --z) {
-        if (z > start.z) {  // finished before the interruption
-          if (writer->tiles_at_zoom(z) > 0) coarsest_written_ = z;
-          continue;
-        }
-        const StageCheckpoint from = z == start.z ? start : StageCheckpoint{z, 0, 0, 0};
-        level_puts_ = from.puts;
-        skip_puts_ = writer->resumed() ? writer->tiles_at_zoom(z) - from.puts : 0;
-        if (z == plan_.max_zoom)
-          pass_warp(stage, *writer, z, from.done);
-        else
-          pass_pyramid(stage, *writer, z, from.done);
-        writer->checkpoint();  // the package holds level z before the stage forgets z + 1
-        stage.drop(Stage::kRaw, z + 1);
-        stage.commit({z - 1, 0, 0, 0});
+      // (Its statement ends before the writer closes the file.)
+      std::optional<tileformat::ShardTableWriter> parts;
+      if (shard_) {
+        parts.emplace(*writer);
+        if (!parts->continued())
+          for (const TileId& root : shard_->roots)
+            parts->put(tileformat::kShardRoot, root, {});
+        parts_ = &*parts;
       }
-      warpers_.clear();
+      levels(*writer, stage, plan_.max_zoom, shard_ ? shard_->split_zoom : plan_.min_zoom);
+      parts_ = nullptr;
     } catch (const tileformat::PackageError& e) {
       throw build_write_error(s_.output, e);
     }
-    if (writer->tiles_written() == 0)
+    if (writer->tiles_written() == 0 && !shard_)  // a shard may hold no data
       throw InputError(plan_.sources[0].path +
                        ": every pixel in the requested area is transparent (nodata, mask or "
                        "alpha)" +
@@ -86,6 +81,34 @@ class Builder {
     return sum_;
   }
 
+  // Zooms top down to bottom (inclusive) into `writer`; the stage holds level
+  // top + 1's pixels (nothing at the finest zoom) or a resumed build's.
+  void levels(tileformat::PackageWriter& writer, StagingStore& stage, int top, int bottom) {
+    const StageCheckpoint start = resume_point(stage, writer, top);
+    if (start.z < top) count_finished_levels(writer, top, start.z);
+    warpers_.resize(threads_);
+    for (int z = top; z >= bottom; --z) {
+      if (z > start.z) {  // finished before the interruption
+        if (writer.tiles_at_zoom(z) > 0) coarsest_written_ = z;
+        continue;
+      }
+      const StageCheckpoint from = z == start.z ? start : StageCheckpoint{z, 0, 0, 0};
+      level_puts_ = from.puts;
+      skip_puts_ = writer.resumed() ? writer.tiles_at_zoom(z) - from.puts : 0;
+      if (z == plan_.max_zoom)
+        pass_warp(stage, writer, z, from.done);
+      else
+        pass_pyramid(stage, writer, z, from.done);
+      writer.checkpoint();  // the package holds level z before the stage forgets z + 1
+      stage.drop(Stage::kRaw, z + 1);
+      stage.commit({z - 1, 0, 0, 0});
+    }
+    warpers_.clear();
+  }
+
+  int coarsest_written() const { return coarsest_written_; }
+  const ImageSummary& formats() const { return sum_; }
+
  private:
   // Where a resumed build starts: in the level the stage was working on, at
   // its last checkpoint whose tiles the package had all committed (stage
@@ -93,8 +116,8 @@ class Builder {
   // tile sequence puts them, so that the file's bytes never depend on when
   // a build was killed). A new build, or one without a stage, starts at the
   // finest zoom from the first item.
-  StageCheckpoint resume_point(StagingStore& stage, tileformat::PackageWriter& writer) {
-    StageCheckpoint start{plan_.max_zoom, 0, 0, 0};
+  StageCheckpoint resume_point(StagingStore& stage, tileformat::PackageWriter& writer, int top) {
+    StageCheckpoint start{top, 0, 0, 0};
     if (!writer.resumed()) return start;
     const std::optional<StageCheckpoint> last = stage.checkpoint();
     if (!last) return start;
@@ -102,7 +125,7 @@ class Builder {
     const uint64_t committed = writer.tiles_at_zoom(last->z);
     for (const StageCheckpoint& c : stage.checkpoints(last->z))
       if (c.puts <= committed) start = c;
-    if (start.z < plan_.max_zoom || start.done > 0)
+    if (start.z < top || start.done > 0)
       progress_.note("continuing at zoom " + std::to_string(start.z) + " after " +
                      std::to_string(start.done) + " items");
     return start;
@@ -112,9 +135,9 @@ class Builder {
   // interruption (finer than `start_z`): the metadata says whether any tile
   // is PNG, and must not depend on where the build was killed (a kill after
   // the last level and before the rename left nothing to count).
-  void count_finished_levels(tileformat::PackageWriter& writer, int start_z) {
+  void count_finished_levels(tileformat::PackageWriter& writer, int top, int start_z) {
     tileformat::PackageReader done(writer.temp_path());
-    for (int z = plan_.max_zoom; z > start_z && z >= plan_.min_zoom; --z)
+    for (int z = top; z > start_z && z >= plan_.min_zoom; --z)
       done.for_each_tile([&](TileId, std::span<const uint8_t> blob) { count_format(blob); }, z);
   }
   void count_format(std::span<const uint8_t> blob) {
@@ -142,10 +165,13 @@ class Builder {
   void store(StagingStore& stage, tileformat::PackageWriter& writer, const TileOut& out) {
     if (!out.stage.empty()) stage.put(Stage::kRaw, out.id, out.stage);
     ++level_puts_;
-    if (skip_puts_ > 0)
+    if (skip_puts_ > 0) {
       --skip_puts_;  // committed before an interruption
-    else
+    } else {
       writer.put_tile(out.id, out.blob);
+      // The merge builds the zooms above a shard's split zoom from these.
+      if (parts_ && out.id.z == shard_->split_zoom) parts_->put(kShardPixels, out.id, out.stage);
+    }
     coarsest_written_ = out.id.z;
     count_format(out.blob);
   }
@@ -154,8 +180,19 @@ class Builder {
   void pass_warp(StagingStore& stage, tileformat::PackageWriter& writer, int z, size_t first) {
     const std::vector<TileId> tiles = tiles_in_areas(plan_.tiling, plan_.data_areas, z);
     const int g = plan_.tiling.tiles_x(z) >= 16 ? ImageWarper::kMaxGroup : 1;
-    const std::vector<WarpGroup> groups = group_tiles(tiles, g);
-    progress_.begin("z" + std::to_string(z) + " warp", tiles.size());
+    // The same groups as the whole build (a group's GDAL call decides its
+    // pixels); a shard warps those holding its tiles. Tiles do not depend
+    // on their neighbours: no halo.
+    std::vector<WarpGroup> groups = group_tiles(tiles, g);
+    if (shard_)
+      std::erase_if(groups, [&](const WarpGroup& group) {
+        return std::none_of(group.members.begin(), group.members.end(),
+                            [&](TileId id) { return shard_->contains(id); });
+      });
+    size_t members = 0;
+    for (const WarpGroup& group : groups)
+      members += group.members.size();
+    progress_.begin("z" + std::to_string(z) + " warp", members);
     for (size_t i = 0; i < first && i < groups.size(); ++i)
       progress_.advance(groups[i].members.size());
     parallel_batches<NoInputs, std::vector<TileOut>>(
@@ -182,6 +219,7 @@ class Builder {
     std::vector<TileOut> outs;
     TilePixels px(n, plan_.colour);
     for (const TileId& id : grp.members) {
+      if (shard_ && !shard_->contains(id)) continue;
       const size_t ox = size_t(id.x - grp.first.x) * n, oy = size_t(id.y - grp.first.y) * n;
       for (int b = 0; b <= plan_.colour; ++b)
         for (int y = 0; y < n; ++y)
@@ -277,15 +315,27 @@ class Builder {
     m.tile_size = s_.tile_size;
     m.colour_bands = plan_.colour;
     if (s_.format != tileformat::ImageFormat::kPng) m.quality = s_.quality;
-    if (sum_.png) m.png_level = s_.png_level;
+    // A shard always says (the merge may write PNG tiles the shard did not).
+    if (sum_.png || shard_) m.png_level = s_.png_level;
     m.scale = plan_.scale;
     w.set_metadata(tileformat::to_metadata(m));
+    if (shard_) {
+      tileformat::ShardMetadata sm{s_.shard->index,     s_.shard->count,    shard_->split_zoom,
+                                   shard_->roots_total, shard_build_id(s_), plan_.min_zoom};
+      // Imagery has tiles down to the coarsest zoom wherever it has data.
+      sm.center_zoom =
+          raster_common_metadata({s_.output, "", "", "", plan_.min_zoom, plan_.max_zoom}, {}, plan_)
+              .center_zoom;
+      w.set_metadata(tileformat::to_metadata(sm));
+    }
   }
 
   const ImagePlan& plan_;
   const ImageSettings& s_;
   Progress& progress_;
   const int threads_;
+  const ShardPlan* shard_;
+  tileformat::ShardTableWriter* parts_ = nullptr;  // a shard's, while its levels are built
   std::vector<std::unique_ptr<ImageWarper>> warpers_;
   int coarsest_written_ = 0;
   uint64_t level_puts_ = 0;  // tiles of this level stored so far (put or skipped)
@@ -297,7 +347,31 @@ class Builder {
 
 ImageSummary build_imagery(const ImagePlan& plan, const ImageSettings& settings,
                            Progress& progress) {
-  return Builder(plan, settings, progress).run();
+  if (!settings.shard) return Builder(plan, settings, progress).run();
+  // Work per subtree: its finest tiles, weighted by how much of them the
+  // sources cover with opaque pixels.
+  std::vector<RasterSource> sources(plan.sources.begin(), plan.sources.end());
+  std::vector<ProbeBand> bands;
+  for (const ImageSource& src : plan.sources)
+    bands.push_back(src.alpha_band ? ProbeBand{src.alpha_band, true, std::nullopt}
+                                   : ProbeBand{src.colour_bands.at(0), false, settings.nodata});
+  const std::vector<TileWork> work = probe_tile_work(
+      plan, sources, bands, tiles_in_areas(plan.tiling, plan.data_areas, plan.max_zoom));
+  const ShardPlan shard = plan_shard(work, plan.min_zoom, settings.split_zoom, *settings.shard);
+  progress.note("shard " + std::to_string(settings.shard->index) + "/" +
+                std::to_string(settings.shard->count) + ": " + std::to_string(shard.roots.size()) +
+                " of " + std::to_string(shard.roots_total) + " subtrees below zoom " +
+                std::to_string(shard.split_zoom) + ", " + std::to_string(shard.work) + " of " +
+                std::to_string(shard.work_total) + " units of estimated work");
+  return Builder(plan, settings, progress, &shard).run();
+}
+
+ImageLevels build_imagery_levels(const ImagePlan& plan, const ImageSettings& settings,
+                                 tileformat::PackageWriter& writer, StagingStore& stage, int top,
+                                 Progress& progress) {
+  Builder b(plan, settings, progress);
+  b.levels(writer, stage, top, plan.min_zoom);
+  return {b.coarsest_written(), b.formats()};
 }
 
 }  // namespace globe

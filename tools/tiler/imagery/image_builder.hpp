@@ -11,6 +11,9 @@
 
 #include "image_plan.hpp"
 #include "progress.hpp"
+#include "raster_stages.hpp"
+#include "tileformat/package.hpp"
+#include "tileformat/shard_table.hpp"
 
 namespace globe {
 
@@ -20,7 +23,26 @@ struct ImageSummary {
   double seconds = 0;
 };
 
+// The part of an image shard's table (tileformat/shard_table.hpp) the merge
+// builds the zooms above the split zoom from: each split-zoom tile's pixels
+// as staged (zstd planes).
+inline constexpr tileformat::ShardPartTag kShardPixels = 1;
+
+// The whole build, or with settings.shard one shard of it: the subtrees
+// below the split zoom that fall to it (image tiles do not depend on their
+// neighbours: no halo), plus the split zoom's pixels in the shard table.
 ImageSummary build_imagery(const ImagePlan& plan, const ImageSettings& settings,
                            Progress& progress);
+
+// The merge's share: zooms `top` down to plan.min_zoom into `writer` from a
+// stage holding level top + 1's pixels (Stage::kRaw); resumes from the
+// stage's checkpoint when the writer was resumed.
+struct ImageLevels {
+  int coarsest = 0;
+  ImageSummary formats;  // png, jpeg, webp: tiles written per encoding
+};
+ImageLevels build_imagery_levels(const ImagePlan& plan, const ImageSettings& settings,
+                                 tileformat::PackageWriter& writer, StagingStore& stage, int top,
+                                 Progress& progress);
 
 }  // namespace globe

@@ -83,6 +83,7 @@ int run_imagery(const std::vector<std::string>& args) {
                s.transform_error = CliArgs::to_double("--transform-error", v);
              });
   declare_run_options(cli, s);
+  declare_shard_options(cli, s);
   if (!parse_build_command(cli, s, args, "globe-tiler imagery", "input raster (see --help)"))
     return kExitOk;
 

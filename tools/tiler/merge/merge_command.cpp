@@ -7,6 +7,7 @@
 #include "cli_args.hpp"
 #include "commands.hpp"
 #include "errors.hpp"
+#include "image_merge.hpp"
 #include "shard_set.hpp"
 #include "terrain_merge.hpp"
 
@@ -20,7 +21,7 @@ int run_merge(const std::vector<std::string>& args) {
               "array job, docs/scale-out.md) into the package the same command builds on one\n"
               "machine: the same tiles and metadata (only globe:command_line differs). Checks\n"
               "that the shards come from one build and cover it exactly once, and builds the\n"
-              "zooms above the split zoom. Terrain shards.");
+              "zooms above the split zoom. Terrain and imagery shards.");
   cli.option("-o,--output", "OUT.mbtiles",
              "merged package (written as OUT.mbtiles.tmp, renamed when complete)",
              [&o](const std::string& v) { o.output = v; });
@@ -33,16 +34,26 @@ int run_merge(const std::vector<std::string>& args) {
 
   Progress progress(o.progress);
   ShardSet shards(o.inputs);
-  if (shards.kind() != tileformat::PackageKind::kTerrain)
-    throw InputError(shards.path(0) + ": a " + tileformat::package_kind_name(shards.kind()) +
-                     " shard; merge joins terrain shards so far");
-  progress.note("globe-tiler: merging " + std::to_string(shards.count()) +
-                " terrain shards split below zoom " + std::to_string(shards.split_zoom()));
-  const BuildSummary sum = merge_terrain(shards, o, progress);
+  const tileformat::PackageKind kind = shards.kind();
+  if (kind != tileformat::PackageKind::kTerrain && kind != tileformat::PackageKind::kImage)
+    throw InputError(shards.path(0) + ": a " + tileformat::package_kind_name(kind) +
+                     " shard; globe-tiler merge joins terrain and imagery shards");
+  progress.note("globe-tiler: merging " + std::to_string(shards.count()) + " " +
+                tileformat::package_kind_name(kind) + " shards split below zoom " +
+                std::to_string(shards.split_zoom()));
+  uint64_t tiles = 0, unique = 0, bytes = 0;
+  double seconds = 0;
+  if (kind == tileformat::PackageKind::kTerrain) {
+    const BuildSummary sum = merge_terrain(shards, o, progress);
+    tiles = sum.tiles, unique = sum.unique_blobs, bytes = sum.file_bytes, seconds = sum.seconds;
+  } else {
+    const ImageSummary sum = merge_imagery(shards, o, progress);
+    tiles = sum.tiles, unique = sum.unique_blobs, bytes = sum.file_bytes, seconds = sum.seconds;
+  }
   std::ostringstream out;
   out.precision(3);
-  out << std::fixed << "globe-tiler: wrote " << o.output << ": " << sum.tiles << " tiles ("
-      << sum.unique_blobs << " unique), " << sum.file_bytes << " bytes, " << sum.seconds << " s";
+  out << std::fixed << "globe-tiler: wrote " << o.output << ": " << tiles << " tiles (" << unique
+      << " unique), " << bytes << " bytes, " << seconds << " s";
   progress.note(out.str());
   return kExitOk;
 }

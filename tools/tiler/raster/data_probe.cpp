@@ -23,7 +23,7 @@ struct Count {
 
 std::vector<TileWork> probe_tile_work(const Footprint& footprint,
                                       const std::vector<RasterSource>& sources,
-                                      const std::vector<std::optional<double>>& nodata,
+                                      const std::vector<ProbeBand>& bands,
                                       const std::vector<TileId>& tiles) {
   if (tiles.empty()) return {};
   const tileformat::Tiling& tiling = footprint.tiling;
@@ -36,7 +36,9 @@ std::vector<TileWork> probe_tile_work(const Footprint& footprint,
     const GdalDataset ds = GdalDataset::open_raster(src.path);
     const int w = std::min(src.width, kProbePixels), h = std::min(src.height, kProbePixels);
     std::vector<double> v(size_t(w) * h);
-    ds.read_shrunk(1, w, h, v.data());
+    const ProbeBand& band = bands[s];
+    ds.read_shrunk(band.band, w, h, v.data());
+    const std::optional<double> nodata = band.nodata ? band.nodata : ds.nodata(band.band);
     const SpatialRef crs = SpatialRef::from_wkt(src.crs_wkt, src.path);
     const CoordTransform to_target(crs, target);
     const auto& gt = src.geotransform;
@@ -49,7 +51,8 @@ std::vector<TileWork> probe_tile_work(const Footprint& footprint,
           xs.push_back(gt[0] + px * gt[1] + py * gt[2] + shift);
           ys.push_back(gt[3] + px * gt[4] + py * gt[5]);
           const double value = v[size_t(j) * w + i];
-          ok.push_back(std::isfinite(value) && !(nodata[s] && value == *nodata[s]));
+          ok.push_back(band.alpha ? value > 0
+                                  : std::isfinite(value) && !(nodata && value == *nodata));
         }
       std::vector<int> placed;
       to_target.transform(xs, ys, placed);

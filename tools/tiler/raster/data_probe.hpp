@@ -16,12 +16,20 @@
 
 namespace globe {
 
-// `tiles`: the build's finest tiles (one zoom); `nodata`: per source, the
-// value that means no data (NaN never counts as data). Work 1 (nodata) to 3
-// (all valid), in integer units of 1/4.
+// Which band of a source says where it has data: a value band with its
+// nodata value (the file's own when not given; NaN never counts as data),
+// or an alpha band (0 = none).
+struct ProbeBand {
+  int band = 1;
+  bool alpha = false;
+  std::optional<double> nodata;
+};
+
+// `tiles`: the build's finest tiles (one zoom); `bands`: one per source.
+// Work 1 (nodata) to 3 (all valid), in integer units of 1/4.
 std::vector<TileWork> probe_tile_work(const Footprint& footprint,
                                       const std::vector<RasterSource>& sources,
-                                      const std::vector<std::optional<double>>& nodata,
+                                      const std::vector<ProbeBand>& bands,
                                       const std::vector<tileformat::TileId>& tiles);
 
 }  // namespace globe

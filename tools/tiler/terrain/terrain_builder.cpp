@@ -593,11 +593,11 @@ BuildSummary build_terrain(const DemPlan& plan, const TerrainSettings& settings,
   // Work per subtree: its finest tiles, weighted by how much valid data
   // they hold.
   std::vector<RasterSource> sources(plan.sources.begin(), plan.sources.end());
-  std::vector<std::optional<double>> nodata;
+  std::vector<ProbeBand> bands;
   for (const DemSource& src : plan.sources)
-    nodata.push_back(src.nodata);
+    bands.push_back({1, false, src.nodata});
   const std::vector<TileWork> work = probe_tile_work(
-      plan, sources, nodata, tiles_in_areas(plan.tiling, plan.data_areas, plan.max_zoom));
+      plan, sources, bands, tiles_in_areas(plan.tiling, plan.data_areas, plan.max_zoom));
   const ShardPlan shard = plan_shard(work, plan.min_zoom, settings.split_zoom, *settings.shard);
   progress.note("shard " + std::to_string(settings.shard->index) + "/" +
                 std::to_string(settings.shard->count) + ": " + std::to_string(shard.roots.size()) +

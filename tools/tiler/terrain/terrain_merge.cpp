@@ -60,7 +60,7 @@ class Merger {
     }
     if (writer->tiles_written() == 0)
       throw InputError("the shards hold no tiles; nothing written to " + o_.output);
-    write_metadata(*writer, coarsest);
+    writer->set_metadata(shards_.merged_metadata(o_.output, coarsest, o_.command_line));
     BuildSummary sum;
     sum.tiles = writer->tiles_written();
     sum.unique_blobs = writer->unique_blobs();
@@ -212,18 +212,6 @@ class Merger {
     s.block_size = meta_.block_size;
     s.lattice = meta_.lattice;
     return s;
-  }
-
-  // The shards' metadata, as the whole build writes it: its own name,
-  // coarsest zoom and center zoom, the merge's command line, no shard keys.
-  void write_metadata(tileformat::PackageWriter& w, int coarsest) const {
-    tileformat::MetadataMap m = tileformat::without_shard_keys(shards_.metadata());
-    m["name"] = std::filesystem::path(o_.output).stem().string();
-    m["minzoom"] = std::to_string(coarsest);
-    const std::string& center = m["center"];
-    m["center"] = center.substr(0, center.rfind(',') + 1) + std::to_string(shard_.center_zoom);
-    m["globe:command_line"] = o_.command_line;
-    w.set_metadata(m);
   }
 
   ShardSet& shards_;
