@@ -1,5 +1,5 @@
-// Sharded builds (docs/scale-out.md): the shards of `terrain` and `imagery`
-// with `--shard I/N`, joined by `merge`, give the package one machine builds
+// Sharded builds (docs/scale-out.md): the shards of `terrain`, `imagery` and
+// `analyze` with `--shard I/N`, joined by `merge`, give the package one machine builds
 // from the same command: the same tiles (bytes) and metadata but the command line. The
 // reference is that one-machine build, run as a user runs it. Extents users
 // have: a UTM sample, local tilings, the whole world in both global tilings
@@ -107,6 +107,20 @@ TEST(ShardedTerrainHoles, MergeToTheOneMachineBuild) {
   expect_shards_merge_to_one_build("terrain", dem, "--precision 0.1", 3, "", dir.path());
 }
 
+// Analysis blocks read only the terrain package (with their neighbours'
+// samples for the halo of slope and sky view): shards of the whole world,
+// across the antimeridian, merge to the one-machine analysis.
+TEST(ShardedAnalysis, MergesToTheOneMachineBuild) {
+  TempDir dir;
+  const std::string terrain = (dir / "world.mbtiles").string();
+  ASSERT_TRUE(build_terrain("--tiling geodetic --max-zoom 3", sample("etopo20.tif").string(),
+                            terrain, dir.path()));
+  expect_shards_merge_to_one_build("analyze", terrain,
+                                   "--layers slope,aspect,curvature,skyview --skyview-radius 50000 "
+                                   "--skyview-directions 4",
+                                   3, "--split-zoom 2", dir.path());
+}
+
 // Work is shared by estimated work, in runs along the Morton curve: every
 // shard builds something, none builds much more than its share, and the
 // shards' tiles at the finest zoom partition the one-machine build's.
@@ -170,4 +184,9 @@ TEST(ShardedTerrainErrors, BadShardSetsAreClearErrors) {
   usage("--shard 1", "--shard: expected I/N");
   usage("--split-zoom 3", "--split-zoom needs --shard");
   usage("--shard 0/2 --split-zoom 20", "--split-zoom 20 is finer");
+  const RunResult flow = run(tiler() + " analyze " + (dir / "whole.mbtiles").string() +
+                                 " --layers slope,flow --shard 0/2 -o f.mbtiles",
+                             dir.path());
+  EXPECT_EQ(flow.exit_code, 2) << flow.err;
+  EXPECT_NE(flow.err.find("flow layers cannot be sharded"), std::string::npos) << flow.err;
 }

@@ -15,12 +15,14 @@
 #include "height_window.hpp"
 #include "package_output.hpp"
 #include "parallel_batches.hpp"
+#include "shard_plan.hpp"
 #include "sky_view.hpp"
 #include "terrain_derivatives.hpp"
 #include "terrain_package.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/mblock.hpp"
 #include "tileformat/metadata.hpp"
+#include "tileformat/shard_table.hpp"
 
 namespace globe {
 namespace {
@@ -175,9 +177,34 @@ AnalysisSummary build_analysis(const AnalysisSettings& s, Progress& progress) {
   for (int z = p.min_zoom; z <= p.max_zoom; ++z)
     for (const TileId& id : p.reader->tile_ids(z))
       items.push_back(id);
+  // A shard: its subtrees below the split zoom (work: the terrain's finest
+  // blocks; every analysis block reads only the terrain, so no halo is
+  // computed), and for shard 0 the few levels above the split too, so the
+  // merge only copies.
+  std::optional<ShardPlan> shard;
+  if (s.shard) {
+    std::vector<TileWork> work;
+    for (const TileId& id : p.reader->tile_ids(p.max_zoom))
+      work.push_back({id, 1});
+    shard = plan_shard(work, p.min_zoom, s.split_zoom, *s.shard);
+    std::erase_if(items, [&](TileId id) {
+      return id.z < shard->split_zoom ? s.shard->index != 0 : !shard->contains(id);
+    });
+    progress.note("shard " + std::to_string(s.shard->index) + "/" + std::to_string(s.shard->count) +
+                  ": " + std::to_string(shard->roots.size()) + " of " +
+                  std::to_string(shard->roots_total) + " subtrees below zoom " +
+                  std::to_string(shard->split_zoom) +
+                  (s.shard->index == 0 ? " and the zooms above" : ""));
+  }
   AnalysisSummary sum;
   try {
     std::unique_ptr<tileformat::PackageWriter> writer = create_package(s, progress);
+    if (shard) {  // the roots in the first transaction (see ShardTableWriter)
+      tileformat::ShardTableWriter parts(*writer);
+      if (!parts.continued())
+        for (const TileId& root : shard->roots)
+          parts.put(tileformat::kShardRoot, root, {});
+    }
     // Tiles are written in item order and committed in that order: a
     // resumed build's package holds a prefix of the items.
     size_t first = 0;
@@ -224,7 +251,12 @@ AnalysisSummary build_analysis(const AnalysisSettings& s, Progress& progress) {
         },
         [](size_t) {}, first);
     progress.end();
-    writer->set_metadata(tileformat::to_metadata(analysis_metadata(s, p)));
+    const tileformat::AnalysisMetadata meta = analysis_metadata(s, p);
+    writer->set_metadata(tileformat::to_metadata(meta));
+    if (shard)
+      writer->set_metadata(tileformat::to_metadata(tileformat::ShardMetadata{
+          s.shard->index, s.shard->count, shard->split_zoom, shard->roots_total, shard_build_id(s),
+          meta.common.min_zoom, meta.common.center_zoom}));
     sum.tiles = items.size();
     sum.unique_blobs = writer->unique_blobs();
     sum.file_bytes = commit_package(*writer, s.output);

@@ -1,5 +1,6 @@
 // `globe-tiler analyze TERRAIN.mbtiles -o ANALYSIS.mbtiles --layers ...`:
 // parses options and runs the analysis builder.
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
@@ -87,8 +88,17 @@ int run_analyze(const std::vector<std::string>& args) {
   cli.option("-o,--output", "OUT.mbtiles", "output analysis package",
              [&](const std::string& v) { s.output = v; });
   declare_run_options(cli, s);
+  declare_shard_options(cli, s);
   if (!parse_build_command(cli, s, args, "globe-tiler analyze", "TERRAIN.mbtiles")) return kExitOk;
   if (s.inputs.size() != 1) throw UsageError("give exactly one terrain package");
+  const auto flow = [&](tileformat::AnalysisLayer l) {
+    return std::find(s.layers.begin(), s.layers.end(), l) != s.layers.end();
+  };
+  if (s.shard && (flow(tileformat::AnalysisLayer::kFlowDirection) ||
+                  flow(tileformat::AnalysisLayer::kFlowAccumulation)))
+    throw UsageError(
+        "--shard: the flow layers cannot be sharded (water crosses every shard border: flow "
+        "needs the whole DEM at once); shard the other layers and build flow on one machine");
   Progress progress(s.progress);
   const AnalysisSummary sum = build_analysis(s, progress);
   std::ostringstream o;

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "analysis_merge.hpp"
 #include "cli_args.hpp"
 #include "commands.hpp"
 #include "errors.hpp"
@@ -21,7 +22,7 @@ int run_merge(const std::vector<std::string>& args) {
               "array job, docs/scale-out.md) into the package the same command builds on one\n"
               "machine: the same tiles and metadata (only globe:command_line differs). Checks\n"
               "that the shards come from one build and cover it exactly once, and builds the\n"
-              "zooms above the split zoom. Terrain and imagery shards.");
+              "zooms above the split zoom. Terrain, imagery and analysis shards.");
   cli.option("-o,--output", "OUT.mbtiles",
              "merged package (written as OUT.mbtiles.tmp, renamed when complete)",
              [&o](const std::string& v) { o.output = v; });
@@ -35,9 +36,9 @@ int run_merge(const std::vector<std::string>& args) {
   Progress progress(o.progress);
   ShardSet shards(o.inputs);
   const tileformat::PackageKind kind = shards.kind();
-  if (kind != tileformat::PackageKind::kTerrain && kind != tileformat::PackageKind::kImage)
+  if (kind == tileformat::PackageKind::kLines)
     throw InputError(shards.path(0) + ": a " + tileformat::package_kind_name(kind) +
-                     " shard; globe-tiler merge joins terrain and imagery shards");
+                     " shard; globe-tiler merge joins terrain, imagery and analysis shards");
   progress.note("globe-tiler: merging " + std::to_string(shards.count()) + " " +
                 tileformat::package_kind_name(kind) + " shards split below zoom " +
                 std::to_string(shards.split_zoom()));
@@ -46,8 +47,11 @@ int run_merge(const std::vector<std::string>& args) {
   if (kind == tileformat::PackageKind::kTerrain) {
     const BuildSummary sum = merge_terrain(shards, o, progress);
     tiles = sum.tiles, unique = sum.unique_blobs, bytes = sum.file_bytes, seconds = sum.seconds;
-  } else {
+  } else if (kind == tileformat::PackageKind::kImage) {
     const ImageSummary sum = merge_imagery(shards, o, progress);
+    tiles = sum.tiles, unique = sum.unique_blobs, bytes = sum.file_bytes, seconds = sum.seconds;
+  } else {
+    const AnalysisSummary sum = merge_analysis(shards, o, progress);
     tiles = sum.tiles, unique = sum.unique_blobs, bytes = sum.file_bytes, seconds = sum.seconds;
   }
   std::ostringstream out;
