@@ -178,6 +178,12 @@ TEST(CrashSafety, TerrainShardResumesToTheSameBytes) {
                   std::chrono::milliseconds(2000));
 }
 
+TEST(CrashSafety, ImageryShardResumesToTheSameBytes) {
+  kill_and_resume(tiler() + " imagery " + sample("bluemarble.tif").string() +
+                      " --max-zoom 4 --shard 0/2 --split-zoom 2",
+                  6, std::chrono::milliseconds(900));
+}
+
 TEST(CrashSafety, MergeResumesToTheSameBytes) {
   const TempDir shards("-shards");
   std::string list;
