@@ -101,6 +101,12 @@ void ShardTableWriter::put(ShardPartTag tag, TileId id, std::span<const uint8_t>
   insert_->reset();
 }
 
+void ShardTableWriter::put_roots(const std::vector<TileId>& roots) {
+  if (continued_) return;
+  for (const TileId& root : roots)
+    put(kShardRoot, root, {});
+}
+
 ShardTableReader::ShardTableReader(PackageReader& reader) : reader_(reader) {
   if (!has_shard_table(reader.db()))
     throw FormatError(kSection, reader.db().path() +

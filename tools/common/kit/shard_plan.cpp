@@ -124,6 +124,20 @@ ShardPlan plan_shard(const std::vector<TileWork>& tiles, int min_zoom,
   return plan;
 }
 
+std::string shard_summary(const ShardPlan& plan, ShardSpec spec) {
+  return "shard " + std::to_string(spec.index) + "/" + std::to_string(spec.count) + ": " +
+         std::to_string(plan.roots.size()) + " of " + std::to_string(plan.roots_total) +
+         " subtrees below zoom " + std::to_string(plan.split_zoom) + ", " +
+         std::to_string(plan.work) + " of " + std::to_string(plan.work_total) +
+         " units of estimated work";
+}
+
+tileformat::ShardMetadata shard_metadata(const BuildOptions& o, const ShardPlan& plan,
+                                         int min_zoom, int center_zoom) {
+  return {o.shard->index, o.shard->count, plan.split_zoom, plan.roots_total, shard_build_id(o),
+          min_zoom,       center_zoom};
+}
+
 std::string shard_build_id(const BuildOptions& o) {
   // The command line without the options that differ between the shards.
   std::string line;

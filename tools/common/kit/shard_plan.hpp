@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "tileformat/shard_table.hpp"
 #include "tileformat/tile_id.hpp"
 
 namespace globe {
@@ -50,6 +51,15 @@ struct ShardPlan {
 // zoom finer than the tiles or coarser than min_zoom.
 ShardPlan plan_shard(const std::vector<TileWork>& tiles, int min_zoom,
                      std::optional<int> split_zoom, ShardSpec spec);
+
+// "shard I/N: R of T subtrees below zoom Z, W of V units of estimated work"
+// (the note a shard's build starts with).
+std::string shard_summary(const ShardPlan& plan, ShardSpec spec);
+
+// The shard keys of a shard's package: o.shard, the plan, shard_build_id(o),
+// and the whole build's minzoom and center zoom.
+tileformat::ShardMetadata shard_metadata(const BuildOptions& o, const ShardPlan& plan,
+                                         int min_zoom, int center_zoom);
 
 // What identifies a build across its shards: the reproducible command line
 // without --shard and -o, and each input's size and modification time;

@@ -190,21 +190,14 @@ AnalysisSummary build_analysis(const AnalysisSettings& s, Progress& progress) {
     std::erase_if(items, [&](TileId id) {
       return id.z < shard->split_zoom ? s.shard->index != 0 : !shard->contains(id);
     });
-    progress.note("shard " + std::to_string(s.shard->index) + "/" + std::to_string(s.shard->count) +
-                  ": " + std::to_string(shard->roots.size()) + " of " +
-                  std::to_string(shard->roots_total) + " subtrees below zoom " +
-                  std::to_string(shard->split_zoom) +
-                  (s.shard->index == 0 ? " and the zooms above" : ""));
+    progress.note(shard_summary(*shard, *s.shard) +
+                  (s.shard->index == 0 ? ", and the zooms above" : ""));
   }
   AnalysisSummary sum;
   try {
     std::unique_ptr<tileformat::PackageWriter> writer = create_package(s, progress);
-    if (shard) {  // the roots in the first transaction (see ShardTableWriter)
-      tileformat::ShardTableWriter parts(*writer);
-      if (!parts.continued())
-        for (const TileId& root : shard->roots)
-          parts.put(tileformat::kShardRoot, root, {});
-    }
+    if (shard)  // the roots in the first transaction (see ShardTableWriter)
+      tileformat::ShardTableWriter(*writer).put_roots(shard->roots);
     // Tiles are written in item order and committed in that order: a
     // resumed build's package holds a prefix of the items.
     size_t first = 0;
@@ -254,9 +247,8 @@ AnalysisSummary build_analysis(const AnalysisSettings& s, Progress& progress) {
     const tileformat::AnalysisMetadata meta = analysis_metadata(s, p);
     writer->set_metadata(tileformat::to_metadata(meta));
     if (shard)
-      writer->set_metadata(tileformat::to_metadata(tileformat::ShardMetadata{
-          s.shard->index, s.shard->count, shard->split_zoom, shard->roots_total, shard_build_id(s),
-          meta.common.min_zoom, meta.common.center_zoom}));
+      writer->set_metadata(tileformat::to_metadata(
+          shard_metadata(s, *shard, meta.common.min_zoom, meta.common.center_zoom)));
     sum.tiles = items.size();
     sum.unique_blobs = writer->unique_blobs();
     sum.file_bytes = commit_package(*writer, s.output);

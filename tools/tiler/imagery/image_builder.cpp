@@ -57,9 +57,7 @@ class Builder {
       std::optional<tileformat::ShardTableWriter> parts;
       if (shard_) {
         parts.emplace(*writer);
-        if (!parts->continued())
-          for (const TileId& root : shard_->roots)
-            parts->put(tileformat::kShardRoot, root, {});
+        parts->put_roots(shard_->roots);
         parts_ = &*parts;
       }
       levels(*writer, stage, plan_.max_zoom, shard_ ? shard_->split_zoom : plan_.min_zoom);
@@ -319,15 +317,10 @@ class Builder {
     if (sum_.png || shard_) m.png_level = s_.png_level;
     m.scale = plan_.scale;
     w.set_metadata(tileformat::to_metadata(m));
-    if (shard_) {
-      tileformat::ShardMetadata sm{s_.shard->index,     s_.shard->count,    shard_->split_zoom,
-                                   shard_->roots_total, shard_build_id(s_), plan_.min_zoom};
-      // Imagery has tiles down to the coarsest zoom wherever it has data.
-      sm.center_zoom =
-          raster_common_metadata({s_.output, "", "", "", plan_.min_zoom, plan_.max_zoom}, {}, plan_)
-              .center_zoom;
-      w.set_metadata(tileformat::to_metadata(sm));
-    }
+    // Imagery has tiles down to the coarsest zoom wherever it has data.
+    if (shard_)
+      w.set_metadata(tileformat::to_metadata(shard_metadata(
+          s_, *shard_, plan_.min_zoom, raster_center_zoom(plan_, plan_.min_zoom, plan_.max_zoom))));
   }
 
   const ImagePlan& plan_;
@@ -350,19 +343,12 @@ ImageSummary build_imagery(const ImagePlan& plan, const ImageSettings& settings,
   if (!settings.shard) return Builder(plan, settings, progress).run();
   // Work per subtree: its finest tiles, weighted by how much of them the
   // sources cover with opaque pixels.
-  std::vector<RasterSource> sources(plan.sources.begin(), plan.sources.end());
   std::vector<ProbeBand> bands;
   for (const ImageSource& src : plan.sources)
     bands.push_back(src.alpha_band ? ProbeBand{src.alpha_band, true, std::nullopt}
                                    : ProbeBand{src.colour_bands.at(0), false, settings.nodata});
-  const std::vector<TileWork> work = probe_tile_work(
-      plan, sources, bands, tiles_in_areas(plan.tiling, plan.data_areas, plan.max_zoom));
-  const ShardPlan shard = plan_shard(work, plan.min_zoom, settings.split_zoom, *settings.shard);
-  progress.note("shard " + std::to_string(settings.shard->index) + "/" +
-                std::to_string(settings.shard->count) + ": " + std::to_string(shard.roots.size()) +
-                " of " + std::to_string(shard.roots_total) + " subtrees below zoom " +
-                std::to_string(shard.split_zoom) + ", " + std::to_string(shard.work) + " of " +
-                std::to_string(shard.work_total) + " units of estimated work");
+  const ShardPlan shard = plan_raster_shard(plan, {plan.sources.begin(), plan.sources.end()}, bands,
+                                            settings, progress);
   return Builder(plan, settings, progress, &shard).run();
 }
 

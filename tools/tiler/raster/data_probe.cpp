@@ -6,6 +6,7 @@
 #include <map>
 
 #include "spatial_ref.hpp"
+#include "tile_groups.hpp"
 
 namespace globe {
 namespace {
@@ -97,6 +98,17 @@ std::vector<TileWork> probe_tile_work(const Footprint& footprint,
     work.push_back({t, 4 + static_cast<uint64_t>(std::lround(8 * share))});
   }
   return work;
+}
+
+ShardPlan plan_raster_shard(const Footprint& footprint, const std::vector<RasterSource>& sources,
+                            const std::vector<ProbeBand>& bands, const BuildOptions& o,
+                            Progress& progress) {
+  const std::vector<TileWork> work =
+      probe_tile_work(footprint, sources, bands,
+                      tiles_in_areas(footprint.tiling, footprint.data_areas, footprint.max_zoom));
+  ShardPlan shard = plan_shard(work, footprint.min_zoom, o.split_zoom, *o.shard);
+  progress.note(shard_summary(shard, *o.shard));
+  return shard;
 }
 
 }  // namespace globe

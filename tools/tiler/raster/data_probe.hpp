@@ -32,4 +32,10 @@ std::vector<TileWork> probe_tile_work(const Footprint& footprint,
                                       const std::vector<ProbeBand>& bands,
                                       const std::vector<tileformat::TileId>& tiles);
 
+// Shard o.shard of a raster build: its finest tiles (those over the data
+// areas) weighed by the probe, cut by plan_shard; notes its summary.
+ShardPlan plan_raster_shard(const Footprint& footprint, const std::vector<RasterSource>& sources,
+                            const std::vector<ProbeBand>& bands, const BuildOptions& o,
+                            Progress& progress);
+
 }  // namespace globe

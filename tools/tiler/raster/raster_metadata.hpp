@@ -26,4 +26,8 @@ tileformat::CommonMetadata raster_common_metadata(const RasterPackageFacts& fact
                                                   std::vector<tileformat::InputFile> inputs,
                                                   const Footprint& footprint);
 
+// The zoom of `center`: where the data's extent fills a view, within
+// min_zoom..max_zoom.
+int raster_center_zoom(const Footprint& footprint, int min_zoom, int max_zoom);
+
 }  // namespace globe

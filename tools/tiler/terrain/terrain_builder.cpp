@@ -71,9 +71,7 @@ class Builder {
       std::optional<tileformat::ShardTableWriter> parts;
       if (shard_) {
         parts.emplace(*writer);
-        if (!parts->continued())
-          for (const TileId& root : shard_->roots)
-            parts->put(tileformat::kShardRoot, root, {});
+        parts->put_roots(shard_->roots);
         parts_ = &*parts;
       }
       levels(*writer, stage, plan_.max_zoom, shard_ ? shard_->split_zoom : plan_.min_zoom);
@@ -559,15 +557,10 @@ class Builder {
     m.height_step = plan_.step_m;
     m.fill_height = plan_.fill_q * plan_.step_m;
     w.set_metadata(tileformat::to_metadata(m));
-    if (shard_) {
-      tileformat::ShardMetadata sm{s_.shard->index,     s_.shard->count,    shard_->split_zoom,
-                                   shard_->roots_total, shard_build_id(s_), plan_.min_zoom};
-      // Terrain has tiles down to the coarsest zoom wherever it has data.
-      sm.center_zoom =
-          raster_common_metadata({s_.output, "", "", "", plan_.min_zoom, plan_.max_zoom}, {}, plan_)
-              .center_zoom;
-      w.set_metadata(tileformat::to_metadata(sm));
-    }
+    // Terrain has tiles down to the coarsest zoom wherever it has data.
+    if (shard_)
+      w.set_metadata(tileformat::to_metadata(shard_metadata(
+          s_, *shard_, plan_.min_zoom, raster_center_zoom(plan_, plan_.min_zoom, plan_.max_zoom))));
   }
 
   size_t batch_size() const { return static_cast<size_t>(8 * threads_); }
@@ -592,18 +585,11 @@ BuildSummary build_terrain(const DemPlan& plan, const TerrainSettings& settings,
   if (!settings.shard) return Builder(plan, settings, progress).run();
   // Work per subtree: its finest tiles, weighted by how much valid data
   // they hold.
-  std::vector<RasterSource> sources(plan.sources.begin(), plan.sources.end());
   std::vector<ProbeBand> bands;
   for (const DemSource& src : plan.sources)
     bands.push_back({1, false, src.nodata});
-  const std::vector<TileWork> work = probe_tile_work(
-      plan, sources, bands, tiles_in_areas(plan.tiling, plan.data_areas, plan.max_zoom));
-  const ShardPlan shard = plan_shard(work, plan.min_zoom, settings.split_zoom, *settings.shard);
-  progress.note("shard " + std::to_string(settings.shard->index) + "/" +
-                std::to_string(settings.shard->count) + ": " + std::to_string(shard.roots.size()) +
-                " of " + std::to_string(shard.roots_total) + " subtrees below zoom " +
-                std::to_string(shard.split_zoom) + ", " + std::to_string(shard.work) + " of " +
-                std::to_string(shard.work_total) + " units of estimated work");
+  const ShardPlan shard = plan_raster_shard(plan, {plan.sources.begin(), plan.sources.end()}, bands,
+                                            settings, progress);
   return Builder(plan, settings, progress, &shard).run();
 }
 

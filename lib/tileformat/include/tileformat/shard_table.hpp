@@ -50,6 +50,9 @@ class ShardTableWriter {
   // put before the table's first commit, such as the roots).
   bool continued() const { return continued_; }
   void put(ShardPartTag tag, TileId id, std::span<const uint8_t> data);
+  // The shard's subtree roots (kShardRoot rows), put first in a build; a
+  // continued table holds them already and is left as it is.
+  void put_roots(const std::vector<TileId>& roots);
 
  private:
   std::unique_ptr<SqliteStatement> insert_;
