@@ -111,6 +111,57 @@ TEST(ShardPlan, ContainsTilesOfItsSubtreesOnly) {
   EXPECT_FALSE(p.contains(other.roots.front()));
 }
 
+// Line builds share out the tiles above the split zoom too: each coarse tile
+// goes to exactly one shard, which alone contains it, the work still sums
+// to the total, and on the Morton curve a coarse tile stands just before
+// the first subtree it covers (coarser first), in its shard's run.
+TEST(ShardPlan, CoarseTilesGoToOneShardEachInMortonOrder) {
+  const auto tiles = uneven_tiles();
+  std::vector<TileWork> coarse;
+  std::set<TileId> seen;
+  for (const TileWork& t : tiles)
+    for (int z = 1; z < 4; ++z) {
+      const TileId c{z, t.id.x >> (8 - z), t.id.y >> (8 - z)};
+      if (seen.insert(c).second) coarse.push_back({c, 50u * (4 - z)});
+    }
+  auto key = [](const TileId& t) {  // Morton key at zoom 4, bit by bit
+    const TileId at4{4, t.x << (4 - t.z), t.y << (4 - t.z)};
+    uint64_t k = 0;
+    for (int b = 0; b < 16; ++b)
+      k |= (uint64_t((at4.x >> b) & 1) << (2 * b)) | (uint64_t((at4.y >> b) & 1) << (2 * b + 1));
+    return std::pair(k, t.z);
+  };
+  std::set<TileId> subtrees;
+  for (const TileWork& t : tiles)
+    subtrees.insert({4, t.id.x >> 4, t.id.y >> 4});
+  for (int n : {1, 3, 8}) {
+    std::vector<ShardPlan> plans;
+    for (int i = 0; i < n; ++i)
+      plans.push_back(globe::plan_shard(tiles, 0, 4, {i, n}, coarse));
+    std::map<std::pair<uint64_t, int>, int> shard_by_key;
+    uint64_t sum = 0;
+    for (int i = 0; i < n; ++i) {
+      for (const TileId& r : plans[i].roots)
+        EXPECT_TRUE(shard_by_key.emplace(key(r), i).second) << r.str() << " in two shards";
+      sum += plans[i].work;
+    }
+    EXPECT_EQ(sum, plans[0].work_total);
+    EXPECT_EQ(plans[0].roots_total, subtrees.size() + coarse.size());
+    EXPECT_EQ(shard_by_key.size(), subtrees.size() + coarse.size());
+    int last = 0;
+    for (const auto& [k, shard] : shard_by_key) {
+      EXPECT_GE(shard, last) << "shard " << shard << " after " << last << " on the curve";
+      last = shard;
+    }
+    for (const TileWork& c : coarse) {
+      ASSERT_TRUE(shard_by_key.count(key(c.id))) << c.id.str() << " in no shard";
+      const int owner = shard_by_key[key(c.id)];
+      for (int i = 0; i < n; ++i)
+        EXPECT_EQ(plans[i].contains(c.id), i == owner) << c.id.str();
+    }
+  }
+}
+
 TEST(ShardPlan, BadSpecsAreUsageErrors) {
   EXPECT_EQ(globe::parse_shard("3/8").index, 3);
   EXPECT_EQ(globe::parse_shard("3/8").count, 8);

@@ -73,12 +73,13 @@ void declare_shard_options(CliArgs& cli, BuildOptions& o) {
 }
 
 bool ShardPlan::contains(TileId id) const {
-  if (id.z < split_zoom) return false;
-  return std::binary_search(roots.begin(), roots.end(), ancestor(id, split_zoom));
+  return std::binary_search(roots.begin(), roots.end(),
+                            id.z < split_zoom ? id : ancestor(id, split_zoom));
 }
 
 ShardPlan plan_shard(const std::vector<TileWork>& tiles, int min_zoom,
-                     std::optional<int> split_zoom, ShardSpec spec) {
+                     std::optional<int> split_zoom, ShardSpec spec,
+                     const std::vector<TileWork>& coarse) {
   ShardPlan plan;
   if (tiles.empty()) return plan;
   const int finest = tiles.front().id.z;
@@ -103,6 +104,11 @@ ShardPlan plan_shard(const std::vector<TileWork>& tiles, int min_zoom,
   while (!split_zoom && roots.size() < wanted && z < finest)
     roots = roots_at(++z);
   plan.split_zoom = z;
+  // Coarse tiles at the Morton index of their first split zoom descendant;
+  // TileId order puts them before that subtree, the coarser first.
+  for (const TileWork& c : coarse)
+    if (c.id.z < z)
+      roots[{morton(c.id.x, c.id.y) << (2 * (z - c.id.z)), c.id}] += std::max<uint64_t>(c.work, 1);
   plan.roots_total = roots.size();
   for (const auto& [key, w] : roots)
     plan.work_total += w;
@@ -132,10 +138,10 @@ std::string shard_summary(const ShardPlan& plan, ShardSpec spec) {
          " units of estimated work";
 }
 
-tileformat::ShardMetadata shard_metadata(const BuildOptions& o, const ShardPlan& plan,
-                                         int min_zoom, int center_zoom) {
-  return {o.shard->index, o.shard->count, plan.split_zoom, plan.roots_total, shard_build_id(o),
-          min_zoom,       center_zoom};
+tileformat::ShardMetadata shard_metadata(const BuildOptions& o, const ShardPlan& plan, int min_zoom,
+                                         int center_zoom) {
+  return {o.shard->index,    o.shard->count, plan.split_zoom, plan.roots_total,
+          shard_build_id(o), min_zoom,       center_zoom};
 }
 
 std::string shard_build_id(const BuildOptions& o) {

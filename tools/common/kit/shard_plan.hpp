@@ -37,20 +37,28 @@ struct TileWork {
 
 struct ShardPlan {
   int split_zoom = 0;
-  uint64_t roots_total = 0;               // subtrees with work, all shards
-  std::vector<tileformat::TileId> roots;  // this shard's, sorted
-  uint64_t work = 0, work_total = 0;      // this shard's estimate, and all shards'
+  uint64_t roots_total = 0;  // subtrees with work (and coarse tiles), all shards
+  // This shard's subtree roots (tiles of the split zoom) and coarse tiles
+  // (above it, when the plan has them), sorted.
+  std::vector<tileformat::TileId> roots;
+  uint64_t work = 0, work_total = 0;  // this shard's estimate, and all shards'
 
-  // Whether the tile (zoom >= split_zoom) lies in one of this shard's subtrees.
+  // Whether the tile lies in one of this shard's subtrees or is one of its
+  // coarse tiles.
   bool contains(tileformat::TileId id) const;
 };
 
 // The subtrees of `tiles` (all of one zoom >= min_zoom) below the split zoom
 // (given, or the coarsest zoom >= min_zoom with at least 16 subtrees per
-// shard) and shard spec.index's run of them. Throws UsageError for a split
-// zoom finer than the tiles or coarser than min_zoom.
+// shard) and shard spec.index's run of them. `coarse`: tiles above the split
+// zoom that are shared out too, with their work (line tiles, which do not
+// depend on their children; the other builders' coarse zooms come from the
+// split zoom's tiles); each is placed on the Morton curve just before the
+// first subtree it covers. Throws UsageError for a split zoom finer than the
+// tiles or coarser than min_zoom.
 ShardPlan plan_shard(const std::vector<TileWork>& tiles, int min_zoom,
-                     std::optional<int> split_zoom, ShardSpec spec);
+                     std::optional<int> split_zoom, ShardSpec spec,
+                     const std::vector<TileWork>& coarse = {});
 
 // "shard I/N: R of T subtrees below zoom Z, W of V units of estimated work"
 // (the note a shard's build starts with).
@@ -58,8 +66,8 @@ std::string shard_summary(const ShardPlan& plan, ShardSpec spec);
 
 // The shard keys of a shard's package: o.shard, the plan, shard_build_id(o),
 // and the whole build's minzoom and center zoom.
-tileformat::ShardMetadata shard_metadata(const BuildOptions& o, const ShardPlan& plan,
-                                         int min_zoom, int center_zoom);
+tileformat::ShardMetadata shard_metadata(const BuildOptions& o, const ShardPlan& plan, int min_zoom,
+                                         int center_zoom);
 
 // What identifies a build across its shards: the reproducible command line
 // without --shard and -o, and each input's size and modification time;

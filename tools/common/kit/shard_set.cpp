@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "build_options.hpp"
 #include "errors.hpp"
 #include "package_open.hpp"
+#include "progress.hpp"
 #include "tileformat/metadata.hpp"
 
 namespace globe {
@@ -19,6 +21,19 @@ std::string shard_name(int index, int count) {
 }
 
 }  // namespace
+
+bool parse_merge_command(CliArgs& cli, BuildOptions& o, const std::vector<std::string>& args,
+                         const std::string& program) {
+  cli.option("-o,--output", "OUT.mbtiles",
+             "merged package (written as OUT.mbtiles.tmp, renamed when complete)",
+             [&o](const std::string& v) { o.output = v; });
+  declare_run_options(cli, o);
+  if (!parse_build_command(cli, o, args, program, "shard package (see --help)")) return false;
+  for (const std::string& in : o.inputs)
+    if (std::filesystem::weakly_canonical(in) == std::filesystem::weakly_canonical(o.output))
+      throw UsageError("-o " + o.output + " is one of the shards; write the merge elsewhere");
+  return true;
+}
 
 ShardSet::ShardSet(const std::vector<std::string>& paths) {
   if (paths.empty()) throw UsageError("no shards given");
@@ -71,8 +86,8 @@ ShardSet::ShardSet(const std::vector<std::string>& paths) {
   for (int i = 0; i < meta_.count; ++i)
     try {
       for (const TileId& root : table(i).list(tileformat::kShardRoot)) {
-        if (root.z != meta_.split_zoom)
-          throw InputError(path(i) + ": subtree " + root.str() + " is not at the split zoom " +
+        if (root.z > meta_.split_zoom)
+          throw InputError(path(i) + ": subtree " + root.str() + " is below the split zoom " +
                            std::to_string(meta_.split_zoom));
         auto [it, fresh] = roots_.emplace(root, i);
         if (!fresh)
@@ -93,8 +108,7 @@ ShardSet::~ShardSet() = default;
 
 int ShardSet::owner(TileId id) const {
   const int up = id.z - meta_.split_zoom;
-  if (up < 0) return -1;
-  auto it = roots_.find(TileId{meta_.split_zoom, id.x >> up, id.y >> up});
+  auto it = roots_.find(up < 0 ? id : TileId{meta_.split_zoom, id.x >> up, id.y >> up});
   return it == roots_.end() ? -1 : it->second;
 }
 
@@ -108,6 +122,31 @@ std::vector<TileId> ShardSet::tiles(int z) {
     return std::pair(a.y, a.x) < std::pair(b.y, b.x);
   });
   return all;
+}
+
+void ShardSet::copy_tiles(tileformat::PackageWriter& writer, int min_zoom, int max_zoom,
+                          Progress& progress) {
+  for (int z = min_zoom; z <= max_zoom; ++z) {
+    const std::vector<TileId> ids = tiles(z);
+    const size_t done = writer.resumed() ? writer.tiles_at_zoom(z) : 0;
+    progress.begin("z" + std::to_string(z) + " merge", ids.size());
+    for (size_t i = 0; i < ids.size(); ++i) {
+      if (i > 0 && ids[i] == ids[i - 1])
+        throw InputError("tile " + ids[i].str() + " is in two shards; the shards overlap");
+      // Above the split zoom, a tile no shard lists is shard 0's.
+      int from = owner(ids[i]);
+      if (from < 0 && z < split_zoom()) from = 0;
+      auto blob = from < 0 ? std::nullopt : reader(from).tile(ids[i]);
+      if (!blob)
+        throw InputError("tile " + ids[i].str() +
+                         " is not where the shards' subtrees put it; the shards do not come "
+                         "from one build");
+      if (i >= done) writer.put_tile(ids[i], *blob);
+      progress.advance();
+    }
+    progress.end();
+    writer.checkpoint();
+  }
 }
 
 tileformat::MetadataMap ShardSet::merged_metadata(const std::string& output, int coarsest,

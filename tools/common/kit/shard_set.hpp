@@ -15,6 +15,16 @@
 
 namespace globe {
 
+class CliArgs;
+class Progress;
+struct BuildOptions;
+
+// A merge command's options (-o, the run options) and its shards: parses
+// `args` into `o` (false after --help) and refuses an output that is one of
+// the shards (UsageError).
+bool parse_merge_command(CliArgs& cli, BuildOptions& o, const std::vector<std::string>& args,
+                         const std::string& program);
+
 class ShardSet {
  public:
   // Throws InputError naming the file (and shard) that is missing, not a
@@ -34,10 +44,20 @@ class ShardSet {
   // command line and the shard keys).
   const tileformat::MetadataMap& metadata() const { return shards_[0].reader->metadata(); }
 
-  // The shard whose subtrees hold `id` (zoom >= split zoom); -1 for none.
+  // The shard whose subtrees hold `id` (zoom >= split zoom), or that lists
+  // it as a coarse tile (above the split zoom); -1 for none.
   int owner(tileformat::TileId id) const;
   // Every shard's tiles of zoom z (>= split zoom), sorted by (y, x).
   std::vector<tileformat::TileId> tiles(int z);
+  // Copies every tile of zooms min_zoom..max_zoom into `writer`, zoom by
+  // zoom in the one-machine order ((y, x) within a zoom), checkpointing after
+  // each zoom: from their subtree's shard, or above the split zoom from the
+  // shard that lists them as coarse tiles, else shard 0 (which built the
+  // zooms above the split). Skips the tiles a resumed
+  // writer holds. Throws InputError for a tile in two shards or outside its
+  // shard's subtrees.
+  void copy_tiles(tileformat::PackageWriter& writer, int min_zoom, int max_zoom,
+                  Progress& progress);
   // The metadata of the merged package: the shards' keys as the whole build
   // writes them (its own name, `coarsest` zoom and center zoom, the merge's
   // command line), without the shard keys.

@@ -10,8 +10,6 @@
 
 namespace globe {
 
-using tileformat::TileId;
-
 AnalysisSummary merge_analysis(ShardSet& shards, const BuildOptions& o, Progress& progress) {
   const auto start = std::chrono::steady_clock::now();
   const tileformat::AnalysisMetadata meta = read_metadata(
@@ -20,26 +18,7 @@ AnalysisSummary merge_analysis(ShardSet& shards, const BuildOptions& o, Progress
   AnalysisSummary sum;
   std::unique_ptr<tileformat::PackageWriter> writer = create_package(o, progress);
   try {
-    for (int z = shard.min_zoom; z <= meta.common.max_zoom; ++z) {
-      const std::vector<TileId> tiles = shards.tiles(z);
-      const size_t done = writer->resumed() ? writer->tiles_at_zoom(z) : 0;
-      progress.begin("z" + std::to_string(z) + " merge", tiles.size());
-      for (size_t i = 0; i < tiles.size(); ++i) {
-        if (i > 0 && tiles[i] == tiles[i - 1])
-          throw InputError("tile " + tiles[i].str() + " is in two shards; the shards overlap");
-        // Above the split zoom, shard 0 holds every tile.
-        const int owner = z < shards.split_zoom() ? 0 : shards.owner(tiles[i]);
-        auto blob = owner < 0 ? std::nullopt : shards.reader(owner).tile(tiles[i]);
-        if (!blob)
-          throw InputError("tile " + tiles[i].str() +
-                           " is not where the shards' subtrees put it; the shards do not come "
-                           "from one build");
-        if (i >= done) writer->put_tile(tiles[i], *blob);
-        progress.advance();
-      }
-      progress.end();
-      writer->checkpoint();
-    }
+    shards.copy_tiles(*writer, shard.min_zoom, meta.common.max_zoom, progress);
   } catch (const tileformat::PackageError& e) {
     throw build_write_error(o.output, e);
   }

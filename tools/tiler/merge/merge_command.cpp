@@ -1,7 +1,6 @@
 // `globe-tiler merge SHARD... -o OUT.mbtiles`: joins the shards of one
 // sharded build (`--shard I/N`) into the package one machine would build
 // (docs/scale-out.md), by the shards' kind.
-#include <filesystem>
 #include <sstream>
 
 #include "analysis_merge.hpp"
@@ -23,22 +22,15 @@ int run_merge(const std::vector<std::string>& args) {
               "machine: the same tiles and metadata (only globe:command_line differs). Checks\n"
               "that the shards come from one build and cover it exactly once, and builds the\n"
               "zooms above the split zoom. Terrain, imagery and analysis shards.");
-  cli.option("-o,--output", "OUT.mbtiles",
-             "merged package (written as OUT.mbtiles.tmp, renamed when complete)",
-             [&o](const std::string& v) { o.output = v; });
-  declare_run_options(cli, o);
-  if (!parse_build_command(cli, o, args, "globe-tiler merge", "shard package (see --help)"))
-    return kExitOk;
-  for (const std::string& in : o.inputs)
-    if (std::filesystem::weakly_canonical(in) == std::filesystem::weakly_canonical(o.output))
-      throw UsageError("-o " + o.output + " is one of the shards; write the merge elsewhere");
+  if (!parse_merge_command(cli, o, args, "globe-tiler merge")) return kExitOk;
 
   Progress progress(o.progress);
   ShardSet shards(o.inputs);
   const tileformat::PackageKind kind = shards.kind();
   if (kind == tileformat::PackageKind::kLines)
     throw InputError(shards.path(0) + ": a " + tileformat::package_kind_name(kind) +
-                     " shard; globe-tiler merge joins terrain, imagery and analysis shards");
+                     " shard; globe-tiler merge joins terrain, imagery and analysis shards "
+                     "(line shards: globe-vectorize merge)");
   progress.note("globe-tiler: merging " + std::to_string(shards.count()) + " " +
                 tileformat::package_kind_name(kind) + " shards split below zoom " +
                 std::to_string(shards.split_zoom()));
