@@ -62,4 +62,10 @@ std::optional<FeatureRecord> FeatureTableReader::get(int64_t id) {
   return r;
 }
 
+void FeatureTableReader::for_each(const std::function<void(int64_t id, const FeatureRecord&)>& fn) {
+  SqliteStatement all(reader_.db(), "SELECT id, layer, properties FROM features ORDER BY id");
+  while (all.step())
+    fn(all.column_int(0), FeatureRecord{all.column_text(1), all.column_text(2)});
+}
+
 }  // namespace tileformat

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -42,6 +43,8 @@ class FeatureTableReader {
   int64_t count();
   int64_t max_id();  // 0 for an empty table
   std::optional<FeatureRecord> get(int64_t id);
+  // Every row in id order.
+  void for_each(const std::function<void(int64_t id, const FeatureRecord&)>& fn);
 
  private:
   PackageReader& reader_;
