@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include "errors.hpp"
 #include "geometry_scratch.hpp"
@@ -12,6 +13,7 @@
 #include "line_metadata.hpp"
 #include "line_plan.hpp"
 #include "line_projector.hpp"
+#include "line_shard.hpp"
 #include "package_output.hpp"
 #include "parallel_batches.hpp"
 #include "tile_cutter.hpp"
@@ -22,6 +24,7 @@
 #include "tileformat/line_tile.hpp"
 #include "tileformat/metadata.hpp"
 #include "tileformat/package.hpp"
+#include "tileformat/shard_table.hpp"
 #include "vector_reader.hpp"
 
 namespace globe {
@@ -38,7 +41,11 @@ class Builder {
   LinesSummary run() {
     const auto start = std::chrono::steady_clock::now();
     frame_ = choose_line_frame(s_);
-    VectorReaderOptions ro{s_.layers, s_.where, s_.class_field, std::nullopt, s_.s_srs};
+    // Shard 0 holds the features table of a sharded build (docs/tileformat.md
+    // §10); the other shards need no properties.
+    const bool keeps_features = !s_.shard || s_.shard->index == 0;
+    VectorReaderOptions ro{s_.layers,    s_.where, s_.class_field,
+                           std::nullopt, s_.s_srs, keeps_features};
     if (s_.bbox) ro.filter = Bounds{(*s_.bbox)[0], (*s_.bbox)[1], (*s_.bbox)[2], (*s_.bbox)[3]};
     VectorReader reader(s_.inputs, ro);
     if (frame_.frame == TargetFrame::kProjected && !frame_.target)
@@ -47,15 +54,20 @@ class Builder {
     try {
       // A resumed build reads and cuts the input again (that state is not
       // kept) but keeps the committed features table and tiles. The table
-      // is created and filled in one transaction (committed below), so it
-      // is either there and complete or not there at all.
+      // (and a shard's table of subtrees) is created and filled in one
+      // transaction (committed below), so it is either there and complete
+      // or not there at all.
       tileformat::FeatureTableWriter features(*writer);
       GeometryScratch scratch(s_.output + ".scratch-geometry");
-      pass_read(reader, features, scratch);
-      writer->checkpoint();  // the features table is committed before any tile
+      pass_read(reader, keeps_features ? &features : nullptr, scratch);
       plan_ = plan_lines(s_, frame_, facts_.extent, lengths_, classes_);
       sum_.min_zoom = plan_.min_zoom;
       sum_.max_zoom = plan_.max_zoom;
+      if (s_.shard) {
+        shard_.emplace(s_, plan_, scratch, sum_.features_kept, progress_);
+        tileformat::ShardTableWriter(*writer).put_roots(shard_->plan().roots);
+      }
+      writer->checkpoint();  // the features table is committed before any tile
       TileSorter sorter(s_.output + ".scratch-sort", s_.memory_mb << 20);
       pass_cut(scratch, sorter);
       pass_encode(sorter, *writer);
@@ -66,11 +78,16 @@ class Builder {
     } catch (const OutputError& e) {  // scratch files
       throw build_write_error(s_.output, e);
     }
-    if (writer->tiles_written() == 0)
+    if (writer->tiles_written() == 0 && !shard_)
       throw InputError(s_.inputs[0] + ": no line or point falls in the requested area" +
                        (s_.bbox ? " (check --bbox)" : "") + "; nothing written");
-    writer->set_metadata(
-        tileformat::to_metadata(line_metadata(s_, frame_, plan_, classes_, facts_)));
+    // A shard's metadata is the whole build's (its tiles may leave zooms
+    // out), plus the shard keys.
+    const tileformat::LineMetadata meta = line_metadata(s_, frame_, plan_, classes_, facts_);
+    writer->set_metadata(tileformat::to_metadata(meta));
+    if (shard_)
+      writer->set_metadata(tileformat::to_metadata(
+          shard_metadata(s_, shard_->plan(), meta.common.min_zoom, meta.common.center_zoom)));
     sum_.tiles = writer->tiles_written();
     sum_.unique_blobs = writer->unique_blobs();
     sum_.file_bytes = commit_package(*writer, s_.output);
@@ -79,7 +96,8 @@ class Builder {
   }
 
  private:
-  void pass_read(VectorReader& reader, tileformat::FeatureTableWriter& features,
+  // `features`: the table to fill (none: left empty).
+  void pass_read(VectorReader& reader, tileformat::FeatureTableWriter* features,
                  GeometryScratch& scratch) {
     std::vector<LineProjector> projectors;
     for (const VectorLayerInfo& l : reader.layers())
@@ -112,8 +130,8 @@ class Builder {
       pf.id = ++sum_.features_kept;
       facts_.features = sum_.features_kept;
       ++facts_.layer_features[vf.layer];
-      if (!features.complete())
-        features.add(static_cast<int64_t>(pf.id), layer, vf.properties_json);
+      if (features && !features->complete())
+        features->add(static_cast<int64_t>(pf.id), layer, vf.properties_json);
       for (const auto& part : pf.lines)
         for (size_t i = 0; i < part.size(); ++i) {
           extend(part[i]);
@@ -172,11 +190,16 @@ class Builder {
           batch.size(), threads_, batch.size(), [](size_t, size_t) { return NoInputs{}; },
           [&](size_t i, int, const NoInputs&) {
             Result r;
-            uint32_t sub = 0;
+            uint32_t sub = 0;  // only the order within one tile matters
+            const uint32_t zooms = shard_ ? shard_->zooms_to_cut(batch[i]) : ~0u;
             for (int z = plan_.min_zoom; z <= plan_.max_zoom; ++z)
-              cutter.cut(batch[i], z, plan_.reach[z],
-                         z == plan_.max_zoom ? Collapsed::kKeep : Collapsed::kDrop, sub,
-                         r.emissions, r.stats);
+              if (zooms >> z & 1)
+                cutter.cut(batch[i], z, plan_.reach[z],
+                           z == plan_.max_zoom ? Collapsed::kKeep : Collapsed::kDrop, sub,
+                           r.emissions, r.stats);
+            if (shard_)
+              std::erase_if(r.emissions,
+                            [&](const Emission& e) { return !shard_->keeps(key_tile(e.key)); });
             return r;
           },
           [&](size_t i, Result&& r) {
@@ -271,6 +294,7 @@ class Builder {
   LineFacts facts_;
   LengthHistogram lengths_;
   LinePlan plan_;
+  std::optional<LineShard> shard_;
   CutStats cut_;
   LinesSummary sum_;
 };

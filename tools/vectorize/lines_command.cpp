@@ -53,6 +53,7 @@ int run_lines(const std::vector<std::string>& args) {
              [&](const std::string& v) {
                s.memory_mb = static_cast<size_t>(CliArgs::to_int("--memory-mb", v, 1, 1 << 20));
              });
+  declare_shard_options(cli, s);
   declare_run_options(cli, s);
   if (!parse_build_command(cli, s, args, "globe-vectorize lines", "input vector file (see --help)"))
     return kExitOk;

@@ -81,7 +81,8 @@ std::string field_json(OGRFeatureH feat, int i, OGRFieldType type) {
 
 }  // namespace
 
-VectorReader::VectorReader(const std::vector<std::string>& inputs, const VectorReaderOptions& opt) {
+VectorReader::VectorReader(const std::vector<std::string>& inputs, const VectorReaderOptions& opt)
+    : properties_(opt.properties) {
   gdal_init();
   std::vector<bool> layer_found(opt.layers.size(), false);
   std::string available;
@@ -170,16 +171,16 @@ bool VectorReader::next(VectorFeature& out) {
     out.layer = static_cast<int>(current_);
     out.lines.clear();
     out.points.clear();
-    out.properties_json = "{";
+    out.properties_json = properties_ ? "{" : "";
     bool first = true;
-    for (size_t i = 0; i < h.field_names.size(); ++i) {
+    for (size_t i = 0; properties_ && i < h.field_names.size(); ++i) {
       const int fi = static_cast<int>(i);
       if (!OGR_F_IsFieldSetAndNotNull(feat, fi)) continue;
       out.properties_json += (first ? "\"" : ",\"") + tileformat::json_escape(h.field_names[i]) +
                              "\":" + field_json(feat, fi, h.field_types[i]);
       first = false;
     }
-    out.properties_json += "}";
+    if (properties_) out.properties_json += "}";
     out.class_value = h.class_field >= 0 && OGR_F_IsFieldSetAndNotNull(feat, h.class_field)
                           ? OGR_F_GetFieldAsString(feat, h.class_field)
                           : "";

@@ -36,6 +36,7 @@ struct VectorReaderOptions {
   std::string class_field;                   // "" for none
   std::optional<tileformat::Bounds> filter;  // lon/lat area (a fast pre-filter)
   std::string s_srs;                         // assigned CRS ("" keeps the files')
+  bool properties = true;                    // false: properties_json stays empty
 };
 
 class VectorReader {
@@ -57,6 +58,7 @@ class VectorReader {
   std::vector<VectorLayerInfo> layers_;
   std::vector<std::unique_ptr<LayerHandle>> handles_;
   size_t current_ = 0;
+  bool properties_ = true;
 };
 
 }  // namespace globe
