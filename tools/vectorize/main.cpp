@@ -14,6 +14,7 @@ const char* kUsage =
     "  info PACKAGE                       metadata, classes, zoom range, tiles and segments\n"
     "  validate PACKAGE                   decode every tile, recheck every cluster grid\n"
     "  extract PACKAGE --zoom Z -o OUT.gpkg   decoded lines of one zoom as vector data\n"
+    "  merge SHARD... -o OUT.mbtiles      join the shards of a `lines --shard I/N` build\n"
     "\n"
     "Run 'globe-vectorize COMMAND --help' for the options of a command.\n"
     "Exit codes: 0 ok, 1 bad input data, 2 bad usage, 3 output cannot be written,\n"
@@ -26,6 +27,7 @@ int main(int argc, char** argv) {
                                  {{"lines", globe::run_lines},
                                   {"info", globe::run_lines_info},
                                   {"validate", globe::run_lines_validate},
-                                  {"extract", globe::run_lines_extract}},
+                                  {"extract", globe::run_lines_extract},
+                                  {"merge", globe::run_lines_merge}},
                                  argc, argv);
 }
