@@ -1,4 +1,4 @@
-// Sharded builds on a real Slurm cluster (label `cluster`): a single-node
+// Sharded terrain and line builds on a real Slurm cluster (label `cluster`): a single-node
 // cluster from Debian's slurm-wlm and munge, started by the test in a
 // temporary folder (scripts/slurm/local-cluster.sh) and stopped at the end.
 // scripts/slurm/submit.sh submits the shards as an sbatch array job and the
@@ -83,6 +83,21 @@ TEST_F(SlurmCluster, ArrayJobOfTerrainShardsAndADependentMergeGiveTheOneMachineB
   for (int i = 0; i < 3; ++i)
     EXPECT_TRUE(fs::exists(dir_ / "j.shards" / ("j.shard-" + std::to_string(i) + ".mbtiles")));
   ASSERT_TRUE(fs::exists(out)) << read_file(dir_ / "j.shards" / "logs" / "merge.log");
+  expect_same_package(out, (dir_ / "one.mbtiles").string());
+}
+
+TEST_F(SlurmCluster, ArrayJobOfLineShardsAndADependentMergeGiveTheOneMachineBuild) {
+  const std::string lines = sample("ne_admin1.shp").string() + " --max-zoom 5";
+  const std::string out = (dir_ / "l.mbtiles").string();
+  const RunResult one = run(
+      vectorize() + " lines -q " + lines + " -o " + (dir_ / "one.mbtiles").string(), dir_.path());
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const RunResult s = submit("--shards 4", vectorize() + " lines " + lines + " -o " + out);
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  const std::string merge = job(s.out, "merge");
+  ASSERT_FALSE(merge.empty()) << s.out;
+  EXPECT_EQ(wait_for(merge), "COMPLETED") << read_file(dir_ / "l.shards" / "logs" / "merge.log");
+  ASSERT_TRUE(fs::exists(out)) << read_file(dir_ / "l.shards" / "logs" / "merge.log");
   expect_same_package(out, (dir_ / "one.mbtiles").string());
 }
 

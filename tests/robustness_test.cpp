@@ -184,6 +184,10 @@ TEST(CrashSafety, ImageryShardResumesToTheSameBytes) {
                   6, std::chrono::milliseconds(900));
 }
 
+TEST(CrashSafety, LineShardResumesToTheSameBytes) {
+  kill_and_resume(lines_build() + " --shard 1/3", 10, std::chrono::milliseconds(1500));
+}
+
 TEST(CrashSafety, MergeResumesToTheSameBytes) {
   const TempDir shards("-shards");
   std::string list;
@@ -194,6 +198,22 @@ TEST(CrashSafety, MergeResumesToTheSameBytes) {
     list += " " + out;
   }
   kill_and_resume(tiler() + " merge" + list, 10, std::chrono::milliseconds(800));
+}
+
+// A line merge copies the features table in its first transaction, then
+// the tiles: killed in either, it resumes to the same bytes.
+TEST(CrashSafety, LineMergeResumesToTheSameBytes) {
+  const TempDir shards("-shards");
+  std::string list;
+  for (int i = 0; i < 3; ++i) {
+    const std::string out = (shards / ("s" + std::to_string(i) + ".mbtiles")).string();
+    ASSERT_EQ(
+        run(lines_build() + " -q --shard " + std::to_string(i) + "/3 -o " + out, shards.path())
+            .exit_code,
+        0);
+    list += " " + out;
+  }
+  kill_and_resume(vectorize() + " merge" + list, 10, std::chrono::milliseconds(600));
 }
 
 // The one moment random kills rarely hit: after the last level, before the

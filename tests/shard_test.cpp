@@ -1,10 +1,12 @@
 // Sharded builds (docs/scale-out.md): the shards of `terrain`, `imagery` and
-// `analyze` with `--shard I/N`, joined by `merge`, give the package one machine builds
-// from the same command: the same tiles (bytes) and metadata but the command line. The
-// reference is that one-machine build, run as a user runs it. Extents users
-// have: a UTM sample, local tilings, the whole world in both global tilings
-// (the antimeridian seam and the polar rows), holes of nodata across shard
-// borders. Bad sets of shards are clear errors that write nothing.
+// `analyze` with `--shard I/N`, joined by `globe-tiler merge`, and of
+// `globe-vectorize lines`, joined by `globe-vectorize merge`, give the
+// package one machine builds from the same command: the same tiles (bytes),
+// metadata but the command line, and features table. The reference is that
+// one-machine build, run as a user runs it. Extents users have: a UTM sample,
+// local tilings, the whole world in both global tilings (the antimeridian
+// seam and the polar rows), holes of nodata across shard borders. Bad sets
+// of shards are clear errors that write nothing.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,19 +15,40 @@
 #include "raster_fixtures.hpp"
 #include "test_support.hpp"
 #include "tileformat/package.hpp"
+#include "tileformat/sqlite_db.hpp"
 
 using namespace globe_test;
 
 namespace {
 
-// Builds `input` with `command` (terrain, imagery) and `options` on one
-// machine and as `n` shards (each with `shard_options`), merges, and
-// compares.
+// The features tables of two line packages, row by row (SQL here, not the
+// package library's reader).
+void expect_same_features(const std::string& ours, const std::string& ref) {
+  auto rows = [](const std::string& path) {
+    tileformat::PackageReader r(path);
+    tileformat::SqliteStatement all(r.db(),
+                                    "SELECT id, layer, properties FROM features ORDER BY id");
+    std::vector<std::string> out;
+    while (all.step())
+      out.push_back(std::to_string(all.column_int(0)) + " " + all.column_text(1) + " " +
+                    all.column_text(2));
+    return out;
+  };
+  const std::vector<std::string> a = rows(ours), b = rows(ref);
+  EXPECT_GT(b.size(), 0u);
+  EXPECT_EQ(a.size(), b.size());
+  EXPECT_TRUE(a == b) << "the features tables differ";
+}
+
+// Builds `input` with `command` (terrain, imagery, analyze, lines) and
+// `options` on one machine and as `n` shards (each with `shard_options`),
+// merges, and compares.
 void expect_shards_merge_to_one_build(const std::string& command, const std::string& input,
                                       const std::string& options, int n,
                                       const std::string& shard_options, const fs::path& dir) {
+  const std::string program = command == "lines" ? vectorize() : tiler();
   auto build = [&](const std::string& more, const std::string& out) {
-    const RunResult r = run(tiler() + " " + command + " -q " + input + " " + options + " " + more +
+    const RunResult r = run(program + " " + command + " -q " + input + " " + options + " " + more +
                                 " -o " + (dir / out).string(),
                             dir);
     EXPECT_EQ(r.exit_code, 0) << command << " " << options << " " << more << "\n" << r.err;
@@ -40,9 +63,11 @@ void expect_shards_merge_to_one_build(const std::string& command, const std::str
     shards += " " + (dir / out).string();
   }
   const RunResult m =
-      run(tiler() + " merge -q" + shards + " -o " + (dir / "m.mbtiles").string(), dir);
+      run(program + " merge -q" + shards + " -o " + (dir / "m.mbtiles").string(), dir);
   ASSERT_EQ(m.exit_code, 0) << m.err;
   expect_same_package((dir / "m.mbtiles").string(), (dir / "one.mbtiles").string());
+  if (command == "lines")
+    expect_same_features((dir / "m.mbtiles").string(), (dir / "one.mbtiles").string());
 }
 
 struct ShardCase {
@@ -58,11 +83,11 @@ void PrintTo(const ShardCase& c, std::ostream* os) {
   *os << c.name;
 }
 
-class ShardedTerrain : public ::testing::TestWithParam<ShardCase> {};
+class ShardedBuild : public ::testing::TestWithParam<ShardCase> {};
 
 }  // namespace
 
-TEST_P(ShardedTerrain, MergesToTheOneMachineBuild) {
+TEST_P(ShardedBuild, MergesToTheOneMachineBuild) {
   TempDir dir;
   const ShardCase& c = GetParam();
   expect_shards_merge_to_one_build(c.command, sample(c.file).string(), c.options, c.shards,
@@ -70,7 +95,7 @@ TEST_P(ShardedTerrain, MergesToTheOneMachineBuild) {
 }
 
 INSTANTIATE_TEST_SUITE_P(
-    Samples, ShardedTerrain,
+    Samples, ShardedBuild,
     ::testing::Values(
         ShardCase{"brasilia_one_shard", "terrain", "brasilia.tif", "", 1, ""},
         ShardCase{"brasilia_2", "terrain", "brasilia.tif", "", 2, "--split-zoom 11"},
@@ -86,7 +111,21 @@ INSTANTIATE_TEST_SUITE_P(
         ShardCase{"images_world_geodetic_jpg_2", "imagery", "bluemarble.tif",
                   "--max-zoom 3 --tiling geodetic --format jpg", 2, "--split-zoom 1"},
         ShardCase{"images_landsat_2", "imagery", "landsat.tif", "", 2, ""},
-        ShardCase{"images_cbers_7", "imagery", "cbers20.tif", "", 7, ""}),
+        ShardCase{"images_cbers_7", "imagery", "cbers20.tif", "", 7, ""},
+        // Lines: Natural Earth's province borders over the whole world (lines
+        // across the antimeridian, up to the polar limits), in both global
+        // tilings; Canadian roads in a projected CRS without .prj, in web
+        // mercator and a local tiling; OS contours (EPSG:27700).
+        ShardCase{"lines_world_7", "lines", "ne_admin1.shp", "--max-zoom 5", 7, ""},
+        ShardCase{"lines_world_geodetic_3", "lines", "ne_admin1.shp",
+                  "--tiling geodetic --max-zoom 4", 3, "--split-zoom 1"},
+        ShardCase{"lines_roads_one_shard", "lines", "canada_roads.shp", "--s_srs EPSG:3978", 1, ""},
+        ShardCase{"lines_roads_2", "lines", "canada_roads.shp", "--s_srs EPSG:3978", 2,
+                  "--split-zoom 8"},
+        ShardCase{"lines_roads_local_3", "lines", "canada_roads.shp",
+                  "--s_srs EPSG:3978 --tiling local", 3, ""},
+        ShardCase{"lines_contours_local_2", "lines", "os_wales_contours.shp",
+                  "--tiling local --max-zoom 9", 2, ""}),
     [](const auto& info) { return std::string(info.param.name); });
 
 // Holes of nodata on both sides of shard borders (and whole subtrees without
@@ -189,4 +228,42 @@ TEST(ShardedTerrainErrors, BadShardSetsAreClearErrors) {
                              dir.path());
   EXPECT_EQ(flow.exit_code, 2) << flow.err;
   EXPECT_NE(flow.err.find("flow layers cannot be sharded"), std::string::npos) << flow.err;
+}
+
+// Line shards are joined by globe-vectorize merge, the others by globe-tiler
+// merge: each says which to use. A line shard is an ordinary line package
+// (every feature, its own tiles) that validate accepts.
+TEST(ShardedLinesErrors, EachMergeJoinsItsOwnKindOfShard) {
+  TempDir dir;
+  const std::string roads = sample("canada_roads.shp").string() + " --s_srs EPSG:3978";
+  for (int i = 0; i < 2; ++i) {
+    const RunResult r = run(vectorize() + " lines -q " + roads + " --shard " + std::to_string(i) +
+                                "/2 -o " + (dir / ("l" + std::to_string(i) + ".mbtiles")).string(),
+                            dir.path());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  ASSERT_TRUE(build_terrain("--shard 0/1", sample("brasilia.tif").string(),
+                            (dir / "t0.mbtiles").string(), dir.path()));
+  const RunResult valid =
+      run(vectorize() + " validate " + (dir / "l1.mbtiles").string(), dir.path());
+  EXPECT_EQ(valid.exit_code, 0) << valid.out << valid.err;
+  auto merge = [&](const std::string& program, const std::string& shards, const std::string& says) {
+    const RunResult r =
+        run("cd " + dir.path().string() + " && " + program + " merge " + shards + " -o out.mbtiles",
+            dir.path());
+    EXPECT_EQ(r.exit_code, 1) << shards << "\n" << r.err;
+    EXPECT_NE(r.err.find(says), std::string::npos) << shards << "\n" << r.err;
+    EXPECT_FALSE(fs::exists(dir / "out.mbtiles")) << shards;
+    EXPECT_FALSE(fs::exists(dir / "out.mbtiles.tmp")) << shards;
+  };
+  merge(tiler(), "l0.mbtiles l1.mbtiles",
+        "l0.mbtiles: a line-cluster shard; globe-tiler merge joins");
+  merge(tiler(), "l0.mbtiles l1.mbtiles", "(line shards: globe-vectorize merge)");
+  merge(vectorize(), "t0.mbtiles", "t0.mbtiles: a terrain shard; globe-vectorize merge joins");
+  merge(vectorize(), "l0.mbtiles", "shard 1/2 is missing");
+  merge(vectorize(), "l0.mbtiles l0.mbtiles", "are both shard 0/2");
+  const RunResult fine = run(
+      vectorize() + " lines " + roads + " --shard 0/2 --split-zoom 25 -o x.mbtiles", dir.path());
+  EXPECT_EQ(fine.exit_code, 2) << fine.err;
+  EXPECT_NE(fine.err.find("--split-zoom 25 is finer"), std::string::npos) << fine.err;
 }
