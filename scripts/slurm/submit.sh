@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
-# Runs a globe-tiler build as a Slurm array job of shards and a merge job
-# that starts when every shard has succeeded (docs/scale-out.md).
+# Runs a globe-tiler or globe-vectorize build as a Slurm array job of shards
+# and a merge job that starts when every shard has succeeded
+# (docs/scale-out.md).
 #
 #   scripts/slurm/submit.sh --shards N [options] -- PROGRAM COMMAND INPUT... -o OUT.mbtiles [build options]
 #
 # PROGRAM COMMAND ... is the one-machine command line (e.g. globe-tiler
-# terrain dem.vrt -o nl.mbtiles --precision 0.01). Writes two batch scripts
+# terrain dem.vrt -o nl.mbtiles --precision 0.01, or globe-vectorize lines
+# roads.gpkg -o roads.mbtiles). Writes two batch scripts
 # into the scratch folder and submits them with sbatch:
 #   NAME.shards.sbatch  --array=0-(N-1): shard $SLURM_ARRAY_TASK_ID/N of the
 #                       build into SCRATCH/NAME.shard-I.mbtiles (--resume: a
