@@ -22,7 +22,7 @@ Header parse(std::span<const uint8_t> blob, ByteReader& r) {
     r.fail("format version " + std::to_string(h.version) +
            " is not supported (this reader knows 1.." + std::to_string(kFormatVersion) +
            "; upgrade the reader)");
-  if (h.kind < 1 || h.kind > 4) r.fail("unknown blob kind " + std::to_string(h.kind));
+  if (h.kind < 1 || h.kind > 5) r.fail("unknown blob kind " + std::to_string(h.kind));
   if (blob.size() - kBlobHeaderSize < h.body_size)
     r.fail("truncated: header declares " + std::to_string(h.body_size) + " body bytes, blob has " +
            std::to_string(blob.size() - kBlobHeaderSize));
@@ -42,6 +42,8 @@ std::string blob_kind_name(BlobKind kind) {
       return "analysis block";
     case BlobKind::kLineClusters:
       return "lineclusters";
+    case BlobKind::kPoints:
+      return "points";
   }
   return "unknown(" + std::to_string(static_cast<int>(kind)) + ")";
 }

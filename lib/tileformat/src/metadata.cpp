@@ -17,6 +17,7 @@ std::optional<PackageKind> package_kind_of_format(const std::string& format) {
   if (format == kMBlockFormat) return PackageKind::kTerrain;
   if (format == kLineClustersFormat) return PackageKind::kLines;
   if (format == kAnalysisFormat) return PackageKind::kAnalysis;
+  if (format == kPointsFormat) return PackageKind::kPoints;
   if (parse_image_format(format)) return PackageKind::kImage;
   return std::nullopt;
 }
@@ -29,6 +30,8 @@ const char* package_kind_name(PackageKind kind) {
       return "image";
     case PackageKind::kLines:
       return "line-cluster";
+    case PackageKind::kPoints:
+      return "point";
     case PackageKind::kAnalysis:
       return "analysis";
   }
@@ -362,6 +365,67 @@ LineMetadata read_line_metadata(const MetadataMap& meta) {
           member(e, "source", "globe:layers", "7.4").string(),
           static_cast<uint64_t>(member(e, "features", "globe:layers", "7.4").number())};
     });
+  return m;
+}
+
+MetadataMap to_metadata(const PointMetadata& m) {
+  MetadataMap meta = common_keys(m.common);
+  meta["globe:extent"] = std::to_string(m.extent);
+  meta["globe:cluster_grid"] = std::to_string(m.cluster_grid);
+  meta["globe:tile_px"] = metadata_number(m.tile_px);
+  meta["globe:chart_max_px"] = metadata_number(m.chart_max_px);
+  std::string fields = "[";
+  for (size_t i = 0; i < m.fields.size(); ++i)
+    fields += (i ? ",\"" : "\"") + json_escape(m.fields[i]) + "\"";
+  meta["globe:fields"] = fields + "]";
+  meta["globe:aggregate"] = m.aggregate == PointAggregate::kSum ? "sum" : "mean";
+  meta["globe:merge_px"] = metadata_number(m.merge_px);
+  meta["globe:signed"] = m.signed_values ? "1" : "0";
+  meta["globe:label_field"] = m.label_field;
+  meta["globe:features"] = std::to_string(m.features);
+  std::string zooms = "[";
+  for (size_t i = 0; i < m.zooms.size(); ++i) {
+    const PointZoomStats& z = m.zooms[i];
+    zooms += (i ? "," : "") + std::string("{\"zoom\":") + std::to_string(z.zoom) +
+             ",\"places\":" + std::to_string(z.places) +
+             ",\"max_total\":" + metadata_number(z.max_total, 0) +
+             ",\"max_value\":" + metadata_number(z.max_value, 0) + "}";
+  }
+  meta["globe:zoom_stats"] = zooms + "]";
+  return meta;
+}
+
+PointMetadata read_point_metadata(const MetadataMap& meta) {
+  const Keys k(meta, "11.4");
+  PointMetadata m;
+  read_common(k, meta, m.common);
+  if (!m.common.has_tiling) Tiling::from_metadata(meta);  // names the missing key
+  m.extent = k.integer("globe:extent");
+  m.cluster_grid = k.integer("globe:cluster_grid");
+  m.tile_px = k.number("globe:tile_px");
+  m.chart_max_px = k.number("globe:chart_max_px");
+  m.fields =
+      read_array<std::string>(k, "globe:fields", [](const JsonValue& e) { return e.string(); });
+  if (m.fields.empty()) throw FormatError("11.4", "metadata globe:fields lists no field");
+  const std::string aggregate = k.text("globe:aggregate");
+  if (aggregate != "sum" && aggregate != "mean")
+    throw FormatError("11.4", "metadata globe:aggregate is '" + aggregate + "', not sum or mean");
+  m.aggregate = aggregate == "sum" ? PointAggregate::kSum : PointAggregate::kMean;
+  m.merge_px = k.number("globe:merge_px");
+  m.signed_values = k.text("globe:signed") == "1";
+  m.label_field = k.find("globe:label_field").value_or("");
+  m.features = static_cast<uint64_t>(k.number("globe:features"));
+  m.zooms = read_array<PointZoomStats>(k, "globe:zoom_stats", [&](const JsonValue& e) {
+    return PointZoomStats{
+        static_cast<int>(member(e, "zoom", "globe:zoom_stats", "11.4").number()),
+        static_cast<uint64_t>(member(e, "places", "globe:zoom_stats", "11.4").number()),
+        member(e, "max_total", "globe:zoom_stats", "11.4").number(),
+        member(e, "max_value", "globe:zoom_stats", "11.4").number()};
+  });
+  for (const PointZoomStats& z : m.zooms)
+    if (z.zoom < m.common.min_zoom || z.zoom > m.common.max_zoom)
+      throw FormatError("11.4", "metadata globe:zoom_stats names zoom " + std::to_string(z.zoom) +
+                                    " outside minzoom..maxzoom");
   return m;
 }
 

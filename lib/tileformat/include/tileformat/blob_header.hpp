@@ -10,7 +10,13 @@
 
 namespace tileformat {
 
-enum class BlobKind : uint16_t { kMBlock = 1, kImage = 2, kLineClusters = 3, kAnalysis = 4 };
+enum class BlobKind : uint16_t {
+  kMBlock = 1,
+  kImage = 2,
+  kLineClusters = 3,
+  kAnalysis = 4,
+  kPoints = 5
+};
 
 inline constexpr uint16_t kFormatVersion = 1;
 inline constexpr size_t kBlobHeaderSize = 12;

@@ -28,14 +28,15 @@ using MetadataMap = std::map<std::string, std::string>;
 inline constexpr const char* kMBlockFormat = "application/vnd.globe.mblock";
 inline constexpr const char* kLineClustersFormat = "application/vnd.globe.lineclusters";
 inline constexpr const char* kAnalysisFormat = "application/vnd.globe.analysis";
+inline constexpr const char* kPointsFormat = "application/vnd.globe.points";
 
 // The kinds of package; the `format` key tells them apart.
-enum class PackageKind { kTerrain, kImage, kLines, kAnalysis };
+enum class PackageKind { kTerrain, kImage, kLines, kAnalysis, kPoints };
 
 // The kind whose `format` value this is (terrain and lines by their media
 // type, imagery by png/jpg/webp), or nullopt.
 std::optional<PackageKind> package_kind_of_format(const std::string& format);
-// "terrain", "image", "line-cluster" or "analysis", for messages.
+// "terrain", "image", "line-cluster", "analysis" or "point", for messages.
 const char* package_kind_name(PackageKind kind);
 
 struct InputFile {
@@ -111,12 +112,36 @@ struct AnalysisMetadata {
   double skyview_radius_m = 0;        // globe:skyview_radius_m
 };
 
+// Points for charts (§11.4).
+enum class PointAggregate { kSum, kMean };
+struct PointZoomStats {
+  int zoom = 0;
+  uint64_t places = 0;   // places of the zoom (aggregates count once)
+  double max_total = 0;  // largest sum of a place's values (signed: of their magnitudes)
+  double max_value = 0;  // largest magnitude of one value
+};
+struct PointMetadata {
+  CommonMetadata common;
+  int extent = 0;                   // globe:extent
+  int cluster_grid = 0;             // globe:cluster_grid
+  double tile_px = 0;               // globe:tile_px
+  double chart_max_px = 0;          // globe:chart_max_px: chart size the grids were built for
+  std::vector<std::string> fields;  // globe:fields (JSON array), by value index
+  PointAggregate aggregate = PointAggregate::kSum;  // globe:aggregate: "sum" or "mean"
+  double merge_px = 0;                              // globe:merge_px
+  bool signed_values = false;         // globe:signed: negative values occur ("1") or not ("0")
+  std::string label_field;            // globe:label_field ("" for none)
+  uint64_t features = 0;              // globe:features: source places (features table rows)
+  std::vector<PointZoomStats> zooms;  // globe:zoom_stats (JSON array), min..max zoom
+};
+
 // The package's keys; kind-specific keys absent from the struct (optionals)
 // are not written.
 MetadataMap to_metadata(const TerrainMetadata& m);
 MetadataMap to_metadata(const ImageMetadata& m);
 MetadataMap to_metadata(const LineMetadata& m);
 MetadataMap to_metadata(const AnalysisMetadata& m);
+MetadataMap to_metadata(const PointMetadata& m);
 
 // Read back; throw FormatError (§3.2, §7.4, §8) naming the missing or bad
 // key. read_common_metadata reads what any MBTiles has (other tools'
@@ -126,6 +151,7 @@ TerrainMetadata read_terrain_metadata(const MetadataMap& meta);
 ImageMetadata read_image_metadata(const MetadataMap& meta);
 LineMetadata read_line_metadata(const MetadataMap& meta);
 AnalysisMetadata read_analysis_metadata(const MetadataMap& meta);
+PointMetadata read_point_metadata(const MetadataMap& meta);
 
 // The `description` our tools write: "WHAT built by PROGRAM from FIRST
 // (and N more)", FIRST being the first input's file name.
