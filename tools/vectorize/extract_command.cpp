@@ -9,6 +9,9 @@
 #include "commands.hpp"
 #include "errors.hpp"
 #include "line_package.hpp"
+#include "package_open.hpp"
+#include "point_package.hpp"
+#include "points_inspect.hpp"
 #include "tileformat/feature_table.hpp"
 #include "tileformat/line_tile.hpp"
 #include "vector_writer.hpp"
@@ -22,7 +25,8 @@ int run_lines_extract(const std::vector<std::string>& args) {
   CliArgs cli("globe-vectorize extract",
               "globe-vectorize extract PACKAGE --zoom Z -o OUT.gpkg\n\n"
               "Writes the lines (and points) of zoom Z, clipped to their tiles, as vector data\n"
-              "(GeoPackage; .geojson, .shp, .fgb by extension) in the tiling CRS.");
+              "(GeoPackage; .geojson, .shp, .fgb by extension) in the tiling CRS. Of a point\n"
+              "package: its places with their values (layer places).");
   cli.option("--zoom", "Z", "zoom level to extract",
              [&](const std::string& v) { zoom = CliArgs::to_int("--zoom", v, 0, 30); });
   cli.option("-o,--output", "OUT.gpkg", "output file", [&](const std::string& v) { output = v; });
@@ -33,6 +37,17 @@ int run_lines_extract(const std::vector<std::string>& args) {
   if (!zoom) throw UsageError("--zoom is required");
   if (output.empty()) throw UsageError("no output given; add -o OUT.gpkg");
   const std::string& path = (*positional)[0];
+  if (package_kind(path) == tileformat::PackageKind::kPoints) {
+    const PointPackage points = open_point_package(path);
+    VectorWriter out(output, force ? tileformat::IfExists::kOverwrite : tileformat::IfExists::kFail,
+                     points.meta.common.tiling.crs);
+    const uint64_t n = points_extract(path, *zoom, out);
+    out.commit();
+    if (!quiet)
+      std::fprintf(stderr, "globe-vectorize: wrote %s: %llu places of zoom %d\n", output.c_str(),
+                   static_cast<unsigned long long>(n), *zoom);
+    return kExitOk;
+  }
   LinePackage p = open_line_package(path);
   if (*zoom < p.min_zoom || *zoom > p.max_zoom)
     throw UsageError("--zoom " + std::to_string(*zoom) + ": the package holds zooms " +

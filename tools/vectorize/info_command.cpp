@@ -8,6 +8,8 @@
 #include "errors.hpp"
 #include "line_package.hpp"
 #include "package_info.hpp"
+#include "package_open.hpp"
+#include "points_inspect.hpp"
 #include "tileformat/feature_table.hpp"
 #include "tileformat/line_tile.hpp"
 
@@ -16,10 +18,11 @@ namespace globe {
 int run_lines_info(const std::vector<std::string>& args) {
   CliArgs cli("globe-vectorize info",
               "globe-vectorize info PACKAGE\n\nPrints a line package's metadata, classes, zoom "
-              "range, tiles, segments and points.");
+              "range, tiles, segments and points; of a point package, its fields and places.");
   auto positional = cli.parse_command(args, 1, 1, "PACKAGE");
   if (!positional) return kExitOk;
   const std::string& path = (*positional)[0];
+  if (package_kind(path) == tileformat::PackageKind::kPoints) return points_info(path);
   LinePackage p = open_line_package(path);
   print_package_info(*p.reader, path);
   std::printf("classes:\n");

@@ -20,7 +20,7 @@ struct LineFacts {
   std::vector<uint64_t> layer_features;  // kept, per layer
 };
 
-tileformat::LineMetadata line_metadata(const LinesSettings& s, const LineFrame& frame,
+tileformat::LineMetadata line_metadata(const LinesSettings& s, const VectorFrame& frame,
                                        const LinePlan& plan, const LineClasses& classes,
                                        const LineFacts& facts);
 

@@ -7,7 +7,6 @@
 #include <string>
 
 #include "errors.hpp"
-#include "tileformat/package.hpp"
 
 namespace globe {
 namespace {
@@ -20,35 +19,6 @@ constexpr int kDefaultMaxZoomCap = 18;
 constexpr int kPointsOnlyMaxZoom = 14;
 
 }  // namespace
-
-LineFrame choose_line_frame(const LinesSettings& s) {
-  LineFrame f;
-  if (!s.like.empty()) {
-    tileformat::PackageReader like(s.like);
-    f.tiling = Tiling::from_metadata(like.metadata());
-    if (f.tiling->scheme == tileformat::Scheme::kLocal) {
-      f.frame = TargetFrame::kProjected;
-      f.target = SpatialRef::from_wkt(f.tiling->crs, s.like);
-    } else {
-      f.frame = f.tiling->scheme == tileformat::Scheme::kGeodetic ? TargetFrame::kGeodetic
-                                                                  : TargetFrame::kWebMercator;
-    }
-    return f;
-  }
-  if (s.tiling == tileformat::Scheme::kWebMercator) {
-    f.frame = TargetFrame::kWebMercator;
-    f.tiling = Tiling::webmercator();
-  } else if (s.tiling == tileformat::Scheme::kGeodetic) {
-    f.frame = TargetFrame::kGeodetic;
-    f.tiling = Tiling::geodetic();
-  } else {
-    f.frame = TargetFrame::kProjected;
-    if (!s.t_srs.empty()) f.target = SpatialRef::from_user_input(s.t_srs, "--t_srs");
-  }
-  if (!s.t_srs.empty() && f.frame != TargetFrame::kProjected)
-    throw UsageError("--t_srs applies to --tiling local only");
-  return f;
-}
 
 void LengthHistogram::add(double len) {
   if (!(len > 0)) return;
@@ -67,32 +37,11 @@ double LengthHistogram::median() const {
   return 0;
 }
 
-LinePlan plan_lines(const LinesSettings& s, const LineFrame& frame, const Bounds& extent,
+LinePlan plan_lines(const LinesSettings& s, const VectorFrame& frame, const Bounds& extent,
                     const LengthHistogram& lengths, const LineClasses& classes) {
   LinePlan p;
-  if (frame.tiling) {
-    p.tiling = *frame.tiling;
-  } else {
-    const double span = std::max({extent.width(), extent.height(), 1e-9});
-    const double root = std::exp2(std::ceil(std::log2(span)));
-    p.tiling = Tiling::local(frame.target->wkt2(), extent.min_x, extent.max_y, root);
-  }
-  p.area = p.tiling.extent();
-  if (s.bbox) {
-    const auto& b = *s.bbox;
-    Bounds box;
-    if (frame.frame == TargetFrame::kProjected) {
-      CoordTransform t(SpatialRef::from_user_input("EPSG:4326", "--bbox"), *frame.target);
-      if (!t.transform_bounds({b[0], b[1], b[2], b[3]}, box))
-        throw UsageError("--bbox cannot be expressed in the tiling CRS");
-    } else {
-      const XY lo = LineProjector::lonlat_to_frame(frame.frame, {b[0], b[1]});
-      const XY hi = LineProjector::lonlat_to_frame(frame.frame, {b[2], b[3]});
-      box = {lo.x, lo.y, hi.x, hi.y};
-    }
-    p.area = {std::max(p.area.min_x, box.min_x), std::max(p.area.min_y, box.min_y),
-              std::min(p.area.max_x, box.max_x), std::min(p.area.max_y, box.max_y)};
-  }
+  p.tiling = frame_tiling(frame, extent);
+  p.area = frame_area(frame, p.tiling, s);
   p.min_zoom = s.min_zoom.value_or(0);
   if (s.max_zoom) {
     p.max_zoom = *s.max_zoom;

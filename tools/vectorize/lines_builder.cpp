@@ -40,12 +40,16 @@ class Builder {
 
   LinesSummary run() {
     const auto start = std::chrono::steady_clock::now();
-    frame_ = choose_line_frame(s_);
+    frame_ = choose_vector_frame(s_.like, s_);
     // Shard 0 holds the features table of a sharded build (docs/tileformat.md
     // §10); the other shards need no properties.
     const bool keeps_features = !s_.shard || s_.shard->index == 0;
-    VectorReaderOptions ro{s_.layers,    s_.where, s_.class_field,
-                           std::nullopt, s_.s_srs, keeps_features};
+    VectorReaderOptions ro;
+    ro.layers = s_.layers;
+    ro.where = s_.where;
+    ro.class_field = s_.class_field;
+    ro.s_srs = s_.s_srs;
+    ro.properties = keeps_features;
     if (s_.bbox) ro.filter = Bounds{(*s_.bbox)[0], (*s_.bbox)[1], (*s_.bbox)[2], (*s_.bbox)[3]};
     VectorReader reader(s_.inputs, ro);
     if (frame_.frame == TargetFrame::kProjected && !frame_.target)
@@ -290,7 +294,7 @@ class Builder {
   Progress& progress_;
   const int threads_;
   LineClasses classes_;
-  LineFrame frame_;
+  VectorFrame frame_;
   LineFacts facts_;
   LengthHistogram lengths_;
   LinePlan plan_;

@@ -11,7 +11,9 @@ const char* kUsage =
     "commands:\n"
     "  lines INPUT... -o OUT.mbtiles      lines, polygon outlines and points (Shapefile,\n"
     "                                     GeoPackage, GeoJSON, OSM, ...) -> line-cluster package\n"
-    "  info PACKAGE                       metadata, classes, zoom range, tiles and segments\n"
+    "  points INPUT... -o OUT.mbtiles --fields A,B,...   places with values (OGR points,\n"
+    "                                     CSV with --xy) -> point package for charts\n"
+    "  info PACKAGE                       metadata, classes or fields, zooms, tiles, contents\n"
     "  validate PACKAGE                   decode every tile, recheck every cluster grid\n"
     "  extract PACKAGE --zoom Z -o OUT.gpkg   decoded lines of one zoom as vector data\n"
     "  merge SHARD... -o OUT.mbtiles      join the shards of a `lines --shard I/N` build\n"
@@ -28,6 +30,7 @@ int main(int argc, char** argv) {
                                   {"info", globe::run_lines_info},
                                   {"validate", globe::run_lines_validate},
                                   {"extract", globe::run_lines_extract},
-                                  {"merge", globe::run_lines_merge}},
+                                  {"merge", globe::run_lines_merge},
+                                  {"points", globe::run_points}},
                                  argc, argv);
 }

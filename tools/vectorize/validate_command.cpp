@@ -15,6 +15,7 @@
 #include "errors.hpp"
 #include "line_package.hpp"
 #include "package_open.hpp"
+#include "points_inspect.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/feature_table.hpp"
 #include "tileformat/line_clusters.hpp"
@@ -30,6 +31,7 @@ int run_lines_validate(const std::vector<std::string>& args) {
   auto positional = cli.parse_command(args, 1, 1, "PACKAGE");
   if (!positional) return kExitOk;
   const std::string& path = (*positional)[0];
+  if (package_kind(path) == tileformat::PackageKind::kPoints) return points_validate(path);
   LinePackage p = open_line_package(path);
   ValidationReport r;
   tileformat::FeatureTableReader features(*p.reader);

@@ -15,6 +15,7 @@ namespace globe {
 struct VectorReader::LayerHandle {
   OGRLayerH layer = nullptr;
   int class_field = -1;
+  std::vector<int> value_fields;  // OGR field index of each VectorReaderOptions::value_fields
   std::vector<std::string> field_names;
   std::vector<OGRFieldType> field_types;
 };
@@ -79,6 +80,27 @@ std::string field_json(OGRFeatureH feat, int i, OGRFieldType type) {
   }
 }
 
+LayerGeometry layer_geometry(OGRLayerH layer) {
+  switch (wkbFlatten(OGR_L_GetGeomType(layer))) {
+    case wkbPoint:
+    case wkbMultiPoint:
+      return LayerGeometry::kPoints;
+    case wkbLineString:
+    case wkbMultiLineString:
+    case wkbCircularString:
+    case wkbCompoundCurve:
+    case wkbMultiCurve:
+      return LayerGeometry::kLines;
+    case wkbPolygon:
+    case wkbMultiPolygon:
+    case wkbCurvePolygon:
+    case wkbMultiSurface:
+      return LayerGeometry::kPolygons;
+    default:
+      return LayerGeometry::kOther;
+  }
+}
+
 }  // namespace
 
 VectorReader::VectorReader(const std::vector<std::string>& inputs, const VectorReaderOptions& opt)
@@ -88,8 +110,11 @@ VectorReader::VectorReader(const std::vector<std::string>& inputs, const VectorR
   std::string available;
   std::optional<SpatialRef> assigned;
   if (!opt.s_srs.empty()) assigned = SpatialRef::from_user_input(opt.s_srs, "--s_srs");
+  // CSV coordinates are longitude/latitude unless --s_srs says otherwise.
+  if (opt.xy && !assigned) assigned = SpatialRef::from_user_input("EPSG:4326", "--xy");
   for (const std::string& path : inputs) {
-    datasets_.push_back(GdalDataset::open_vector(path));
+    datasets_.push_back(opt.xy ? GdalDataset::open_csv_points(path, opt.xy->first, opt.xy->second)
+                               : GdalDataset::open_vector(path));
     GDALDatasetH ds = datasets_.back().get();
     for (int li = 0; li < GDALDatasetGetLayerCount(ds); ++li) {
       OGRLayerH layer = GDALDatasetGetLayer(ds, li);
@@ -105,6 +130,11 @@ VectorReader::VectorReader(const std::vector<std::string>& inputs, const VectorR
       VectorLayerInfo info;
       info.name = name;
       info.source = path;
+      info.geometry = layer_geometry(layer);
+      if (opt.xy && info.geometry != LayerGeometry::kPoints)
+        throw InputError(where + ": no columns '" + opt.xy->first + "' and '" + opt.xy->second +
+                         "' to read points from (--xy LONCOL,LATCOL); its columns are: " +
+                         field_list(OGR_L_GetLayerDefn(layer)));
       if (assigned) {
         info.crs = assigned;
       } else if (OGRSpatialReferenceH srs = OGR_L_GetSpatialRef(layer)) {
@@ -127,7 +157,20 @@ VectorReader::VectorReader(const std::vector<std::string>& inputs, const VectorR
       for (int i = 0; i < OGR_FD_GetFieldCount(defn); ++i) {
         OGRFieldDefnH fd = OGR_FD_GetFieldDefn(defn, i);
         h->field_names.push_back(OGR_Fld_GetNameRef(fd));
+        info.fields.push_back(h->field_names.back());
         h->field_types.push_back(OGR_Fld_GetType(fd));
+      }
+      for (const std::string& field : opt.value_fields) {
+        const int fi = OGR_FD_GetFieldIndex(defn, field.c_str());
+        if (fi < 0)
+          throw UsageError("--fields '" + field + "': " + where +
+                           " has no such field; its fields are: " + field_list(defn));
+        const OGRFieldType type = OGR_Fld_GetType(OGR_FD_GetFieldDefn(defn, fi));
+        if (type != OFTInteger && type != OFTInteger64 && type != OFTReal)
+          throw UsageError("--fields '" + field + "': " + where + " holds " +
+                           OGR_GetFieldTypeName(type) +
+                           " values there, not numbers; give numeric fields");
+        h->value_fields.push_back(fi);
       }
       if (!opt.class_field.empty()) {
         h->class_field = OGR_FD_GetFieldIndex(defn, opt.class_field.c_str());
@@ -169,8 +212,13 @@ bool VectorReader::next(VectorFeature& out) {
       continue;
     }
     out.layer = static_cast<int>(current_);
+    out.fid = OGR_F_GetFID(feat);
     out.lines.clear();
     out.points.clear();
+    out.values.clear();
+    for (int fi : h.value_fields)
+      out.values.push_back(OGR_F_IsFieldSetAndNotNull(feat, fi) ? OGR_F_GetFieldAsDouble(feat, fi)
+                                                                : std::nan(""));
     out.properties_json = properties_ ? "{" : "";
     bool first = true;
     for (size_t i = 0; properties_ && i < h.field_names.size(); ++i) {

@@ -1,7 +1,8 @@
 // Reads features from OGR sources (the one place that walks OGR layers,
 // features and geometries): selected layers, an attribute filter, the class
-// field, properties as JSON, and geometry flattened into line parts (lines,
-// polygon rings, curves linearized) and points, in the layer's CRS.
+// field, numeric value fields, properties as JSON, and geometry flattened
+// into line parts (lines, polygon rings, curves linearized) and points, in
+// the layer's CRS. CSV files with coordinate columns are read as points.
 #pragma once
 
 #include <memory>
@@ -17,17 +18,24 @@ namespace globe {
 
 struct VectorFeature {
   int layer = 0;                // index into VectorReader::layers()
+  int64_t fid = 0;              // OGR's feature id (a CSV file's data row, from 1)
   std::string properties_json;  // {"field": value, ...}
   std::string class_value;      // the class field as text ("" without --class-field)
   std::vector<std::vector<XY>> lines;
   std::vector<XY> points;
+  std::vector<double> values;  // VectorReaderOptions::value_fields; NaN where null
 };
+
+// What a layer declares it holds.
+enum class LayerGeometry { kPoints, kLines, kPolygons, kOther };
 
 struct VectorLayerInfo {
   std::string name;
   std::string source;  // file it comes from
   std::optional<SpatialRef> crs;
   int64_t feature_count = -1;  // -1 if unknown without a scan
+  LayerGeometry geometry = LayerGeometry::kOther;
+  std::vector<std::string> fields;  // attribute names
 };
 
 struct VectorReaderOptions {
@@ -37,6 +45,11 @@ struct VectorReaderOptions {
   std::optional<tileformat::Bounds> filter;  // lon/lat area (a fast pre-filter)
   std::string s_srs;                         // assigned CRS ("" keeps the files')
   bool properties = true;                    // false: properties_json stays empty
+  // Numeric fields read into VectorFeature::values; a missing or text field
+  // is a UsageError naming the layer and its fields.
+  std::vector<std::string> value_fields;
+  // CSV files: the columns holding x and y (CRS: --s_srs, else lon/lat).
+  std::optional<std::pair<std::string, std::string>> xy;
 };
 
 class VectorReader {

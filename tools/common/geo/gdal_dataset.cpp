@@ -264,6 +264,26 @@ GdalDataset GdalDataset::open_vector(const std::string& path) {
   return ds;
 }
 
+GdalDataset GdalDataset::open_csv_points(const std::string& path, const std::string& x_column,
+                                         const std::string& y_column) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError(path + ": no such file; check the path");
+  const std::string x = "X_POSSIBLE_NAMES=" + x_column, y = "Y_POSSIBLE_NAMES=" + y_column;
+  const char* const drivers[] = {"CSV", nullptr};
+  const char* const options[] = {x.c_str(), y.c_str(), "AUTODETECT_TYPE=YES",
+                                 "KEEP_GEOM_COLUMNS=NO", nullptr};
+  CPLErrorReset();
+  GDALDatasetH h =
+      GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, drivers, options, nullptr);
+  if (!h) {
+    const std::string why = gdal_last_error();
+    throw InputError(path + ": --xy reads CSV files and this is none" +
+                     (why.empty() ? "" : " (" + why + ")") +
+                     "; without --xy, any OGR point layer is read as it is");
+  }
+  return GdalDataset(h, path);
+}
+
 GdalDataset GdalDataset::create_vector(const std::string& path) {
   namespace fs = std::filesystem;
   std::string ext = fs::path(path).extension().string();

@@ -40,6 +40,12 @@ class GdalDataset {
   // Opens vector data (any OGR source) read-only; throws InputError naming the
   // file. A shapefile must come with its .shx and .dbf.
   static GdalDataset open_vector(const std::string& path);
+  // A CSV file whose points are in the columns `x_column` and `y_column`
+  // (types of the other columns detected; a layer without point geometry if
+  // the columns are missing); throws InputError naming the file if it is not
+  // a CSV file.
+  static GdalDataset open_csv_points(const std::string& path, const std::string& x_column,
+                                     const std::string& y_column);
   // Creates a vector dataset with the driver GDAL guesses from the extension
   // (GPKG if none); throws OutputError.
   static GdalDataset create_vector(const std::string& path);

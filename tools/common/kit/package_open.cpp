@@ -30,6 +30,7 @@ std::unique_ptr<tileformat::PackageReader> open_package_of_kind(const std::strin
         kind == tileformat::PackageKind::kTerrain    ? tileformat::kMBlockFormat
         : kind == tileformat::PackageKind::kLines    ? std::string(tileformat::kLineClustersFormat)
         : kind == tileformat::PackageKind::kAnalysis ? std::string(tileformat::kAnalysisFormat)
+        : kind == tileformat::PackageKind::kPoints   ? std::string(tileformat::kPointsFormat)
                                                      : std::string("png, jpg, webp");
     const std::string name = tileformat::package_kind_name(kind);
     throw InputError(
