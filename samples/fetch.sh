@@ -8,7 +8,8 @@
 # Usage: samples/fetch.sh [small|all]    (default: small, used by the tests)
 #   small: lux, olinda, jacksboro, brasilia, etopo20 (DEMs, ~3 MB of packages) and
 #          ne_admin1, canada_roads, os_wales, efas_rivers (lines, ~35 MB of packages) and
-#          landsat, cbers20, bluemarble (imagery, +15 MB)
+#          landsat, cbers20, bluemarble (imagery, +15 MB) and
+#          us_flights (npm vega-datasets: airports, routes; points per airport, +18 MB)
 #   all:   small + nothing else yet (the benchmarks synthesize larger DEMs)
 # Exit codes: 0 ok, 1 a download/checksum/conversion failed, 2 usage error.
 set -euo pipefail
@@ -83,6 +84,31 @@ for entry in "${small_sets[@]}"; do
   IFS='|' read -r id pkg inner out <<<"$entry"
   extract_file "$pkg" "$inner" "$out"
 done
+
+# npm packages: the registry's tarball (https://registry.npmjs.org), members
+# taken out of it like those of the Debian packages.
+npm_member() { # package version inner output
+  local pkg=$1 ver=$2 inner=$3 out=$4 tgz
+  [ -f "$data/$out" ] && return 0
+  tgz="$debs/$pkg-$ver.tgz"
+  if [ ! -f "$tgz" ]; then
+    echo "fetch: downloading npm $pkg@$ver" >&2
+    curl -fsSL --retry 3 -o "$tgz.part" "https://registry.npmjs.org/$pkg/-/$pkg-$ver.tgz"
+    mv "$tgz.part" "$tgz"
+  fi
+  tar -xzf "$tgz" -O "package/$inner" >"$data/$out.part"
+  mv "$data/$out.part" "$data/$out"
+}
+npm_member vega-datasets 3.2.1 data/airports.csv us_airports.csv
+npm_member vega-datasets 3.2.1 data/flights-airport.csv us_flights_airport.csv
+
+# us_airport_flights: departures per airport by the census region flown to
+# (a multi-valued point set for charts).
+if [ ! -f "$data/us_airport_flights.csv" ]; then
+  python3 "$here/us_flights_by_region.py" "$data/us_airports.csv" "$data/us_flights_airport.csv" \
+    >"$data/us_airport_flights.csv.part"
+  mv "$data/us_airport_flights.csv.part" "$data/us_airport_flights.csv"
+fi
 
 # Writes a GDAL VRT describing a headerless raster file.
 # raw_vrt OUT.vrt FILE COLS ROWS TYPE BYTES_PER_PIXEL OFFSET SRS "GEOTRANSFORM"
