@@ -48,6 +48,13 @@ TEST(FuzzRegression, LineTileInputs) {
     globe_fuzz::line_tile(bytes);
 }
 
+TEST(FuzzRegression, PointTileInputs) {
+  const auto all = inputs("point_tile");
+  EXPECT_FALSE(all.empty());
+  for (const auto& bytes : all)
+    globe_fuzz::point_tile(bytes);
+}
+
 TEST(FuzzRegression, PackageInputs) {
   globe_test::TempDir dir;
   const auto all = inputs("package");

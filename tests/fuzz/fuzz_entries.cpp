@@ -1,6 +1,7 @@
 // Fuzz entries (see fuzz_entries.hpp).
 #include "fuzz_entries.hpp"
 
+#include <bit>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -11,6 +12,7 @@
 #include "tileformat/mblock.hpp"
 #include "tileformat/metadata.hpp"
 #include "tileformat/package.hpp"
+#include "tileformat/point_tile.hpp"
 
 namespace globe_fuzz {
 namespace {
@@ -87,6 +89,35 @@ void line_tile(std::span<const uint8_t> data) {
   });
 }
 
+void point_tile(std::span<const uint8_t> data) {
+  rejecting_cleanly([&] {
+    const tileformat::PointTileCounts c = tileformat::peek_point_tile_counts(data);
+    const tileformat::PointTile t = tileformat::decode_point_tile(data);
+    if (c.places != t.places.size() || c.fields != t.fields ||
+        c.cell_entries != t.cell_places.size())
+      fail("peeked point tile counts differ from the decoded tile");
+    const tileformat::PointTile again =
+        tileformat::decode_point_tile(tileformat::encode_point_tile(t, 1));
+    auto places = [](const tileformat::PointTile& p) {
+      std::vector<int64_t> v;
+      for (const auto& pl : p.places)
+        v.insert(v.end(), {int64_t(pl.id), pl.count, pl.at.x, pl.at.y});
+      return v;
+    };
+    // Values compare as bits: a NaN must survive as itself.
+    auto bits = [](const tileformat::PointTile& p) {
+      std::vector<uint32_t> v;
+      for (float f : p.values)
+        v.push_back(std::bit_cast<uint32_t>(f));
+      return v;
+    };
+    if (again.extent != t.extent || again.grid != t.grid || again.reach != t.reach ||
+        places(again) != places(t) || bits(again) != bits(t) ||
+        again.cell_offsets != t.cell_offsets || again.cell_places != t.cell_places)
+      fail("a point tile does not survive re-encoding");
+  });
+}
+
 void package(std::span<const uint8_t> data, const std::string& scratch_path) {
   {
     std::ofstream out(scratch_path, std::ios::binary | std::ios::trunc);
@@ -104,6 +135,8 @@ void package(std::span<const uint8_t> data, const std::string& scratch_path) {
         mblock(blob);
       else if (format == tileformat::kLineClustersFormat)
         line_tile(blob);
+      else if (format == tileformat::kPointsFormat)
+        point_tile(blob);
       else
         image_tile(blob);
     });

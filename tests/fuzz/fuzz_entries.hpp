@@ -20,6 +20,8 @@ void image_tile(std::span<const uint8_t> data);
 // decode_line_tile and peek_line_tile_counts; decoded tiles must re-encode
 // and decode to the same tile, and the peeked counts must match.
 void line_tile(std::span<const uint8_t> data);
+// decode_point_tile and peek_point_tile_counts, as for line tiles.
+void point_tile(std::span<const uint8_t> data);
 // The bytes as a package file at `scratch_path`: open, read the metadata,
 // summaries, and every tile, decoding it by the package's format.
 void package(std::span<const uint8_t> data, const std::string& scratch_path);

@@ -14,6 +14,7 @@
 #include "tileformat/mblock.hpp"
 #include "tileformat/metadata.hpp"
 #include "tileformat/package.hpp"
+#include "tileformat/point_tile.hpp"
 
 namespace fs = std::filesystem;
 using Bytes = std::vector<uint8_t>;
@@ -59,6 +60,21 @@ std::vector<Bytes> line_tiles() {
   return {tileformat::encode_line_tile(t), tileformat::encode_line_tile(empty)};
 }
 
+std::vector<Bytes> point_tiles() {
+  tileformat::PointTile t;
+  t.grid = 4;
+  t.reach = 200;
+  t.fields = 2;
+  t.places = {{2, 1, {10, 4000}}, {7, 3, {2048, 2048}}, {100, 1, {4096, 0}}};
+  t.values = {1.5f, 0, 3, 4e6f, 0.25f, 7};
+  tileformat::build_point_grid(t);
+  tileformat::PointTile empty;
+  empty.grid = 1;
+  empty.fields = 1;
+  tileformat::build_point_grid(empty);
+  return {tileformat::encode_point_tile(t), tileformat::encode_point_tile(empty)};
+}
+
 std::vector<Bytes> image_headers() {
   Bytes png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R', 0,
                0,    1,   0,   0,   0,    1,    0,    8,    6, 0, 0, 0,  1,   2,   3,   4};
@@ -99,16 +115,19 @@ int main(int argc, char** argv) {
     return 2;
   }
   const fs::path out = argv[1];
-  const auto m = mblocks(), l = line_tiles(), i = image_headers();
+  const auto m = mblocks(), l = line_tiles(), i = image_headers(), p = point_tiles();
   for (size_t k = 0; k < m.size(); ++k)
     save(out / "mblock", "seed" + std::to_string(k), m[k]);
   for (size_t k = 0; k < l.size(); ++k)
     save(out / "line_tile", "seed" + std::to_string(k), l[k]);
   for (size_t k = 0; k < i.size(); ++k)
     save(out / "image_tile", "seed" + std::to_string(k), i[k]);
+  for (size_t k = 0; k < p.size(); ++k)
+    save(out / "point_tile", "seed" + std::to_string(k), p[k]);
   fs::create_directories(out / "package");
   save(out / "package", "seed0", package(out, tileformat::kMBlockFormat, {m[0], m[1]}));
   save(out / "package", "seed1", package(out, tileformat::kLineClustersFormat, l));
   save(out / "package", "seed2", package(out, "png", {i[0]}));
+  save(out / "package", "seed3", package(out, tileformat::kPointsFormat, p));
   return 0;
 }
