@@ -30,9 +30,15 @@ using tileformat::TileId;
 // The nominal display size of a tile (as for lines, docs/lines.md).
 constexpr double kTilePx = 256.0;
 // The default finest zoom: the first where at most 1 % of the places have
-// another within --merge-px, and never finer than this.
+// another within --merge-px, or where tiles hold fewer than 2 places on
+// average (deeper zooms would add about a tile per place to split the few
+// left), and never finer than this.
 constexpr int kDefaultMaxZoomCap = 16;
 constexpr double kCrowdedShare = 0.01;
+constexpr double kFewestPlacesPerTile = 2;
+// Point tiles are small and many: zstd level 3 costs 15 % less CPU than 9
+// for 1.5 % more bytes (measured on 100 k places).
+constexpr int kZstdLevel = 3;
 
 std::string number_text(double v) {
   std::ostringstream o;
@@ -216,12 +222,14 @@ class Builder {
     if (s_.max_zoom) {
       sum_.max_zoom = *s_.max_zoom;
     } else {
-      // The share of crowded places falls as the zoom grows: bisect.
+      // The share of crowded places and the places per tile fall as the
+      // zoom grows: bisect.
       int lo = sum_.min_zoom, hi = std::max(sum_.min_zoom, kDefaultMaxZoomCap);
       progress_.begin("choose the finest zoom", 0);
       while (lo < hi) {
         const int mid = (lo + hi) / 2;
-        if (crowded_share(places_, radius(mid), wrap_) <= kCrowdedShare)
+        if (double(places_.size()) < kFewestPlacesPerTile * double(tiles_holding(mid)) ||
+            crowded_share(places_, radius(mid), wrap_) <= kCrowdedShare)
           hi = mid;
         else
           lo = mid + 1;
@@ -232,6 +240,18 @@ class Builder {
     if (sum_.min_zoom > sum_.max_zoom)
       throw UsageError("--min-zoom " + std::to_string(sum_.min_zoom) + " is above the max zoom " +
                        std::to_string(sum_.max_zoom));
+  }
+
+  // How many tiles of zoom z the source places lie in.
+  size_t tiles_holding(int z) const {
+    const double ts = tiling_.tile_size(z);
+    std::vector<uint64_t> keys(places_.size());
+    for (size_t i = 0; i < places_.size(); ++i)
+      keys[i] =
+          tile_key({z, uint32_t(std::max(0.0, std::floor((places_.x(i) - tiling_.origin_x) / ts))),
+                    uint32_t(std::max(0.0, std::floor((tiling_.origin_y - places_.y(i)) / ts)))});
+    std::sort(keys.begin(), keys.end());
+    return size_t(std::unique(keys.begin(), keys.end()) - keys.begin());
   }
 
   PlaceSet merge(const PlaceSet& in, int z) {
@@ -295,7 +315,7 @@ class Builder {
                   s_.aggregate == tileformat::PointAggregate::kSum ? v : v / count));
           }
           tileformat::build_point_grid(tile);
-          return tileformat::encode_point_tile(tile);
+          return tileformat::encode_point_tile(tile, kZstdLevel);
         },
         [&](size_t t, std::vector<uint8_t>&& blob) {
           for (size_t k = tiles[t].first; k < tiles[t].second; ++k) {

@@ -33,7 +33,7 @@ int run_points(const std::vector<std::string>& args) {
               "view shows regional charts and zooming in splits them.");
   declare_area_options(cli, s, "CRS of the inputs (default: theirs; with --xy, lon/lat)",
                        "finest zoom (default: where at most 1 % of the places have a neighbour "
-                       "within --merge-px, at most 16)");
+                       "within --merge-px or tiles hold under 2 places, at most 16)");
   cli.option("--fields", "A,B,...", "the numeric fields a chart shows, in order (1 to 64)",
              [&](const std::string& v) {
                s.fields = split_names("--fields", v);
