@@ -8,6 +8,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "render/color.hpp"
 #include "render/deferred_pass.hpp"
 #include "render/gl_buffer.hpp"
 #include "render/line_shaders.hpp"
@@ -29,12 +30,6 @@ enum Binding : GLuint {
   kUsed = 5,
   kTerrainTable = 6
 };
-
-glm::vec4 rgb(const std::string& hex) {
-  if (hex.size() != 7) return glm::vec4(0);
-  const unsigned v = static_cast<unsigned>(std::stoul(hex.substr(1), nullptr, 16));
-  return {((v >> 16) & 255) / 255.0f, ((v >> 8) & 255) / 255.0f, (v & 255) / 255.0f, 1.0f};
-}
 
 // Where the view origin lies in tiles of zoom `zoom`, for tile_at() in GLSL.
 void set_tile_ref(const GlProgram& p, const std::string& name, const View& view,
@@ -126,8 +121,8 @@ void LineRenderer::set_styles(const std::vector<NamedLineStyle>& classes) {
     float dash[8] = {};
     for (size_t i = 0; i < s.dash.size() && i < 8; ++i)
       dash[i] = static_cast<float>(s.dash[i]);
-    v.push_back(rgb(s.color));
-    v.push_back(casing ? rgb(s.casing_color) : glm::vec4(0));
+    v.push_back(hex_rgba(s.color));
+    v.push_back(casing ? hex_rgba(s.casing_color) : glm::vec4(0));
     v.push_back({s.visible ? s.width / 2 : 0.0, casing ? s.casing_width : 0.0,
                  s.width_in_m ? 1.0 : 0.0, static_cast<float>(s.dash.size())});
     v.push_back({dash[0], dash[1], dash[2], dash[3]});

@@ -26,9 +26,10 @@ TerrainRenderer::TerrainRenderer(int block_size, int lattice, int slots, int wid
                                  bool analysis)
     : size_(block_size), lattice_(lattice), slots_(slots) {
   edge_scales_.fill(0.05f);
-  draw_program_ = GlProgram("terrain", shaders::kTerrainVertex, shaders::kTerrainFragment);
-  capture_program_ =
-      GlProgram("terrain capture", shaders::kTerrainVertex, "", {"v_world", "v_key", "v_height"});
+  const std::string vertex = std::string(shaders::kTerrainVertexHead) + shaders::kFrameWorldGlsl +
+                             shaders::kTerrainVertexMain;
+  draw_program_ = GlProgram("terrain", vertex, shaders::kTerrainFragment);
+  capture_program_ = GlProgram("terrain capture", vertex, "", {"v_world", "v_key", "v_height"});
 
   // The lattice: vertices (i, j) with i + j <= L; each cell split along the
   // diagonal from (i+1, j) to (i, j+1), as the tiler's error trees assume.
@@ -195,8 +196,8 @@ void TerrainRenderer::upload_instances(const std::vector<Patch>& patches, const 
   gl::VertexArrayVertexBuffer(vao_, 1, instance_buffer_, 0, sizeof(Instance));
 }
 
-void TerrainRenderer::set_common_uniforms(const GlProgram& p, const View& view,
-                                          const WorldFrame& frame, double exaggeration) const {
+void TerrainRenderer::set_frame_uniforms(const GlProgram& p, const View& view,
+                                         const WorldFrame& frame, double exaggeration) const {
   gl::UseProgram(p.id());
   gl::UniformMatrix4fv(p.uniform("u_view_proj"), 1, GL_FALSE, glm::value_ptr(view.view_proj));
   gl::Uniform3f(p.uniform("u_scale"),
@@ -243,7 +244,7 @@ RenderTimes TerrainRenderer::draw(const std::vector<Patch>& patches, const View&
   gl::ClearNamedFramebufferfv(g_.fbo, GL_COLOR, 3, none);
   gl::ClearNamedFramebufferfv(g_.fbo, GL_COLOR, 4, none);
   gl::ClearNamedFramebufferfv(g_.fbo, GL_DEPTH, 0, &far);
-  set_common_uniforms(draw_program_, view, frame, s.exaggeration);
+  set_frame_uniforms(draw_program_, view, frame, s.exaggeration);
   const GlProgram& p = draw_program_;
   gl::Uniform1i(p.uniform("u_mask"), 1);
   gl::BindTextureUnit(1, mask_);
@@ -295,7 +296,7 @@ std::vector<CapturedVertex> TerrainRenderer::capture_triangles(const std::vector
   GLuint buffer = 0;
   gl::CreateBuffers(1, &buffer);
   gl::NamedBufferStorage(buffer, bytes, nullptr, 0);
-  set_common_uniforms(capture_program_, view, frame, exaggeration);
+  set_frame_uniforms(capture_program_, view, frame, exaggeration);
   gl::Enable(GL_RASTERIZER_DISCARD);
   gl::BindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, buffer);
   gl::BindVertexArray(vao_);

@@ -102,6 +102,11 @@ class TerrainRenderer {
                    const ShadingSettings& shading);
   const GBuffer& gbuffer() const { return g_; }
   GLuint heights_texture() const { return heights_; }
+  // Uses program `p` and sets the uniforms of shaders::kFrameWorldGlsl
+  // (frame scales, globe anchor), u_view_proj, and u_heights (the heights
+  // texture, bound to unit 0), for `view`.
+  void set_frame_uniforms(const GlProgram& p, const View& view, const WorldFrame& frame,
+                          double exaggeration) const;
   // The drawn triangles, 3 vertices each, as the vertex shader computed them.
   std::vector<CapturedVertex> capture_triangles(const std::vector<Patch>& patches, const View& view,
                                                 const WorldFrame& frame, double exaggeration);
@@ -112,8 +117,6 @@ class TerrainRenderer {
  private:
   void upload_instances(const std::vector<Patch>& patches, const View& view,
                         const WorldFrame& frame);
-  void set_common_uniforms(const GlProgram& p, const View& view, const WorldFrame& frame,
-                           double exaggeration) const;
 
   int size_, lattice_, slots_;
   GLsizei index_count_ = 0;

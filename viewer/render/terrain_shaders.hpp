@@ -5,36 +5,21 @@
 
 namespace globe::viewer::shaders {
 
-// Lattice point (i, j) of an instanced patch -> block sample -> world metres
-// relative to the frame origin. Integer arithmetic up to the last step keeps
-// vertices shared by two blocks bit-identical. On the globe, the key offset
-// from the origin becomes latitude/longitude offsets and then the WGS84 point
-// relative to the origin's point, in its east-north-up frame, with every
-// large term multiplying a small difference (half-angle forms), so float
-// keeps millimetres near the eye and the same relative precision far away.
-inline constexpr const char* kTerrainVertex = R"(#version 450 core
-layout(location = 0) in ivec2 a_lattice;
-layout(location = 1) in ivec4 i_origin_apex;  // block origin (key units, frame-relative), apex
-layout(location = 2) in ivec4 i_uv;           // lattice steps along the two legs (samples)
-layout(location = 3) in ivec2 i_layer_shift;  // texture layer, log2(key units per sample)
-uniform mat4 u_view_proj;
+// GLSL shared by every pass that places points of the terrain's frame: key
+// units relative to the view origin (and a height) -> world position, on
+// the flat frame or the WGS84 globe (TerrainRenderer::set_frame_uniforms
+// sets the uniforms). On the globe, the key offset from the origin becomes
+// latitude/longitude offsets and then the WGS84 point relative to the
+// origin's point, in its east-north-up frame, with every large term
+// multiplying a small difference (half-angle forms), so float keeps
+// millimetres near the eye and the same relative precision far away.
+inline constexpr const char* kFrameWorldGlsl = R"(
 uniform vec3 u_scale;  // flat: metres per key unit (x, y); world z per metre of height
-uniform vec2 u_ground;  // ground units per key unit (x, y), flat frame at the view latitude
 uniform int u_globe;   // 0 flat, 1 geodetic globe, 2 webmercator globe
 uniform vec2 u_rad_per_key;  // globe: longitude radians per key unit; latitude radians
                              // (geodetic) or mercator y / R (webmercator) per key unit
 uniform vec4 u_anchor;       // globe: origin latitude, its sine and cosine, mercator y / R
 uniform int u_wrap_keys;     // globe: key units per 360 degrees of longitude
-uniform sampler2DArray u_heights;
-out vec3 v_world;
-out vec2 v_ground;
-out vec2 v_sample;
-flat out int v_layer;
-flat out int v_shift;     // log2(key units per sample): the block's zoom is key zoom - shift
-flat out vec2 v_spacing;  // metres per block sample (x, y)
-flat out ivec2 v_key;     // for mesh capture: key units from the frame origin
-out float v_height;       // for mesh capture: metres
-
 const float kA = 6378137.0, kE2 = 0.00669437999014132;
 
 // Full relative precision near 0, where GLSL's built-ins may lose it
@@ -92,6 +77,46 @@ vec3 globe_world(vec2 dk, float h, out vec2 spacing) {
   return to_enu0(vec3(dx, dy, dz));
 }
 
+// World position of the point `frac` (0..1) key units past key point `key`
+// (relative to the origin) at height h (world z units: metres times the
+// height scale), on either surface.
+vec3 frame_world(ivec2 key, vec2 frac, float h) {
+  if (u_globe == 0)
+    return vec3((float(key.x) + frac.x) * u_scale.x, -(float(key.y) + frac.y) * u_scale.y, h);
+  // Longitude offsets into -180..180 degrees in integers, before any
+  // rounding: across the antimeridian a neighbour is a small offset.
+  ivec2 k = key;
+  if (k.x > u_wrap_keys / 2) k.x -= u_wrap_keys;
+  if (k.x < -u_wrap_keys / 2) k.x += u_wrap_keys;
+  vec2 spacing;
+  return globe_world(vec2(k) + frac, h, spacing);
+}
+)";
+
+// The terrain's vertex shader: kTerrainVertexHead + kFrameWorldGlsl +
+// kTerrainVertexMain. Lattice point (i, j) of an instanced patch -> block
+// sample -> world metres relative to the frame origin. Integer arithmetic up
+// to the last step keeps vertices shared by two blocks bit-identical.
+inline constexpr const char* kTerrainVertexHead = R"(#version 450 core
+layout(location = 0) in ivec2 a_lattice;
+layout(location = 1) in ivec4 i_origin_apex;  // block origin (key units, frame-relative), apex
+layout(location = 2) in ivec4 i_uv;           // lattice steps along the two legs (samples)
+layout(location = 3) in ivec2 i_layer_shift;  // texture layer, log2(key units per sample)
+uniform mat4 u_view_proj;
+uniform vec2 u_ground;  // ground units per key unit (x, y), flat frame at the view latitude
+uniform sampler2DArray u_heights;
+out vec3 v_world;
+out vec2 v_ground;
+out vec2 v_sample;
+flat out int v_layer;
+flat out int v_shift;     // log2(key units per sample): the block's zoom is key zoom - shift
+flat out vec2 v_spacing;  // metres per block sample (x, y)
+flat out ivec2 v_key;     // for mesh capture: key units from the frame origin
+out float v_height;       // for mesh capture: metres
+
+)";
+
+inline constexpr const char* kTerrainVertexMain = R"(
 void main() {
   ivec2 local = i_origin_apex.zw + a_lattice.x * i_uv.xy + a_lattice.y * i_uv.zw;
   float h = texelFetch(u_heights, ivec3(local, i_layer_shift.x), 0).r;
