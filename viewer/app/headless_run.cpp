@@ -44,7 +44,7 @@ int run_headless(const ViewerSettings& settings) {
   const double first_frame_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_start).count();
 
-  std::vector<double> frame_ms, terrain_ms, select_ms, lines_ms, images_ms;
+  std::vector<double> frame_ms, terrain_ms, select_ms, lines_ms, images_ms, charts_ms;
   uint64_t max_resident = scene.cache().stats().resident_bytes;
   for (size_t i = 0; i < poses.size(); ++i) {
     const int frames = settings.stats ? settings.frames : 1;
@@ -57,6 +57,7 @@ int run_headless(const ViewerSettings& settings) {
       terrain_ms.push_back(f.terrain_ms);
       lines_ms.push_back(f.lines_ms);
       images_ms.push_back(f.images_ms);
+      charts_ms.push_back(f.charts_ms);
       select_ms.push_back(f.select_ms);
       max_resident = std::max(max_resident, scene.cache().stats().resident_bytes);
     }
@@ -64,6 +65,11 @@ int run_headless(const ViewerSettings& settings) {
   if (settings.snapshot)
     write_png(*settings.snapshot, scene.read_pixels(), scene.renderer().width(),
               scene.renderer().height());
+  if (settings.pick) {
+    if (!scene.charts()) throw UsageError("--pick finds charts; give a point package too");
+    std::printf("%s\n",
+                scene.charts()->describe(settings.pick->first, settings.pick->second).c_str());
+  }
   if (settings.export_mesh)
     write_mesh_ply(*settings.export_mesh, scene.capture(f), f.view, scene.world(),
                    settings.shading.exaggeration, settings.max_error_px);
@@ -133,6 +139,16 @@ int run_headless(const ViewerSettings& settings) {
           static_cast<unsigned long long>(sum.evictions),
           static_cast<unsigned long long>(sum.broken),
           static_cast<unsigned long long>(sum.bytes_read));
+    }
+    if (ChartLayer* charts = scene.charts()) {
+      const ChartLayerStats cs = charts->stats();
+      std::printf(
+          ", \"charts_ms\": %.3f, \"chart_tiles\": %zu, \"charts\": %zu, \"charts_thinned\": %zu, "
+          "\"point_tiles_loaded\": %llu, \"point_bytes\": %llu, \"broken_point_tiles\": %llu",
+          median(charts_ms), cs.tiles, cs.charts, cs.thinned,
+          static_cast<unsigned long long>(cs.cache.loaded),
+          static_cast<unsigned long long>(cs.cache.resident_bytes),
+          static_cast<unsigned long long>(cs.cache.broken));
     }
     std::printf("}\n");
   }

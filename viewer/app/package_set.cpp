@@ -29,6 +29,11 @@ PackageSet sort_packages(const std::vector<std::string>& paths) {
       set.lines = path;
     } else if (kind == tileformat::PackageKind::kImage) {
       set.images.push_back(path);
+    } else if (kind == tileformat::PackageKind::kPoints) {
+      if (set.points)
+        throw UsageError("two point packages (" + *set.points + ", " + path +
+                         "); globe-view draws the charts of one point package per view");
+      set.points = path;
     } else if (kind == tileformat::PackageKind::kAnalysis) {
       if (set.analysis)
         throw UsageError("two analysis packages (" + *set.analysis + ", " + path +
@@ -36,7 +41,8 @@ PackageSet sort_packages(const std::vector<std::string>& paths) {
       set.analysis = path;
     } else {
       throw InputError(path + ": format '" + format +
-                       "' is neither a terrain nor a line-cluster package");
+                       "' is not a package globe-view draws (terrain, image, line, analysis, "
+                       "point)");
     }
   }
   if (set.terrain.empty())

@@ -15,10 +15,11 @@ struct PackageSet {
   std::vector<std::string> images;  // in command-line order: the first is the bottom layer
   std::optional<std::string> lines;
   std::optional<std::string> analysis;  // terrain analytics (globe-tiler analyze)
+  std::optional<std::string> points;    // places for charts (globe-vectorize points)
 };
 
 // Throws InputError (a package that is missing or of an unknown kind) or
-// UsageError (no terrain, two terrains, two line or two analysis packages).
+// UsageError (no terrain, two terrains, two line, analysis or point packages).
 PackageSet sort_packages(const std::vector<std::string>& paths);
 
 // Throws InputError naming both files unless `other` uses the terrain's

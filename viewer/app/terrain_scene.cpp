@@ -11,6 +11,7 @@
 #include "app/package_set.hpp"
 #include "errors.hpp"
 #include "line_package.hpp"
+#include "point_package.hpp"
 #include "render/readback.hpp"
 #include "terrain_package.hpp"
 #include "tileformat/package.hpp"
@@ -53,15 +54,26 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
   } else if (settings_.style) {
     throw UsageError("--style styles lines; give a line package too");
   }
+  std::optional<PointPackage> points;
+  if (set.points) {
+    points = open_point_package(*set.points);
+    check_same_tiling(package.tiling, path, points->meta.common.tiling, *set.points);
+  } else if (settings_.charts_given) {
+    throw UsageError(
+        "--chart, --chart-style, --chart-depth and --chart-thinning draw charts; give "
+        "a point package too (globe-vectorize points)");
+  }
   if (set.images.empty() && settings_.imagery_unlit)
     throw UsageError("--shading imagery: give an image package too");
   if (set.images.empty() && !settings_.image_opacity.empty())
     throw UsageError("--image-opacity: give an image package too");
   // With lines, a quarter of the budget holds line tiles; with imagery,
-  // another quarter holds image tiles.
+  // another quarter holds image tiles; with charts, an eighth holds point
+  // tiles.
   const uint64_t budget = settings_.cache_mb << 20;
   const uint64_t line_budget = lines ? budget / 4 : 0;
   const uint64_t image_budget = set.images.empty() ? 0 : budget / 4;
+  const uint64_t point_budget = points ? budget / 8 : 0;
   if (package.max_zoom > 21)
     throw InputError(path + ": maxzoom " + std::to_string(package.max_zoom) +
                      " is deeper than the viewer's integer vertex frame supports (21)");
@@ -87,7 +99,8 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
   }
   if (const std::string e = shading_problem(settings_.shading); !e.empty()) throw UsageError(e);
   cache_ = std::make_unique<BlockCache>(path, std::move(package),
-                                        budget - line_budget - image_budget, std::move(analysis));
+                                        budget - line_budget - image_budget - point_budget,
+                                        std::move(analysis));
   selector_ = std::make_unique<PatchSelector>(cache_->package());
   if (selector_->root_tiles().empty())
     throw InputError(path + ": no tiles at minzoom " + std::to_string(cache_->package().min_zoom) +
@@ -118,6 +131,9 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
     lines_ = std::make_unique<LineLayer>(*set.lines, std::move(*lines), settings_.style,
                                          settings_.line_mode, line_budget, settings_.width,
                                          settings_.height);
+  if (points)
+    charts_ = std::make_unique<ChartLayer>(std::move(*points), settings_.charts, point_budget,
+                                           settings_.width, settings_.height);
 }
 
 TerrainScene::~TerrainScene() = default;
@@ -130,9 +146,15 @@ void TerrainScene::resize(int width, int height) {
   renderer_->resize(width, height);
   if (images_) images_->resize(width, height);
   if (lines_) lines_->resize(width, height);
+  if (charts_) charts_->resize(width, height);
 }
 
 GLuint TerrainScene::output_fbo() const {
+  if (charts_) return charts_->output_fbo();
+  return below_charts_fbo();
+}
+
+GLuint TerrainScene::below_charts_fbo() const {
   if (lines_) return lines_->output_fbo();
   return images_ ? images_->output_fbo() : renderer_->gbuffer().fbo;
 }
@@ -258,6 +280,15 @@ FrameResult TerrainScene::frame(const CameraPose& pose, Loading loading, Output 
                  package().max_zoom, package().block_size};
     }
     f.lines_ms = lines_->draw(g, f.view, *world_, settings_.shading.exaggeration, heights, loading);
+  }
+  if (charts_) {
+    const TerrainHeights heights{renderer_->heights_texture(), cache_->resident_slots(),
+                                 package().min_zoom, package().max_zoom, package().block_size};
+    const double az = settings_.shading.sun_azimuth_deg * std::numbers::pi / 180,
+                 alt = settings_.shading.sun_altitude_deg * std::numbers::pi / 180;
+    const glm::vec3 sun(std::sin(az) * std::cos(alt), std::cos(az) * std::cos(alt), std::sin(alt));
+    f.charts_ms = charts_->draw(below_charts_fbo(), renderer_->gbuffer(), f.view, *world_,
+                                *renderer_, heights, settings_.shading.exaggeration, sun, loading);
   }
   return f;
 }

@@ -1,13 +1,15 @@
 // What one viewer session shows: the opened terrain package, its block cache,
-// the patch selector, the world frame and the renderer, the optional line
-// layer, and the per-frame sequence (select -> request -> upload -> draw
-// terrain -> line pass) that both the window and the headless runs use.
+// the patch selector, the world frame and the renderer, the optional image,
+// line and chart layers, and the per-frame sequence (select -> request ->
+// upload -> draw terrain -> imagery -> line pass -> chart pass) that both the
+// window and the headless runs use.
 #pragma once
 
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "app/chart_layer.hpp"
 #include "app/edge_scale.hpp"
 #include "app/elevation_ramp.hpp"
 #include "app/image_layers.hpp"
@@ -26,7 +28,7 @@ struct FrameResult {
   View view;
   std::vector<Patch> patches;
   SelectionStats selection;
-  double select_ms = 0, terrain_ms = 0, images_ms = 0, lines_ms = 0;
+  double select_ms = 0, terrain_ms = 0, images_ms = 0, lines_ms = 0, charts_ms = 0;
 };
 
 class TerrainScene {
@@ -51,6 +53,7 @@ class TerrainScene {
 
   TerrainRenderer& renderer() { return *renderer_; }
   LineLayer* lines() { return lines_.get(); }
+  ChartLayer* charts() { return charts_.get(); }
   ImageLayers* images() { return images_.get(); }
   // The finished image (terrain, imagery and lines): framebuffer and pixels.
   GLuint output_fbo() const;
@@ -71,6 +74,7 @@ class TerrainScene {
   std::string shading_problem(const ShadingSettings& shading) const;
 
  private:
+  GLuint below_charts_fbo() const;  // the image the charts draw over
   void upload_loaded();
   void load_now(const std::vector<tileformat::TileId>& tiles);  // waits for them
   void sample_heights();  // fixes the elevation ramp's data range
@@ -84,6 +88,7 @@ class TerrainScene {
   std::unique_ptr<PolarCaps> caps_;
   std::unique_ptr<ImageLayers> images_;
   std::unique_ptr<LineLayer> lines_;
+  std::unique_ptr<ChartLayer> charts_;
   std::unique_ptr<ElevationRamp> ramp_;
   EdgeScale edges_;                                         // the edges shading's stretch per zoom
   std::optional<std::string> analysis_path_;                // the analysis package, if any

@@ -11,11 +11,13 @@ namespace globe::viewer {
 std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::string>& args) {
   ViewerSettings s;
   CliArgs cli("globe-view",
-              "globe-view TERRAIN.mbtiles [IMAGE.mbtiles ...] [LINES.mbtiles] [options]\n"
-              "Renders a terrain package with image packages draped over it (bottom first)\n"
-              "and the lines of a line-cluster package shaded per pixel over both: in a\n"
-              "window, or headless with --snapshot, --stats or --export-mesh (OSMesa or EGL;\n"
-              "no display needed). Packages are told apart by their format.");
+              "globe-view TERRAIN.mbtiles [IMAGE.mbtiles ...] [LINES.mbtiles] [POINTS.mbtiles]\n"
+              "           [options]\n"
+              "Renders a terrain package with image packages draped over it (bottom first),\n"
+              "the lines of a line-cluster package shaded per pixel over both, and a chart per\n"
+              "place of a point package on top: in a window, or headless with --snapshot,\n"
+              "--stats or --export-mesh (OSMesa or EGL; no display needed). Packages are told\n"
+              "apart by their format.");
   cli.epilogue(
       "window: drag to orbit, right-drag to pan, wheel or W/S to zoom, arrows to pan,\n"
       "  R home view, P screenshot (globe-view-N.png), Esc quit;\n"
@@ -23,7 +25,8 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
       "  +/- exaggeration;\n"
       "  , and . shift the elevation ramp down/up, ; and ' narrow/widen it, 0 reset;\n"
       "  I select the next image layer, V show/hide it, [ and ] its opacity -/+ 0.1,\n"
-      "  U imagery unlit/lit; L line mode, F5 reload the style and colour files.\n");
+      "  U imagery unlit/lit; L line mode, F5 reload the style and colour files;\n"
+      "  C next chart kind; the title names the place under the cursor.\n");
   cli.option("--snapshot", "OUT.png", "render headless, write the image, exit",
              [&](const std::string& v) { s.snapshot = v; });
   cli.option("--size", "WxH", "image / window size in pixels (default 1280x720)",
@@ -189,8 +192,54 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
                else
                  throw UsageError("--lines: unknown mode '" + v + "' (deferred, geometry, off)");
              });
+  cli.option("--chart", "KIND",
+             "with a point package: pie (default), bar, stacked (one bar of the values) or "
+             "column (3D columns standing on the terrain)",
+             [&](const std::string& v) {
+               s.charts_given = true;
+               if (v == "pie")
+                 s.charts.kind = ChartKind::kPie;
+               else if (v == "bar")
+                 s.charts.kind = ChartKind::kBar;
+               else if (v == "stacked")
+                 s.charts.kind = ChartKind::kStacked;
+               else if (v == "column")
+                 s.charts.kind = ChartKind::kColumn;
+               else
+                 throw UsageError("--chart: unknown kind '" + v + "' (pie, bar, stacked, column)");
+             });
+  cli.option("--chart-style", "FILE.json",
+             "chart colours per field, sizes, outline, opacity, legend (docs/viewer.md); the "
+             "window reloads the file when it changes, or on F5",
+             [&](const std::string& v) {
+               s.charts_given = true;
+               s.charts.style = v;
+             });
+  cli.option("--chart-depth", "MODE",
+             "terrain (default: hills in front hide charts) or top (charts over everything)",
+             [&](const std::string& v) {
+               s.charts_given = true;
+               if (v == "terrain")
+                 s.charts.depth = ChartDepth::kTerrain;
+               else if (v == "top")
+                 s.charts.depth = ChartDepth::kOnTop;
+               else
+                 throw UsageError("--chart-depth: unknown mode '" + v + "' (terrain, top)");
+             });
+  cli.flag("--chart-thinning",
+           "drop charts that fall on a larger one (default: draw all, nearer ones on top)", [&] {
+             s.charts_given = true;
+             s.charts.thinning = ChartThinning::kOn;
+           });
   cli.flag("--stats", "print frame statistics as JSON on stdout (headless)",
            [&] { s.stats = true; });
+  cli.option("--pick", "X,Y",
+             "print the place whose chart covers pixel X,Y (from the top-left) and its values "
+             "on stdout, one line (empty: none) (headless)",
+             [&](const std::string& v) {
+               const auto d = CliArgs::to_doubles("--pick", v, 2);
+               s.pick = std::pair(static_cast<int>(d[0]), static_cast<int>(d[1]));
+             });
   cli.option("--frames", "N", "frames measured for --stats (default 5)",
              [&](const std::string& v) { s.frames = CliArgs::to_int("--frames", v, 1, 10000); });
   cli.option("--export-mesh", "FILE.ply",
@@ -208,9 +257,9 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
   auto positional = cli.parse_command(args, 1, 11, "package");
   if (!positional) return std::nullopt;
   s.packages = *positional;
-  if (s.platform == "glfw" && (s.snapshot || s.export_mesh || s.stats))
+  if (s.platform == "glfw" && (s.snapshot || s.export_mesh || s.stats || s.pick))
     throw UsageError(
-        "--platform glfw opens a window; --snapshot/--stats/--export-mesh are headless");
+        "--platform glfw opens a window; --snapshot/--stats/--export-mesh/--pick are headless");
   if (s.imagery_unlit) s.shading.mode = Shading::kHillshade;
   for (CameraPose& p : s.camera_path)
     p.fov_y_deg = s.fov_y_deg;

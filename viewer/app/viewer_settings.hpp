@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "app/chart_layer.hpp"
 #include "camera/camera.hpp"
 #include "render/line_renderer.hpp"
 #include "render/terrain_renderer.hpp"
@@ -19,6 +20,7 @@ struct ViewerSettings {
   std::optional<std::string> snapshot;     // PNG path: render headless and exit
   std::optional<std::string> export_mesh;  // PLY path
   bool stats = false;
+  std::optional<std::pair<int, int>> pick;  // --pick X,Y: describe the chart at that pixel
   int width = 1280, height = 720;
   std::optional<CameraPose> camera;
   std::vector<CameraPose> camera_path;  // --camera-path: one pose per line
@@ -37,9 +39,11 @@ struct ViewerSettings {
   bool lines = true;                  // --lines off: draw none
   bool imagery_unlit = false;         // --shading imagery
   std::vector<double> image_opacity;  // --image-opacity, per image layer (the last repeats)
+  ChartSettings charts;               // --chart, --chart-style, --chart-depth, --chart-thinning
+  bool charts_given = false;          // any of those options
 
   bool headless() const {
-    return snapshot || export_mesh || stats || platform == "osmesa" || platform == "egl";
+    return snapshot || export_mesh || stats || pick || platform == "osmesa" || platform == "egl";
   }
 };
 

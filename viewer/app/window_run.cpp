@@ -110,7 +110,11 @@ int run_window(const ViewerSettings& settings) {
           s = next;
         break;
       }
+      case GLFW_KEY_C:
+        if (scene->charts()) scene->charts()->next_kind();
+        break;
       case GLFW_KEY_F5:
+        if (scene->charts()) scene->charts()->reload_style(ChartLayer::Reload::kAlways);
         if (scene->lines()) scene->lines()->reload_style(LineLayer::Reload::kAlways);
         if (scene->ramp().reload(ElevationRamp::Reload::kAlways)) scene->apply_ramp();
         break;
@@ -222,6 +226,7 @@ int run_window(const ViewerSettings& settings) {
     if (now - last_title > std::chrono::milliseconds(500)) {
       if (s.lines())
         s.lines()->reload_style(LineLayer::Reload::kIfChanged);  // picks up edits of the style file
+      if (s.charts()) s.charts()->reload_style(ChartLayer::Reload::kIfChanged);
       if (s.ramp().reload(ElevationRamp::Reload::kIfChanged)) s.apply_ramp();  // and colour file
       const double ms = std::chrono::duration<double, std::milli>(now - t0).count();
       size_t waiting = f.selection.waiting;  // blocks and image tiles not in yet
@@ -239,6 +244,12 @@ int run_window(const ViewerSettings& settings) {
         const size_t n = std::strlen(title);
         std::snprintf(title + n, sizeof title - n, "  image %zu/%zu %s %.1f", layer + 1, im->size(),
                       im->visible(layer) ? "opacity" : "hidden, opacity", im->opacity(layer));
+      }
+      // The place whose chart is under the cursor.
+      if (ChartLayer* charts = s.charts()) {
+        const std::string place = charts->describe(int(last_x), int(last_y));
+        if (!place.empty())
+          std::snprintf(title, sizeof title, "globe-view  %s  waiting %zu", place.c_str(), waiting);
       }
       window->set_title(title);
       last_title = now;

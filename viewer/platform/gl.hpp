@@ -91,7 +91,11 @@
   X(PFNGLUNIFORM1UIPROC, Uniform1ui)                                   \
   X(PFNGLUNIFORM2IPROC, Uniform2i)                                     \
   X(PFNGLNAMEDBUFFERSUBDATAPROC, NamedBufferSubData)                   \
-  X(PFNGLNAMEDFRAMEBUFFERREADBUFFERPROC, NamedFramebufferReadBuffer)
+  X(PFNGLNAMEDFRAMEBUFFERREADBUFFERPROC, NamedFramebufferReadBuffer)   \
+  X(PFNGLBLENDFUNCSEPARATEPROC, BlendFuncSeparate)                     \
+  X(PFNGLVERTEXARRAYATTRIBFORMATPROC, VertexArrayAttribFormat)         \
+  X(PFNGLCLEARNAMEDFRAMEBUFFERUIVPROC, ClearNamedFramebufferuiv)       \
+  X(PFNGLUNIFORM4FVPROC, Uniform4fv)
 
 namespace gl {
 

@@ -32,6 +32,17 @@ glm::vec4 read_position(GLuint fbo, int x, int y, int height) {
   return p;
 }
 
+uint32_t read_u32(GLuint fbo, int attachment, int x, int y, int height) {
+  uint32_t v = 0;
+  gl::NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0 + attachment);
+  gl::BindFramebuffer(GL_FRAMEBUFFER, fbo);
+  gl::ReadPixels(x, height - 1 - y, 1, 1, GL_RED_INTEGER, GL_UNSIGNED_INT, &v);
+  gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
+  gl::NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
+  gl::check("reading a pick id");
+  return v;
+}
+
 void blit_to_window(GLuint fbo, int width, int height, int window_width, int window_height) {
   gl::NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
   gl::BlitNamedFramebuffer(fbo, 0, 0, 0, width, height, 0, 0, window_width, window_height,

@@ -16,6 +16,9 @@ std::vector<uint8_t> read_rgba(GLuint fbo, int width, int height);
 // The world point (w = 1) the terrain pass wrote at pixel (x, y) of the
 // G-buffer, y counted from the top; w = 0 where no terrain is.
 glm::vec4 read_position(GLuint gbuffer_fbo, int x, int y, int height);
+// The R32UI value of colour attachment `attachment` (0-based) of `fbo` at
+// pixel (x, y), y counted from the top.
+uint32_t read_u32(GLuint fbo, int attachment, int x, int y, int height);
 // Scales colour attachment 0 of `fbo` onto the window's framebuffer (0).
 void blit_to_window(GLuint fbo, int width, int height, int window_width, int window_height);
 

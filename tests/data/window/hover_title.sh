@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Hovers the mouse over globe-view's window, as a user would, under the X
+# server the caller runs (xvfb-run), and prints the window's title once it
+# names a place. Usage:
+#   hover_title.sh DIR X Y globe-view ARGS...
+# Starts the viewer in DIR, waits until nothing is loading ("waiting 0"),
+# moves the pointer to window pixel (X, Y), waits until the title changes to
+# name what is there, prints it, then presses Escape. Exits 90 on a stall.
+set -euo pipefail
+dir=$1 x=$2 y=$3
+shift 3
+cd "$dir"
+"$@" 2>viewer.stderr &
+pid=$!
+trap 'kill $pid 2>/dev/null || true' EXIT
+wid=$(timeout 30 xdotool search --sync --onlyvisible --name '^globe-view' | head -1)
+for _ in $(seq 120); do
+  sleep 0.5
+  xdotool getwindowname "$wid" | grep -q 'waiting 0\b' && break
+done
+xdotool mousemove --window "$wid" "$x" "$y"
+title=""
+for _ in $(seq 60); do
+  sleep 0.5
+  title=$(xdotool getwindowname "$wid")
+  case "$title" in *": "*) break ;; esac
+done
+case "$title" in *": "*) ;; *) echo "hover_title.sh: no place named: $title" >&2; exit 90 ;; esac
+echo "$title"
+xdotool key --window "$wid" Escape
+trap - EXIT
+wait $pid

@@ -1,0 +1,97 @@
+// The charts of one view (docs/viewer.md "Charts"): a point package's tile
+// cache, the tile selection for the view, the chart instances built from the
+// selected tiles (sizes from the package's per-zoom statistics, colours from
+// the style), optional collision thinning, the chart pass, the legend, and
+// picking (which place is under a pixel).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/chart_style.hpp"
+#include "app/line_layer.hpp"
+#include "data/point_cache.hpp"
+#include "render/chart_renderer.hpp"
+#include "render/text_overlay.hpp"
+
+namespace globe::viewer {
+
+// Whether overlapping charts are all drawn or thinned out (larger first).
+enum class ChartThinning { kOff, kOn };
+
+struct ChartSettings {
+  ChartKind kind = ChartKind::kPie;
+  ChartDepth depth = ChartDepth::kTerrain;
+  ChartThinning thinning = ChartThinning::kOff;
+  std::optional<std::string> style;  // --chart-style file
+};
+
+struct ChartLayerStats {
+  PointCacheStats cache;
+  size_t tiles = 0, charts = 0, thinned = 0;
+};
+
+class ChartLayer {
+ public:
+  // Throws InputError for a bad style file, a package with more fields than
+  // charts draw, or a chart kind that needs shares over a signed package.
+  ChartLayer(PointPackage package, const ChartSettings& settings, uint64_t budget_bytes, int width,
+             int height);
+  ~ChartLayer();
+
+  void resize(int width, int height) {
+    renderer_.resize(width, height), width_ = width, height_ = height;
+  }
+  // The chart pass over `input_fbo`'s colour (the terrain, imagery and lines
+  // so far); Loading::kSettle waits for every selected tile. Returns the GPU
+  // time of the charts in ms.
+  double draw(GLuint input_fbo, const GBuffer& g, const View& view, const WorldFrame& world,
+              const TerrainRenderer& terrain, const TerrainHeights& heights, double exaggeration,
+              glm::vec3 sun, Loading loading);
+  GLuint output_fbo() const { return renderer_.output_fbo(); }
+
+  // The place whose chart covers pixel (x, y) (from the top-left) in the
+  // last frame: "label: field value, ..." ("" for none).
+  std::string describe(int x, int y);
+
+  ChartKind kind() const { return settings_.kind; }
+  // Cycles pie, bar, stacked, column (skipping those the values cannot show).
+  void next_kind();
+  enum class Reload { kIfChanged, kAlways };
+  // Re-reads the style file if it changed (kAlways: even if not); a broken
+  // file keeps the current style (the error goes to stderr).
+  void reload_style(Reload when);
+  ChartLayerStats stats() const;
+
+ private:
+  struct PlaceRef {
+    tileformat::TileId tile;
+    uint32_t index;
+  };
+  void build(const std::vector<tileformat::TileId>& tiles, const View& view,
+             const WorldFrame& world);
+  void sort_back_to_front(const View& view, const WorldFrame& world);
+  void thin(const View& view, const WorldFrame& world);
+  void queue_legend();
+
+  PointCache cache_;
+  ChartSettings settings_;
+  ChartStyle style_;
+  std::filesystem::file_time_type style_time_{};
+  ChartRenderer renderer_;
+  TextOverlay overlay_;
+  std::unique_ptr<tileformat::PackageReader> labels_;  // the features table, for picking
+  std::vector<tileformat::TileId> roots_;
+  std::vector<tileformat::TileId> drawn_;  // the tiles of the instances
+  std::vector<ChartInstance> instances_;
+  std::vector<PlaceRef> places_;  // per instance
+  bool dirty_ = true;
+  int width_ = 0, height_ = 0;
+  size_t thinned_ = 0;
+};
+
+}  // namespace globe::viewer

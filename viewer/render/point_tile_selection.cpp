@@ -1,0 +1,110 @@
+// Point tile selection (see point_tile_selection.hpp).
+#include "render/point_tile_selection.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+
+#include <glm/glm.hpp>
+
+namespace globe::viewer {
+
+using tileformat::TileId;
+
+namespace {
+
+constexpr double kRefinePx = 1.5 * 256;
+// Tiles this coarse span too much of the globe for corner tests.
+constexpr int kCullFromZoom = 3;
+
+struct Measured {
+  TileId id;
+  double size_px = 0;   // largest projected extent (infinite across the eye plane)
+  double distance = 0;  // eye to the tile's centre, world units
+  bool visible = true;
+};
+
+Measured measure(TileId id, const View& view, const WorldFrame& world, double low_m,
+                 double high_m) {
+  Measured m{id};
+  // Key units per tile at any zoom, also finer than the terrain's.
+  const double keys = double(world.steps()) * std::ldexp(1.0, world.key_zoom() - id.z);
+  const double x0 = id.x * keys, y0 = id.y * keys;
+  double lo_x = 1e300, lo_y = 1e300, hi_x = -1e300, hi_y = -1e300;
+  bool behind = false, facing = false;
+  std::array<int, 6> outside{};  // per frustum plane: samples outside it
+  int samples = 0;
+  for (int j = 0; j <= 2; ++j)
+    for (int i = 0; i <= 2; ++i) {
+      const double kx = x0 + i * keys / 2, ky = y0 + j * keys / 2;
+      const glm::dvec3 p = world.key_to_world(kx, ky, 0, view.origin);
+      if (i == 1 && j == 1) m.distance = glm::length(p - view.eye);
+      if (world.globe()) {
+        const glm::dvec3 up = glm::normalize(world.key_to_world(kx, ky, 1000, view.origin) - p);
+        facing = facing || glm::dot(up, view.eye - p) > 0;
+      }
+      for (double h : {low_m, high_m}) {
+        const glm::dvec3 q = h == 0 ? p : world.key_to_world(kx, ky, h, view.origin);
+        ++samples;
+        for (int k = 0; k < 6; ++k)
+          outside[k] += glm::dot(view.planes[k], glm::dvec4(q, 1)) < 0;
+      }
+      const glm::dvec4 c = view.proj * view.view * glm::dvec4(p, 1);
+      if (c.w <= 1e-9) {
+        behind = true;
+        continue;
+      }
+      const double sx = (c.x / c.w * 0.5 + 0.5) * view.width,
+                   sy = (c.y / c.w * 0.5 + 0.5) * view.height;
+      lo_x = std::min(lo_x, sx), hi_x = std::max(hi_x, sx);
+      lo_y = std::min(lo_y, sy), hi_y = std::max(hi_y, sy);
+    }
+  m.size_px = behind ? std::numeric_limits<double>::infinity() : std::max(hi_x - lo_x, hi_y - lo_y);
+  if (id.z >= kCullFromZoom) {
+    for (int k = 0; k < 6; ++k)
+      if (outside[k] == samples) m.visible = false;
+    if (world.globe() && !facing) m.visible = false;
+  }
+  return m;
+}
+
+}  // namespace
+
+std::vector<TileId> select_point_tiles(const PointTileSelection& s, const View& view,
+                                       const WorldFrame& world) {
+  auto larger = [](const Measured& a, const Measured& b) {
+    return a.size_px != b.size_px ? a.size_px < b.size_px : b.id < a.id;
+  };
+  std::priority_queue<Measured, std::vector<Measured>, decltype(larger)> open(larger);
+  for (const TileId& r : s.roots) {
+    const Measured m = measure(r, view, world, s.low_m, s.high_m);
+    if (m.visible) open.push(m);
+  }
+  std::vector<Measured> chosen;
+  while (!open.empty()) {
+    const Measured m = open.top();
+    open.pop();
+    std::vector<TileId> children;
+    if (m.id.z < s.max_zoom && m.size_px > kRefinePx)
+      for (const TileId& c : m.id.children())
+        if (s.exists(c)) children.push_back(c);
+    if (children.empty() || chosen.size() + open.size() + children.size() > s.max_tiles) {
+      chosen.push_back(m);
+      continue;
+    }
+    for (const TileId& c : children) {
+      const Measured cm = measure(c, view, world, s.low_m, s.high_m);
+      if (cm.visible) open.push(cm);
+    }
+  }
+  std::sort(chosen.begin(), chosen.end(), [](const Measured& a, const Measured& b) {
+    return a.distance != b.distance ? a.distance > b.distance : a.id < b.id;
+  });
+  std::vector<TileId> out;
+  for (const Measured& m : chosen)
+    out.push_back(m.id);
+  return out;
+}
+
+}  // namespace globe::viewer
