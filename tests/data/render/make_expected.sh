@@ -69,3 +69,12 @@ build/tools/tiler/globe-tiler terrain -q "$tmp/himalaya.tif" -o "$tmp/hi.mbtiles
 build/viewer/globe-view "$tmp/hi.mbtiles" --fit --shading elevation --size 320x180 \
   --snapshot $out/himalaya_elevation.png
 ls -l $out/*.png
+# Charts (tests/viewer_charts_test.cpp): US airports' flights by region over etopo20.
+build/tools/tiler/globe-tiler terrain -q samples/data/etopo20.tif --max-zoom 4 -o "$tmp/w4.mbtiles"
+build/tools/vectorize/globe-vectorize points -q samples/data/us_airport_flights.csv \
+  --xy longitude,latitude --fields west,midwest,south,northeast,other --label-field iata \
+  -o "$tmp/flights.mbtiles"
+build/viewer/globe-view "$tmp/w4.mbtiles" "$tmp/flights.mbtiles" --size 480x300 \
+  --camera=-97,39,3000000,0,0 --snapshot $out/us_flights_pies.png
+build/viewer/globe-view "$tmp/w4.mbtiles" "$tmp/flights.mbtiles" --chart column --exaggeration 20 \
+  --size 480x300 --camera=-90,27,900000,0,55 --snapshot $out/us_flights_columns.png
