@@ -4,7 +4,8 @@
 # prints its summary and renders a headless snapshot (OSMesa, no display needed),
 # then turns a real road network into a line-cluster package with styled classes.
 # Output: demo/jacksboro.mbtiles, demo/jacksboro.png, demo/contours.png, demo/globe.png (etopo20
-# and Blue Marble on the globe), demo/canada_roads.mbtiles, demo/cbers20.mbtiles (git-ignored).
+# and Blue Marble on the globe), demo/flights.png (pie charts of US flights on it),
+# demo/canada_roads.mbtiles, demo/cbers20.mbtiles (git-ignored).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -41,5 +42,12 @@ build/tools/tiler/globe-tiler imagery -q samples/data/bluemarble.tif -o demo/blu
   --force
 build/viewer/globe-view demo/etopo20.mbtiles demo/bluemarble.mbtiles --snapshot demo/globe.png \
   --size 1280x720 --fit --stats
-echo "demo: wrote demo/jacksboro.png, demo/contours.png, demo/globe.png," \
+# Charts: US airports' flights by the region flown to, as pies on the same globe.
+build/tools/vectorize/globe-vectorize points samples/data/us_airport_flights.csv \
+  --xy longitude,latitude --fields west,midwest,south,northeast,other --label-field iata \
+  --tiling geodetic -o demo/flights.mbtiles --force
+build/tools/vectorize/globe-vectorize validate demo/flights.mbtiles
+build/viewer/globe-view demo/etopo20.mbtiles demo/bluemarble.mbtiles demo/flights.mbtiles \
+  --snapshot demo/flights.png --size 1280x720 --camera=-97,39,3500000,0,0 --stats
+echo "demo: wrote demo/jacksboro.png, demo/contours.png, demo/globe.png, demo/flights.png," \
   "demo/canada_roads.mbtiles and demo/cbers20.mbtiles" >&2
