@@ -274,14 +274,18 @@ double ChartLayer::draw(GLuint input_fbo, const GBuffer& g, const View& view,
   sel.exists = [this](TileId id) { return cache_.exists(id); };
   std::vector<TileId> tiles;
   for (;;) {
+    // The frame's tiles are marked used before loaded ones come in, so
+    // making room for those never evicts a tile this frame draws.
     cache_.begin_frame();
-    if (cache_.take_loaded() > 0) dirty_ = true;  // tiles the instances lack may have come
     tiles = select_point_tiles(sel, view, world);
+    for (const TileId& id : tiles)
+      cache_.get(id);
+    cache_.flush_requests();
+    if (cache_.take_loaded() > 0) dirty_ = true;  // tiles the instances lack may have come
     bool missing = false;
     for (const TileId& id : tiles)
-      missing = !cache_.get(id) && cache_.exists(id) ? true : missing;
-    cache_.flush_requests();
-    if (loading == Loading::kAsReady || !missing || !cache_.loader_busy()) break;
+      missing = missing || cache_.loading(id);
+    if (loading == Loading::kAsReady || !missing) break;
     cache_.wait_for_loader();
   }
   if (dirty_ || tiles != drawn_ || settings_.thinning == ChartThinning::kOn) {

@@ -46,6 +46,11 @@ const tileformat::PointTile* PointCache::get(TileId id) {
   return it->second.state == State::kResident ? it->second.tile.get() : nullptr;
 }
 
+bool PointCache::loading(TileId id) const {
+  auto it = entries_.find(id);
+  return it != entries_.end() && it->second.state == State::kLoading;
+}
+
 void PointCache::flush_requests() {
   loader_->submit_coarsest_first(wanted_);
 }

@@ -41,6 +41,8 @@ class PointCache {
   // The resident tile (marked used by this frame), or nullptr: queues a load
   // unless the tile is absent, broken or loading.
   const tileformat::PointTile* get(tileformat::TileId id);
+  // Whether the tile is on its way (queued or being decoded).
+  bool loading(tileformat::TileId id) const;
   // Sends this frame's loads to the loader thread.
   void flush_requests();
   // Makes the decoded tiles resident; returns how many.
