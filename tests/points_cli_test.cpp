@@ -265,7 +265,7 @@ TEST_F(PointsCli, BadInputIsAClearErrorAndWritesNothing) {
   expect_error(roads + " --fields CLASS", 1, "holds lines; globe-vectorize points draws charts");
   expect_error(sample("canada_roads.shp").string() + " --xy lon,lat --fields CLASS", 1,
                "--xy reads CSV files");
-  expect_error(csv + " --xy lon --fields a", 2, "--xy: give two columns");
+  expect_error(csv + " --xy lon --fields a", 2, "--xy: expected 2 comma-separated names");
   // --signed keeps the negative value.
   const std::string signed_pkg = (dir_ / "signed.mbtiles").string();
   const RunResult ok = run(

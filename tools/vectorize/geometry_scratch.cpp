@@ -9,6 +9,7 @@ void GeometryScratch::write(const ProjectedFeature& f) {
   tileformat::ByteWriter w;
   w.u64(f.id);
   w.u32(f.class_id);
+  w.u32(f.zooms);
   w.u32(static_cast<uint32_t>(f.lines.size()));
   w.u32(static_cast<uint32_t>(f.points.size()));
   auto put_xy = [&](const XY& p) {
@@ -30,6 +31,7 @@ bool GeometryScratch::read(ProjectedFeature& f) {
   tileformat::ByteReader r(buffer_, file_.path() + ": scratch feature", "scratch");
   f.id = r.u64();
   f.class_id = r.u32();
+  f.zooms = r.u32();
   f.lines.resize(r.u32());
   f.points.resize(r.u32());
   auto get_xy = [&](XY& p) {

@@ -1,7 +1,7 @@
 // Pass 1's output (lines_builder.hpp): the projected features, appended to a
 // scratch file next to the output and read back in order by the cut pass.
 // One scratch record per feature (kit/scratch_file.hpp) in the one byte codec:
-// id (u64), class (u32), part and point counts (u32), each part's vertex
+// id (u64), class (u32), zooms (u32), part and point counts (u32), each part's vertex
 // count (u32) and coordinates (f64 x, y), then the points.
 #pragma once
 

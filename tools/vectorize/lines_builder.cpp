@@ -14,14 +14,11 @@
 #include "line_plan.hpp"
 #include "line_projector.hpp"
 #include "line_shard.hpp"
+#include "line_tiles.hpp"
 #include "package_output.hpp"
-#include "parallel_batches.hpp"
-#include "tile_cutter.hpp"
 #include "tile_sorter.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/feature_table.hpp"
-#include "tileformat/line_clusters.hpp"
-#include "tileformat/line_tile.hpp"
 #include "tileformat/metadata.hpp"
 #include "tileformat/package.hpp"
 #include "tileformat/shard_table.hpp"
@@ -73,8 +70,13 @@ class Builder {
       }
       writer->checkpoint();  // the features table is committed before any tile
       TileSorter sorter(s_.output + ".scratch-sort", s_.memory_mb << 20);
-      pass_cut(scratch, sorter);
-      pass_encode(sorter, *writer);
+      const LineTileOptions tiles = tile_options();
+      LineTileStats stats;
+      cut_line_tiles(scratch, sum_.features_kept, plan_, tiles, sorter, stats, progress_);
+      encode_line_tiles(sorter, plan_, tiles, *writer, stats, progress_);
+      sum_.segments = stats.segments;
+      sum_.max_zoom_segments = stats.max_zoom_segments;
+      sum_.points = stats.points;
       sum_.spilled_runs = sorter.spilled_runs();
       sum_.spilled_bytes = sorter.spilled_bytes();
     } catch (const tileformat::PackageError& e) {
@@ -169,125 +171,17 @@ class Builder {
     facts_.extent.max_y = std::max(facts_.extent.max_y, p.y);
   }
 
-  void pass_cut(GeometryScratch& scratch, TileSorter& sorter) {
-    const TileCutter cutter(plan_.tiling, s_.extent, s_.simplify_px, plan_.area);
-    struct Result {
-      std::vector<Emission> emissions;
-      CutStats stats;
-    };
-    progress_.begin("cut into tiles", sum_.features_kept);
-    std::vector<ProjectedFeature> batch;
-    for (bool more = true; more;) {
-      batch.clear();
-      size_t vertices = 0;
-      while (batch.size() < 4096 && vertices < (1u << 20)) {
-        ProjectedFeature f;
-        if (!scratch.read(f)) {
-          more = false;
-          break;
-        }
-        for (const auto& p : f.lines)
-          vertices += p.size();
-        batch.push_back(std::move(f));
-      }
-      parallel_batches<NoInputs, Result>(
-          batch.size(), threads_, batch.size(), [](size_t, size_t) { return NoInputs{}; },
-          [&](size_t i, int, const NoInputs&) {
-            Result r;
-            uint32_t sub = 0;  // only the order within one tile matters
-            const uint32_t zooms = shard_ ? shard_->zooms_to_cut(batch[i]) : ~0u;
-            for (int z = plan_.min_zoom; z <= plan_.max_zoom; ++z)
-              if (zooms >> z & 1)
-                cutter.cut(batch[i], z, plan_.reach[z],
-                           z == plan_.max_zoom ? Collapsed::kKeep : Collapsed::kDrop, sub,
-                           r.emissions, r.stats);
-            if (shard_)
-              std::erase_if(r.emissions,
-                            [&](const Emission& e) { return !shard_->keeps(key_tile(e.key)); });
-            return r;
-          },
-          [&](size_t i, Result&& r) {
-            for (const Emission& e : r.emissions)
-              sorter.add(e.key, batch[i].id, e.sub, e.piece.to_bytes());
-            cut_.runs += r.stats.runs;
-            cut_.collapsed_runs += r.stats.collapsed_runs;
-            progress_.advance();
-          },
-          [](size_t) {});
+  LineTileOptions tile_options() const {
+    LineTileOptions o;
+    o.extent = s_.extent;
+    o.cluster_grid = s_.cluster_grid;
+    o.simplify_px = s_.simplify_px;
+    o.threads = threads_;
+    if (shard_) {
+      o.zooms = [this](const ProjectedFeature& f) { return shard_->zooms_to_cut(f); };
+      o.keeps = [this](tileformat::TileId id) { return shard_->keeps(id); };
     }
-    progress_.end();
-    sorter.finish();
-  }
-
-  std::vector<uint8_t> encode_tile(const TileGroup& group, uint64_t& segments,
-                                   uint64_t& points) const {
-    const TileId id = key_tile(group.key);
-    tileformat::LineTile t;
-    t.extent = static_cast<uint32_t>(s_.extent);
-    t.grid = static_cast<uint32_t>(s_.cluster_grid);
-    t.reach = plan_.reach[id.z];
-    for (const TileRecord& rec : group.records) {
-      if (t.feature_ids.empty() || t.feature_ids.back() != rec.seq)
-        t.feature_ids.push_back(rec.seq);
-      const uint32_t feature = static_cast<uint32_t>(t.feature_ids.size() - 1);
-      TilePiece piece = TilePiece::from_bytes(group.payload(rec));
-      if (piece.point) {
-        t.points.push_back({feature, piece.class_id, piece.vertices.at(0)});
-        continue;
-      }
-      t.runs.push_back({feature, piece.class_id, static_cast<uint32_t>(t.vertices.size()),
-                        static_cast<uint32_t>(piece.vertices.size())});
-      t.vertices.insert(t.vertices.end(), piece.vertices.begin(), piece.vertices.end());
-    }
-    tileformat::build_cluster_grid(t);
-    segments = t.segment_count();
-    points = t.points.size();
-    return tileformat::encode_line_tile(t);
-  }
-
-  void pass_encode(TileSorter& sorter, tileformat::PackageWriter& writer) {
-    struct Encoded {
-      std::vector<uint8_t> blob;
-      uint64_t segments = 0, points = 0;
-    };
-    progress_.begin("encode tiles", sorter.records());
-    // Tiles are put in key order: those a resumed package holds come first.
-    uint64_t skip = writer.resumed() ? writer.tiles_written() : 0;
-    std::vector<TileGroup> groups;
-    for (bool more = true; more;) {
-      groups.clear();
-      size_t bytes = 0;
-      while (groups.size() < size_t(64 * threads_) && bytes < (16u << 20)) {
-        TileGroup g;
-        if (!sorter.next_group(g)) {
-          more = false;
-          break;
-        }
-        if (skip > 0) {
-          --skip;
-          progress_.advance(g.records.size());
-          continue;
-        }
-        bytes += g.bytes.size() + g.records.size() * sizeof(TileRecord);
-        groups.push_back(std::move(g));
-      }
-      parallel_batches<NoInputs, Encoded>(
-          groups.size(), threads_, groups.size(), [](size_t, size_t) { return NoInputs{}; },
-          [&](size_t i, int, const NoInputs&) {
-            Encoded e;
-            e.blob = encode_tile(groups[i], e.segments, e.points);
-            return e;
-          },
-          [&](size_t i, Encoded&& e) {
-            writer.put_tile(key_tile(groups[i].key), e.blob);
-            sum_.segments += e.segments;
-            sum_.points += e.points;
-            if (key_tile(groups[i].key).z == plan_.max_zoom) sum_.max_zoom_segments += e.segments;
-            progress_.advance(groups[i].records.size());
-          },
-          [](size_t) {});
-    }
-    progress_.end();
+    return o;
   }
 
   const LinesSettings& s_;
@@ -299,7 +193,6 @@ class Builder {
   LengthHistogram lengths_;
   LinePlan plan_;
   std::optional<LineShard> shard_;
-  CutStats cut_;
   LinesSummary sum_;
 };
 

@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "errors.hpp"
 #include "lines_builder.hpp"
+#include "lines_options.hpp"
 
 namespace globe {
 
@@ -30,29 +31,7 @@ int run_lines(const std::vector<std::string>& args) {
              [&](const std::string& v) { s.class_field = v; });
   cli.option("--class-map", "V=NAME,...", "rename class values, e.g. 1=highway,2=primary",
              [&](const std::string& v) { s.class_map = v; });
-  cli.option(
-      "--style", "CLASS:K=V,...",
-      "a class's style (repeatable); keys color=#rrggbb, width=2px|12m,\n"
-      "                              casing=#rrggbb@1px, dash=6+3 (default: palette, 1.5px, solid)",
-      [&](const std::string& v) { s.styles.push_back(v); });
-  cli.option("--cluster-grid", "C", "cluster cells per tile side (default 32)",
-             [&](const std::string& v) {
-               s.cluster_grid = CliArgs::to_int("--cluster-grid", v, 1, 256);
-               if (4096 % s.cluster_grid != 0)
-                 throw UsageError("--cluster-grid must divide 4096 (1, 2, 4, ... 256)");
-             });
-  cli.option("--simplify", "PX",
-             "Douglas-Peucker tolerance in pixels of each zoom (default 0.25; 0 = off)",
-             [&](const std::string& v) {
-               s.simplify_px = CliArgs::to_double("--simplify", v);
-               if (s.simplify_px < 0 || s.simplify_px > 16)
-                 throw UsageError("--simplify must be within 0..16 pixels");
-             });
-  cli.option("--memory-mb", "MB",
-             "memory for sorting tile pieces before spilling to disk (default 256)",
-             [&](const std::string& v) {
-               s.memory_mb = static_cast<size_t>(CliArgs::to_int("--memory-mb", v, 1, 1 << 20));
-             });
+  declare_line_tile_options(cli, s);
   declare_shard_options(cli, s);
   declare_run_options(cli, s);
   if (!parse_build_command(cli, s, args, "globe-vectorize lines", "input vector file (see --help)"))

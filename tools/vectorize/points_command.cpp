@@ -8,20 +8,6 @@
 #include "points_builder.hpp"
 
 namespace globe {
-namespace {
-
-std::vector<std::string> split_names(const std::string& option, const std::string& v) {
-  std::vector<std::string> out;
-  std::string item;
-  std::istringstream in(v);
-  while (std::getline(in, item, ','))
-    if (!item.empty()) out.push_back(item);
-  if (out.empty()) throw UsageError(option + ": give one or more names separated by commas");
-  return out;
-}
-
-}  // namespace
-
 int run_points(const std::vector<std::string>& args) {
   PointsSettings s;
   CliArgs cli("globe-vectorize points",
@@ -36,14 +22,13 @@ int run_points(const std::vector<std::string>& args) {
                        "within --merge-px or tiles hold under 2 places, at most 16)");
   cli.option("--fields", "A,B,...", "the numeric fields a chart shows, in order (1 to 64)",
              [&](const std::string& v) {
-               s.fields = split_names("--fields", v);
+               s.fields = CliArgs::to_names("--fields", v);
                if (s.fields.size() > 64) throw UsageError("--fields: at most 64 fields");
              });
   cli.option("--xy", "XCOL,YCOL",
              "read CSV files, points from these columns (longitude, latitude unless --s_srs)",
              [&](const std::string& v) {
-               const std::vector<std::string> names = split_names("--xy", v);
-               if (names.size() != 2) throw UsageError("--xy: give two columns, e.g. lon,lat");
+               const std::vector<std::string> names = CliArgs::to_names("--xy", v, 2);
                s.xy = std::pair(names[0], names[1]);
              });
   cli.option("--label-field", "FIELD", "attribute that names a place (shown when picked)",

@@ -39,6 +39,7 @@ tileformat::TileId key_tile(uint64_t key);
 struct ProjectedFeature {
   uint64_t id = 0;
   uint32_t class_id = 0;
+  uint32_t zooms = ~0u;                // the zooms it is drawn at (bit z)
   std::vector<std::vector<XY>> lines;  // tiling CRS
   std::vector<XY> points;
 };

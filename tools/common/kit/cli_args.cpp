@@ -157,6 +157,19 @@ std::vector<double> CliArgs::to_doubles(const std::string& option, const std::st
   return out;
 }
 
+std::vector<std::string> CliArgs::to_names(const std::string& option, const std::string& v,
+                                           size_t n) {
+  std::vector<std::string> out;
+  std::istringstream in(v);
+  for (std::string item; std::getline(in, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  if (out.empty()) throw UsageError(option + ": give one or more names separated by commas");
+  if (n && out.size() != n)
+    throw UsageError(option + ": expected " + std::to_string(n) + " comma-separated names, got '" +
+                     v + "'");
+  return out;
+}
+
 }  // namespace globe
 
 namespace globe {

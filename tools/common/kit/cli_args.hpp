@@ -37,6 +37,10 @@ class CliArgs {
   static int to_int(const std::string& option, const std::string& v, int lo, int hi);
   static double to_double(const std::string& option, const std::string& v);
   static std::vector<double> to_doubles(const std::string& option, const std::string& v, size_t n);
+  // Comma-separated names (empty items dropped): at least one, and exactly
+  // `n` unless n is 0.
+  static std::vector<std::string> to_names(const std::string& option, const std::string& v,
+                                           size_t n = 0);
   // The command line recorded in package metadata: `prefix` and the
   // arguments without options that cannot change the output (-j/--threads,
   // -q/--quiet, --progress, --force, --memory-mb), so packages built with any
