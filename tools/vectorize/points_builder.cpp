@@ -63,6 +63,8 @@ class Builder {
     ro.where = s_.where;
     ro.s_srs = s_.s_srs;
     ro.value_fields = s_.fields;
+    for (const std::string& f : s_.fields)
+      ro.field_options[f] = "--fields";
     ro.xy = s_.xy;
     if (s_.bbox) ro.filter = Bounds{(*s_.bbox)[0], (*s_.bbox)[1], (*s_.bbox)[2], (*s_.bbox)[3]};
     VectorReader reader(s_.inputs, ro);

@@ -16,6 +16,7 @@ struct VectorReader::LayerHandle {
   OGRLayerH layer = nullptr;
   int class_field = -1;
   std::vector<int> value_fields;  // OGR field index of each VectorReaderOptions::value_fields
+  std::vector<int> text_fields;   // and of each text_fields
   std::vector<std::string> field_names;
   std::vector<OGRFieldType> field_types;
 };
@@ -111,10 +112,11 @@ VectorReader::VectorReader(const std::vector<std::string>& inputs, const VectorR
   std::optional<SpatialRef> assigned;
   if (!opt.s_srs.empty()) assigned = SpatialRef::from_user_input(opt.s_srs, "--s_srs");
   // CSV coordinates are longitude/latitude unless --s_srs says otherwise.
-  if (opt.xy && !assigned) assigned = SpatialRef::from_user_input("EPSG:4326", "--xy");
+  if (opt.xy && !assigned) assigned = SpatialRef::from_user_input("EPSG:4326", opt.xy_option);
   for (const std::string& path : inputs) {
-    datasets_.push_back(opt.xy ? GdalDataset::open_csv_points(path, opt.xy->first, opt.xy->second)
-                               : GdalDataset::open_vector(path));
+    datasets_.push_back(
+        opt.xy ? GdalDataset::open_csv_points(path, opt.xy->first, opt.xy->second, opt.xy_option)
+               : GdalDataset::open_vector(path));
     GDALDatasetH ds = datasets_.back().get();
     for (int li = 0; li < GDALDatasetGetLayerCount(ds); ++li) {
       OGRLayerH layer = GDALDatasetGetLayer(ds, li);
@@ -132,9 +134,10 @@ VectorReader::VectorReader(const std::vector<std::string>& inputs, const VectorR
       info.source = path;
       info.geometry = layer_geometry(layer);
       if (opt.xy && info.geometry != LayerGeometry::kPoints)
-        throw InputError(where + ": no columns '" + opt.xy->first + "' and '" + opt.xy->second +
-                         "' to read points from (--xy LONCOL,LATCOL); its columns are: " +
-                         field_list(OGR_L_GetLayerDefn(layer)));
+        throw InputError(
+            where + ": no columns '" + opt.xy->first + "' and '" + opt.xy->second +
+            "' to read points from (" + opt.xy_option +
+            " LONCOL,LATCOL); its columns are: " + field_list(OGR_L_GetLayerDefn(layer)));
       if (assigned) {
         info.crs = assigned;
       } else if (OGRSpatialReferenceH srs = OGR_L_GetSpatialRef(layer)) {
@@ -146,7 +149,7 @@ VectorReader::VectorReader(const std::vector<std::string>& inputs, const VectorR
           throw InputError(where + ": its CRS cannot be written as WKT (" + gdal_last_error() +
                            "); pass --s_srs");
         info.crs = SpatialRef::from_wkt(text, where);
-      } else {
+      } else if (opt.crs == VectorReaderOptions::Crs::kNeeded) {
         throw InputError(where +
                          ": no CRS (a shapefile without .prj?); pass --s_srs, e.g. --s_srs "
                          "EPSG:4326 for longitude/latitude");
@@ -160,18 +163,28 @@ VectorReader::VectorReader(const std::vector<std::string>& inputs, const VectorR
         info.fields.push_back(h->field_names.back());
         h->field_types.push_back(OGR_Fld_GetType(fd));
       }
-      for (const std::string& field : opt.value_fields) {
+      auto named = [&](const std::string& field) {
+        auto it = opt.field_options.find(field);
+        return (it == opt.field_options.end() ? std::string("field") : it->second) + " '" + field +
+               "': " + where;
+      };
+      auto index = [&](const std::string& field) {
         const int fi = OGR_FD_GetFieldIndex(defn, field.c_str());
         if (fi < 0)
-          throw UsageError("--fields '" + field + "': " + where +
+          throw UsageError(named(field) +
                            " has no such field; its fields are: " + field_list(defn));
+        return fi;
+      };
+      for (const std::string& field : opt.value_fields) {
+        const int fi = index(field);
         const OGRFieldType type = OGR_Fld_GetType(OGR_FD_GetFieldDefn(defn, fi));
         if (type != OFTInteger && type != OFTInteger64 && type != OFTReal)
-          throw UsageError("--fields '" + field + "': " + where + " holds " +
-                           OGR_GetFieldTypeName(type) +
+          throw UsageError(named(field) + " holds " + OGR_GetFieldTypeName(type) +
                            " values there, not numbers; give numeric fields");
         h->value_fields.push_back(fi);
       }
+      for (const std::string& field : opt.text_fields)
+        h->text_fields.push_back(index(field));
       if (!opt.class_field.empty()) {
         h->class_field = OGR_FD_GetFieldIndex(defn, opt.class_field.c_str());
         if (h->class_field < 0)
@@ -219,6 +232,10 @@ bool VectorReader::next(VectorFeature& out) {
     for (int fi : h.value_fields)
       out.values.push_back(OGR_F_IsFieldSetAndNotNull(feat, fi) ? OGR_F_GetFieldAsDouble(feat, fi)
                                                                 : std::nan(""));
+    out.texts.clear();
+    for (int fi : h.text_fields)
+      out.texts.push_back(OGR_F_IsFieldSetAndNotNull(feat, fi) ? OGR_F_GetFieldAsString(feat, fi)
+                                                               : "");
     out.properties_json = properties_ ? "{" : "";
     bool first = true;
     for (size_t i = 0; properties_ && i < h.field_names.size(); ++i) {

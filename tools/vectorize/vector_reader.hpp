@@ -5,6 +5,7 @@
 // the layer's CRS. CSV files with coordinate columns are read as points.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -23,7 +24,8 @@ struct VectorFeature {
   std::string class_value;      // the class field as text ("" without --class-field)
   std::vector<std::vector<XY>> lines;
   std::vector<XY> points;
-  std::vector<double> values;  // VectorReaderOptions::value_fields; NaN where null
+  std::vector<double> values;      // VectorReaderOptions::value_fields; NaN where null
+  std::vector<std::string> texts;  // VectorReaderOptions::text_fields; "" where null
 };
 
 // What a layer declares it holds.
@@ -50,6 +52,16 @@ struct VectorReaderOptions {
   std::vector<std::string> value_fields;
   // CSV files: the columns holding x and y (CRS: --s_srs, else lon/lat).
   std::optional<std::pair<std::string, std::string>> xy;
+  std::string xy_option = "--xy";  // the option that gave `xy`, for messages
+  // Fields read as text into VectorFeature::texts (any type); a missing one
+  // is a UsageError naming the layer and its fields.
+  std::vector<std::string> text_fields;
+  // Whether every layer needs a CRS (an attribute table without geometry
+  // does not: kNotNeeded).
+  enum class Crs { kNeeded, kNotNeeded } crs = Crs::kNeeded;
+  // The option that names each value or text field, for messages ("--fields
+  // 'x': ..."); fields not listed say "field 'x'".
+  std::map<std::string, std::string> field_options;
 };
 
 class VectorReader {

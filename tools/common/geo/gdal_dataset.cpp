@@ -251,8 +251,10 @@ GdalDataset GdalDataset::open_vector(const std::string& path) {
                        ".shp");
   }
   CPLErrorReset();
-  GDALDatasetH h =
-      GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
+  const char* const csv_options[] = {"AUTODETECT_TYPE=YES", nullptr};
+  const bool csv = ext == ".csv" || ext == ".tsv";
+  GDALDatasetH h = GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr,
+                              csv ? csv_options : nullptr, nullptr);
   if (!h) {
     std::string why = gdal_last_error();
     throw InputError(path + ": not vector data GDAL/OGR can read" +
@@ -265,7 +267,7 @@ GdalDataset GdalDataset::open_vector(const std::string& path) {
 }
 
 GdalDataset GdalDataset::open_csv_points(const std::string& path, const std::string& x_column,
-                                         const std::string& y_column) {
+                                         const std::string& y_column, const std::string& option) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw InputError(path + ": no such file; check the path");
   const std::string x = "X_POSSIBLE_NAMES=" + x_column, y = "Y_POSSIBLE_NAMES=" + y_column;
@@ -277,9 +279,9 @@ GdalDataset GdalDataset::open_csv_points(const std::string& path, const std::str
       GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, drivers, options, nullptr);
   if (!h) {
     const std::string why = gdal_last_error();
-    throw InputError(path + ": --xy reads CSV files and this is none" +
-                     (why.empty() ? "" : " (" + why + ")") +
-                     "; without --xy, any OGR point layer is read as it is");
+    throw InputError(path + ": " + option + " reads CSV files and this is none" +
+                     (why.empty() ? "" : " (" + why + ")") + "; without " + option +
+                     ", any OGR point layer is read as it is");
   }
   return GdalDataset(h, path);
 }

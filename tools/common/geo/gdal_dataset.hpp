@@ -38,14 +38,18 @@ class GdalDataset {
   // Opens a raster read-only; throws InputError naming the file.
   static GdalDataset open_raster(const std::string& path);
   // Opens vector data (any OGR source) read-only; throws InputError naming the
-  // file. A shapefile must come with its .shx and .dbf.
+  // file. A shapefile must come with its .shx and .dbf. CSV files get their
+  // columns' types detected (numbers as numbers).
   static GdalDataset open_vector(const std::string& path);
   // A CSV file whose points are in the columns `x_column` and `y_column`
   // (types of the other columns detected; a layer without point geometry if
   // the columns are missing); throws InputError naming the file if it is not
   // a CSV file.
+  // `option` names the option that asked for it, for messages. A column may
+  // be a comma-separated list of candidate names (wildcards allowed).
   static GdalDataset open_csv_points(const std::string& path, const std::string& x_column,
-                                     const std::string& y_column);
+                                     const std::string& y_column,
+                                     const std::string& option = "--xy");
   // Creates a vector dataset with the driver GDAL guesses from the extension
   // (GPKG if none); throws OutputError.
   static GdalDataset create_vector(const std::string& path);
