@@ -11,9 +11,55 @@
 #include "package_open.hpp"
 #include "points_inspect.hpp"
 #include "tileformat/feature_table.hpp"
+#include "tileformat/json.hpp"
 #include "tileformat/line_tile.hpp"
 
 namespace globe {
+
+namespace {
+
+// A bundled-flow package's summary (metadata globe:bundle, tileformat §7.5).
+void print_bundle_info(const std::string& json, const std::string& path) {
+  tileformat::JsonValue b;
+  try {
+    b = tileformat::JsonValue::parse(json);
+  } catch (const std::exception& e) {
+    throw InputError(path + ": metadata globe:bundle is not JSON (" + e.what() +
+                     "); rebuild the package (tileformat §7.5)");
+  }
+  auto num = [&](const char* key) {
+    const tileformat::JsonValue* v = b.find(key);
+    return v && v->is_number() ? v->number() : 0.0;
+  };
+  std::printf("bundled flows:\n");
+  std::printf(
+      "  connections %.0f: %.0f routed, %.0f unrouted (%.0f beyond --max-snap, %.0f on "
+      "one node, %.0f across network components); %.0f bad rows\n",
+      num("connections"), num("routed"), num("unrouted"), num("unsnapped"), num("same_node"),
+      num("disconnected"), num("bad_rows"));
+  std::printf("  bundles %.0f, straight lines %.0f\n", num("bundles"), num("straight_lines"));
+  std::printf("  mean detour %.3f (path length / great-circle distance)\n", num("mean_detour"));
+  std::printf("  ink ratio %.3f (drawn length / sum of straight lengths)\n", num("ink_ratio"));
+  if (const tileformat::JsonValue* n = b.find("network"); n && n->is_object()) {
+    auto nn = [&](const char* key) {
+      const tileformat::JsonValue* v = n->find(key);
+      return v && v->is_number() ? v->number() : 0.0;
+    };
+    std::printf(
+        "  network %.0f nodes, %.0f edges, %.0f components; reduced to %.0f nodes, %.0f "
+        "edges\n",
+        nn("nodes"), nn("edges"), nn("components"), nn("reduced_nodes"), nn("reduced_edges"));
+  }
+  if (const tileformat::JsonValue* c = b.find("weight_classes"); c && c->is_array())
+    for (const tileformat::JsonValue& k : c->array()) {
+      const tileformat::JsonValue *name = k.find("class"), *lo = k.find("min"), *hi = k.find("max");
+      if (name && name->is_string() && lo && lo->is_number() && hi && hi->is_number())
+        std::printf("  %-10s weight %g .. %g\n", name->string().c_str(), lo->number(),
+                    hi->number());
+    }
+}
+
+}  // namespace
 
 int run_lines_info(const std::vector<std::string>& args) {
   CliArgs cli("globe-vectorize info",
@@ -30,6 +76,7 @@ int run_lines_info(const std::vector<std::string>& args) {
     std::printf("  %4zu %s\n", i, p.classes[i].name.c_str());
   std::printf("features: %lld\n",
               static_cast<long long>(tileformat::FeatureTableReader(*p.reader).count()));
+  if (!p.meta.bundle_json.empty()) print_bundle_info(p.meta.bundle_json, path);
   std::map<int, tileformat::LineTileCounts> per_zoom;
   p.reader->for_each_tile([&](tileformat::TileId id, std::span<const uint8_t> blob) {
     const auto c = tileformat::peek_line_tile_counts(blob);

@@ -13,6 +13,8 @@ const char* kUsage =
     "                                     GeoPackage, GeoJSON, OSM, ...) -> line-cluster package\n"
     "  points INPUT... -o OUT.mbtiles --fields A,B,...   places with values (OGR points,\n"
     "                                     CSV with --xy) -> point package for charts\n"
+    "  bundle FLOWS --network NET... -o OUT.mbtiles   origin-destination flows routed\n"
+    "                                     along a network, bundled and smoothed -> line package\n"
     "  info PACKAGE                       metadata, classes or fields, zooms, tiles, contents\n"
     "  validate PACKAGE                   decode every tile, recheck every cluster grid\n"
     "  extract PACKAGE --zoom Z -o OUT.gpkg   decoded lines of one zoom as vector data\n"
@@ -31,6 +33,7 @@ int main(int argc, char** argv) {
                                   {"validate", globe::run_lines_validate},
                                   {"extract", globe::run_lines_extract},
                                   {"merge", globe::run_lines_merge},
-                                  {"points", globe::run_points}},
+                                  {"points", globe::run_points},
+                                  {"bundle", globe::run_bundle}},
                                  argc, argv);
 }

@@ -252,6 +252,7 @@ MetadataMap to_metadata(const LineMetadata& m) {
               "\",\"source\":\"" + json_escape(m.layers[i].source) +
               "\",\"features\":" + std::to_string(m.layers[i].features) + "}";
   meta["globe:layers"] = layers + "]";
+  if (!m.bundle_json.empty()) meta["globe:bundle"] = m.bundle_json;
   return meta;
 }
 
@@ -365,6 +366,7 @@ LineMetadata read_line_metadata(const MetadataMap& meta) {
           member(e, "source", "globe:layers", "7.4").string(),
           static_cast<uint64_t>(member(e, "features", "globe:layers", "7.4").number())};
     });
+  if (k.find("globe:bundle")) m.bundle_json = Keys(meta, "7.5").text("globe:bundle");
   return m;
 }
 

@@ -99,6 +99,7 @@ struct LineMetadata {
   uint64_t features = 0;              // globe:features
   std::string classes_json;           // globe:classes: the classes and their styles, JSON (§7.4)
   std::vector<LineLayerInfo> layers;  // globe:layers
+  std::string bundle_json;            // globe:bundle (bundled flows, §7.5): "" for none
 };
 
 // Terrain analytics (§9): the terrain's tiling, zooms and block size.

@@ -1,0 +1,29 @@
+// Settings of `globe-vectorize bundle`, filled by the command-line parser and
+// read by the builder (nothing here touches OGR). The line options (tiling,
+// zooms, --style, cluster grid) are those of `globe-vectorize lines`.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "bundle/flow_input.hpp"
+#include "bundle/network_graph.hpp"
+#include "lines_settings.hpp"
+
+namespace globe {
+
+enum class Unrouted { kStraight, kDrop };
+
+struct BundleSettings : LinesSettings {
+  std::string flows;                 // the connections (inputs[0])
+  std::vector<std::string> network;  // --network (repeatable)
+  FlowOptions flow;
+  NetworkOptions net;
+  double max_snap_m = 25000;  // --max-snap: a place this far from every node is unrouted
+  double corridor_px = 4;     // --corridor-px: the curve's distance from the network
+  Unrouted unrouted = Unrouted::kStraight;
+  int weight_classes = 6;               // --weight-classes
+  double min_width = 1, max_width = 9;  // --widths MIN,MAX (px) of the weight classes
+};
+
+}  // namespace globe
