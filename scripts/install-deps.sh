@@ -17,8 +17,8 @@ packages=(
   # viewer: GLM, GLFW window, OSMesa and EGL (Mesa llvmpipe) headless contexts
   libglm-dev libglfw3-dev libosmesa6-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   # command-line tools used by samples/fetch.sh, tests and benchmarks
-  gdal-bin sqlite3 unzip ca-certificates curl time bc
-  # tests/data/hostile/make_hostile.sh
+  gdal-bin sqlite3 unzip ca-certificates curl time bc xz-utils
+  # tests/data/hostile/make_hostile.sh, samples/fetch.sh's conversions
   python3
   # gdal2tiles.py (imagery benchmark peer)
   python3-gdal
