@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <unordered_map>
@@ -26,6 +27,17 @@ bool is_csv(const std::string& path) {
 
 bool on_the_globe(double lon, double lat) {
   return std::isfinite(lon) && std::isfinite(lat) && std::abs(lat) <= 90 && std::abs(lon) <= 540;
+}
+
+// The number a whole field holds (surrounding blanks allowed), else NaN.
+double parse_number(const std::string& text) {
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  const double v = std::strtod(begin, &end);
+  if (end == begin) return std::nan("");
+  while (*end == ' ' || *end == '\t' || *end == '\r')
+    ++end;
+  return *end == 0 ? v : std::nan("");
 }
 
 std::string lonlat_text(double lon, double lat) {
@@ -103,20 +115,24 @@ FlowInput read_flows(const std::string& path, const FlowOptions& o) {
   ro.properties = false;
   ro.crs = VectorReaderOptions::Crs::kNotNeeded;
   ro.s_srs = o.s_srs;
+  // Every column is read as text and parsed here, row by row: a column
+  // with one "NA" is text to OGR's CSV reader, and a bad value is a bad
+  // row, not a bad file.
+  auto column = [&](const std::string& name, const char* option) {
+    ro.text_fields.push_back(name);
+    ro.field_options[name] = option;
+  };
   if (by_xy) {
-    ro.value_fields = {o.from_xy->first, o.from_xy->second, o.to_xy->first, o.to_xy->second};
-    ro.field_options[o.from_xy->first] = ro.field_options[o.from_xy->second] = "--from";
-    ro.field_options[o.to_xy->first] = ro.field_options[o.to_xy->second] = "--to";
+    column(o.from_xy->first, "--from");
+    column(o.from_xy->second, "--from");
+    column(o.to_xy->first, "--to");
+    column(o.to_xy->second, "--to");
   }
   if (by_id) {
-    ro.text_fields = {o.from_id, o.to_id};
-    ro.field_options[o.from_id] = "--from-id";
-    ro.field_options[o.to_id] = "--to-id";
+    column(o.from_id, "--from-id");
+    column(o.to_id, "--to-id");
   }
-  if (!o.weight.empty()) {
-    ro.value_fields.push_back(o.weight);
-    ro.field_options[o.weight] = "--weight";
-  }
+  if (!o.weight.empty()) column(o.weight, "--weight");
   VectorReader reader({path}, ro);
   // Lines: their ends, in longitude/latitude.
   std::vector<std::unique_ptr<CoordTransform>> to_lonlat;
@@ -148,8 +164,8 @@ FlowInput read_flows(const std::string& path, const FlowOptions& o) {
     Connection c;
     c.row = in.rows;
     if (by_xy) {
-      c.from = {f.values[0], f.values[1]};
-      c.to = {f.values[2], f.values[3]};
+      c.from = {parse_number(f.texts[0]), parse_number(f.texts[1])};
+      c.to = {parse_number(f.texts[2]), parse_number(f.texts[3])};
       if (!on_the_globe(c.from.lon, c.from.lat) || !on_the_globe(c.to.lon, c.to.lat)) {
         bad(in.bad_coordinates, "no longitude/latitude in the --from or --to columns");
         continue;
@@ -188,7 +204,7 @@ FlowInput read_flows(const std::string& path, const FlowOptions& o) {
       c.destination = lonlat_text(c.to.lon, c.to.lat);
     }
     if (!o.weight.empty()) {
-      c.weight = f.values.back();
+      c.weight = parse_number(f.texts.back());
       if (!std::isfinite(c.weight) || c.weight < 0) {
         bad(in.bad_weights, "weight (--weight '" + o.weight + "') missing or negative");
         continue;

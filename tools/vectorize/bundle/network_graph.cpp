@@ -45,8 +45,14 @@ struct NetworkGraph::Builder::State {
   std::unordered_map<uint64_t, size_t> edge_at;  // node pair -> edge
   std::vector<double> seg_m;
 
+  // Longitudes wrap: a line split at the antimeridian (as GeoJSON asks)
+  // joins its other half at -180 = 180.
   uint32_t node(LonLat p) {
-    const auto key = cell_key(std::llround(p.lon / eps), std::llround(p.lat / eps));
+    p.lon = std::remainder(p.lon, 360.0);
+    if (p.lon >= 180) p.lon -= 360;
+    const int64_t columns = std::llround(360 / eps);
+    const int64_t column = std::llround(p.lon / eps);
+    const auto key = cell_key(((column % columns) + columns) % columns, std::llround(p.lat / eps));
     auto [it, fresh] = node_at.try_emplace(key, static_cast<uint32_t>(g.nodes_.size()));
     if (fresh) g.nodes_.push_back(p);
     return it->second;
