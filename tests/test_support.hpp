@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <iostream>
+
 #include <sys/wait.h>
 #include <array>
 #include <cstdio>
@@ -66,7 +69,12 @@ class TempDir {
     fs::remove_all(path_);
     fs::create_directories(path_);
   }
+  // Kept for a look when the test failed and GLOBE_TEST_KEEP is set.
   ~TempDir() {
+    if (std::getenv("GLOBE_TEST_KEEP") && ::testing::Test::HasFailure()) {
+      std::cerr << "kept " << path_ << " (GLOBE_TEST_KEEP)\n";
+      return;
+    }
     std::error_code ec;
     fs::remove_all(path_, ec);
   }

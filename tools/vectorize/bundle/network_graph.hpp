@@ -80,8 +80,10 @@ class NetworkGraph {
   std::vector<Edge> edges_;
   std::vector<uint32_t> component_;
   NetworkStats stats_;
-  // Nodes in grid cells of kIndexCellDeg, for nearest().
+  // Nodes in grid cells of cell_deg_ (columns_ around the globe), for nearest().
   std::unordered_map<uint64_t, std::vector<uint32_t>> cells_;
+  double cell_deg_ = 1;
+  int64_t columns_ = 360;
 };
 
 // The graph reduction. Reduced nodes are the graph's nodes of degree other
