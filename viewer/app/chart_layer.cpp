@@ -57,7 +57,7 @@ ChartLayer::ChartLayer(PointPackage package, const ChartSettings& settings, uint
       width_(width),
       height_(height) {
   const tileformat::PointMetadata& m = cache_.package().meta;
-  const std::string path = cache_.package().reader->db().path();
+  const std::string path = cache_.package().reader->path();
   if (m.fields.size() > size_t(kMaxChartFields))
     throw InputError(path + ": " + std::to_string(m.fields.size()) + " fields; charts show up to " +
                      std::to_string(kMaxChartFields) + " (rebuild it with fewer --fields)");

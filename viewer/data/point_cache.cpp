@@ -81,7 +81,7 @@ size_t PointCache::take_loaded() {
     if (!d.ok) {
       ++stats_.broken;
       std::fprintf(stderr, "globe-view: %s: tile %s: %s; its charts are left out\n",
-                   package_.reader->db().path().c_str(), d.job.id.str().c_str(), d.error.c_str());
+                   package_.reader->path().c_str(), d.job.id.str().c_str(), d.error.c_str());
       it->second.state = State::kAbsent;
       continue;
     }

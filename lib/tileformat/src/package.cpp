@@ -380,6 +380,10 @@ std::vector<ZoomSummary> PackageReader::zoom_summaries() {
   return out;
 }
 
+const std::string& PackageReader::path() const {
+  return db_->path();
+}
+
 uint64_t PackageReader::unique_blobs() {
   return static_cast<uint64_t>(db_->query_int("SELECT COUNT(*) FROM blobs").value_or(0));
 }

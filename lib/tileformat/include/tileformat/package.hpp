@@ -129,6 +129,8 @@ class PackageReader {
   std::vector<ZoomSummary> zoom_summaries();
   uint64_t unique_blobs();
   SqliteDb& db() { return *db_; }
+  // The file this reader opened, for messages.
+  const std::string& path() const;
 
  private:
   TileId checked_id(int64_t z, int64_t column, int64_t row) const;
