@@ -1,6 +1,6 @@
 // The stages of a bundling (docs/bundles.md) on small and random graphs:
-// routes are shortest paths, A* and Dijkstra (against a reference Dijkstra
-// written here on the full, unreduced graph), connected chains from origin to destination, the
+// routes are shortest paths (against a reference Dijkstra written here on
+// the full, unreduced graph), connected chains from origin to destination, the
 // same for any thread count; the graph reduction keeps every distance;
 // bundles partition the used edges, carry the sums of their connections and
 // conserve weight at every node; smoothed curves stay within their corridor
@@ -133,35 +133,30 @@ TEST(BundleRouting, ShortestPathsMatchAReferenceDijkstraAndAreConnectedChains) {
     const Routed r = route_random(net, 150, seed * 7);
     ASSERT_GT(r.od.size(), 50u);
     std::map<uint32_t, std::vector<double>> reference;
-    // A* (node positions) and Dijkstra (none).
-    for (const bool guided : {true, false}) {
-      const auto routes = route_connections(
-          r.reduced, r.od,
-          guided ? std::span<const LonLat>(r.graph.nodes()) : std::span<const LonLat>(), 2, quiet);
-      for (size_t c = 0; c < r.od.size(); ++c) {
-        const uint32_t from = r.place_node[r.od_places[c].first];
-        const uint32_t to = r.place_node[r.od_places[c].second];
-        if (!reference.count(from)) reference[from] = reference_distances(r.graph, from);
-        ASSERT_FALSE(routes[c].empty()) << "seed " << seed << " connection " << c;
-        // A chain of reduced edges from origin to destination...
-        uint32_t at = r.od[c].origin;
-        double cost = 0;
-        for (uint32_t e : routes[c]) {
-          const ReducedGraph::Edge& edge = r.reduced.edges[e];
-          ASSERT_TRUE(edge.a == at || edge.b == at) << "seed " << seed << ": route breaks";
-          at = edge.a == at ? edge.b : edge.a;
-          // ... whose graph nodes are consecutive graph edges.
-          for (uint32_t k = edge.first; k + 1 < edge.first + edge.count; ++k) {
-            const LonLat p = r.graph.nodes()[r.reduced.path[k]];
-            const LonLat q = r.graph.nodes()[r.reduced.path[k + 1]];
-            cost += geodesic_distance_m(p.lon, p.lat, q.lon, q.lat);
-          }
+    const auto routes = route_connections(r.reduced, r.od, 2, quiet);
+    for (size_t c = 0; c < r.od.size(); ++c) {
+      const uint32_t from = r.place_node[r.od_places[c].first];
+      const uint32_t to = r.place_node[r.od_places[c].second];
+      if (!reference.count(from)) reference[from] = reference_distances(r.graph, from);
+      ASSERT_FALSE(routes[c].empty()) << "seed " << seed << " connection " << c;
+      // A chain of reduced edges from origin to destination...
+      uint32_t at = r.od[c].origin;
+      double cost = 0;
+      for (uint32_t e : routes[c]) {
+        const ReducedGraph::Edge& edge = r.reduced.edges[e];
+        ASSERT_TRUE(edge.a == at || edge.b == at) << "seed " << seed << ": route breaks";
+        at = edge.a == at ? edge.b : edge.a;
+        // ... whose graph nodes are consecutive graph edges.
+        for (uint32_t k = edge.first; k + 1 < edge.first + edge.count; ++k) {
+          const LonLat p = r.graph.nodes()[r.reduced.path[k]];
+          const LonLat q = r.graph.nodes()[r.reduced.path[k + 1]];
+          cost += geodesic_distance_m(p.lon, p.lat, q.lon, q.lat);
         }
-        EXPECT_EQ(at, r.od[c].destination);
-        // ... as short as the reference's (1 mm per km of rounding).
-        EXPECT_NEAR(cost, reference[from][to], 1e-6 * reference[from][to] + 1e-3)
-            << "seed " << seed << " connection " << c << (guided ? " (A*)" : " (Dijkstra)");
       }
+      EXPECT_EQ(at, r.od[c].destination);
+      // ... as short as the reference's (1 mm per km of rounding).
+      EXPECT_NEAR(cost, reference[from][to], 1e-6 * reference[from][to] + 1e-3)
+          << "seed " << seed << " connection " << c;
     }
   }
 }
@@ -170,10 +165,9 @@ TEST(BundleRouting, RoutesDoNotDependOnTheThreadCount) {
   Progress quiet(ProgressMode::kQuiet);
   const RandomNetwork net = random_network(80, 11);
   const Routed r = route_random(net, 300, 5);
-  const auto one = route_connections(r.reduced, r.od, r.graph.nodes(), 1, quiet);
+  const auto one = route_connections(r.reduced, r.od, 1, quiet);
   for (int threads : {2, 3, 8})
-    EXPECT_EQ(route_connections(r.reduced, r.od, r.graph.nodes(), threads, quiet), one)
-        << threads << " threads";
+    EXPECT_EQ(route_connections(r.reduced, r.od, threads, quiet), one) << threads << " threads";
 }
 
 TEST(BundleGraph, ReductionCollapsesChainsAndKeepsTerminalsAndLengths) {
@@ -221,7 +215,7 @@ TEST(BundleSets, BundlesPartitionTheUsedEdgesAndConserveWeightAtEveryNode) {
   Progress quiet(ProgressMode::kQuiet);
   const RandomNetwork net = random_network(70, 21);
   const Routed r = route_random(net, 400, 9);
-  const auto routes = route_connections(r.reduced, r.od, r.graph.nodes(), 2, quiet);
+  const auto routes = route_connections(r.reduced, r.od, 2, quiet);
   std::vector<double> weights;
   std::mt19937 rng(4);
   for (size_t c = 0; c < routes.size(); ++c)
@@ -291,7 +285,7 @@ TEST(BundleSets, ConnectionsSharingACorridorShareOneBundle) {
   auto rn = [&](LonLat p) { return uint32_t(r.reduced_node[node(p)]); };
   Progress quiet(ProgressMode::kQuiet);
   const auto routes =
-      route_connections(r, {{rn({0, 0}), rn({3, 0})}, {rn({1, 1}), rn({2, -1})}}, {}, 1, quiet);
+      route_connections(r, {{rn({0, 0}), rn({3, 0})}, {rn({1, 1}), rn({2, -1})}}, 1, quiet);
   const BundleSet set = make_bundles(r, routes, {10, 5});
   ASSERT_EQ(set.bundles.size(), 5u);  // 2 + 2 own legs, 1 shared
   ASSERT_EQ(set.paths[0].size(), 3u);

@@ -251,12 +251,7 @@ class Builder {
         od_connection.push_back(c);
       }
     }
-    // Geodesic costs: A* (a lower bound from positions); a cost field: Dijkstra.
-    const std::span<const LonLat> positions = s_.net.cost_field.empty()
-                                                  ? std::span<const LonLat>(graph_->nodes())
-                                                  : std::span<const LonLat>();
-    std::vector<std::vector<uint32_t>> found =
-        route_connections(reduced_, od, positions, threads_, progress_);
+    std::vector<std::vector<uint32_t>> found = route_connections(reduced_, od, threads_, progress_);
     routes_.assign(flows_.connections.size(), {});
     for (size_t i = 0; i < od.size(); ++i) {
       routes_[od_connection[i]] = std::move(found[i]);
