@@ -62,14 +62,22 @@ int run_headless(const ViewerSettings& settings) {
       max_resident = std::max(max_resident, scene.cache().stats().resident_bytes);
     }
   }
+  if (settings.pick) {
+    const auto [x, y] = *settings.pick;
+    if (scene.charts()) {
+      std::printf("%s\n", scene.charts()->describe(x, y).c_str());
+    } else if (scene.lines()) {
+      // The picked line is highlighted in the snapshot: one more frame.
+      std::printf("%s\n", scene.lines()->pick(x, y).c_str());
+      if (!scene.lines()->highlighted().empty())
+        f = scene.frame(poses.back(), Loading::kSettle, TerrainScene::Output::kDraw);
+    } else {
+      throw UsageError("--pick finds charts or lines; give a point or line package too");
+    }
+  }
   if (settings.snapshot)
     write_png(*settings.snapshot, scene.read_pixels(), scene.renderer().width(),
               scene.renderer().height());
-  if (settings.pick) {
-    if (!scene.charts()) throw UsageError("--pick finds charts; give a point package too");
-    std::printf("%s\n",
-                scene.charts()->describe(settings.pick->first, settings.pick->second).c_str());
-  }
   if (settings.export_mesh)
     write_mesh_ply(*settings.export_mesh, scene.capture(f), f.view, scene.world(),
                    settings.shading.exaggeration, settings.max_error_px);

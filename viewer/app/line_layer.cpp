@@ -1,13 +1,47 @@
 // The lines of one view (see line_layer.hpp).
 #include "app/line_layer.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 
 #include "errors.hpp"
+#include "tileformat/feature_table.hpp"
+#include "tileformat/json.hpp"
 
 namespace globe::viewer {
+
+namespace {
+
+// The class picked features are drawn in: over every other (wider, and the
+// highest class id wins ties), in a colour no default style uses.
+NamedLineStyle highlight_style(const std::vector<NamedLineStyle>& classes) {
+  double widest = 2;
+  for (const NamedLineStyle& c : classes)
+    if (c.style.visible && !c.style.width_in_m) widest = std::max(widest, c.style.width);
+  LineStyle s;
+  s.color = "#00e5ff";
+  s.width = widest + 2;
+  s.casing_color = "#08306b";
+  s.casing_width = 1;
+  return {"highlight", s};
+}
+
+std::string number_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+// A member of a feature's properties as text ("" when absent).
+std::string property(const tileformat::JsonValue& props, const char* key) {
+  const tileformat::JsonValue* v = props.find(key);
+  if (!v) return "";
+  return v->is_number() ? number_text(v->number()) : v->is_string() ? v->string() : "";
+}
+
+}  // namespace
 
 LineLayer::LineLayer(const std::string& path, LinePackage package,
                      std::optional<std::string> style_path, LineMode mode, uint64_t budget_bytes,
@@ -15,6 +49,8 @@ LineLayer::LineLayer(const std::string& path, LinePackage package,
     : path_(path),
       style_path_(std::move(style_path)),
       package_styles_(package.classes),
+      bundled_(!package.meta.bundle_json.empty()),
+      features_(std::make_unique<tileformat::PackageReader>(path)),
       mode_(mode),
       cache_(path, std::move(package), budget_bytes),
       renderer_(cache_.arena_words(), width, height) {
@@ -27,12 +63,16 @@ LineLayer::LineLayer(const std::string& path, LinePackage package,
 
 std::vector<NamedLineStyle> LineLayer::read_styles() const {
   std::vector<NamedLineStyle> styles = package_styles_;
-  if (!style_path_) return styles;
+  if (!style_path_) {
+    styles.push_back(highlight_style(styles));
+    return styles;
+  }
   std::ifstream in(*style_path_);
   if (!in) throw InputError(*style_path_ + ": cannot read the style file");
   std::stringstream text;
   text << in.rdbuf();
   apply_style_json(text.str(), *style_path_, styles);
+  styles.push_back(highlight_style(styles));
   return styles;
 }
 
@@ -82,6 +122,85 @@ double LineLayer::draw(const GBuffer& g, const View& view, const WorldFrame& wor
     if (cache_.loader_busy()) cache_.wait_for_loader();
   }
   return ms;
+}
+
+std::optional<uint64_t> LineLayer::feature_at(int x, int y) {
+  const auto [record, segment] = renderer_.pick(x, y);
+  if (record == 0 || segment == 0 || !cache_.live(record - 1)) return std::nullopt;
+  const tileformat::TileId id = cache_.records()[record - 1].id;
+  try {
+    const auto blob = features_->tile(id);
+    if (!blob) return std::nullopt;
+    return segment_feature(tileformat::decode_line_tile(*blob), segment - 1);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "globe-view: %s: line tile %s: %s; nothing picked\n", path_.c_str(),
+                 id.str().c_str(), e.what());
+    return std::nullopt;
+  }
+}
+
+const LineLayer::BundleIndex& LineLayer::bundle_index() {
+  if (bundles_) return *bundles_;
+  bundles_ = std::make_unique<BundleIndex>();
+  tileformat::FeatureTableReader table(*features_);
+  table.for_each([&](int64_t id, const tileformat::FeatureRecord& f) {
+    if (f.layer != "connections") return;
+    const tileformat::JsonValue props = tileformat::JsonValue::parse(f.properties);
+    const tileformat::JsonValue* bundles = props.find("bundles");
+    if (!bundles || !bundles->is_array()) return;  // unrouted
+    std::vector<uint64_t>& path = bundles_->bundles_of[uint64_t(id)];
+    for (const tileformat::JsonValue& b : bundles->array()) {
+      path.push_back(uint64_t(b.number()));
+      bundles_->connections_of[path.back()].push_back(uint64_t(id));
+    }
+  });
+  return *bundles_;
+}
+
+std::string LineLayer::pick(int x, int y) {
+  const std::optional<uint64_t> feature = feature_at(x, y);
+  std::vector<uint64_t> lit;
+  std::string text;
+  if (feature) {
+    lit = {*feature};
+    std::optional<tileformat::FeatureRecord> f;
+    try {
+      f = tileformat::FeatureTableReader(*features_).get(int64_t(*feature));
+    } catch (const std::exception&) {
+      // A package without a features table: the id is all there is to say.
+    }
+    text = "feature " + std::to_string(*feature);
+    if (f) try {
+        const tileformat::JsonValue props = tileformat::JsonValue::parse(f->properties);
+        if (bundled_ && f->layer == "bundles") {
+          const BundleIndex& index = bundle_index();
+          auto it = index.connections_of.find(*feature);
+          if (it != index.connections_of.end())
+            for (uint64_t c : it->second) {
+              const std::vector<uint64_t>& path = index.bundles_of.at(c);
+              lit.insert(lit.end(), path.begin(), path.end());
+            }
+          text = "bundle " + std::to_string(*feature) + ": weight " + property(props, "weight") +
+                 ", " + property(props, "count") + " connections";
+        } else if (bundled_ && f->layer == "unrouted") {
+          text = "unrouted " + property(props, "origin") + " - " + property(props, "destination") +
+                 ": weight " + property(props, "weight") + " (" + property(props, "reason") + ")";
+        } else {
+          text += " (" + f->layer + "): " + f->properties;
+          if (text.size() > 200) text = text.substr(0, 197) + "...";
+        }
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "globe-view: %s: feature %llu: %s\n", path_.c_str(),
+                     static_cast<unsigned long long>(*feature), e.what());
+      }
+  }
+  std::sort(lit.begin(), lit.end());
+  lit.erase(std::unique(lit.begin(), lit.end()), lit.end());
+  if (lit != highlighted_) {
+    highlighted_ = lit;
+    cache_.set_highlight({lit, static_cast<uint32_t>(package_styles_.size())});
+  }
+  return text;
 }
 
 }  // namespace globe::viewer

@@ -1,10 +1,13 @@
 // The lines of one view: a line package's tile cache, its styles (from the
 // package, optionally overridden by a style file that can be reloaded while
-// the window is open) and the line pass that draws them over the terrain.
+// the window is open) and the line pass that draws them over the terrain;
+// picking: the feature under a pixel, drawn highlighted from then on (for a
+// bundled-flows package, every connection through the picked bundle).
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -47,14 +50,35 @@ class LineLayer {
   void set_mode(LineMode m) { mode_ = m; }
   LineLayerStats stats() const { return {cache_.stats(), tiles_used_}; }
 
+  // The line drawn on top at pixel (x, y) (from the top-left) in the last
+  // frame: "" where there is none (deferred mode only). Otherwise its
+  // description, and the frames that follow highlight it; in a bundled-flows
+  // package (tileformat §7.5) a bundle highlights every bundle of the
+  // connections through it. Picking where no line is clears the highlight.
+  std::string pick(int x, int y);
+  // The feature ids drawn highlighted (sorted; empty: none).
+  const std::vector<uint64_t>& highlighted() const { return highlighted_; }
+
  private:
+  // Bundles and connections of a bundled-flows package, from its features
+  // table (read on the first pick).
+  struct BundleIndex {
+    std::map<uint64_t, std::vector<uint64_t>> connections_of;  // bundle -> connections
+    std::map<uint64_t, std::vector<uint64_t>> bundles_of;      // connection -> bundles
+  };
   std::vector<NamedLineStyle> read_styles() const;
   size_t upload_loaded();
+  std::optional<uint64_t> feature_at(int x, int y);
+  const BundleIndex& bundle_index();
 
   std::string path_;
   std::optional<std::string> style_path_;
   std::filesystem::file_time_type style_time_{};
   std::vector<NamedLineStyle> package_styles_;
+  bool bundled_ = false;                                 // a §7.5 package
+  std::unique_ptr<tileformat::PackageReader> features_;  // tiles and features table, for picking
+  std::unique_ptr<BundleIndex> bundles_;
+  std::vector<uint64_t> highlighted_;
   LineMode mode_;
   LineCache cache_;
   LineRenderer renderer_;

@@ -26,7 +26,9 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
       "  , and . shift the elevation ramp down/up, ; and ' narrow/widen it, 0 reset;\n"
       "  I select the next image layer, V show/hide it, [ and ] its opacity -/+ 0.1,\n"
       "  U imagery unlit/lit; L line mode, F5 reload the style and colour files;\n"
-      "  C next chart kind; the title names the place under the cursor.\n");
+      "  C next chart kind; the title names the place under the cursor;\n"
+      "  click a line to highlight it (a bundle: every connection through it), click\n"
+      "  elsewhere to clear; the title names it.\n");
   cli.option("--snapshot", "OUT.png", "render headless, write the image, exit",
              [&](const std::string& v) { s.snapshot = v; });
   cli.option("--size", "WxH", "image / window size in pixels (default 1280x720)",
@@ -234,8 +236,10 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
   cli.flag("--stats", "print frame statistics as JSON on stdout (headless)",
            [&] { s.stats = true; });
   cli.option("--pick", "X,Y",
-             "print the place whose chart covers pixel X,Y (from the top-left) and its values "
-             "on stdout, one line (empty: none) (headless)",
+             "print what is at pixel X,Y (from the top-left) on stdout, one line (empty: "
+             "nothing): the place whose chart covers it and its values, or else the line "
+             "feature drawn there, which the snapshot then highlights (in bundled flows: the "
+             "bundle, with every connection through it) (headless)",
              [&](const std::string& v) {
                const auto d = CliArgs::to_doubles("--pick", v, 2);
                s.pick = std::pair(static_cast<int>(d[0]), static_cast<int>(d[1]));

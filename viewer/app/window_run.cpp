@@ -43,8 +43,17 @@ int run_window(const ViewerSettings& settings) {
   GlfwWindow* window_ptr = nullptr;
 
   WindowCallbacks cb;
+  double press_x = 0, press_y = 0;
+  std::string picked;  // the line the last click picked
   cb.on_button = [&](int button, bool down, double x, double y) {
-    if (button == GLFW_MOUSE_BUTTON_LEFT) drag_orbit = down;
+    if (button == GLFW_MOUSE_BUTTON_LEFT) {
+      drag_orbit = down;
+      // A click, not a drag: pick the line under it (or clear).
+      if (down)
+        press_x = x, press_y = y;
+      else if (scene && scene->lines() && std::hypot(x - press_x, y - press_y) < 4)
+        picked = scene->lines()->pick(int(x), int(y));
+    }
     if (button == GLFW_MOUSE_BUTTON_RIGHT) drag_pan = down;
     last_x = x, last_y = y;
   };
@@ -244,6 +253,11 @@ int run_window(const ViewerSettings& settings) {
         const size_t n = std::strlen(title);
         std::snprintf(title + n, sizeof title - n, "  image %zu/%zu %s %.1f", layer + 1, im->size(),
                       im->visible(layer) ? "opacity" : "hidden, opacity", im->opacity(layer));
+      }
+      if (!picked.empty()) {
+        const std::string rest = title;
+        std::snprintf(title, sizeof title, "globe-view  %s  %s", picked.c_str(),
+                      rest.c_str() + std::strlen("globe-view  "));
       }
       // The place whose chart is under the cursor.
       if (ChartLayer* charts = s.charts()) {

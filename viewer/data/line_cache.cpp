@@ -22,7 +22,7 @@ uint32_t float_bits(double v) {
 
 }  // namespace
 
-DecodedLineTile line_tile_words(const tileformat::LineTile& t) {
+DecodedLineTile line_tile_words(const tileformat::LineTile& t, const LineHighlight* highlight) {
   DecodedLineTile d;
   d.extent = t.extent;
   d.grid = t.grid;
@@ -34,24 +34,59 @@ DecodedLineTile line_tile_words(const tileformat::LineTile& t) {
   d.words.insert(d.words.end(), t.cell_offsets.begin(), t.cell_offsets.end());
   d.words.insert(d.words.end(), t.cell_segments.begin(), t.cell_segments.end());
   for (const tileformat::LineRun& r : t.runs) {
+    const bool lit =
+        highlight && std::binary_search(highlight->features.begin(), highlight->features.end(),
+                                        t.feature_ids[r.feature]);
+    const uint32_t class_id = lit ? highlight->class_id : r.class_id;
     double along = 0;
     for (uint32_t i = 0; i + 1 < r.vertex_count; ++i) {
       const tileformat::LineVertex a = t.vertices[r.first_vertex + i],
                                    b = t.vertices[r.first_vertex + i + 1];
       d.words.insert(d.words.end(), {float_bits(a.x), float_bits(a.y), float_bits(b.x),
-                                     float_bits(b.y), r.class_id, float_bits(along)});
+                                     float_bits(b.y), class_id, float_bits(along)});
       along += std::hypot(double(b.x) - a.x, double(b.y) - a.y);
     }
   }
   return d;
 }
 
+std::optional<uint64_t> segment_feature(const tileformat::LineTile& t, uint32_t segment) {
+  for (const tileformat::LineRun& r : t.runs) {
+    if (segment + 1 < r.vertex_count) return t.feature_ids[r.feature];
+    segment -= r.vertex_count - 1;
+  }
+  return std::nullopt;
+}
+
 LineCache::LineCache(const std::string& path, LinePackage package, uint64_t budget_bytes)
     : path_(path), package_(std::move(package)), arena_(budget_bytes / 4) {
   stats_.budget_bytes = budget_bytes;
-  loader_ = std::make_unique<Loader>(*package_.reader, [](TileId, std::span<const uint8_t> blob) {
-    return line_tile_words(tileformat::decode_line_tile(blob));
-  });
+  loader_ =
+      std::make_unique<Loader>(*package_.reader, [this](TileId, std::span<const uint8_t> blob) {
+        std::shared_ptr<const LineHighlight> h;
+        {
+          std::lock_guard lock(highlight_mutex_);
+          h = highlight_;
+        }
+        return line_tile_words(tileformat::decode_line_tile(blob), h.get());
+      });
+}
+
+void LineCache::set_highlight(LineHighlight highlight) {
+  std::sort(highlight.features.begin(), highlight.features.end());
+  {
+    std::lock_guard lock(highlight_mutex_);
+    highlight_ = highlight.features.empty()
+                     ? nullptr
+                     : std::make_shared<const LineHighlight>(std::move(highlight));
+  }
+  // Tiles decoded with the previous set are dropped, loaded or not.
+  wait_for_loader();
+  loader_->take_done();
+  for (uint32_t r = 0; r < records_.size(); ++r)
+    if (live_[r]) free_record(r);
+  entries_.clear();
+  wanted_.clear();
 }
 
 LineCache::~LineCache() = default;

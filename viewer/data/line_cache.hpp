@@ -11,11 +11,17 @@
 // Tile words (all u32): cell offsets (C*C + 1, relative to the cell list),
 // the cell list (segment indices), then 6 words per segment: ax, ay, bx, by
 // (tile units as float bits), class id, distance along the run at a (units,
-// float bits; for dashes).
+// float bits; for dashes). The segments are in the tile's run order, so a
+// segment index names its run, and the run its feature.
+//
+// Highlighting (picking in the viewer): the runs of a chosen set of features
+// take one more class, drawn over the others; changing the set reloads the
+// resident tiles.
 #pragma once
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -37,8 +43,20 @@ struct DecodedLineTile {
   std::vector<uint32_t> words;
 };
 
-// Turns a decoded tile into its GPU words (exposed for tests).
-DecodedLineTile line_tile_words(const tileformat::LineTile& tile);
+// Features drawn in their own class instead of their runs' classes.
+struct LineHighlight {
+  std::vector<uint64_t> features;  // sorted feature ids
+  uint32_t class_id = 0;
+};
+
+// Turns a decoded tile into its GPU words (exposed for tests); the runs of
+// highlighted features get the highlight's class.
+DecodedLineTile line_tile_words(const tileformat::LineTile& tile,
+                                const LineHighlight* highlight = nullptr);
+
+// The feature id of segment `segment` of the tile (in line_tile_words'
+// order), or nullopt past its segments.
+std::optional<uint64_t> segment_feature(const tileformat::LineTile& tile, uint32_t segment);
 
 // One known tile as the shader sees it.
 struct LineRecord {
@@ -84,6 +102,10 @@ class LineCache {
   // Called after the words of a record are on the GPU.
   void drop_words(uint32_t record) { records_[record].tile.words = {}; }
   LineCacheStats stats() const;
+  // Draws these features in `highlight.class_id` from now on (none: empty
+  // features): waits for the loader and forgets every tile, which the next
+  // frames load again.
+  void set_highlight(LineHighlight highlight);
 
  private:
   using Loader = TileLoader<DecodedLineTile>;
@@ -108,7 +130,9 @@ class LineCache {
   std::vector<uint32_t> free_records_;
   std::vector<Loader::Job> wanted_;
   LineCacheStats stats_;
-  std::unique_ptr<Loader> loader_;
+  std::mutex highlight_mutex_;  // the loader thread reads highlight_
+  std::shared_ptr<const LineHighlight> highlight_;
+  std::unique_ptr<Loader> loader_;  // last: stops before what it reads
 };
 
 }  // namespace globe::viewer

@@ -12,6 +12,7 @@
 #include "render/deferred_pass.hpp"
 #include "render/gl_buffer.hpp"
 #include "render/line_shaders.hpp"
+#include "render/readback.hpp"
 #include "render/tile_table.hpp"
 
 namespace globe::viewer {
@@ -83,9 +84,9 @@ LineRenderer::~LineRenderer() {
   GLuint buffers[7] = {arena_, records_, table_, styles_, requests_, used_, terrain_table_};
   gl::DeleteBuffers(7, buffers);
   gl::DeleteVertexArrays(1, &vao_);
-  GLuint fbos[2] = {fbo_, geometry_fbo_}, textures[2] = {output_, pixel_record_};
+  GLuint fbos[2] = {fbo_, geometry_fbo_}, textures[3] = {output_, pixel_record_, pixel_segment_};
   gl::DeleteFramebuffers(2, fbos);
-  gl::DeleteTextures(2, textures);
+  gl::DeleteTextures(3, textures);
   gl::DeleteQueries(1, &timer_);
 }
 
@@ -93,22 +94,24 @@ void LineRenderer::resize(int width, int height) {
   if (width == width_ && height == height_) return;
   width_ = width, height_ = height;
   if (fbo_) {
-    GLuint fbos[2] = {fbo_, geometry_fbo_}, textures[2] = {output_, pixel_record_};
+    GLuint fbos[2] = {fbo_, geometry_fbo_}, textures[3] = {output_, pixel_record_, pixel_segment_};
     gl::DeleteFramebuffers(2, fbos);
-    gl::DeleteTextures(2, textures);
+    gl::DeleteTextures(3, textures);
   }
   gl::CreateTextures(GL_TEXTURE_2D, 1, &output_);
   gl::TextureStorage2D(output_, 1, GL_RGBA8, width, height);
-  gl::CreateTextures(GL_TEXTURE_2D, 1, &pixel_record_);
-  gl::TextureStorage2D(pixel_record_, 1, GL_R32UI, width, height);
-  gl::TextureParameteri(pixel_record_, GL_TEXTURE_MIN_FILTER,
-                        GL_NEAREST);  // complete without mipmaps
-  gl::TextureParameteri(pixel_record_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  for (GLuint* t : {&pixel_record_, &pixel_segment_}) {
+    gl::CreateTextures(GL_TEXTURE_2D, 1, t);
+    gl::TextureStorage2D(*t, 1, GL_R32UI, width, height);
+    gl::TextureParameteri(*t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);  // complete without mipmaps
+    gl::TextureParameteri(*t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  }
   gl::CreateFramebuffers(1, &fbo_);
   gl::NamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0, output_, 0);
   gl::NamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT1, pixel_record_, 0);
-  const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-  gl::NamedFramebufferDrawBuffers(fbo_, 2, buffers);
+  gl::NamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT2, pixel_segment_, 0);
+  const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+  gl::NamedFramebufferDrawBuffers(fbo_, 3, buffers);
   gl::CreateFramebuffers(1, &geometry_fbo_);
   gl::NamedFramebufferTexture(geometry_fbo_, GL_COLOR_ATTACHMENT0, output_, 0);
 }
@@ -223,6 +226,11 @@ double LineRenderer::draw(const GBuffer& g, const View& view, const WorldFrame& 
   gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
   gl::check("drawing the lines");
   return static_cast<double>(ns) / 1e6;
+}
+
+std::pair<uint32_t, uint32_t> LineRenderer::pick(int x, int y) const {
+  if (x < 0 || y < 0 || x >= width_ || y >= height_) return {0, 0};
+  return {read_u32(fbo_, 1, x, y, height_), read_u32(fbo_, 2, x, y, height_)};
 }
 
 void LineRenderer::read_feedback(const LineCache& cache, uint32_t frame, LineFeedback& fb) {

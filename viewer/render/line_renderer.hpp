@@ -52,6 +52,10 @@ class LineRenderer {
               const LineCache& cache, const TerrainHeights& terrain, LineMode mode, uint32_t frame,
               LineFeedback& feedback);
   GLuint output_fbo() const { return fbo_; }
+  // The line drawn on top at pixel (x, y) (from the top-left) in the last
+  // deferred pass: its record and its segment in that record's tile (both
+  // + 1; 0 = no line there, or the geometry baseline).
+  std::pair<uint32_t, uint32_t> pick(int x, int y) const;
 
  private:
   void upload_tables(const LineCache& cache);
@@ -65,7 +69,8 @@ class LineRenderer {
          terrain_table_ = 0;
   // fbo_: output + pixel records (the full-screen pass); geometry_fbo_:
   // output + the terrain's depth (the baseline's quads).
-  GLuint vao_ = 0, fbo_ = 0, geometry_fbo_ = 0, output_ = 0, pixel_record_ = 0, timer_ = 0;
+  GLuint vao_ = 0, fbo_ = 0, geometry_fbo_ = 0, output_ = 0, pixel_record_ = 0, pixel_segment_ = 0,
+         timer_ = 0;
   uint32_t table_mask_ = 0, record_count_ = 0;
   int class_count_ = 0, width_ = 0, height_ = 0;
 };

@@ -64,6 +64,7 @@ uniform float u_world_per_m;          // world units per metre on the ground (wo
 uniform int u_select_only;
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out uint o_record;  // record + 1 the pixel reads, 0 = none
+layout(location = 2) out uint o_segment;  // segment + 1 of the line drawn on top, 0 = none (picking)
 
 // Coverage of a pixel (1-px box filter across the line) by a band of half
 // width h around a line at distance d.
@@ -93,6 +94,7 @@ void main() {
   vec4 base = texelFetch(u_color, px, 0);
   o_color = base;
   o_record = 0u;
+  o_segment = 0u;
   vec4 p4 = texelFetch(u_position, px, 0);
   if (p4.w == 0.0) return;
   // The pixel's ground point and its screen derivatives (terrain_renderer.hpp).
@@ -131,8 +133,10 @@ void main() {
   float reach_m = reach * min(m_per_unit.x, m_per_unit.y);
   float best_c = 0.0, best_f = 0.0;
   int cls_c = -1, cls_f = -1;
+  uint seg_c = 0u, seg_f = 0u;
   for (uint k = begin; k < end; ++k) {
-    uint o = r0.z + arena[r0.y + k] * 6u;
+    uint seg = arena[r0.y + k];
+    uint o = r0.z + seg * 6u;
     int cls = int(arena[o + 4u]);
     if (cls >= u_class_count) continue;
     vec4 st = styles[cls * 5 + 2];  // half width, casing width, unit is metres, dash count
@@ -174,9 +178,12 @@ void main() {
         cov_f *= dash_coverage(along * u_units_to_nominal_px, u_units_to_nominal_px / px_per_unit, cls);
       }
     }
-    if (cov_c > 0.0 && (cov_c > best_c || (cov_c == best_c && cls > cls_c))) best_c = cov_c, cls_c = cls;
-    if (cov_f > 0.0 && (cov_f > best_f || (cov_f == best_f && cls > cls_f))) best_f = cov_f, cls_f = cls;
+    if (cov_c > 0.0 && (cov_c > best_c || (cov_c == best_c && cls > cls_c)))
+      best_c = cov_c, cls_c = cls, seg_c = seg;
+    if (cov_f > 0.0 && (cov_f > best_f || (cov_f == best_f && cls > cls_f)))
+      best_f = cov_f, cls_f = cls, seg_f = seg;
   }
+  o_segment = cls_f >= 0 ? seg_f + 1u : cls_c >= 0 ? seg_c + 1u : 0u;
   vec3 col = base.rgb;
   if (cls_c >= 0) col = mix(col, styles[cls_c * 5 + 1].rgb, best_c);
   if (cls_f >= 0) col = mix(col, styles[cls_f * 5].rgb, best_f);

@@ -78,3 +78,9 @@ build/viewer/globe-view "$tmp/w4.mbtiles" "$tmp/flights.mbtiles" --size 480x300 
   --camera=-97,39,3000000,0,0 --snapshot $out/us_flights_pies.png
 build/viewer/globe-view "$tmp/w4.mbtiles" "$tmp/flights.mbtiles" --chart column --exaggeration 20 \
   --size 480x300 --camera=-90,27,900000,0,55 --snapshot $out/us_flights_columns.png
+# Bundled flows (tests/viewer_bundles_test.cpp): US flights over the FlightGear airways.
+build/tools/vectorize/globe-vectorize bundle -q samples/data/us_flights_airport.csv \
+  --from-id origin --to-id destination --weight count --locations samples/data/us_airports.csv \
+  --id-field iata --network samples/data/airways.geojson -o "$tmp/bundles.mbtiles"
+build/viewer/globe-view "$tmp/w4.mbtiles" "$tmp/bundles.mbtiles" --size 480x300 \
+  --camera=-97,39,5000000,0,0 --snapshot $out/us_flights_bundled.png

@@ -1,12 +1,18 @@
 #!/usr/bin/env bash
 # Hovers the mouse over globe-view's window, as a user would, under the X
 # server the caller runs (xvfb-run), and prints the window's title once it
-# names a place. Usage:
-#   hover_title.sh DIR X Y globe-view ARGS...
+# names what is under it. Usage:
+#   hover_title.sh [--click] DIR X Y globe-view ARGS...
 # Starts the viewer in DIR, waits until nothing is loading ("waiting 0"),
-# moves the pointer to window pixel (X, Y), waits until the title changes to
-# name what is there, prints it, then presses Escape. Exits 90 on a stall.
+# moves the pointer to window pixel (X, Y) (and clicks there with --click),
+# waits until the title changes to name what is there, prints it, then
+# presses Escape. Exits 90 on a stall.
 set -euo pipefail
+click=false
+if [ "$1" = --click ]; then
+  click=true
+  shift
+fi
 dir=$1 x=$2 y=$3
 shift 3
 cd "$dir"
@@ -19,6 +25,10 @@ for _ in $(seq 120); do
   xdotool getwindowname "$wid" | grep -q 'waiting 0\b' && break
 done
 xdotool mousemove --window "$wid" "$x" "$y"
+if $click; then
+  sleep 0.3
+  xdotool click 1
+fi
 title=""
 for _ in $(seq 60); do
   sleep 0.5

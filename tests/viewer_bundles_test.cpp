@@ -1,0 +1,203 @@
+// globe-view with bundled flows (docs/bundles.md "Viewer") as a user runs
+// them: the US flights bundled over the FlightGear airways, drawn over the
+// etopo20 globe against an expected PNG; picking a bundle highlights every
+// connection through it (checked against the package's features table read
+// by the sqlite3 program); picking a plain line names its feature; the
+// window names the bundle a click picked.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <sstream>
+
+#include "render_fixtures.hpp"
+#include "test_support.hpp"
+#include "tileformat/json.hpp"
+
+namespace {
+
+using namespace globe_test;
+
+struct Packages {
+  fs::path dir;
+  std::string world, bundles, airways;
+};
+
+const Packages& packages() {
+  static const Packages p = [] {
+    Packages k;
+    k.dir = run_scratch_dir("globe-view-bundles");
+    auto must = [&](const std::string& cmd) {
+      const RunResult r = run(cmd, k.dir);
+      EXPECT_EQ(r.exit_code, 0) << cmd << "\n" << r.err;
+    };
+    k.world = (k.dir / "world.mbtiles").string();
+    k.bundles = (k.dir / "flights.mbtiles").string();
+    k.airways = (k.dir / "airways.mbtiles").string();
+    must(tiler() + " terrain -q " + sample("etopo20.tif").string() + " --max-zoom 4 -o " + k.world);
+    must(vectorize() + " bundle -q " + sample("us_flights_airport.csv").string() +
+         " --from-id origin --to-id destination --weight count --locations " +
+         sample("us_airports.csv").string() + " --id-field iata --network " +
+         sample("airways.geojson").string() + " -o " + k.bundles);
+    must(vectorize() + " lines -q " + sample("airways.geojson").string() + " --max-zoom 6 -o " +
+         k.airways);
+    return k;
+  }();
+  return p;
+}
+
+const std::string kView = " --size 480x300 --camera=-97,39,5000000,0,0";
+
+// The highlight colour (line_layer.cpp), which no default style uses.
+bool is_highlight(const uint8_t* p) {
+  return p[0] < 60 && p[1] > 190 && p[2] > 210;
+}
+
+struct Highlight {
+  size_t pixels = 0;
+  int min_x = 1 << 30, max_x = -1;
+  bool near(const std::vector<uint8_t>& rgb, int w, int x, int y) const {
+    for (int dy = -2; dy <= 2; ++dy)
+      for (int dx = -2; dx <= 2; ++dx)
+        if (is_highlight(&rgb[(size_t(y + dy) * w + x + dx) * 3])) return true;
+    return false;
+  }
+};
+
+Highlight highlight_of(const std::vector<uint8_t>& rgb, int w) {
+  Highlight h;
+  for (size_t i = 0; i + 2 < rgb.size(); i += 3)
+    if (is_highlight(&rgb[i])) {
+      ++h.pixels;
+      const int x = int(i / 3 % w);
+      h.min_x = std::min(h.min_x, x), h.max_x = std::max(h.max_x, x);
+    }
+  return h;
+}
+
+// Runs a headless pick; returns its line on stdout (without the newline).
+std::string pick(const std::string& packages, int x, int y, const std::string& png,
+                 const fs::path& dir) {
+  const RunResult r = run(viewer() + " " + packages + kView + " --pick " + std::to_string(x) + "," +
+                              std::to_string(y) + " --snapshot " + png,
+                          dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  std::string line = r.out;
+  while (!line.empty() && line.back() == '\n')
+    line.pop_back();
+  return line;
+}
+
+}  // namespace
+
+TEST(ViewerBundles, BundledFlightsOverTheGlobeMatchExpected) {
+  const Packages& k = packages();
+  TempDir dir;
+  const std::string out = (dir / "bundles.png").string();
+  const RunResult r =
+      run(viewer() + " " + k.world + " " + k.bundles + kView + " --snapshot " + out, dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_image(out, "us_flights_bundled");
+  int w = 0, h = 0;
+  EXPECT_EQ(highlight_of(read_rgb(out, w, h), w).pixels, 0u) << "highlight without a pick";
+}
+
+// The bundle under a pixel of a transcontinental corridor: the count and
+// weight printed are those of the connections whose paths list it (a scan of
+// the features table here), and the snapshot highlights their whole paths,
+// far beyond the picked bundle.
+TEST(ViewerBundles, PickingABundleHighlightsTheConnectionsThroughIt) {
+  const Packages& k = packages();
+  TempDir dir;
+  const std::string png = (dir / "pick.png").string();
+  const std::string said = pick(k.world + " " + k.bundles, 300, 150, png, dir.path());
+  unsigned long long bundle = 0, count = 0;
+  double weight = 0;
+  ASSERT_EQ(std::sscanf(said.c_str(), "bundle %llu: weight %lf, %llu connections", &bundle, &weight,
+                        &count),
+            3)
+      << said;
+
+  const RunResult rows = run(
+      "sqlite3 " + k.bundles + " \"SELECT properties FROM features WHERE layer = 'connections'\"",
+      dir.path());
+  ASSERT_EQ(rows.exit_code, 0) << rows.err;
+  std::istringstream in(rows.out);
+  unsigned long long through = 0;
+  double through_weight = 0;
+  for (std::string line; std::getline(in, line);) {
+    const auto props = tileformat::JsonValue::parse(line);
+    const tileformat::JsonValue* path = props.find("bundles");
+    if (!path) continue;
+    for (const tileformat::JsonValue& b : path->array())
+      if (static_cast<unsigned long long>(b.number()) == bundle) {
+        ++through;
+        through_weight += props.find("weight")->number();
+      }
+  }
+  EXPECT_EQ(count, through);
+  EXPECT_NEAR(weight, through_weight, 1e-5 * through_weight);
+  EXPECT_GT(count, 10u) << "pick a busier corridor";
+
+  int w = 0, h = 0;
+  const auto rgb = read_rgb(png, w, h);
+  const Highlight lit = highlight_of(rgb, w);
+  EXPECT_TRUE(lit.near(rgb, w, 300, 150)) << "the picked bundle is not highlighted";
+  EXPECT_GT(lit.max_x - lit.min_x, 200)
+      << "the connections' paths are not highlighted coast to coast";
+  EXPECT_LT(lit.pixels, rgb.size() / 3 / 10) << "far more than the connections is highlighted";
+}
+
+TEST(ViewerBundles, PickingNothingHighlightsNothing) {
+  const Packages& k = packages();
+  TempDir dir;
+  const std::string png = (dir / "sky.png").string();
+  EXPECT_EQ(pick(k.world + " " + k.bundles, 3, 3, png, dir.path()), "");
+  int w = 0, h = 0;
+  EXPECT_EQ(highlight_of(read_rgb(png, w, h), w).pixels, 0u);
+}
+
+// A plain line package: the feature drawn at the pixel, with its layer and
+// attributes, highlighted alone.
+TEST(ViewerBundles, PickingAPlainLineNamesItsFeature) {
+  const Packages& k = packages();
+  TempDir dir;
+  // A pixel on a line: the first drawn pixel (not terrain grey) of the row.
+  const std::string plain = (dir / "plain.png").string();
+  ASSERT_EQ(
+      run(viewer() + " " + k.world + " " + k.airways + kView + " --snapshot " + plain, dir.path())
+          .exit_code,
+      0);
+  int w = 0, h = 0;
+  const auto rgb = read_rgb(plain, w, h);
+  int x = -1;
+  const int y = h / 2;
+  for (int i = w / 4; i < 3 * w / 4 && x < 0; ++i) {
+    const uint8_t* p = &rgb[(size_t(y) * w + i) * 3];
+    const uint8_t* q = &rgb[(size_t(y) * w + i + 1) * 3];
+    if (std::abs(int(p[0]) - int(p[2])) > 60 && std::abs(int(q[0]) - int(q[2])) > 60) x = i;
+  }
+  ASSERT_GE(x, 0) << "no airway across the middle row";
+  const std::string png = (dir / "pick.png").string();
+  const std::string said = pick(k.world + " " + k.airways, x, y, png, dir.path());
+  EXPECT_EQ(said.rfind("feature ", 0), 0u) << said;
+  EXPECT_NE(said.find("(airways): {"), std::string::npos) << said;
+  const auto lit_rgb = read_rgb(png, w, h);
+  const Highlight lit = highlight_of(lit_rgb, w);
+  EXPECT_TRUE(lit.near(lit_rgb, w, x, y));
+  EXPECT_LT(lit.pixels, size_t(w) * h / 20) << "one airway, not the network";
+}
+
+// The window under a virtual X server: a click on the corridor names the
+// bundle in the title.
+TEST(ViewerBundlesWindow, AClickNamesTheBundleInTheTitle) {
+  const Packages& k = packages();
+  TempDir dir;
+  const RunResult w =
+      run("xvfb-run -a -s '-screen 0 640x480x24' " + std::string(GLOBE_TEST_DATA_DIR) +
+              "/window/hover_title.sh --click " + dir.path().string() + " 300 150 " + viewer() +
+              " --platform glfw" + kView + " " + k.world + " " + k.bundles,
+          dir.path());
+  ASSERT_EQ(w.exit_code, 0) << w.err << read_file(dir / "viewer.stderr");
+  EXPECT_NE(w.out.find("globe-view  bundle "), std::string::npos) << w.out;
+  EXPECT_NE(w.out.find(" connections"), std::string::npos) << w.out;
+}
