@@ -5,6 +5,7 @@
 # then turns a real road network into a line-cluster package with styled classes.
 # Output: demo/jacksboro.mbtiles, demo/jacksboro.png, demo/contours.png, demo/globe.png (etopo20
 # and Blue Marble on the globe), demo/flights.png (pie charts of US flights on it),
+# demo/bundles.png (the US flight routes bundled over the airways, one bundle picked),
 # demo/canada_roads.mbtiles, demo/cbers20.mbtiles (git-ignored).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -49,5 +50,14 @@ build/tools/vectorize/globe-vectorize points samples/data/us_airport_flights.csv
 build/tools/vectorize/globe-vectorize validate demo/flights.mbtiles
 build/viewer/globe-view demo/etopo20.mbtiles demo/bluemarble.mbtiles demo/flights.mbtiles \
   --snapshot demo/flights.png --size 1280x720 --camera=-97,39,3500000,0,0 --stats
+# Bundled flows: the US flight routes routed over FlightGear's airways, bundled and smoothed,
+# on the same globe; the busiest transcontinental bundle picked and its connections highlighted.
+build/tools/vectorize/globe-vectorize bundle samples/data/us_flights_airport.csv \
+  --from-id origin --to-id destination --weight count --locations samples/data/us_airports.csv \
+  --id-field iata --network samples/data/airways.geojson --tiling geodetic \
+  -o demo/bundles.mbtiles --force
+build/tools/vectorize/globe-vectorize info demo/bundles.mbtiles | grep -A 12 '^bundled flows'
+build/viewer/globe-view demo/etopo20.mbtiles demo/bluemarble.mbtiles demo/bundles.mbtiles \
+  --snapshot demo/bundles.png --size 1280x720 --camera=-97,39,4500000,0,0 --pick 800,400
 echo "demo: wrote demo/jacksboro.png, demo/contours.png, demo/globe.png, demo/flights.png," \
-  "demo/canada_roads.mbtiles and demo/cbers20.mbtiles" >&2
+  "demo/bundles.png, demo/canada_roads.mbtiles and demo/cbers20.mbtiles" >&2
