@@ -2,12 +2,9 @@
 #include "bundle/routing.hpp"
 
 #include <algorithm>
-#include <array>
-#include <cmath>
 #include <functional>
 #include <limits>
 #include <map>
-#include <numbers>
 
 #include "parallel_batches.hpp"
 
@@ -18,18 +15,16 @@ namespace {
 // One worker's search state, reset between searches by a generation stamp
 // rather than cleared; a node's state in one place (one cache line).
 struct NodeState {
-  double cost = 0;    // from the origin
-  double h = 0;       // the heuristic (set when first seen)
-  uint32_t via = 0;   // the edge it was reached by
-  uint32_t seen = 0;  // generation when cost/via were set
-  uint32_t done = 0;  // generation when settled
-  uint32_t h_at = 0;  // the goal phase h was computed for
+  double cost = 0;      // from the origin
+  uint32_t via = 0;     // the edge it was reached by
+  uint32_t seen = 0;    // generation when cost/via were set
+  uint32_t done = 0;    // generation when settled
+  uint32_t target = 0;  // generation in which it is a destination still to settle
 };
 struct Search {
   std::vector<NodeState> node;
   std::vector<std::pair<double, uint32_t>> heap;  // (cost, node), a min-heap
   uint32_t generation = 0;                        // one per search
-  uint32_t phase = 0;                             // one per goal of a search
   explicit Search(size_t n) : node(n) {}
 };
 
@@ -74,11 +69,11 @@ std::vector<std::vector<uint32_t>> route_connections(const ReducedGraph& g,
         const uint32_t origin = origins[i].first;
         const std::vector<uint32_t>& conns = *origins[i].second;
         // The destinations still to settle.
-        std::vector<uint32_t> targets;
-        for (uint32_t c : conns)
-          targets.push_back(od[c].destination);
-        std::sort(targets.begin(), targets.end());
-        targets.erase(std::unique(targets.begin(), targets.end()), targets.end());
+        size_t left = 0;
+        for (uint32_t c : conns) {
+          NodeState& t = s.node[od[c].destination];
+          if (t.target != gen) t.target = gen, ++left;
+        }
         auto& heap = s.heap;
         const auto later = std::greater<>();
         heap.clear();
@@ -87,7 +82,6 @@ std::vector<std::vector<uint32_t>> route_connections(const ReducedGraph& g,
         start.via = std::numeric_limits<uint32_t>::max();
         start.seen = gen;
         heap.push_back({0, origin});
-        size_t left = targets.size();
         while (!heap.empty() && left > 0) {
           std::pop_heap(heap.begin(), heap.end(), later);
           const uint32_t v = heap.back().second;
@@ -97,7 +91,7 @@ std::vector<std::vector<uint32_t>> route_connections(const ReducedGraph& g,
           NodeState& sv = s.node[v];
           if (sv.done == gen) continue;
           sv.done = gen;
-          if (std::binary_search(targets.begin(), targets.end(), v)) --left;
+          if (sv.target == gen) --left;
           const double c = sv.cost;
           for (uint32_t k = g.offsets[v]; k < g.offsets[v + 1]; ++k) {
             const Arc& arc = arcs[k];
