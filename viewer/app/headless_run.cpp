@@ -121,8 +121,10 @@ int run_headless(const ViewerSettings& settings) {
           "\"line_tiles_resident\": %zu, \"line_tiles_empty\": %zu, \"line_bytes\": %llu, "
           "\"line_budget_bytes\": %llu, \"line_tiles_loaded\": %llu, \"line_evictions\": %llu, "
           "\"broken_line_tiles\": %llu, \"line_bytes_read\": %llu",
-          lines->mode() == LineMode::kDeferred ? "deferred" : "geometry", median(lines_ms),
-          ls.tiles_used, ls.cache.resident, ls.cache.known_empty,
+          lines->mode() == LineMode::kDeferred   ? "deferred"
+          : lines->mode() == LineMode::kGeometry ? "geometry"
+                                                 : "lifted",
+          median(lines_ms), ls.tiles_used, ls.cache.resident, ls.cache.known_empty,
           static_cast<unsigned long long>(ls.cache.resident_bytes),
           static_cast<unsigned long long>(ls.cache.budget_bytes),
           static_cast<unsigned long long>(ls.cache.loaded),

@@ -275,9 +275,12 @@ FrameResult TerrainScene::frame(const CameraPose& pose, Loading loading, Output 
   }
   if (lines_) {
     TerrainHeights heights;
-    if (lines_->mode() == LineMode::kGeometry) {
+    if (lines_->mode() != LineMode::kDeferred) {
       heights = {renderer_->heights_texture(), cache_->resident_slots(), package().min_zoom,
                  package().max_zoom, package().block_size};
+      heights.frame = renderer_.get();
+      heights.lift_m = settings_.lift_m ? *settings_.lift_m : 0.03 * glm::length(f.view.eye);
+      heights.error_px = settings_.max_error_px;
     }
     f.lines_ms = lines_->draw(g, f.view, *world_, settings_.shading.exaggeration, heights, loading);
   }

@@ -27,6 +27,7 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
       "  I select the next image layer, V show/hide it, [ and ] its opacity -/+ 0.1,\n"
       "  U imagery unlit/lit; L line mode, F5 reload the style and colour files;\n"
       "  C next chart kind; the title names the place under the cursor;\n"
+      "  PageUp/PageDown raise/lower lifted lines (--bundles 3d);\n"
       "  click a line to highlight it (a bundle: every connection through it), click\n"
       "  elsewhere to clear; the title names it.\n");
   cli.option("--snapshot", "OUT.png", "render headless, write the image, exit",
@@ -181,18 +182,41 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
              "line styles by class name, over the package's own (docs/viewer.md); the window "
              "reloads the file when it changes, or on F5",
              [&](const std::string& v) { s.style = v; });
-  cli.option("--lines", "MODE",
-             "deferred (default: per-pixel shading from the G-buffer), geometry (the baseline: "
-             "draped quads) or off",
+  cli.option(
+      "--lines", "MODE",
+      "deferred (default: per-pixel shading from the G-buffer), geometry (the baseline: "
+      "draped quads), lifted (curves above the terrain, see --lift) or off",
+      [&](const std::string& v) {
+        if (v == "deferred")
+          s.line_mode = LineMode::kDeferred;
+        else if (v == "geometry")
+          s.line_mode = LineMode::kGeometry;
+        else if (v == "lifted")
+          s.line_mode = LineMode::kLifted;
+        else if (v == "off")
+          s.lines = false;
+        else
+          throw UsageError("--lines: unknown mode '" + v + "' (deferred, geometry, lifted, off)");
+      });
+  cli.option("--bundles", "MODE",
+             "bundled flows: flat (default: draped per pixel, as --lines deferred) or 3d (lifted "
+             "above the terrain, as --lines lifted)",
              [&](const std::string& v) {
-               if (v == "deferred")
+               if (v == "flat")
                  s.line_mode = LineMode::kDeferred;
-               else if (v == "geometry")
-                 s.line_mode = LineMode::kGeometry;
-               else if (v == "off")
-                 s.lines = false;
+               else if (v == "3d")
+                 s.line_mode = LineMode::kLifted;
                else
-                 throw UsageError("--lines: unknown mode '" + v + "' (deferred, geometry, off)");
+                 throw UsageError("--bundles: unknown mode '" + v + "' (flat, 3d)");
+             });
+  cli.option("--lift", "M",
+             "lifted lines: metres above the highest terrain near each point (default: 3% of "
+             "the camera's distance, so curves clear the relief at any zoom); PageUp/PageDown "
+             "in the window",
+             [&](const std::string& v) {
+               s.lift_m = CliArgs::to_double("--lift", v);
+               if (!(*s.lift_m >= 0 && *s.lift_m <= 1e8))
+                 throw UsageError("--lift: expected metres from 0 to 1e8, got '" + v + "'");
              });
   cli.option("--chart", "KIND",
              "with a point package: pie (default), bar, stacked (one bar of the values) or "

@@ -36,8 +36,9 @@ struct ViewerSettings {
   std::optional<bool> globe;
   std::optional<std::string> style;  // line style file (JSON)
   LineMode line_mode = LineMode::kDeferred;
-  bool lines = true;                  // --lines off: draw none
-  bool imagery_unlit = false;         // --shading imagery
+  std::optional<double> lift_m;  // --lift: lifted lines' height above the terrain (unset: auto)
+  bool lines = true;             // --lines off: draw none
+  bool imagery_unlit = false;    // --shading imagery
   std::vector<double> image_opacity;  // --image-opacity, per image layer (the last repeats)
   ChartSettings charts;               // --chart, --chart-style, --chart-depth, --chart-thinning
   bool charts_given = false;          // any of those options

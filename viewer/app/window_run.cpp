@@ -119,6 +119,14 @@ int run_window(const ViewerSettings& settings) {
           s = next;
         break;
       }
+      case GLFW_KEY_PAGE_UP:
+      case GLFW_KEY_PAGE_DOWN: {  // lifted lines: from the automatic lift on
+        auto& settings = scene->settings();
+        const double lift = settings.lift_m ? *settings.lift_m : 0.03 * glm::length(last_view.eye);
+        settings.lift_m = std::max(1.0, lift * (key == GLFW_KEY_PAGE_UP ? 1.5 : 1 / 1.5));
+        std::fprintf(stderr, "globe-view: lines lifted %.0f m\n", *settings.lift_m);
+        break;
+      }
       case GLFW_KEY_C:
         if (scene->charts()) scene->charts()->next_kind();
         break;
@@ -148,8 +156,12 @@ int run_window(const ViewerSettings& settings) {
         scene->apply_ramp();
         break;
       case GLFW_KEY_L:
-        if (LineLayer* l = scene->lines(); l && !scene->world().globe())
-          l->set_mode(l->mode() == LineMode::kDeferred ? LineMode::kGeometry : LineMode::kDeferred);
+        // deferred -> geometry (flat frame only) -> lifted -> deferred
+        if (LineLayer* l = scene->lines())
+          l->set_mode(l->mode() == LineMode::kDeferred && !scene->world().globe()
+                          ? LineMode::kGeometry
+                      : l->mode() == LineMode::kLifted ? LineMode::kDeferred
+                                                       : LineMode::kLifted);
         break;
       case GLFW_KEY_I:
         if (ImageLayers* im = scene->images()) layer = (layer + 1) % im->size();

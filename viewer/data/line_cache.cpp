@@ -44,7 +44,9 @@ DecodedLineTile line_tile_words(const tileformat::LineTile& t, const LineHighlig
                                    b = t.vertices[r.first_vertex + i + 1];
       d.words.insert(d.words.end(), {float_bits(a.x), float_bits(a.y), float_bits(b.x),
                                      float_bits(b.y), class_id, float_bits(along)});
-      along += std::hypot(double(b.x) - a.x, double(b.y) - a.y);
+      const double length = std::hypot(double(b.x) - a.x, double(b.y) - a.y);
+      d.longest = std::max(d.longest, static_cast<float>(length));
+      along += length;
     }
   }
   return d;

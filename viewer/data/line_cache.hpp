@@ -40,6 +40,7 @@ inline constexpr uint32_t kLineWordsPerSegment = 6;
 // What the loader makes of a blob.
 struct DecodedLineTile {
   uint32_t extent = 0, grid = 0, reach = 0, segments = 0, cell_entries = 0;
+  float longest = 0;  // the longest segment, in tile units
   std::vector<uint32_t> words;
 };
 

@@ -13,6 +13,7 @@
 #include "render/gl_buffer.hpp"
 #include "render/line_shaders.hpp"
 #include "render/readback.hpp"
+#include "render/terrain_shaders.hpp"
 #include "render/tile_table.hpp"
 
 namespace globe::viewer {
@@ -64,6 +65,11 @@ LineRenderer::LineRenderer(uint64_t arena_words, int width, int height) {
   geometry_ = GlProgram(
       "line geometry", program_source("terrain_table", kTerrainTable, shaders::kLineGeometryVertex),
       shaders::kLineGeometryFragment);
+  lifted_ = GlProgram("lifted lines",
+                      program_source("line_table", kLineTable,
+                                     tile_table_glsl("terrain_table", kTerrainTable) +
+                                         shaders::kFrameWorldGlsl + shaders::kLineLiftedVertex),
+                      shaders::kLineLiftedFragment);
   GLuint buffers[7];
   gl::CreateBuffers(7, buffers);
   arena_ = buffers[0], records_ = buffers[1], table_ = buffers[2], styles_ = buffers[3],
@@ -133,6 +139,18 @@ void LineRenderer::set_styles(const std::vector<NamedLineStyle>& classes) {
   }
   fill_buffer(styles_, v.size() * sizeof(glm::vec4), v.data());
   class_count_ = static_cast<int>(classes.size());
+  // Lifted lines: narrower classes first, so wider ones lie on top (where
+  // the deferred pass lets the higher coverage win), then by class id.
+  lifted_order_.resize(classes.size());
+  for (size_t i = 0; i < classes.size(); ++i)
+    lifted_order_[i] = static_cast<int>(i);
+  std::stable_sort(lifted_order_.begin(), lifted_order_.end(), [&](int a, int b) {
+    const auto extent = [&](int c) {
+      const LineStyle& s = classes[size_t(c)].style;
+      return s.visible ? s.half_extent() : 0.0;
+    };
+    return extent(a) < extent(b);
+  });
 }
 
 void LineRenderer::upload(const LineRecord& r) {
@@ -209,7 +227,7 @@ double LineRenderer::draw(const GBuffer& g, const View& view, const WorldFrame& 
   gl::Uniform1ui(p.uniform("u_request_mask"), kRequestSlots - 1);
   gl::Uniform1ui(p.uniform("u_frame"), frame);
   gl::Uniform1i(p.uniform("u_class_count"), class_count_);
-  gl::Uniform1i(p.uniform("u_select_only"), mode == LineMode::kGeometry ? 1 : 0);
+  gl::Uniform1i(p.uniform("u_select_only"), mode == LineMode::kDeferred ? 0 : 1);
   gl::BindVertexArray(vao_);
   if (mode == LineMode::kDeferred) gl::BeginQuery(GL_TIME_ELAPSED, timer_);
   gl::DrawArrays(GL_TRIANGLES, 0, 3);
@@ -218,6 +236,10 @@ double LineRenderer::draw(const GBuffer& g, const View& view, const WorldFrame& 
   if (mode == LineMode::kGeometry) {
     gl::BeginQuery(GL_TIME_ELAPSED, timer_);
     draw_geometry(view, world, exaggeration, cache, terrain, g.depth, feedback.used);
+    gl::EndQuery(GL_TIME_ELAPSED);
+  } else if (mode == LineMode::kLifted) {
+    gl::BeginQuery(GL_TIME_ELAPSED, timer_);
+    draw_lifted(view, world, exaggeration, cache, terrain, g.depth, feedback.used, frame);
     gl::EndQuery(GL_TIME_ELAPSED);
   }
   GLuint64 ns = 0;
@@ -303,6 +325,76 @@ void LineRenderer::draw_geometry(const View& view, const WorldFrame& world, doub
     }
   }
   gl::Disable(GL_POLYGON_OFFSET_FILL);
+  gl::DepthMask(GL_TRUE);
+  gl::Disable(GL_DEPTH_TEST);
+}
+
+void LineRenderer::draw_lifted(const View& view, const WorldFrame& world, double exaggeration,
+                               const LineCache& cache, const TerrainHeights& terrain, GLuint depth,
+                               const std::vector<uint32_t>& used, uint32_t frame) {
+  if (!terrain.frame) throw std::logic_error("lifted lines without the terrain's frame");
+  std::vector<std::pair<tileformat::TileId, uint32_t>> slots;
+  for (const auto& [id, slot] : terrain.slots)
+    slots.emplace_back(id, static_cast<uint32_t>(slot));
+  const auto table = build_tile_table(slots);
+  fill_buffer(terrain_table_, table.size() * sizeof(glm::uvec4), table.data());
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTerrainTable, terrain_table_);
+
+  gl::NamedFramebufferTexture(geometry_fbo_, GL_DEPTH_ATTACHMENT, depth, 0);
+  gl::BindFramebuffer(GL_FRAMEBUFFER, geometry_fbo_);
+  const GlProgram& p = lifted_;
+  terrain.frame->set_frame_uniforms(p, view, world, exaggeration);  // uses p
+  gl::Uniform1ui(p.uniform("terrain_table_mask"), static_cast<uint32_t>(table.size() - 1));
+  gl::Uniform1ui(p.uniform("line_table_mask"), table_mask_);
+  gl::Uniform1i(p.uniform("u_tmin"), terrain.min_zoom);
+  gl::Uniform1i(p.uniform("u_tmax"), terrain.max_zoom);
+  gl::Uniform1i(p.uniform("u_key_zoom"), world.key_zoom());
+  gl::Uniform1i(p.uniform("u_steps"), world.steps());
+  gl::Uniform1f(p.uniform("u_block_size"), float(terrain.block_size));
+  gl::Uniform2i(p.uniform("u_origin"), static_cast<int>(view.origin.x),
+                static_cast<int>(view.origin.y));
+  gl::Uniform2f(p.uniform("u_viewport"), float(width_), float(height_));
+  gl::Uniform1f(p.uniform("u_focal_px"), float(height_ * 0.5 * view.proj[1][1]));
+  gl::Uniform1i(p.uniform("u_class_count"), class_count_);
+  gl::Uniform1f(p.uniform("u_world_per_m"), static_cast<float>(world.ground_height_scale()));
+  gl::Uniform1ui(p.uniform("u_frame"), frame);
+  gl::Uniform1i(p.uniform("u_max_zoom"), cache.package().max_zoom);
+  gl::Uniform1f(p.uniform("u_lift"), static_cast<float>(terrain.lift_m * world.height_scale()));
+  gl::Uniform1f(p.uniform("u_error_px"), static_cast<float>(terrain.error_px));
+  gl::Uniform3f(p.uniform("u_eye"), float(view.eye.x), float(view.eye.y), float(view.eye.z));
+  constexpr int kPieces = 8;
+  gl::Uniform1i(p.uniform("u_pieces"), kPieces);
+
+  gl::Enable(GL_DEPTH_TEST);
+  gl::DepthFunc(GL_LEQUAL);
+  gl::DepthMask(GL_FALSE);
+  // Casings under fills, classes in lifted_order_.
+  for (int pass = 0; pass < 2 * class_count_; ++pass) {
+    gl::Uniform1i(p.uniform("u_layer"), pass / class_count_);
+    gl::Uniform1i(p.uniform("u_class"), lifted_order_[size_t(pass % class_count_)]);
+    for (uint32_t r : used) {
+      const LineRecord& rec = cache.records()[r];
+      if (rec.empty || rec.tile.segments == 0) continue;
+      // The tile's origin and scale in key units (its zoom may be finer or
+      // coarser than the terrain's finest, the key zoom).
+      const double keys = std::ldexp(double(world.steps()), world.key_zoom() - rec.id.z);
+      const uint32_t cells = rec.tile.grid * rec.tile.grid + 1;
+      gl::Uniform1ui(p.uniform("u_segs_base"),
+                     static_cast<uint32_t>(rec.offset) + cells + rec.tile.cell_entries);
+      gl::Uniform1i(p.uniform("u_zoom"), rec.id.z);
+      gl::Uniform2i(p.uniform("u_tile"), static_cast<int>(rec.id.x), static_cast<int>(rec.id.y));
+      gl::Uniform1f(p.uniform("u_extent"), float(rec.tile.extent));
+      gl::Uniform2f(p.uniform("u_tile_key"), float(rec.id.x * keys - double(view.origin.x)),
+                    float(rec.id.y * keys - double(view.origin.y)));
+      gl::Uniform1f(p.uniform("u_keys_per_unit"), float(keys / rec.tile.extent));
+      // Heights from a ring of half the longest piece of the tile (at least 2
+      // px of its nominal 256) around each point.
+      const double ring = std::max(1.0 / 128, rec.tile.longest / (2.0 * kPieces) / rec.tile.extent);
+      gl::Uniform1f(p.uniform("u_ring_keys"), float(keys * ring));
+      gl::DrawArraysInstanced(GL_TRIANGLES, 0, 6,
+                              static_cast<GLsizei>(rec.tile.segments * kPieces));
+    }
+  }
   gl::DepthMask(GL_TRUE);
   gl::Disable(GL_DEPTH_TEST);
 }

@@ -2,7 +2,9 @@
 // resident line tiles over the terrain image into its own output image.
 //  - deferred (default): one full-screen pass reads the G-buffer and shades
 //    each pixel from its line tile's cluster cell (line_shaders.hpp);
-//  - geometry: the baseline, the same tiles' segments as draped quads.
+//  - geometry: the baseline, the same tiles' segments as draped quads;
+//  - lifted (--bundles 3d): the same tiles' segments as quads lifted above
+//    the terrain, on the flat frame or the globe.
 // Either way the GPU reports which tiles its pixels wanted but did not find
 // (requests) and which records it used, for the line cache.
 #pragma once
@@ -19,13 +21,17 @@
 
 namespace globe::viewer {
 
-enum class LineMode { kDeferred, kGeometry };
+enum class LineMode { kDeferred, kGeometry, kLifted };
 
-// The terrain data the geometry baseline drapes its lines on.
+// The terrain data the geometry baseline drapes its lines on (and lifted
+// lines rise from).
 struct TerrainHeights {
   GLuint texture = 0;                                     // R32F layers
   std::vector<std::pair<tileformat::TileId, int>> slots;  // resident block -> layer
   int min_zoom = 0, max_zoom = 0, block_size = 0;
+  const TerrainRenderer* frame = nullptr;  // lifted: sets the frame's uniforms
+  double lift_m = 0;                       // lifted: metres above the terrain
+  double error_px = 0;  // lifted: the terrain LOD's screen-space error bound, cleared too
 };
 
 struct LineFeedback {
@@ -63,8 +69,11 @@ class LineRenderer {
   void draw_geometry(const View& view, const WorldFrame& world, double exaggeration,
                      const LineCache& cache, const TerrainHeights& terrain, GLuint depth,
                      const std::vector<uint32_t>& used);
+  void draw_lifted(const View& view, const WorldFrame& world, double exaggeration,
+                   const LineCache& cache, const TerrainHeights& terrain, GLuint depth,
+                   const std::vector<uint32_t>& used, uint32_t frame);
 
-  GlProgram deferred_, geometry_;
+  GlProgram deferred_, geometry_, lifted_;
   GLuint arena_ = 0, records_ = 0, table_ = 0, styles_ = 0, requests_ = 0, used_ = 0,
          terrain_table_ = 0;
   // fbo_: output + pixel records (the full-screen pass); geometry_fbo_:
@@ -73,6 +82,7 @@ class LineRenderer {
          timer_ = 0;
   uint32_t table_mask_ = 0, record_count_ = 0;
   int class_count_ = 0, width_ = 0, height_ = 0;
+  std::vector<int> lifted_order_;  // the classes lifted lines draw, bottom first
 };
 
 }  // namespace globe::viewer

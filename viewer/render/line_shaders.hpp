@@ -265,4 +265,121 @@ void main() {
 }
 )";
 
+// Lifted lines (--lines lifted, --bundles 3d): each segment of the tiles the
+// selection pass chose, cut into u_pieces pieces, as screen-space quads
+// between points lifted u_lift above the terrain. A point's height is the
+// highest of the finest resident terrain samples at it and at eight points
+// u_ring_keys around it (half the tile's longest piece), so it depends on the point alone
+// (consecutive segments meet) and clears the relief nearby, plus the LOD's error bound at the
+// point's distance (so no LOD cuts it); the pieces keep a long segment from sagging into the globe.
+// Pieces that a finer chosen tile also covers are left to it. After kLineCommon, the tile hash, the
+// line and terrain tables and kFrameWorldGlsl.
+inline constexpr const char* kLineLiftedVertex = R"(
+layout(std430, binding = 1) readonly buffer Records { uvec4 records[]; };  // 2 per record
+layout(std430, binding = 5) readonly buffer Used { uint used[]; };
+uniform sampler2DArray u_heights;
+uniform int u_tmin, u_tmax, u_key_zoom, u_steps;
+uniform float u_block_size;
+uniform ivec2 u_origin;  // the view origin, key units
+uniform mat4 u_view_proj;
+uniform vec2 u_viewport;
+uniform float u_focal_px;  // pixels per world unit at clip w = 1
+uniform float u_world_per_m;
+uniform uint u_segs_base, u_frame;
+uniform int u_layer;  // 0 casing, 1 fill
+uniform int u_class;  // the class this draw shows (classes are drawn in order: heavier on top)
+uniform int u_pieces;
+uniform int u_zoom, u_max_zoom;  // the record's zoom, the package's finest
+uniform ivec2 u_tile;            // the record's tile
+uniform float u_extent;          // its units per edge
+uniform vec2 u_tile_key;         // its origin in key units from the view origin
+uniform float u_keys_per_unit;
+uniform float u_ring_keys;
+uniform float u_lift;      // world z units
+uniform float u_error_px;  // the terrain LOD's screen-space error bound
+uniform vec3 u_eye;        // world
+flat out vec4 v_color;
+
+float terrain_height(ivec2 key) {
+  if (u_wrap_keys > 0) key.x = ((key.x % u_wrap_keys) + u_wrap_keys) % u_wrap_keys;
+  for (int z = u_tmax; z >= u_tmin; --z) {
+    int shift = u_key_zoom - z;
+    ivec2 tile = (key >> shift) / u_steps;
+    int slot = terrain_table_lookup(z, tile);
+    if (slot < 0) continue;
+    vec2 local = vec2(key - ((tile * u_steps) << shift)) / float(1 << shift);
+    return texture(u_heights, vec3((local + 0.5) / u_block_size, float(slot))).r;
+  }
+  return 0.0;
+}
+// World position of tile point P (units), lifted.
+vec3 lifted(vec2 P) {
+  vec2 k = u_tile_key + P * u_keys_per_unit;
+  ivec2 rel = ivec2(floor(k));
+  ivec2 key = u_origin + rel;
+  int r = max(int(u_ring_keys), 1), d = max(int(u_ring_keys * 0.7071), 1);
+  float h = terrain_height(key);
+  h = max(h, max(terrain_height(key + ivec2(r, 0)), terrain_height(key - ivec2(r, 0))));
+  h = max(h, max(terrain_height(key + ivec2(0, r)), terrain_height(key - ivec2(0, r))));
+  h = max(h, max(terrain_height(key + ivec2(d, d)), terrain_height(key - ivec2(d, d))));
+  h = max(h, max(terrain_height(key + ivec2(d, -d)), terrain_height(key - ivec2(d, -d))));
+  // The drawn LOD surface lies within u_error_px on screen of the samples:
+  // within that many pixels' worth of world units at the point's distance.
+  vec3 p = frame_world(rel, k - floor(k), h * u_scale.z + u_lift);
+  float lod = u_error_px * length(p - u_eye) / u_focal_px;
+  return frame_world(rel, k - floor(k), h * u_scale.z + u_lift + lod);
+}
+// Whether a finer tile chosen this frame covers tile point P.
+bool drawn_finer(vec2 P) {
+  for (int z = u_zoom + 1; z <= u_max_zoom; ++z) {
+    int s = z - u_zoom;
+    ivec2 t = (u_tile << s) + ivec2(floor(P / u_extent * float(1 << s)));
+    int rec = line_table_lookup(z, t);
+    if (rec >= 0 && used[rec] == u_frame && records[2 * rec + 1].z == 0u) return true;
+  }
+  return false;
+}
+void main() {
+  int seg = gl_InstanceID / u_pieces, piece = gl_InstanceID % u_pieces;
+  uint o = u_segs_base + uint(seg) * 6u;
+  int cls = int(arena[o + 4u]);
+  const ivec2 corners[6] = ivec2[6](ivec2(0, -1), ivec2(1, -1), ivec2(0, 1), ivec2(0, 1),
+                                    ivec2(1, -1), ivec2(1, 1));
+  ivec2 cs = corners[gl_VertexID];
+  vec4 st = cls < u_class_count ? styles[cls * 5 + 2] : vec4(0);
+  float hw = u_layer == 0 ? (st.y > 0.0 ? st.x + st.y : 0.0) : st.x;
+  v_color = cls < u_class_count ? styles[cls * 5 + (u_layer == 0 ? 1 : 0)] : vec4(0);
+  vec2 A = seg_a(o), B = seg_b(o);
+  vec2 P0 = mix(A, B, float(piece) / float(u_pieces));
+  vec2 P1 = mix(A, B, float(piece + 1) / float(u_pieces));
+  if (cls != u_class || hw <= 0.0 || drawn_finer(0.5 * (P0 + P1))) {
+    gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // nothing to draw
+    return;
+  }
+  vec4 ca = u_view_proj * vec4(lifted(P0), 1.0);
+  vec4 cb = u_view_proj * vec4(lifted(P1), 1.0);
+  if (ca.w <= 0.0 || cb.w <= 0.0) {
+    gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // behind the eye
+    return;
+  }
+  if (st.z > 0.5) hw *= u_world_per_m * u_focal_px / (cs.x == 0 ? ca.w : cb.w);
+  vec2 sa = ca.xy / ca.w * u_viewport * 0.5, sb = cb.xy / cb.w * u_viewport * 0.5;
+  vec2 dir = length(sb - sa) > 1e-6 ? normalize(sb - sa) : vec2(1, 0);
+  vec2 n = vec2(-dir.y, dir.x);
+  vec4 c = cs.x == 0 ? ca : cb;
+  // Ends stretched by half a width: pieces overlap at their joints.
+  vec2 off = (n * float(cs.y) + dir * float(cs.x * 2 - 1)) * max(hw, 0.5);
+  c.xy += off * 2.0 / u_viewport * c.w;
+  gl_Position = c;
+}
+)";
+
+inline constexpr const char* kLineLiftedFragment = R"(#version 450 core
+flat in vec4 v_color;
+out vec4 o_color;
+void main() {
+  o_color = vec4(v_color.rgb, 1.0);
+}
+)";
+
 }  // namespace globe::viewer::shaders

@@ -84,3 +84,5 @@ build/tools/vectorize/globe-vectorize bundle -q samples/data/us_flights_airport.
   --id-field iata --network samples/data/airways.geojson -o "$tmp/bundles.mbtiles"
 build/viewer/globe-view "$tmp/w4.mbtiles" "$tmp/bundles.mbtiles" --size 480x300 \
   --camera=-97,39,5000000,0,0 --snapshot $out/us_flights_bundled.png
+build/viewer/globe-view "$tmp/w4.mbtiles" "$tmp/bundles.mbtiles" --bundles 3d --exaggeration 20 \
+  --size 480x300 --camera=-97,25,1500000,0,40 --snapshot $out/us_flights_bundled_3d.png
