@@ -157,42 +157,43 @@ const LineLayer::BundleIndex& LineLayer::bundle_index() {
   return *bundles_;
 }
 
+std::string LineLayer::describe(uint64_t feature, std::vector<uint64_t>& lit) {
+  std::string text = "feature " + std::to_string(feature);
+  try {
+    const std::optional<tileformat::FeatureRecord> f =
+        tileformat::FeatureTableReader(*features_).get(int64_t(feature));
+    if (!f) return text;
+    const tileformat::JsonValue props = tileformat::JsonValue::parse(f->properties);
+    if (bundled_ && f->layer == "bundles") {
+      const BundleIndex& index = bundle_index();
+      if (auto it = index.connections_of.find(feature); it != index.connections_of.end())
+        for (uint64_t c : it->second) {
+          const std::vector<uint64_t>& path = index.bundles_of.at(c);
+          lit.insert(lit.end(), path.begin(), path.end());
+        }
+      return "bundle " + std::to_string(feature) + ": weight " + property(props, "weight") + ", " +
+             property(props, "count") + " connections";
+    }
+    if (bundled_ && f->layer == "unrouted")
+      return "unrouted " + property(props, "origin") + " - " + property(props, "destination") +
+             ": weight " + property(props, "weight") + " (" + property(props, "reason") + ")";
+    text += " (" + f->layer + "): " + f->properties;
+    return text.size() > 200 ? text.substr(0, 197) + "..." : text;
+  } catch (const std::exception& e) {
+    // A package without a features table, or a row that is not JSON: the id
+    // is all there is to say.
+    std::fprintf(stderr, "globe-view: %s: feature %llu: %s\n", path_.c_str(),
+                 static_cast<unsigned long long>(feature), e.what());
+    return text;
+  }
+}
+
 std::string LineLayer::pick(int x, int y) {
-  const std::optional<uint64_t> feature = feature_at(x, y);
   std::vector<uint64_t> lit;
   std::string text;
-  if (feature) {
+  if (const std::optional<uint64_t> feature = feature_at(x, y)) {
     lit = {*feature};
-    std::optional<tileformat::FeatureRecord> f;
-    try {
-      f = tileformat::FeatureTableReader(*features_).get(int64_t(*feature));
-    } catch (const std::exception&) {
-      // A package without a features table: the id is all there is to say.
-    }
-    text = "feature " + std::to_string(*feature);
-    if (f) try {
-        const tileformat::JsonValue props = tileformat::JsonValue::parse(f->properties);
-        if (bundled_ && f->layer == "bundles") {
-          const BundleIndex& index = bundle_index();
-          auto it = index.connections_of.find(*feature);
-          if (it != index.connections_of.end())
-            for (uint64_t c : it->second) {
-              const std::vector<uint64_t>& path = index.bundles_of.at(c);
-              lit.insert(lit.end(), path.begin(), path.end());
-            }
-          text = "bundle " + std::to_string(*feature) + ": weight " + property(props, "weight") +
-                 ", " + property(props, "count") + " connections";
-        } else if (bundled_ && f->layer == "unrouted") {
-          text = "unrouted " + property(props, "origin") + " - " + property(props, "destination") +
-                 ": weight " + property(props, "weight") + " (" + property(props, "reason") + ")";
-        } else {
-          text += " (" + f->layer + "): " + f->properties;
-          if (text.size() > 200) text = text.substr(0, 197) + "...";
-        }
-      } catch (const std::exception& e) {
-        std::fprintf(stderr, "globe-view: %s: feature %llu: %s\n", path_.c_str(),
-                     static_cast<unsigned long long>(*feature), e.what());
-      }
+    text = describe(*feature, lit);
   }
   std::sort(lit.begin(), lit.end());
   lit.erase(std::unique(lit.begin(), lit.end()), lit.end());

@@ -69,6 +69,9 @@ class LineLayer {
   std::vector<NamedLineStyle> read_styles() const;
   size_t upload_loaded();
   std::optional<uint64_t> feature_at(int x, int y);
+  // The picked feature's description; adds the features it highlights
+  // besides itself to `lit`.
+  std::string describe(uint64_t feature, std::vector<uint64_t>& lit);
   const BundleIndex& bundle_index();
 
   std::string path_;
