@@ -14,7 +14,7 @@ export LSAN_OPTIONS=suppressions=$supp:print_suppressions=0 UBSAN_OPTIONS=print_
 # without leak detection (ASan and UBSan still on): those drivers leak 112
 # bytes and are unloaded (dlclose) before the leak check runs, so their frames
 # can no longer be named and suppressed as Mesa's like the others.
-egl_test='ViewerRender.OsMesaAndEglGiveTheSameImage|ViewerImageryWindow|ViewerGlobe.WindowZooms|ViewerChartsWindow'
+egl_test='ViewerRender.OsMesaAndEglGiveTheSameImage|ViewerImageryWindow|ViewerGlobe.WindowZooms|ViewerChartsWindow|ViewerBundlesWindow'
 status=0
 ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j "$(nproc)" --timeout 1500 \
   -E "$egl_test" "$@" || status=1
