@@ -62,14 +62,17 @@ LineRenderer::LineRenderer(uint64_t arena_words, int width, int height) {
       GlProgram("line pass", kFullScreenVertex,
                 program_source("line_table", kLineTable,
                                deferred_pass_glsl(kRequests) + shaders::kLineDeferredFragment));
-  geometry_ = GlProgram(
-      "line geometry", program_source("terrain_table", kTerrainTable, shaders::kLineGeometryVertex),
-      shaders::kLineGeometryFragment);
-  lifted_ = GlProgram("lifted lines",
-                      program_source("line_table", kLineTable,
-                                     tile_table_glsl("terrain_table", kTerrainTable) +
-                                         shaders::kFrameWorldGlsl + shaders::kLineLiftedVertex),
-                      shaders::kLineLiftedFragment);
+  geometry_ =
+      GlProgram("line geometry",
+                program_source("terrain_table", kTerrainTable,
+                               std::string(shaders::kLineQuadGlsl) + shaders::kLineGeometryVertex),
+                shaders::kLineGeometryFragment);
+  lifted_ = GlProgram(
+      "lifted lines",
+      program_source("line_table", kLineTable,
+                     tile_table_glsl("terrain_table", kTerrainTable) + shaders::kFrameWorldGlsl +
+                         shaders::kLineQuadGlsl + shaders::kLineLiftedVertex),
+      shaders::kLineLiftedFragment);
   GLuint buffers[7];
   gl::CreateBuffers(7, buffers);
   arena_ = buffers[0], records_ = buffers[1], table_ = buffers[2], styles_ = buffers[3],
@@ -268,15 +271,20 @@ void LineRenderer::read_feedback(const LineCache& cache, uint32_t frame, LineFee
     if (used[r] == frame && cache.live(r)) fb.used.push_back(r);
 }
 
-void LineRenderer::draw_geometry(const View& view, const WorldFrame& world, double exaggeration,
-                                 const LineCache& cache, const TerrainHeights& terrain,
-                                 GLuint depth, const std::vector<uint32_t>& used) {
+uint32_t LineRenderer::upload_terrain_table(const TerrainHeights& terrain) {
   std::vector<std::pair<tileformat::TileId, uint32_t>> slots;
   for (const auto& [id, slot] : terrain.slots)
     slots.emplace_back(id, static_cast<uint32_t>(slot));
   const auto table = build_tile_table(slots);
   fill_buffer(terrain_table_, table.size() * sizeof(glm::uvec4), table.data());
   gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTerrainTable, terrain_table_);
+  return static_cast<uint32_t>(table.size() - 1);
+}
+
+void LineRenderer::draw_geometry(const View& view, const WorldFrame& world, double exaggeration,
+                                 const LineCache& cache, const TerrainHeights& terrain,
+                                 GLuint depth, const std::vector<uint32_t>& used) {
+  const uint32_t terrain_mask = upload_terrain_table(terrain);
 
   gl::NamedFramebufferTexture(geometry_fbo_, GL_DEPTH_ATTACHMENT, depth, 0);
   gl::BindFramebuffer(GL_FRAMEBUFFER, geometry_fbo_);
@@ -286,7 +294,7 @@ void LineRenderer::draw_geometry(const View& view, const WorldFrame& world, doub
   gl::Uniform1i(p.uniform("u_pixel_record"), 4);
   gl::BindTextureUnit(3, terrain.texture);
   gl::Uniform1i(p.uniform("u_heights"), 3);
-  gl::Uniform1ui(p.uniform("terrain_table_mask"), static_cast<uint32_t>(table.size() - 1));
+  gl::Uniform1ui(p.uniform("terrain_table_mask"), terrain_mask);
   set_tile_ref(p, "u_terrain_ref", view, world, terrain.max_zoom);
   gl::Uniform1i(p.uniform("u_terrain_min_zoom"), terrain.min_zoom);
   gl::Uniform1i(p.uniform("u_terrain_max_zoom"), terrain.max_zoom);
@@ -333,18 +341,13 @@ void LineRenderer::draw_lifted(const View& view, const WorldFrame& world, double
                                const LineCache& cache, const TerrainHeights& terrain, GLuint depth,
                                const std::vector<uint32_t>& used, uint32_t frame) {
   if (!terrain.frame) throw std::logic_error("lifted lines without the terrain's frame");
-  std::vector<std::pair<tileformat::TileId, uint32_t>> slots;
-  for (const auto& [id, slot] : terrain.slots)
-    slots.emplace_back(id, static_cast<uint32_t>(slot));
-  const auto table = build_tile_table(slots);
-  fill_buffer(terrain_table_, table.size() * sizeof(glm::uvec4), table.data());
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTerrainTable, terrain_table_);
+  const uint32_t terrain_mask = upload_terrain_table(terrain);
 
   gl::NamedFramebufferTexture(geometry_fbo_, GL_DEPTH_ATTACHMENT, depth, 0);
   gl::BindFramebuffer(GL_FRAMEBUFFER, geometry_fbo_);
   const GlProgram& p = lifted_;
   terrain.frame->set_frame_uniforms(p, view, world, exaggeration);  // uses p
-  gl::Uniform1ui(p.uniform("terrain_table_mask"), static_cast<uint32_t>(table.size() - 1));
+  gl::Uniform1ui(p.uniform("terrain_table_mask"), terrain_mask);
   gl::Uniform1ui(p.uniform("line_table_mask"), table_mask_);
   gl::Uniform1i(p.uniform("u_tmin"), terrain.min_zoom);
   gl::Uniform1i(p.uniform("u_tmax"), terrain.max_zoom);

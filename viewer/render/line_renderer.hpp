@@ -66,6 +66,8 @@ class LineRenderer {
  private:
   void upload_tables(const LineCache& cache);
   void read_feedback(const LineCache& cache, uint32_t frame, LineFeedback& feedback);
+  // The resident terrain blocks' hash table, bound; returns its mask.
+  uint32_t upload_terrain_table(const TerrainHeights& terrain);
   void draw_geometry(const View& view, const WorldFrame& world, double exaggeration,
                      const LineCache& cache, const TerrainHeights& terrain, GLuint depth,
                      const std::vector<uint32_t>& used);

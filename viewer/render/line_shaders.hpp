@@ -191,6 +191,45 @@ void main() {
 }
 )";
 
+// Screen-space quads of the two vertex programs (geometry and lifted):
+// 6 vertices per segment (or piece), casing or fill of its class.
+inline constexpr const char* kLineQuadGlsl = R"(
+uniform vec2 u_viewport;
+uniform float u_focal_px;  // pixels per world unit at clip w = 1
+uniform float u_world_per_m;
+uniform int u_layer;  // 0 casing, 1 fill
+flat out vec4 v_color;
+const vec4 kCulled = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume
+
+// This vertex's corner of its quad: x 0 at the start, 1 at the end; y the side.
+ivec2 quad_corner() {
+  const ivec2 corners[6] = ivec2[6](ivec2(0, -1), ivec2(1, -1), ivec2(0, 1), ivec2(0, 1),
+                                    ivec2(1, -1), ivec2(1, 1));
+  return corners[gl_VertexID];
+}
+// Class cls's half width in the layer drawn (0: none, or hidden) and its
+// colour (into v_color); `metres` whether the width is in metres.
+float layer_half_width(int cls, out bool metres) {
+  vec4 st = cls < u_class_count ? styles[cls * 5 + 2] : vec4(0);
+  v_color = cls < u_class_count ? styles[cls * 5 + (u_layer == 0 ? 1 : 0)] : vec4(0);
+  metres = st.z > 0.5;
+  return u_layer == 0 ? (st.y > 0.0 ? st.x + st.y : 0.0) : st.x;
+}
+// Corner cs of the quad of half width hw between clip points ca and cb (both
+// in front of the eye), its ends stretched by hw so that quads overlap at
+// their joints.
+vec4 quad_vertex(vec4 ca, vec4 cb, ivec2 cs, float hw, bool metres) {
+  if (metres) hw *= u_world_per_m * u_focal_px / (cs.x == 0 ? ca.w : cb.w);
+  vec2 sa = ca.xy / ca.w * u_viewport * 0.5, sb = cb.xy / cb.w * u_viewport * 0.5;
+  vec2 dir = length(sb - sa) > 1e-6 ? normalize(sb - sa) : vec2(1, 0);
+  vec2 n = vec2(-dir.y, dir.x);
+  vec4 c = cs.x == 0 ? ca : cb;
+  vec2 off = (n * float(cs.y) + dir * float(cs.x * 2 - 1)) * max(hw, 0.5);  // no AA
+  c.xy += off * 2.0 / u_viewport * c.w;
+  return c;
+}
+)";
+
 // The baseline: each segment of a tile as a screen-space quad (6 vertices,
 // instanced per segment) at the heights of the finest resident terrain
 // block, depth-tested against the terrain with a polygon offset; fragments
@@ -202,14 +241,9 @@ uniform TileRef u_terrain_ref;
 uniform int u_terrain_min_zoom, u_terrain_max_zoom;
 uniform float u_block_steps, u_block_size, u_zscale;
 uniform mat4 u_view_proj;
-uniform vec2 u_viewport;
-uniform float u_focal_px;  // pixels per world unit at clip w = 1
-uniform float u_world_per_m;
 uniform uint u_segs_base;
 uniform vec2 u_tile_origin;  // world metres of tile unit (0, 0)
 uniform vec2 u_m_per_unit;
-uniform int u_layer;  // 0 casing, 1 fill
-flat out vec4 v_color;
 
 float terrain_height(vec2 w) {
   for (int z = u_terrain_max_zoom; z >= u_terrain_min_zoom; --z) {
@@ -223,15 +257,10 @@ float terrain_height(vec2 w) {
 }
 void main() {
   uint o = u_segs_base + uint(gl_InstanceID) * 6u;
-  int cls = int(arena[o + 4u]);
-  const ivec2 corners[6] = ivec2[6](ivec2(0, -1), ivec2(1, -1), ivec2(0, 1), ivec2(0, 1),
-                                    ivec2(1, -1), ivec2(1, 1));
-  ivec2 cs = corners[gl_VertexID];
-  vec4 st = cls < u_class_count ? styles[cls * 5 + 2] : vec4(0);
-  float hw = u_layer == 0 ? (st.y > 0.0 ? st.x + st.y : 0.0) : st.x;
-  v_color = cls < u_class_count ? styles[cls * 5 + (u_layer == 0 ? 1 : 0)] : vec4(0);
-  if (hw <= 0.0) {  // no casing, or hidden
-    gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+  bool metres;
+  float hw = layer_half_width(int(arena[o + 4u]), metres);
+  if (hw <= 0.0) {
+    gl_Position = kCulled;
     return;
   }
   vec2 A = seg_a(o), B = seg_b(o);
@@ -239,18 +268,7 @@ void main() {
   vec2 wb = u_tile_origin + B * u_m_per_unit * vec2(1, -1);
   vec4 ca = u_view_proj * vec4(wa, terrain_height(wa) * u_zscale, 1.0);
   vec4 cb = u_view_proj * vec4(wb, terrain_height(wb) * u_zscale, 1.0);
-  if (ca.w <= 0.0 || cb.w <= 0.0) {
-    gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume
-    return;
-  }
-  if (st.z > 0.5) hw *= u_world_per_m * u_focal_px / (cs.x == 0 ? ca.w : cb.w);
-  vec2 sa = ca.xy / ca.w * u_viewport * 0.5, sb = cb.xy / cb.w * u_viewport * 0.5;
-  vec2 dir = length(sb - sa) > 1e-6 ? normalize(sb - sa) : vec2(1, 0);
-  vec2 n = vec2(-dir.y, dir.x);
-  vec4 c = cs.x == 0 ? ca : cb;
-  vec2 off = (n * float(cs.y) + dir * float(cs.x * 2 - 1)) * max(hw, 0.5);  // no AA
-  c.xy += off * 2.0 / u_viewport * c.w;
-  gl_Position = c;
+  gl_Position = ca.w <= 0.0 || cb.w <= 0.0 ? kCulled : quad_vertex(ca, cb, quad_corner(), hw, metres);
 }
 )";
 
@@ -267,13 +285,14 @@ void main() {
 
 // Lifted lines (--lines lifted, --bundles 3d): each segment of the tiles the
 // selection pass chose, cut into u_pieces pieces, as screen-space quads
-// between points lifted u_lift above the terrain. A point's height is the
-// highest of the finest resident terrain samples at it and at eight points
-// u_ring_keys around it (half the tile's longest piece), so it depends on the point alone
-// (consecutive segments meet) and clears the relief nearby, plus the LOD's error bound at the
-// point's distance (so no LOD cuts it); the pieces keep a long segment from sagging into the globe.
-// Pieces that a finer chosen tile also covers are left to it. After kLineCommon, the tile hash, the
-// line and terrain tables and kFrameWorldGlsl.
+// between points lifted above the terrain. A point's height is the highest of
+// the finest resident terrain samples at it and at eight points u_ring_keys
+// around it (half the tile's longest piece), plus u_lift, plus the LOD's
+// error bound at the point's distance (so no LOD rises above the sampled
+// heights); it depends on the point alone, so consecutive segments meet. The
+// pieces keep a long segment from sagging into the globe. Pieces that a
+// finer chosen tile also covers are left to it. After kLineCommon, the tile
+// hash, the line and terrain tables, kFrameWorldGlsl and kLineQuadGlsl.
 inline constexpr const char* kLineLiftedVertex = R"(
 layout(std430, binding = 1) readonly buffer Records { uvec4 records[]; };  // 2 per record
 layout(std430, binding = 5) readonly buffer Used { uint used[]; };
@@ -282,11 +301,7 @@ uniform int u_tmin, u_tmax, u_key_zoom, u_steps;
 uniform float u_block_size;
 uniform ivec2 u_origin;  // the view origin, key units
 uniform mat4 u_view_proj;
-uniform vec2 u_viewport;
-uniform float u_focal_px;  // pixels per world unit at clip w = 1
-uniform float u_world_per_m;
 uniform uint u_segs_base, u_frame;
-uniform int u_layer;  // 0 casing, 1 fill
 uniform int u_class;  // the class this draw shows (classes are drawn in order: heavier on top)
 uniform int u_pieces;
 uniform int u_zoom, u_max_zoom;  // the record's zoom, the package's finest
@@ -298,7 +313,6 @@ uniform float u_ring_keys;
 uniform float u_lift;      // world z units
 uniform float u_error_px;  // the terrain LOD's screen-space error bound
 uniform vec3 u_eye;        // world
-flat out vec4 v_color;
 
 float terrain_height(ivec2 key) {
   if (u_wrap_keys > 0) key.x = ((key.x % u_wrap_keys) + u_wrap_keys) % u_wrap_keys;
@@ -343,34 +357,18 @@ void main() {
   int seg = gl_InstanceID / u_pieces, piece = gl_InstanceID % u_pieces;
   uint o = u_segs_base + uint(seg) * 6u;
   int cls = int(arena[o + 4u]);
-  const ivec2 corners[6] = ivec2[6](ivec2(0, -1), ivec2(1, -1), ivec2(0, 1), ivec2(0, 1),
-                                    ivec2(1, -1), ivec2(1, 1));
-  ivec2 cs = corners[gl_VertexID];
-  vec4 st = cls < u_class_count ? styles[cls * 5 + 2] : vec4(0);
-  float hw = u_layer == 0 ? (st.y > 0.0 ? st.x + st.y : 0.0) : st.x;
-  v_color = cls < u_class_count ? styles[cls * 5 + (u_layer == 0 ? 1 : 0)] : vec4(0);
+  bool metres;
+  float hw = layer_half_width(cls, metres);
   vec2 A = seg_a(o), B = seg_b(o);
   vec2 P0 = mix(A, B, float(piece) / float(u_pieces));
   vec2 P1 = mix(A, B, float(piece + 1) / float(u_pieces));
   if (cls != u_class || hw <= 0.0 || drawn_finer(0.5 * (P0 + P1))) {
-    gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // nothing to draw
+    gl_Position = kCulled;
     return;
   }
   vec4 ca = u_view_proj * vec4(lifted(P0), 1.0);
   vec4 cb = u_view_proj * vec4(lifted(P1), 1.0);
-  if (ca.w <= 0.0 || cb.w <= 0.0) {
-    gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // behind the eye
-    return;
-  }
-  if (st.z > 0.5) hw *= u_world_per_m * u_focal_px / (cs.x == 0 ? ca.w : cb.w);
-  vec2 sa = ca.xy / ca.w * u_viewport * 0.5, sb = cb.xy / cb.w * u_viewport * 0.5;
-  vec2 dir = length(sb - sa) > 1e-6 ? normalize(sb - sa) : vec2(1, 0);
-  vec2 n = vec2(-dir.y, dir.x);
-  vec4 c = cs.x == 0 ? ca : cb;
-  // Ends stretched by half a width: pieces overlap at their joints.
-  vec2 off = (n * float(cs.y) + dir * float(cs.x * 2 - 1)) * max(hw, 0.5);
-  c.xy += off * 2.0 / u_viewport * c.w;
-  gl_Position = c;
+  gl_Position = ca.w <= 0.0 || cb.w <= 0.0 ? kCulled : quad_vertex(ca, cb, quad_corner(), hw, metres);
 }
 )";
 
