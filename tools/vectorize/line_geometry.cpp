@@ -10,14 +10,6 @@
 namespace globe {
 namespace {
 
-double distance_to_segment(XY p, XY a, XY b) {
-  const double dx = b.x - a.x, dy = b.y - a.y;
-  const double len2 = dx * dx + dy * dy;
-  double t = len2 > 0 ? ((p.x - a.x) * dx + (p.y - a.y) * dy) / len2 : 0;
-  t = std::clamp(t, 0.0, 1.0);
-  return std::hypot(p.x - (a.x + t * dx), p.y - (a.y + t * dy));
-}
-
 double wrap_lon(double lon) {
   if (lon >= -180 && lon <= 180) return lon;
   lon = std::fmod(lon + 180.0, 360.0);
@@ -34,6 +26,14 @@ PartStatus clean_part(std::vector<XY>& part) {
   return part.size() >= 2 ? PartStatus::kOk : PartStatus::kDegenerate;
 }
 
+double segment_distance(XY p, XY a, XY b) {
+  const double dx = b.x - a.x, dy = b.y - a.y;
+  const double len2 = dx * dx + dy * dy;
+  double t = len2 > 0 ? ((p.x - a.x) * dx + (p.y - a.y) * dy) / len2 : 0;
+  t = std::clamp(t, 0.0, 1.0);
+  return std::hypot(p.x - (a.x + t * dx), p.y - (a.y + t * dy));
+}
+
 std::vector<XY> douglas_peucker(std::span<const XY> in, double tolerance) {
   if (in.size() <= 2 || tolerance <= 0) return {in.begin(), in.end()};
   std::vector<uint8_t> keep(in.size(), 0);
@@ -45,7 +45,7 @@ std::vector<XY> douglas_peucker(std::span<const XY> in, double tolerance) {
     double worst = -1;
     size_t at = first;
     for (size_t i = first + 1; i < last; ++i) {
-      const double d = distance_to_segment(in[i], in[first], in[last]);
+      const double d = segment_distance(in[i], in[first], in[last]);
       if (d > worst) {
         worst = d;
         at = i;

@@ -21,6 +21,9 @@ enum class PartStatus { kOk, kNonFinite, kDegenerate };
 // kNonFinite, one with fewer than two distinct vertices kDegenerate.
 PartStatus clean_part(std::vector<XY>& part);
 
+// Distance from p to segment ab.
+double segment_distance(XY p, XY a, XY b);
+
 // Douglas-Peucker: keeps the end points and every vertex needed to stay
 // within `tolerance` of the input. Deterministic; iterative (no recursion).
 std::vector<XY> douglas_peucker(std::span<const XY> in, double tolerance);

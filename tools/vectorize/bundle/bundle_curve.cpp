@@ -154,14 +154,6 @@ void refine(std::span<const XY> poly, ControlPoints& c, double tolerance, double
 
 }  // namespace
 
-double segment_distance(XY p, XY a, XY b) {
-  const double dx = b.x - a.x, dy = b.y - a.y;
-  const double len2 = dx * dx + dy * dy;
-  double t = len2 > 0 ? ((p.x - a.x) * dx + (p.y - a.y) * dy) / len2 : 0;
-  t = std::clamp(t, 0.0, 1.0);
-  return std::hypot(p.x - (a.x + t * dx), p.y - (a.y + t * dy));
-}
-
 std::vector<XY> evaluate_curve(std::span<const XY> poly, const ControlPoints& controls,
                                double step) {
   std::vector<XY> out;

@@ -45,7 +45,4 @@ std::vector<CurveLevel> smooth_bundle(std::span<const XY> poly, int min_zoom, in
                                       std::span<const double> tolerance,
                                       std::span<const double> step);
 
-// Distance from p to segment ab.
-double segment_distance(XY p, XY a, XY b);
-
 }  // namespace globe
