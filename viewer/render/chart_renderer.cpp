@@ -20,7 +20,8 @@ constexpr int kTerrainTable = 0;  // shader storage binding
 
 std::string vertex_source(const char* main) {
   return std::string("#version 450 core\n") + shaders::kFrameWorldGlsl + kTileHashGlsl +
-         tile_table_glsl("terrain", kTerrainTable) + shaders::kChartCommonVertex + main;
+         tile_table_glsl("terrain", kTerrainTable) + shaders::kKeyHeightGlsl +
+         shaders::kChartCommonVertex + main;
 }
 
 // The unit box of a column: 5 faces (no bottom), 2 triangles each, with

@@ -18,7 +18,7 @@
 namespace globe::viewer::shaders {
 
 // Declarations and helpers both vertex shaders share (after
-// kFrameWorldGlsl, tile_hash and the terrain table).
+// kFrameWorldGlsl, tile_hash, the terrain table and kKeyHeightGlsl).
 inline constexpr const char* kChartCommonVertex = R"(
 layout(location = 1) in ivec2 i_key;     // absolute key units (the integer part)
 layout(location = 9) in vec2 i_frac;     // and the fraction
@@ -29,30 +29,13 @@ layout(location = 5) in vec4 i_v2;
 layout(location = 6) in vec4 i_v3;
 layout(location = 7) in uint i_pick;
 uniform mat4 u_view_proj;
-uniform sampler2DArray u_heights;
 uniform ivec2 u_origin;  // the view origin, key units
 uniform vec3 u_eye;      // world
-uniform int u_tmin, u_tmax, u_key_zoom, u_steps;
-uniform float u_block_size;
 uniform int u_fields;
 
 float value(int i) {
   vec4 v = i < 4 ? i_v0 : i < 8 ? i_v1 : i < 12 ? i_v2 : i_v3;
   return v[i & 3];
-}
-
-// Metres: the finest resident terrain block's height at the key point
-// (bilinear between its samples), 0 where no block is resident.
-float terrain_height(ivec2 key) {
-  for (int z = u_tmax; z >= u_tmin; --z) {
-    int shift = u_key_zoom - z;
-    ivec2 tile = (key >> shift) / u_steps;
-    int slot = terrain_lookup(z, tile);
-    if (slot < 0) continue;
-    vec2 local = vec2(key - ((tile * u_steps) << shift)) / float(1 << shift);
-    return texture(u_heights, vec3((local + 0.5) / u_block_size, float(slot))).r;
-  }
-  return 0.0;
 }
 
 // The anchor in the world and its up vector; false behind the horizon.

@@ -67,12 +67,12 @@ LineRenderer::LineRenderer(uint64_t arena_words, int width, int height) {
                 program_source("terrain_table", kTerrainTable,
                                std::string(shaders::kLineQuadGlsl) + shaders::kLineGeometryVertex),
                 shaders::kLineGeometryFragment);
-  lifted_ = GlProgram(
-      "lifted lines",
-      program_source("line_table", kLineTable,
-                     tile_table_glsl("terrain_table", kTerrainTable) + shaders::kFrameWorldGlsl +
-                         shaders::kLineQuadGlsl + shaders::kLineLiftedVertex),
-      shaders::kLineLiftedFragment);
+  lifted_ = GlProgram("lifted lines",
+                      program_source("line_table", kLineTable,
+                                     tile_table_glsl("terrain", kTerrainTable) +
+                                         shaders::kFrameWorldGlsl + shaders::kKeyHeightGlsl +
+                                         shaders::kLineQuadGlsl + shaders::kLineLiftedVertex),
+                      shaders::kLineLiftedFragment);
   GLuint buffers[7];
   gl::CreateBuffers(7, buffers);
   arena_ = buffers[0], records_ = buffers[1], table_ = buffers[2], styles_ = buffers[3],
@@ -347,7 +347,7 @@ void LineRenderer::draw_lifted(const View& view, const WorldFrame& world, double
   gl::BindFramebuffer(GL_FRAMEBUFFER, geometry_fbo_);
   const GlProgram& p = lifted_;
   terrain.frame->set_frame_uniforms(p, view, world, exaggeration);  // uses p
-  gl::Uniform1ui(p.uniform("terrain_table_mask"), terrain_mask);
+  gl::Uniform1ui(p.uniform("terrain_mask"), terrain_mask);
   gl::Uniform1ui(p.uniform("line_table_mask"), table_mask_);
   gl::Uniform1i(p.uniform("u_tmin"), terrain.min_zoom);
   gl::Uniform1i(p.uniform("u_tmax"), terrain.max_zoom);

@@ -292,13 +292,11 @@ void main() {
 // heights); it depends on the point alone, so consecutive segments meet. The
 // pieces keep a long segment from sagging into the globe. Pieces that a
 // finer chosen tile also covers are left to it. After kLineCommon, the tile
-// hash, the line and terrain tables, kFrameWorldGlsl and kLineQuadGlsl.
+// hash, the line table, the terrain table ("terrain"), kFrameWorldGlsl,
+// kKeyHeightGlsl and kLineQuadGlsl.
 inline constexpr const char* kLineLiftedVertex = R"(
 layout(std430, binding = 1) readonly buffer Records { uvec4 records[]; };  // 2 per record
 layout(std430, binding = 5) readonly buffer Used { uint used[]; };
-uniform sampler2DArray u_heights;
-uniform int u_tmin, u_tmax, u_key_zoom, u_steps;
-uniform float u_block_size;
 uniform ivec2 u_origin;  // the view origin, key units
 uniform mat4 u_view_proj;
 uniform uint u_segs_base, u_frame;
@@ -314,18 +312,6 @@ uniform float u_lift;      // world z units
 uniform float u_error_px;  // the terrain LOD's screen-space error bound
 uniform vec3 u_eye;        // world
 
-float terrain_height(ivec2 key) {
-  if (u_wrap_keys > 0) key.x = ((key.x % u_wrap_keys) + u_wrap_keys) % u_wrap_keys;
-  for (int z = u_tmax; z >= u_tmin; --z) {
-    int shift = u_key_zoom - z;
-    ivec2 tile = (key >> shift) / u_steps;
-    int slot = terrain_table_lookup(z, tile);
-    if (slot < 0) continue;
-    vec2 local = vec2(key - ((tile * u_steps) << shift)) / float(1 << shift);
-    return texture(u_heights, vec3((local + 0.5) / u_block_size, float(slot))).r;
-  }
-  return 0.0;
-}
 // World position of tile point P (units), lifted.
 vec3 lifted(vec2 P) {
   vec2 k = u_tile_key + P * u_keys_per_unit;

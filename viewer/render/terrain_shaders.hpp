@@ -93,6 +93,31 @@ vec3 frame_world(ivec2 key, vec2 frac, float h) {
 }
 )";
 
+// Heights under key points, for passes that place things on the terrain
+// (charts, lifted lines); after kFrameWorldGlsl, tile_hash and a terrain
+// table named "terrain" of the resident blocks' layers.
+inline constexpr const char* kKeyHeightGlsl = R"(
+uniform sampler2DArray u_heights;
+uniform int u_tmin, u_tmax, u_key_zoom, u_steps;
+uniform float u_block_size;
+
+// Metres: the finest resident terrain block's height at the key point
+// (bilinear between its samples, longitudes wrapped on the globe), 0 where
+// no block is resident.
+float terrain_height(ivec2 key) {
+  if (u_wrap_keys > 0) key.x = ((key.x % u_wrap_keys) + u_wrap_keys) % u_wrap_keys;
+  for (int z = u_tmax; z >= u_tmin; --z) {
+    int shift = u_key_zoom - z;
+    ivec2 tile = (key >> shift) / u_steps;
+    int slot = terrain_lookup(z, tile);
+    if (slot < 0) continue;
+    vec2 local = vec2(key - ((tile * u_steps) << shift)) / float(1 << shift);
+    return texture(u_heights, vec3((local + 0.5) / u_block_size, float(slot))).r;
+  }
+  return 0.0;
+}
+)";
+
 // The terrain's vertex shader: kTerrainVertexHead + kFrameWorldGlsl +
 // kTerrainVertexMain. Lattice point (i, j) of an instanced patch -> block
 // sample -> world metres relative to the frame origin. Integer arithmetic up
