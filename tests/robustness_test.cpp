@@ -242,11 +242,21 @@ TEST(CrashSafety, ImageryKilledAfterItsLastLevelResumesToTheSameBytes) {
                           "-e inject=unlink:delay_enter=" +
                               std::to_string(hold.count()) + ":when=2 " + build + " --resume");
   ASSERT_GT(pid, 0);
-  std::this_thread::sleep_for(took * 2 + std::chrono::seconds(2));
-  // The build first (were strace killed first, it would let the build go on).
-  run("pkill -KILL -f '" + sample("bluemarble.tif").string() +
-          " --max-zoom 3 -o out.mbtiles -j2 --resume'",
-      dir.path());
+  // Wait until the build (strace's child) sits in the delayed unlink, seen
+  // in /proc/PID/syscall (x86-64's unlink is 87); elsewhere, for a while.
+  const auto deadline = std::chrono::steady_clock::now() + took * 3 + std::chrono::seconds(5);
+  std::string build_pid;
+  while (std::chrono::steady_clock::now() < deadline) {
+    build_pid = run("pgrep -P " + std::to_string(pid), dir.path()).out;
+    build_pid = build_pid.substr(0, build_pid.find('\n'));
+    if (!build_pid.empty() && read_file("/proc/" + build_pid + "/syscall").rfind("87 ", 0) == 0)
+      break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  // The build first, and only it: killed first, strace would let the build
+  // go on (a pattern naming the command matched strace too, a race).
+  ASSERT_FALSE(build_pid.empty()) << "the build under strace did not start";
+  ::kill(std::stoi(build_pid), SIGKILL);
   ::kill(pid, SIGKILL);
   ::waitpid(pid, nullptr, 0);
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
