@@ -2,10 +2,12 @@
 #include "flow_solver.hpp"
 
 #include <algorithm>
+#include <map>
 
 #include "batch_blocks.hpp"
 #include "chunk_heights.hpp"
 #include "depression_fill.hpp"
+#include "depression_routing.hpp"
 #include "flow_accumulation.hpp"
 #include "flow_directions.hpp"
 #include "parallel_batches.hpp"
@@ -27,7 +29,7 @@ using tileformat::TileId;
 
 struct Perimeters {            // per node (perimeter cell of a chunk), in slot order
   std::vector<uint64_t> base;  // per slot: its first node
-  std::vector<int32_t> height, filled;
+  std::vector<int32_t> height, filled, raw;
   std::vector<uint32_t> label;  // global watershed
   std::vector<uint32_t> distance;
   std::vector<int32_t> key;  // flats: the height the way off the flat leads to
@@ -62,9 +64,14 @@ class Solver {
     auto memory = [&](uint64_t bytes) {
       return in_memory ? std::optional<uint64_t>(bytes) : std::nullopt;
     };
-    fill_ = std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "fill.bin", memory(cells * 8));
+    fill_ = std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "fill.bin", memory(cells * 12));
     fill_pass();
     route_flats();
+    if (!alone()) {
+      deps_ =
+          std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "depressions.bin", memory(cells));
+      route_depressions();
+    }
     dirs_ = std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "receivers.bin", memory(cells));
     out_.pyramid = std::make_unique<FlowPyramid>(g, p_.min_zoom, s_.scratch_prefix, in_memory);
     accumulate();
@@ -75,6 +82,8 @@ class Solver {
 
  private:
   const FlowGrid& grid() const { return *out_.grid; }
+  // A single chunk that does not wrap: nothing comes from outside it.
+  bool alone() const { return grid().chunks().size() == 1 && !grid().wraps(); }
   const Chunk& chunk(int slot) const { return grid().chunks()[size_t(slot)]; }
 
   // Runs `compute(slot)` for the slots in parallel, then `consume` in order.
@@ -181,9 +190,14 @@ class Solver {
           const std::vector<int32_t> z =
               chunk_heights(g, c, [&](TileId t) { return blocks.get(t, s_.input); });
           ChunkFill f = fill_chunk(c, z);
-          const uint64_t at = cell_base_[size_t(slot)] * 8;
+          const uint64_t at = cell_base_[size_t(slot)] * 12;
           fill_->write_array<int32_t>(at, f.filled);
           fill_->write_array<uint32_t>(at + c.cells() * 4, f.label);
+          std::vector<int32_t> raw(c.cells());
+          for (int y = 0; y < c.h; ++y)
+            for (int x = 0; x < c.w; ++x)
+              raw[size_t(y) * c.w + x] = z[ChunkWindow(c).at(x, y)];
+          fill_->write_array<int32_t>(at + c.cells() * 8, raw);
           FillResult r;
           for (int i = 0; i < c.perimeter_count(); ++i) {
             int x, y;
@@ -243,6 +257,7 @@ class Solver {
     spill_ = spill_levels(next, all);
     std::vector<SpillEdge>().swap(all);
     // Perimeter cells keep only their filled height and watershed.
+    per_.raw = per_.height;
     per_.filled = std::move(per_.height);
     for (size_t n = 0; n < nodes; ++n)
       if (per_.filled[n] != kNoData)
@@ -253,23 +268,41 @@ class Solver {
     return local == kEdgeLabel ? 0 : uint32_t(label_base_[size_t(slot)] + local - 2);
   }
 
-  // The chunk's window of filled heights.
-  std::vector<int32_t> filled_window(int slot, const std::vector<int64_t>& ring) const {
+  // The chunk's cells' filled heights (the whole grid's) and raw heights.
+  void read_chunk(int slot, std::vector<int32_t>& filled, std::vector<int32_t>* raw) const {
+    const Chunk& c = chunk(slot);
+    std::vector<uint32_t> label(c.cells());
+    filled.resize(c.cells());
+    const uint64_t at = cell_base_[size_t(slot)] * 12;
+    fill_->read_array<int32_t>(at, filled);
+    fill_->read_array<uint32_t>(at + c.cells() * 4, label);
+    for (size_t i = 0; i < filled.size(); ++i)
+      if (filled[i] != kNoData)
+        filled[i] = std::max(filled[i], spill_[global_label(slot, label[i])]);
+    if (raw) {
+      raw->resize(c.cells());
+      fill_->read_array<int32_t>(at + c.cells() * 8, *raw);
+    }
+  }
+
+  // The chunk's window of filled heights (and of raw heights).
+  std::vector<int32_t> filled_window(int slot, const std::vector<int64_t>& ring,
+                                     std::vector<int32_t>* raw_window = nullptr) const {
     const Chunk& c = chunk(slot);
     const ChunkWindow win(c);
-    std::vector<int32_t> local(c.cells());
-    std::vector<uint32_t> label(c.cells());
-    const uint64_t at = cell_base_[size_t(slot)] * 8;
-    fill_->read_array<int32_t>(at, local);
-    fill_->read_array<uint32_t>(at + c.cells() * 4, label);
+    std::vector<int32_t> local, raw;
+    read_chunk(slot, local, raw_window ? &raw : nullptr);
     std::vector<int32_t> f(win.size(), kNoData);
+    if (raw_window) raw_window->assign(win.size(), kNoData);
     for (int y = 0; y < c.h; ++y)
       for (int x = 0; x < c.w; ++x) {
-        const size_t i = size_t(y) * c.w + x;
-        if (local[i] != kNoData)
-          f[win.at(x, y)] = std::max(local[i], spill_[global_label(slot, label[i])]);
+        f[win.at(x, y)] = local[size_t(y) * c.w + x];
+        if (raw_window) (*raw_window)[win.at(x, y)] = raw[size_t(y) * c.w + x];
       }
     put_ring(c, f, ring, [&](int64_t n) { return n < 0 ? kNoData : per_.filled[size_t(n)]; });
+    if (raw_window)
+      put_ring(c, *raw_window, ring,
+               [&](int64_t n) { return n < 0 ? kNoData : per_.raw[size_t(n)]; });
     return f;
   }
 
@@ -358,7 +391,241 @@ class Solver {
     return changed;
   }
 
-  // ---- 4, 5, 6: receivers, accumulation ----
+  // ---- 4: depressions (depression_routing.hpp) ----
+  // A depression's cells in one chunk, where the depression crosses the
+  // chunk's edge.
+  struct DepressionPart {
+    std::vector<int> perimeter;  // its perimeter cells (indices)
+    bool has_entry = false;
+    EntryRank entry{};  // the least of its rim cells next to this chunk's cells
+    int64_t x_min = 0, x_max = 0, y_min = 0, y_max = 0, seed_x = 0, seed_y = 0;
+  };
+
+  // The chunk's window as a patch (raw and filled heights).
+  HeightPatch window_patch(int slot, const std::vector<int64_t>& ring) const {
+    const Chunk& c = chunk(slot);
+    HeightPatch p;
+    p.x0 = c.x0 - 1, p.y0 = c.y0 - 1, p.w = c.w + 2, p.h = c.h + 2;
+    p.filled = filled_window(slot, ring, &p.raw);
+    return p;
+  }
+
+  // Routes the depressions of the chunk's window that lie inside the chunk
+  // (out(chunk index, code)); with `parts`, notes those that cross its edge.
+  template <typename Out>
+  void route_window_depressions(int slot, const HeightPatch& p, const std::vector<uint32_t>& d,
+                                const std::vector<int32_t>& key, Out out,
+                                std::vector<DepressionPart>* parts) const {
+    const Chunk& c = chunk(slot);
+    const ChunkWindow win(c);
+    DepressionRouter router(p);
+    auto in_chunk = [&](uint32_t i) {
+      const int x = int(i % uint32_t(p.w)), y = int(i / uint32_t(p.w));
+      return x > 0 && y > 0 && x <= c.w && y <= c.h;
+    };
+    for (int y = 0; y < c.h; ++y)
+      for (int x = 0; x < c.w; ++x) {
+        const uint32_t i = uint32_t(win.at(x, y));
+        if (!p.in_depression(i) || router.seen(i)) continue;
+        bool crosses = false;
+        const std::vector<uint32_t> cells = router.depression(i, crosses);
+        EntryRank rank;
+        uint32_t entry = 0;
+        const bool has_entry = depression_entry(grid(), p, cells, d, key, in_chunk, rank, entry);
+        if (!crosses) {
+          if (has_entry)
+            router.route(grid(), cells, entry, [&](uint32_t k, uint8_t code) {
+              out(size_t(k / uint32_t(p.w) - 1) * c.w + (k % uint32_t(p.w) - 1), code);
+            });
+          continue;
+        }
+        if (!parts) continue;
+        DepressionPart part;
+        part.has_entry = has_entry;
+        part.entry = rank;
+        part.seed_x = c.x0 + x, part.seed_y = c.y0 + y;
+        part.x_min = part.x_max = part.seed_x, part.y_min = part.y_max = part.seed_y;
+        for (uint32_t k : cells) {
+          if (!in_chunk(k)) continue;
+          const int cx = int(k % uint32_t(p.w)) - 1, cy = int(k / uint32_t(p.w)) - 1;
+          part.x_min = std::min(part.x_min, c.x0 + cx),
+          part.x_max = std::max(part.x_max, c.x0 + cx);
+          part.y_min = std::min(part.y_min, c.y0 + cy),
+          part.y_max = std::max(part.y_max, c.y0 + cy);
+          const int pi = c.perimeter_index(cx, cy);
+          if (pi >= 0) part.perimeter.push_back(pi);
+        }
+        parts->push_back(std::move(part));
+      }
+  }
+
+  // Each chunk routes the depressions inside it and notes the parts of those
+  // that cross its edge; these are joined across chunks, gathered whole and
+  // routed (the receivers go to the depressions scratch file, 0 elsewhere).
+  void route_depressions() {
+    std::vector<std::vector<DepressionPart>> parts(grid().chunks().size());
+    each_chunk<std::vector<DepressionPart>>(
+        "flow: depressions", all_slots(),
+        [&](int slot, const BatchBlocks&) {
+          const Chunk& c = chunk(slot);
+          const std::vector<int64_t> ring = ring_nodes(c);
+          const HeightPatch p = window_patch(slot, ring);
+          std::vector<uint32_t> d;
+          std::vector<int32_t> key;
+          flat_windows(slot, ring, p.filled, d, key);
+          std::vector<uint8_t> codes(c.cells(), 0);
+          std::vector<DepressionPart> crossing;
+          route_window_depressions(
+              slot, p, d, key, [&](size_t i, uint8_t code) { codes[i] = code; }, &crossing);
+          deps_->write_array<uint8_t>(cell_base_[size_t(slot)], codes);
+          return crossing;
+        },
+        [&](int slot, std::vector<DepressionPart>&& r) { parts[size_t(slot)] = std::move(r); },
+        false);
+    join_depressions(parts);
+  }
+
+  // Depressions across chunk edges: parts joined where their perimeter cells
+  // touch (union-find), then each routed from the least entry of its parts
+  // over a patch of its bounding box. Those across the east-west wrap, or
+  // larger than kMaxGatheredCells, keep the flat routing.
+  static constexpr uint64_t kMaxGatheredCells = uint64_t(1) << 24;
+
+  void join_depressions(const std::vector<std::vector<DepressionPart>>& parts) {
+    const FlowGrid& g = grid();
+    std::vector<size_t> first(parts.size() + 1, 0);
+    for (size_t k = 0; k < parts.size(); ++k)
+      first[k + 1] = first[k] + parts[k].size();
+    const size_t count = first.back();
+    if (count == 0) return;
+    std::vector<int64_t> part_of(per_.base.back(), -1);
+    for (size_t k = 0; k < parts.size(); ++k)
+      for (size_t j = 0; j < parts[k].size(); ++j)
+        for (int i : parts[k][j].perimeter)
+          part_of[size_t(per_.node(int(k), i))] = int64_t(first[k] + j);
+    std::vector<size_t> up(count);
+    for (size_t i = 0; i < count; ++i)
+      up[i] = i;
+    auto root = [&](size_t i) {
+      while (up[i] != i)
+        i = up[i] = up[up[i]];
+      return i;
+    };
+    std::vector<uint8_t> seam(count, 0);
+    for (size_t k = 0; k < parts.size(); ++k) {
+      const Chunk& c = chunk(int(k));
+      for (size_t j = 0; j < parts[k].size(); ++j)
+        for (int i : parts[k][j].perimeter) {
+          int x, y;
+          c.perimeter_cell(i, x, y);
+          for (int d = 1; d <= 8; ++d) {
+            const int nx = x + kDx[d], ny = y + kDy[d];
+            if (nx >= 0 && ny >= 0 && nx < c.w && ny < c.h) continue;
+            const int64_t gx = c.x0 + nx;
+            const int64_t m = node_at(gx, c.y0 + ny);
+            if (m < 0 || part_of[size_t(m)] < 0) continue;
+            const size_t a = root(first[k] + j), b = root(size_t(part_of[size_t(m)]));
+            if (gx < 0 || gx >= g.width()) seam[a] = seam[b] = 1;
+            if (a != b) {
+              up[std::max(a, b)] = std::min(a, b);
+              seam[std::min(a, b)] |= seam[std::max(a, b)];
+            }
+          }
+        }
+    }
+    // Per depression (its root part, the least index): the union of its parts.
+    std::vector<DepressionPart> whole(count);
+    std::vector<uint8_t> joined(count, 0);
+    for (size_t k = 0; k < parts.size(); ++k)
+      for (size_t j = 0; j < parts[k].size(); ++j) {
+        const DepressionPart& q = parts[k][j];
+        const size_t r = root(first[k] + j);
+        seam[r] |= seam[first[k] + j];
+        DepressionPart& w = whole[r];
+        if (!joined[r]) {
+          w = q;
+          joined[r] = 1;
+          continue;
+        }
+        if (q.has_entry && (!w.has_entry || q.entry < w.entry)) w.entry = q.entry;
+        w.has_entry |= q.has_entry;
+        w.x_min = std::min(w.x_min, q.x_min), w.x_max = std::max(w.x_max, q.x_max);
+        w.y_min = std::min(w.y_min, q.y_min), w.y_max = std::max(w.y_max, q.y_max);
+      }
+    for (size_t r = 0; r < count; ++r) {
+      if (root(r) != r || seam[r] || !whole[r].has_entry) continue;
+      const DepressionPart& w = whole[r];
+      HeightPatch p;
+      p.x0 = w.x_min - 1, p.y0 = w.y_min - 1;
+      p.w = int(w.x_max - w.x_min + 3), p.h = int(w.y_max - w.y_min + 3);
+      if (uint64_t(p.w) * uint64_t(p.h) > kMaxGatheredCells) continue;
+      gather(p);
+      const int64_t entry =
+          patch_index(p, std::get<2>(w.entry) % g.width(), std::get<2>(w.entry) / g.width());
+      if (entry < 0) continue;  // (it lies next to the depression: never)
+      DepressionRouter router(p);
+      bool crosses = false;
+      const std::vector<uint32_t> cells =
+          router.depression(uint32_t((w.seed_y - p.y0) * p.w + (w.seed_x - p.x0)), crosses);
+      // Written per chunk it covers (the codes of all depressions together
+      // could be a good part of the grid).
+      std::map<int, std::vector<std::pair<uint32_t, uint8_t>>> codes;
+      router.route(g, cells, uint32_t(entry), [&](uint32_t i, uint8_t code) {
+        const int64_t x = p.x0 + i % uint32_t(p.w), y = p.y0 + i / uint32_t(p.w);
+        const int slot = g.slot_of(x, y);
+        const Chunk& c = chunk(slot);
+        codes[slot].push_back({uint32_t((y - c.y0) * c.w + (x - c.x0)), code});
+      });
+      for (const auto& [slot, list] : codes) {
+        std::vector<uint8_t> chunk_codes(chunk(slot).cells());
+        deps_->read_array<uint8_t>(cell_base_[size_t(slot)], chunk_codes);
+        for (const auto& [i, code] : list)
+          chunk_codes[i] = code;
+        deps_->write_array<uint8_t>(cell_base_[size_t(slot)], chunk_codes);
+      }
+    }
+  }
+
+  // Fills a patch from the chunks it overlaps (columns wrapped where the
+  // grid wraps; no data off the grid).
+  void gather(HeightPatch& p) const {
+    const FlowGrid& g = grid();
+    p.raw.assign(size_t(p.w) * p.h, kNoData);
+    p.filled.assign(p.raw.size(), kNoData);
+    std::vector<int64_t> column(size_t(p.w));
+    for (int x = 0; x < p.w; ++x) {
+      int64_t gx = p.x0 + x;
+      column[size_t(x)] = g.normalise(gx, 0) ? gx : -1;
+    }
+    std::vector<int32_t> filled, raw;
+    for (size_t k = 0; k < g.chunks().size(); ++k) {
+      const Chunk& c = chunk(int(k));
+      const int64_t y0 = std::max(p.y0, c.y0), y1 = std::min(p.y0 + p.h, c.y0 + c.h);
+      auto mine = [&](int64_t gx) { return gx >= c.x0 && gx < c.x0 + c.w; };
+      if (y0 >= y1 || std::none_of(column.begin(), column.end(), mine)) continue;
+      read_chunk(int(k), filled, &raw);
+      for (int64_t y = y0; y < y1; ++y)
+        for (int x = 0; x < p.w; ++x) {
+          if (!mine(column[size_t(x)])) continue;
+          const size_t from = size_t((y - c.y0) * c.w + (column[size_t(x)] - c.x0));
+          const size_t to = size_t(y - p.y0) * p.w + x;
+          p.filled[to] = filled[from];
+          p.raw[to] = raw[from];
+        }
+    }
+  }
+
+  // The patch index of grid cell (x, y) (x normalised), or -1.
+  int64_t patch_index(const HeightPatch& p, int64_t x, int64_t y) const {
+    for (int64_t shift : {int64_t(0), -grid().width(), grid().width()}) {
+      const int64_t px = x + shift - p.x0, py = y - p.y0;
+      if (px >= 0 && py >= 0 && px < p.w && py < p.h) return py * p.w + px;
+      if (!grid().wraps()) break;
+    }
+    return -1;
+  }
+
+  // ---- 5, 6, 7: receivers, accumulation ----
   struct LinkResult {
     PerimeterFlow flow;
     std::vector<int64_t> target;  // per perimeter cell: the node it drains into, or -1
@@ -371,17 +638,30 @@ class Solver {
     std::vector<uint8_t> crosses(nodes, 0);
     // A single chunk that does not wrap receives nothing from outside: its
     // own accumulation is final and goes straight to the pyramid.
-    const bool alone = grid().chunks().size() == 1 && !grid().wraps();
+    const bool alone = this->alone();
     each_chunk<LinkResult>(
         "flow: directions", all_slots(),
         [&](int slot, const BatchBlocks&) {
           const Chunk& c = chunk(slot);
           const std::vector<int64_t> ring = ring_nodes(c);
-          const std::vector<int32_t> f = filled_window(slot, ring);
+          std::vector<int32_t> raw;
+          const std::vector<int32_t> f = filled_window(slot, ring, alone ? &raw : nullptr);
           std::vector<uint32_t> d;
           std::vector<int32_t> key;
           flat_windows(slot, ring, f, d, key);
-          const std::vector<uint8_t> rec = d8_receivers(grid(), c, f, d, key);
+          std::vector<uint8_t> rec = d8_receivers(grid(), c, f, d, key);
+          if (alone) {
+            HeightPatch p;
+            p.x0 = c.x0 - 1, p.y0 = c.y0 - 1, p.w = c.w + 2, p.h = c.h + 2;
+            p.filled = f, p.raw = std::move(raw);
+            route_window_depressions(
+                slot, p, d, key, [&](size_t i, uint8_t code) { rec[i] = code; }, nullptr);
+          } else {
+            std::vector<uint8_t> codes(c.cells());
+            deps_->read_array<uint8_t>(cell_base_[size_t(slot)], codes);
+            for (size_t i = 0; i < codes.size(); ++i)
+              if (codes[i]) rec[i] = codes[i];
+          }
           LinkResult r;
           std::vector<uint64_t> acc = accumulate_chunk(grid(), c, rec, {}, &r.flow);
           if (alone) {
@@ -417,6 +697,7 @@ class Solver {
         },
         false);
     fill_.reset();  // the filled heights are no longer needed, nor the perimeters' state
+    deps_.reset();
     Perimeters kept;
     kept.base = std::move(per_.base);
     per_ = std::move(kept);
@@ -449,7 +730,7 @@ class Solver {
   std::vector<uint64_t> cell_base_;   // per slot: its first cell in the scratch files
   std::vector<uint64_t> label_base_;  // per slot: global id of its local label 2
   std::vector<int32_t> spill_;        // per global watershed
-  std::unique_ptr<ScratchArrayFile> fill_, dirs_;
+  std::unique_ptr<ScratchArrayFile> fill_, deps_, dirs_;
 };
 
 }  // namespace
