@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <queue>
 
 #include "depression_fill.hpp"
 
@@ -31,35 +30,49 @@ void flat_distances(const Chunk& c, const std::vector<int32_t>& f, std::vector<u
       if (flat) flats.push_back(uint32_t(k));
     }
   if (flats.empty()) return;
-  std::vector<uint8_t> open(win.size(), 0);  // the chunk's flat cells
+  // 1: the chunk's flat cells; 2: a source listed below.
+  std::vector<uint8_t> open(win.size(), 0);
   for (uint32_t k : flats)
     open[k] = 1;
-  // Dijkstra with unit steps from every cell off a flat (distance 0) and the
-  // ring's known distances, into the chunk's flat cells of the same height.
-  using Item = std::pair<uint32_t, uint32_t>;  // distance, window index
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
-  // Sources: known cells (off a flat, or the ring's) next to a flat cell of
-  // their height; one met twice relaxes nothing the second time.
+  // Breadth-first with unit steps from every cell off a flat (distance 0)
+  // and the ring's known distances, into the chunk's flat cells of the same
+  // height. Sources: known cells next to a flat cell of their height, in
+  // order of distance (those off a flat first, then the ring's, sorted);
+  // reached cells queue in order of distance (each one step beyond the cell
+  // it came from), so taking the nearer of the two fronts settles cells in
+  // order of distance, each at its least.
+  using Source = std::pair<uint32_t, uint32_t>;  // distance, window index
+  std::vector<Source> sources, ring_sources;
   for (uint32_t k : flats)
     for (int d = 1; d <= 8; ++d) {
       const size_t n = size_t(ptrdiff_t(k) + ptrdiff_t(kDy[d]) * s + kDx[d]);
-      if (f[n] == f[k] && dist[n] != kFar && !open[n]) q.push({dist[n], uint32_t(n)});
+      if (f[n] != f[k] || dist[n] == kFar || open[n] != 0) continue;
+      open[n] = 2;
+      (dist[n] == 0 ? sources : ring_sources).push_back({dist[n], uint32_t(n)});
     }
+  std::sort(ring_sources.begin(), ring_sources.end());
+  sources.insert(sources.end(), ring_sources.begin(), ring_sources.end());
   std::vector<uint32_t> settled;  // flat cells in the order their distance became final
-  while (!q.empty()) {
-    const auto [d, k] = q.top();
-    q.pop();
-    if (d != dist[k]) continue;
-    if (open[k]) settled.push_back(k);
+  settled.reserve(flats.size());
+  size_t next_source = 0, next_settled = 0;
+  while (next_source < sources.size() || next_settled < settled.size()) {
+    uint32_t k;
+    if (next_settled < settled.size() &&
+        (next_source == sources.size() ||
+         dist[settled[next_settled]] <= sources[next_source].first))
+      k = settled[next_settled++];
+    else
+      k = sources[next_source++].second;
+    const uint32_t d = dist[k];
     for (int dir = 1; dir <= 8; ++dir) {
       // A ring cell's outer neighbours lie off the window (or wrap to the
       // ring's other side, which is never open).
       const ptrdiff_t n = ptrdiff_t(k) + ptrdiff_t(kDy[dir]) * s + kDx[dir];
-      if (n < 0 || size_t(n) >= open.size() || !open[size_t(n)] || f[size_t(n)] != f[k] ||
+      if (n < 0 || size_t(n) >= open.size() || open[size_t(n)] != 1 || f[size_t(n)] != f[k] ||
           dist[size_t(n)] <= d + 1)
         continue;
       dist[size_t(n)] = d + 1;
-      q.push({d + 1, uint32_t(n)});
+      settled.push_back(uint32_t(n));
     }
   }
   // Keys, nearest first: the least of the neighbours one step nearer.

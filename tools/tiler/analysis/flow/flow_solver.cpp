@@ -314,7 +314,21 @@ class Solver {
     key.assign(d.size(), kNoKey);
     put_ring(c, d, ring, [&](int64_t n) { return n < 0 ? kFar : per_.distance[size_t(n)]; });
     put_ring(c, key, ring, [&](int64_t n) { return n < 0 ? kNoKey : per_.key[size_t(n)]; });
-    flat_distances(c, f, d, key);
+    if (!flats_settled_) {
+      flat_distances(c, f, d, key);
+      return;
+    }
+    // The chunk's own, as its last flat round left them.
+    const ChunkWindow win(c);
+    std::vector<uint32_t> dc(c.cells());
+    std::vector<int32_t> kc(c.cells());
+    flats_->read_array<uint32_t>(cell_base_[size_t(slot)] * 8, dc);
+    flats_->read_array<int32_t>(cell_base_[size_t(slot)] * 8 + c.cells() * 4, kc);
+    for (int y = 0; y < c.h; ++y)
+      for (int x = 0; x < c.w; ++x) {
+        d[win.at(x, y)] = dc[size_t(y) * c.w + x];
+        key[win.at(x, y)] = kc[size_t(y) * c.w + x];
+      }
   }
 
   // ---- 3: flats, iterated until the distances at chunk edges settle ----
@@ -333,7 +347,13 @@ class Solver {
     // A single chunk that does not wrap has no ring to wait for: the
     // directions pass computes its distances once.
     std::vector<int> run = all_slots();
-    if (run.size() == 1 && !grid().wraps()) return;
+    if (alone()) return;
+    // Each chunk's distances and keys as its latest round left them: a chunk
+    // not run again saw no change, so they are final for the later passes.
+    flats_ = std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "flats.bin",
+                                                grid().chunks().size() == 1
+                                                    ? std::optional<uint64_t>(cell_base_.back() * 8)
+                                                    : std::nullopt);
     while (!run.empty()) {
       ++out_.flat_rounds;
       std::vector<std::pair<int, FlatResult>> results;
@@ -347,6 +367,15 @@ class Solver {
             std::vector<uint32_t> d;
             std::vector<int32_t> key;
             flat_windows(slot, ring, f, d, key);
+            std::vector<uint32_t> dc(c.cells());
+            std::vector<int32_t> kc(c.cells());
+            for (int y = 0; y < c.h; ++y)
+              for (int x = 0; x < c.w; ++x) {
+                dc[size_t(y) * c.w + x] = d[win.at(x, y)];
+                kc[size_t(y) * c.w + x] = key[win.at(x, y)];
+              }
+            flats_->write_array<uint32_t>(cell_base_[size_t(slot)] * 8, dc);
+            flats_->write_array<int32_t>(cell_base_[size_t(slot)] * 8 + c.cells() * 4, kc);
             FlatResult r;
             for (int i = 0; i < c.perimeter_count(); ++i) {
               int x, y;
@@ -375,6 +404,7 @@ class Solver {
       for (int slot : all_slots())
         if (ring_changed_on_flat(slot)) run.push_back(slot);
     }
+    flats_settled_ = true;
   }
 
   // Whether a flat perimeter cell of the chunk touches a cell of another
@@ -698,6 +728,7 @@ class Solver {
         false);
     fill_.reset();  // the filled heights are no longer needed, nor the perimeters' state
     deps_.reset();
+    flats_.reset();
     Perimeters kept;
     kept.base = std::move(per_.base);
     per_ = std::move(kept);
@@ -730,7 +761,8 @@ class Solver {
   std::vector<uint64_t> cell_base_;   // per slot: its first cell in the scratch files
   std::vector<uint64_t> label_base_;  // per slot: global id of its local label 2
   std::vector<int32_t> spill_;        // per global watershed
-  std::unique_ptr<ScratchArrayFile> fill_, deps_, dirs_;
+  std::unique_ptr<ScratchArrayFile> fill_, flats_, deps_, dirs_;
+  bool flats_settled_ = false;  // flats_ holds every chunk's final distances and keys
 };
 
 }  // namespace
