@@ -5,8 +5,10 @@
 // when a shading needs a layer the package lacks.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
+#include "raster_fixtures.hpp"
 #include "render_fixtures.hpp"
 #include "test_support.hpp"
 
@@ -113,9 +115,93 @@ TEST(ViewerAnalysis, FlowDrawsTheRiversBlue) {
   expect_image((dir / "a.png").string(), "jacksboro_flow");
 }
 
-// --colormap colours the analysis layers too, each over its own values: a
-// gdaldem file in degrees for slope (green flats, yellow hillsides), one in
-// m^2 for flow (log scale: pale hillsides, navy rivers).
+// --flow-animate / --flow-phase: pulses run downstream along the rivers. A
+// V-shaped valley falling east carries one river along its middle row; a
+// quarter cycle later its pulses lie a quarter of their spacing further
+// east, and nothing but the river changed.
+TEST(ViewerAnalysis, FlowPulsesMoveDownstream) {
+  TempDir dir;
+  const double gt[6] = {500000, 30, 0, 4000000, 0, -30};
+  const std::string dem = (dir / "valley.tif").string(), t = (dir / "v.mbtiles").string(),
+                    a = (dir / "va.mbtiles").string();
+  write_dem(dem, 257, 257, gt, "EPSG:32632", GDT_Float32,
+            [](int x, int y) { return 300 - 0.5 * x + 3.0 * std::abs(y - 128); });
+  ASSERT_TRUE(build_terrain("--tiling local", dem, t, dir.path()));
+  ASSERT_EQ(run(tiler() + " analyze -q --layers flow " + t + " -o " + a, dir.path()).exit_code, 0);
+  const std::string base = t + " " + a + " --shading flow --flow-animate";
+  const auto still = snapshot(t + " " + a + " --shading flow", dir, "still");
+  const auto p0 = snapshot(base, dir, "p0");
+  const auto p1 = snapshot(base + " --flow-phase 0.25", dir, "p1");
+  ASSERT_EQ(p0.size(), size_t(480 * 360 * 3));
+  ASSERT_EQ(p1.size(), p0.size());
+  // The river: the row with the most blue pixels in the still image.
+  auto blue = [](const uint8_t* p) { return p[2] > p[0] + 60; };
+  int row = -1, most = 0;
+  for (int y = 0; y < 360; ++y) {
+    int n = 0;
+    for (int x = 0; x < 480; ++x)
+      n += blue(&still[(size_t(y) * 480 + x) * 3]);
+    if (n > most) most = n, row = y;
+  }
+  ASSERT_GT(most, 100) << "no river drawn";
+  // Away from the river (3 rows off, and more), the pulses change nothing.
+  size_t changed_off_river = 0;
+  for (int y = 0; y < 360; ++y)
+    for (int x = 0; x < 480; ++x) {
+      const size_t i = (size_t(y) * 480 + x) * 3;
+      if (std::abs(y - row) > 3 && !blue(&still[i]) &&
+          (p0[i] != p1[i] || p0[i + 1] != p1[i + 1] || p0[i + 2] != p1[i + 2]))
+        ++changed_off_river;
+    }
+  EXPECT_EQ(changed_off_river, 0u);
+  // Brightness along the river (the row and its neighbours), then the shift
+  // of p1 against p0 that matches best.
+  auto profile = [&](const std::vector<uint8_t>& rgb) {
+    std::vector<double> v(480, 0);
+    for (int y = row - 1; y <= row + 1; ++y)
+      for (int x = 0; x < 480; ++x) {
+        const uint8_t* q = &rgb[(size_t(y) * 480 + x) * 3];
+        v[size_t(x)] += q[0] + q[1] + q[2];
+      }
+    return v;
+  };
+  const std::vector<double> a0 = profile(p0), a1 = profile(p1);
+  std::vector<int> river_x;
+  for (int x = 0; x < 480; ++x)
+    if (blue(&still[(size_t(row) * 480 + x) * 3])) river_x.push_back(x);
+  // The crests' spacing in pixels (it depends on the zoom drawn): from the
+  // first to the last crest of p0 along the river.
+  const double top = *std::max_element(a0.begin() + river_x.front(), a0.begin() + river_x.back());
+  std::vector<int> crests;
+  for (int x = river_x.front() + 1; x < river_x.back(); ++x)
+    if (a0[size_t(x)] > 0.8 * top && a0[size_t(x)] >= a0[size_t(x - 1)] &&
+        a0[size_t(x)] > a0[size_t(x + 1)] && (crests.empty() || x - crests.back() > 4))
+      crests.push_back(x);
+  ASSERT_GE(crests.size(), 3u) << "no pulses on the river";
+  const double spacing = double(crests.back() - crests.front()) / double(crests.size() - 1);
+  // The shift of p1 against p0 that matches best, within half a spacing.
+  const int reach = int(spacing / 2);
+  int best = 0;
+  double best_error = 1e300, moved = 0;
+  for (int shift = -reach; shift <= reach; ++shift) {
+    double e = 0;
+    for (int x : river_x)
+      if (x + shift >= 0 && x + shift < 480)
+        e += std::pow(a0[size_t(x)] - a1[size_t(x + shift)], 2);
+    if (e < best_error) best_error = e, best = shift;
+  }
+  for (int x : river_x)
+    moved += std::abs(a0[size_t(x)] - a1[size_t(x)]);
+  std::printf(
+      "flow pulses: river row %d (%d px), %zu crests %.1f px apart, shift %d px, mean "
+      "change %.1f\n",
+      row, most, crests.size(), spacing, best, moved / double(river_x.size()));
+  EXPECT_GT(moved / double(river_x.size()), 20) << "the pulses did not change the river";
+  // A quarter cycle: a quarter of the spacing, eastwards (downstream).
+  EXPECT_NEAR(best, spacing / 4, 2.0);
+  EXPECT_GT(best, 0) << "pulses must move east, downstream";
+}
+
 TEST(ViewerAnalysis, ColormapFilesColourSlopeAndFlow) {
   TempDir dir;
   const fs::path data = fs::path(GLOBE_TEST_DATA_DIR) / "render";

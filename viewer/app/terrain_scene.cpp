@@ -176,8 +176,9 @@ void TerrainScene::upload_loaded() {
     // Flow: the largest river loaded so far (coarser zooms keep the largest
     // area of their footprint, so the first blocks already hold it) and eight
     // doublings below it.
-    const float largest =
-        b.flow.empty() ? kNoFlow : *std::max_element(b.flow.begin(), b.flow.end());
+    float largest = kNoFlow;
+    for (size_t i = 0; i < b.flow.size(); i += kFlowTexel)
+      largest = std::max(largest, b.flow[i]);
     if (largest > flow_largest_) {
       flow_largest_ = largest;
       renderer_->set_flow_range(largest - 8, largest);

@@ -121,6 +121,21 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
                else
                  throw UsageError("--shading: unknown mode '" + v + "'");
              });
+  cli.flag("--flow-animate",
+           "flow shading: pulses run downstream along the rivers, 8 samples apart (the window "
+           "animates them, a cycle every 2 s; a snapshot draws them at --flow-phase)",
+           [&] {
+             s.flow_animate = true;
+             if (!s.shading.flow_phase) s.shading.flow_phase = 0;
+           });
+  cli.option("--flow-phase", "P",
+             "flow shading: draw the pulses at phase P (0 <= P < 1 of the spacing between "
+             "crests; default 0); implies the pulses",
+             [&](const std::string& v) {
+               const double p = CliArgs::to_double("--flow-phase", v);
+               if (!(p >= 0 && p < 1)) throw UsageError("--flow-phase: must be in [0, 1)");
+               s.shading.flow_phase = p;
+             });
   cli.flag("--ambient-occlusion",
            "darken by the sky-view factor of an analysis package (any shading, and imagery lit "
            "by it)",

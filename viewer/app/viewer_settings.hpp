@@ -39,6 +39,7 @@ struct ViewerSettings {
   std::optional<double> lift_m;  // --lift: lifted lines' height above the terrain (unset: auto)
   bool lines = true;             // --lines off: draw none
   bool imagery_unlit = false;    // --shading imagery
+  bool flow_animate = false;     // --flow-animate: the window moves the flow pulses
   std::vector<double> image_opacity;  // --image-opacity, per image layer (the last repeats)
   ChartSettings charts;               // --chart, --chart-style, --chart-depth, --chart-thinning
   bool charts_given = false;          // any of those options

@@ -224,8 +224,13 @@ int run_window(const ViewerSettings& settings) {
   home = orbit = Orbit::from_pose(start, s.world(), ground);
 
   auto last_title = std::chrono::steady_clock::now();
+  const auto opened = last_title;
   while (!window->should_close()) {
     window->poll();
+    if (settings.flow_animate)  // a cycle of the flow pulses every 2 s
+      s.settings().shading.flow_phase = std::fmod(
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - opened).count() / 2,
+          1.0);
     int w = 0, h = 0;
     window->framebuffer_size(w, h);
     if (w <= 0 || h <= 0) continue;

@@ -48,10 +48,18 @@ std::vector<float> analysis_texels(const tileformat::AnalysisBlock& b) {
 }
 
 std::vector<float> flow_texels(const tileformat::AnalysisBlock& b) {
-  const std::vector<double> area = values(b, AnalysisLayer::kFlowAccumulation, 0);
-  std::vector<float> t(area.size());
-  for (size_t i = 0; i < area.size(); ++i)
-    t[i] = area[i] > 0 ? static_cast<float>(std::log2(area[i])) : kNoFlow;
+  // D8 codes (tileformat §9): 1..8 north, north-east, east .. north-west.
+  static constexpr int kDx[9] = {0, 0, 1, 1, 1, 0, -1, -1, -1};
+  static constexpr int kDy[9] = {0, -1, -1, 0, 1, 1, 1, 0, -1};
+  const std::vector<double> area = values(b, AnalysisLayer::kFlowAccumulation, 0),
+                            code = values(b, AnalysisLayer::kFlowDirection, 0);
+  std::vector<float> t(area.size() * kFlowTexel);
+  for (size_t i = 0; i < area.size(); ++i) {
+    const int c = std::clamp(static_cast<int>(std::lround(code[i])), 0, 8);
+    t[kFlowTexel * i] = area[i] > 0 ? static_cast<float>(std::log2(area[i])) : kNoFlow;
+    t[kFlowTexel * i + 1] = static_cast<float>(kDx[c]);
+    t[kFlowTexel * i + 2] = static_cast<float>(kDy[c]);
+  }
   return t;
 }
 

@@ -16,9 +16,12 @@ namespace globe::viewer {
 // size*size*4 floats, row-major from the north row.
 std::vector<float> analysis_texels(const tileformat::AnalysisBlock& block);
 
-// The flow shading's texels: log2 of the upstream area in m^2 per sample,
-// kNoFlow where the package has none (or no flow_accumulation layer).
+// The flow shading's texels, three floats a sample: log2 of the upstream
+// area in m^2 (kNoFlow where the package has none, or no flow_accumulation
+// layer), then the D8 step downstream in samples (x east, y south; (0, 0)
+// at outlets or without a flow_direction layer).
 inline constexpr float kNoFlow = -100;
+inline constexpr int kFlowTexel = 3;
 std::vector<float> flow_texels(const tileformat::AnalysisBlock& block);
 
 }  // namespace globe::viewer

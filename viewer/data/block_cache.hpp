@@ -51,7 +51,7 @@ struct LoadedBlock {
   std::vector<float> heights;   // size*size, metres, row-major from the north row
   std::vector<uint8_t> mask;    // size*size, 255 = data, 0 = hole
   std::vector<float> analysis;  // size*size*4 (analysis_texels.hpp) with an analysis package
-  std::vector<float> flow;      // size*size (flow_texels) with an analysis package
+  std::vector<float> flow;      // size*size*kFlowTexel (flow_texels) with an analysis package
 };
 
 // An analysis package drawn with the terrain (the same tiles); its reader is

@@ -88,7 +88,7 @@ TerrainRenderer::TerrainRenderer(int block_size, int lattice, int slots, int wid
     gl::CreateTextures(GL_TEXTURE_2D_ARRAY, 1, &layers_);
     gl::TextureStorage3D(layers_, 1, GL_RGBA16F, size_, size_, slots_);
     gl::CreateTextures(GL_TEXTURE_2D_ARRAY, 1, &flow_);
-    gl::TextureStorage3D(flow_, 1, GL_R16F, size_, size_, slots_);
+    gl::TextureStorage3D(flow_, 1, GL_RGB16F, size_, size_, slots_);
   }
   for (GLuint t : {heights_, mask_, ramp_, layers_, flow_}) {
     if (!t) continue;
@@ -168,7 +168,7 @@ void TerrainRenderer::upload(const LoadedBlock& b) {
     gl::TextureSubImage3D(layers_, 0, 0, 0, b.slot, size_, size_, 1, GL_RGBA, GL_FLOAT,
                           b.analysis.data());
   if (flow_ && !b.flow.empty())
-    gl::TextureSubImage3D(flow_, 0, 0, 0, b.slot, size_, size_, 1, GL_RED, GL_FLOAT, b.flow.data());
+    gl::TextureSubImage3D(flow_, 0, 0, 0, b.slot, size_, size_, 1, GL_RGB, GL_FLOAT, b.flow.data());
 }
 
 void TerrainRenderer::upload_instances(const std::vector<Patch>& patches, const View& view,
@@ -269,6 +269,8 @@ RenderTimes TerrainRenderer::draw(const std::vector<Patch>& patches, const View&
   gl::Uniform1i(p.uniform("u_flow"), 4);
   gl::BindTextureUnit(4, flow_ ? flow_ : mask_);
   gl::Uniform2f(p.uniform("u_flow_range"), flow_lo_, flow_hi_);
+  gl::Uniform1i(p.uniform("u_flow_pulses"), s.flow_phase ? 1 : 0);
+  gl::Uniform1f(p.uniform("u_flow_phase"), static_cast<float>(s.flow_phase.value_or(0)));
   gl::Uniform1i(p.uniform("u_layer_ramp"), s.colormap_given ? 1 : 0);
   gl::BindVertexArray(vao_);
   gl::BeginQuery(GL_TIME_ELAPSED, timer_);

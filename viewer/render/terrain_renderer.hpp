@@ -44,6 +44,10 @@ struct ShadingSettings {
   bool colormap_given = false;  // --colormap: slope, skyview and flow use the ramp too
   std::optional<std::pair<double, double>> height_range;
   double height_percentile = 0;
+  // Flow shading: pulses running downstream along the flow directions, at
+  // this phase (cycles; the window advances it with --flow-animate); none
+  // when unset.
+  std::optional<double> flow_phase;
 };
 
 // The terrain pass's output: shaded colour (RGBA8), world position (RGBA32F,

@@ -196,6 +196,8 @@ uniform float u_edge_scale[32]; // per zoom: plan curvature x spacing where edge
 uniform int u_key_zoom;
 uniform sampler2DArray u_flow;
 uniform vec2 u_flow_range;  // log2 upstream areas: rivers begin to show, darkest
+uniform int u_flow_pulses;  // 1: pulses run downstream on the rivers, at u_flow_phase (cycles)
+uniform float u_flow_phase;
 uniform int u_layer_ramp;   // 1: slope, sky view and flow through the colour ramp (--colormap)
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_position;  // G-buffer: world point, w = 1 on terrain
@@ -251,7 +253,8 @@ void main() {
     color = u_layer_ramp != 0 ? ramp(svf) : vec3(sky_light(svf));
   } else if (u_mode == 6) {
     // Rivers: light blue where they begin, deep blue for the largest.
-    float a = texture(u_flow, vec3((v_sample + 0.5) / u_size, float(v_layer))).r;
+    vec3 flow = texture(u_flow, vec3((v_sample + 0.5) / u_size, float(v_layer))).rgb;
+    float a = flow.r;
     float t = (a - u_flow_range.x) / max(u_flow_range.y - u_flow_range.x, 1e-3);
     color = vec3(0.3 + 0.65 * shade);
     if (u_layer_ramp != 0)
@@ -259,6 +262,14 @@ void main() {
     else if (t > 0.0)
       color = mix(color, mix(vec3(0.45, 0.75, 1.0), vec3(0.0, 0.15, 0.65), min(t, 1.0)),
                   0.4 + 0.6 * min(t, 1.0));
+    if (u_flow_pulses != 0 && t > 0.0) {
+      // Crests 8 steps apart along the D8 step downstream (gb), moving
+      // downstream as the phase grows; block origins lie a multiple of 8
+      // samples apart, so crests meet across block edges of one zoom.
+      float along = dot(v_sample, flow.gb) / 8.0 - u_flow_phase;
+      float crest = pow(0.5 + 0.5 * cos(6.2831853 * along), 4.0);
+      color = mix(color, vec3(0.9, 0.97, 1.0), 0.75 * crest * min(t * 2.0, 1.0));
+    }
   } else {
     // Plan curvature times the sample spacing (the change of grade across
     // the slope per sample), stretched by the data's 95th percentile.

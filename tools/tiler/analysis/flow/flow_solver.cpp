@@ -518,8 +518,10 @@ class Solver {
   // Depressions across chunk edges: parts joined where their perimeter cells
   // touch (union-find), then each routed from the least entry of its parts
   // over a patch of its bounding box. Those across the east-west wrap, or
-  // larger than kMaxGatheredCells, keep the flat routing.
-  static constexpr uint64_t kMaxGatheredCells = uint64_t(1) << 24;
+  // with a bounding box over kMaxGatheredCells, keep the flat routing: a
+  // fixed bound (the answer must not depend on --memory-mb), so gathering
+  // holds at most about 60 MB beyond the budget.
+  static constexpr uint64_t kMaxGatheredCells = uint64_t(1) << 22;
 
   void join_depressions(const std::vector<std::vector<DepressionPart>>& parts) {
     const FlowGrid& g = grid();
