@@ -58,16 +58,8 @@ void DepressionRouter::search(const FlowGrid& g, uint32_t entry) {
     q.pop();
     const int x = int(i % uint32_t(p_.w)), y = int(i / uint32_t(p_.w));
     const int64_t gy = p_.y0 + y;
-    const double dx = g.dx(gy), dy = g.dy(gy);
-    const double length[9] = {0,
-                              dy,
-                              std::hypot(dx, dy),
-                              dx,
-                              std::hypot(dx, dy),
-                              dy,
-                              std::hypot(dx, dy),
-                              dx,
-                              std::hypot(dx, dy)};
+    const double dx = g.dx(gy), dy = g.dy(gy), diagonal = std::hypot(dx, dy);
+    const double length[9] = {0, dy, diagonal, dx, diagonal, dy, diagonal, dx, diagonal};
     // Climbs to the neighbours not yet worked (0 where none or downhill).
     double climb[9] = {0};
     int64_t at[9] = {0};

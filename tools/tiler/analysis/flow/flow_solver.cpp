@@ -431,12 +431,12 @@ class Solver {
     int64_t x_min = 0, x_max = 0, y_min = 0, y_max = 0, seed_x = 0, seed_y = 0;
   };
 
-  // The chunk's window as a patch (raw and filled heights).
-  HeightPatch window_patch(int slot, const std::vector<int64_t>& ring) const {
+  // The chunk's window as a patch: filled heights, and raw ones `with_raw`.
+  HeightPatch window_patch(int slot, const std::vector<int64_t>& ring, bool with_raw) const {
     const Chunk& c = chunk(slot);
     HeightPatch p;
     p.x0 = c.x0 - 1, p.y0 = c.y0 - 1, p.w = c.w + 2, p.h = c.h + 2;
-    p.filled = filled_window(slot, ring, &p.raw);
+    p.filled = filled_window(slot, ring, with_raw ? &p.raw : nullptr);
     return p;
   }
 
@@ -499,7 +499,7 @@ class Solver {
         [&](int slot, const BatchBlocks&) {
           const Chunk& c = chunk(slot);
           const std::vector<int64_t> ring = ring_nodes(c);
-          const HeightPatch p = window_patch(slot, ring);
+          const HeightPatch p = window_patch(slot, ring, true);
           std::vector<uint32_t> d;
           std::vector<int32_t> key;
           flat_windows(slot, ring, p.filled, d, key);
@@ -676,16 +676,13 @@ class Solver {
         [&](int slot, const BatchBlocks&) {
           const Chunk& c = chunk(slot);
           const std::vector<int64_t> ring = ring_nodes(c);
-          std::vector<int32_t> raw;
-          const std::vector<int32_t> f = filled_window(slot, ring, alone ? &raw : nullptr);
+          const HeightPatch p = window_patch(slot, ring, alone);
+          const std::vector<int32_t>& f = p.filled;
           std::vector<uint32_t> d;
           std::vector<int32_t> key;
           flat_windows(slot, ring, f, d, key);
           std::vector<uint8_t> rec = d8_receivers(grid(), c, f, d, key);
           if (alone) {
-            HeightPatch p;
-            p.x0 = c.x0 - 1, p.y0 = c.y0 - 1, p.w = c.w + 2, p.h = c.h + 2;
-            p.filled = f, p.raw = std::move(raw);
             route_window_depressions(
                 slot, p, d, key, [&](size_t i, uint8_t code) { rec[i] = code; }, nullptr);
           } else {
