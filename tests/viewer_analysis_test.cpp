@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 
 #include "raster_fixtures.hpp"
 #include "render_fixtures.hpp"
@@ -227,6 +228,39 @@ TEST(ViewerAnalysis, ColormapFilesColourSlopeAndFlow) {
   EXPECT_GT(navy, 0.01);
   EXPECT_GT(pale, 0.2);
   expect_image((dir / "slope.png").string(), "jacksboro_slope_colormap");
+}
+
+// --colormap colours aspect (degrees clockwise from north) and edges (the
+// stretched curvature, -1 valleys .. 1 ridges) too. Both files here run red
+// - white/blue - red: every colour on them (and their mixes with the grey of
+// level ground, and shaded) has green no above min(red, blue), which the
+// built-in hue wheel and orange ridges break.
+TEST(ViewerAnalysis, ColormapFilesColourAspectAndEdges) {
+  TempDir dir;
+  const std::string aspect_file = (dir / "aspect.txt").string(),
+                    edges_file = (dir / "edges.txt").string();
+  std::ofstream(aspect_file) << "0 255 0 0\n180 0 0 255\n360 255 0 0\n";
+  std::ofstream(edges_file) << "-1 0 0 255\n0 255 255 255\n1 255 0 0\n";
+  auto on_ramp = [](const uint8_t* p) { return p[1] <= std::min(p[0], p[2]) + 4; };
+  auto red = [](const uint8_t* p) { return p[0] > p[2] + 60; };
+  auto blue = [](const uint8_t* p) { return p[2] > p[0] + 60; };
+  const std::string base = packages().terrain + " " + packages().all;
+  const auto builtin = snapshot(base + " --shading aspect", dir, "builtin");
+  const auto aspect = snapshot(base + " --shading aspect --colormap " + aspect_file, dir, "aspect");
+  const auto edges = snapshot(base + " --shading edges --colormap " + edges_file, dir, "edges");
+  std::printf(
+      "colormap: built-in aspect on the ramp %.3f; aspect on it %.3f (north red %.3f, "
+      "south blue %.3f); edges on it %.3f (ridges red %.3f, valleys blue %.3f)\n",
+      fraction(builtin, on_ramp), fraction(aspect, on_ramp), fraction(aspect, red),
+      fraction(aspect, blue), fraction(edges, on_ramp), fraction(edges, red),
+      fraction(edges, blue));
+  EXPECT_LT(fraction(builtin, on_ramp), 0.9) << "the test cannot tell the ramp from the hues";
+  EXPECT_GT(fraction(aspect, on_ramp), 0.99);
+  EXPECT_GT(fraction(aspect, red), 0.08) << "slopes facing north";
+  EXPECT_GT(fraction(aspect, blue), 0.08) << "slopes facing south";
+  EXPECT_GT(fraction(edges, on_ramp), 0.99);
+  EXPECT_GT(fraction(edges, red), 0.02) << "ridges";
+  EXPECT_GT(fraction(edges, blue), 0.02) << "valleys";
 }
 
 TEST(ViewerAnalysis, AmbientOcclusionDarkensTheHollowsOnly) {

@@ -145,7 +145,8 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
              "gray, or a gdaldem color-relief file (VALUE R G B [A] per line; VALUE in the "
              "layer's unit, a percentage of its range, or nv); the window reloads the file when "
              "it changes. Elevation always uses it; given, it also colours slope (0..90 "
-             "degrees), skyview (0..1) and flow (upstream area in m^2, log scale)",
+             "degrees), skyview (0..1), flow (upstream area in m^2, log scale), aspect (0..360 "
+             "degrees from north) and edges (curvature stretched to -1 valleys .. 1 ridges)",
              [&](const std::string& v) {
                s.shading.colormap = v;
                s.shading.colormap_given = true;

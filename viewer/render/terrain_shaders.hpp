@@ -247,7 +247,9 @@ void main() {
     // gradient, else from the drawn triangle's normal.
     vec2 a = u_has_gradient != 0 ? layers_at(v_sample).ba : n.xy;
     float aspect = atan(a.x, a.y) / 6.2831853 + 0.5;
-    color = mix(vec3(0.85), hue(aspect), clamp(length(a) * 4.0, 0.0, 1.0));
+    // With --colormap: the ramp over 0..360 degrees clockwise from north.
+    vec3 facing = u_layer_ramp != 0 ? ramp(mod(aspect * 360.0 + 180.0, 360.0)) : hue(aspect);
+    color = mix(vec3(0.85), facing, clamp(length(a) * 4.0, 0.0, 1.0));
   } else if (u_mode == 4) {
     float svf = layers_at(v_sample).r;
     color = u_layer_ramp != 0 ? ramp(svf) : vec3(sky_light(svf));
@@ -275,9 +277,13 @@ void main() {
     // the slope per sample), stretched by the data's 95th percentile.
     float scale = u_edge_scale[clamp(u_key_zoom - v_shift, 0, 31)];
     float k = clamp(layers_at(v_sample).g * v_spacing.x / scale, -1.0, 1.0);
-    color = vec3(0.35 + 0.6 * shade);
-    color = mix(color, vec3(0.95, 0.55, 0.2), max(k, 0.0));
-    color = mix(color, vec3(0.1, 0.3, 0.75), max(-k, 0.0));
+    if (u_layer_ramp != 0) {  // --colormap: the ramp over -1 (valleys) .. 1 (ridges)
+      color = ramp(k) * (0.55 + 0.45 * shade / max(u_sun.z, 0.2));
+    } else {
+      color = vec3(0.35 + 0.6 * shade);
+      color = mix(color, vec3(0.95, 0.55, 0.2), max(k, 0.0));
+      color = mix(color, vec3(0.1, 0.3, 0.75), max(-k, 0.0));
+    }
   }
   if (u_ao != 0) color *= 0.3 + 0.7 * sky_light(layers_at(v_sample).r);
   o_color = vec4(color, 1.0);
