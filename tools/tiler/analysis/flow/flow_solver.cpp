@@ -256,7 +256,7 @@ class Solver {
     }
     spill_ = spill_levels(next, all);
     std::vector<SpillEdge>().swap(all);
-    // Perimeter cells keep only their filled height and watershed.
+    // Perimeter cells keep their raw and filled heights and watershed.
     per_.raw = per_.height;
     per_.filled = std::move(per_.height);
     for (size_t n = 0; n < nodes; ++n)

@@ -7,10 +7,12 @@
 //   1. fill: per-chunk priority-flood with watershed labels (depression_fill)
 //   2. spill levels of the watershed graph -> the filled heights
 //   3. flats: distances to the nearest draining cell, iterated across chunks
-//   4. D8 receivers, per-chunk accumulation, perimeter links (flow_directions,
+//   4. depressions: searched from their entries; those crossing chunk edges
+//      joined and gathered whole (depression_routing)
+//   5. D8 receivers, per-chunk accumulation, perimeter links (flow_directions,
 //      flow_accumulation)
-//   5. the perimeter graph -> each chunk's inflow
-//   6. final accumulation per chunk -> every zoom (flow_pyramid)
+//   6. the perimeter graph -> each chunk's inflow
+//   7. final accumulation per chunk -> every zoom (flow_pyramid)
 #pragma once
 
 #include <cstdint>
