@@ -5,6 +5,8 @@
 // wins; a neighbour's copy fills in where the owner has none.
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -20,6 +22,19 @@ struct ChunkWindow {
   size_t size() const { return size_t(w + 2) * (h + 2); }
   size_t at(int x, int y) const { return size_t(y + 1) * (w + 2) + size_t(x + 1); }
   int stride() const { return w + 2; }
+  // The chunk's cells (w * h, row-major) into a window, and back out.
+  template <typename T>
+  void put_cells(const std::vector<T>& cells, std::vector<T>& window) const {
+    for (int y = 0; y < h; ++y)
+      std::copy_n(cells.begin() + ptrdiff_t(y) * w, w, window.begin() + ptrdiff_t(at(0, y)));
+  }
+  template <typename T>
+  std::vector<T> take_cells(const std::vector<T>& window) const {
+    std::vector<T> cells(size_t(w) * h);
+    for (int y = 0; y < h; ++y)
+      std::copy_n(window.begin() + ptrdiff_t(at(0, y)), w, cells.begin() + ptrdiff_t(y) * w);
+    return cells;
+  }
 };
 
 // The finest-zoom tiles whose samples the chunk's window reads.

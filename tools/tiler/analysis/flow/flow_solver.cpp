@@ -193,11 +193,7 @@ class Solver {
           const uint64_t at = cell_base_[size_t(slot)] * 12;
           fill_->write_array<int32_t>(at, f.filled);
           fill_->write_array<uint32_t>(at + c.cells() * 4, f.label);
-          std::vector<int32_t> raw(c.cells());
-          for (int y = 0; y < c.h; ++y)
-            for (int x = 0; x < c.w; ++x)
-              raw[size_t(y) * c.w + x] = z[ChunkWindow(c).at(x, y)];
-          fill_->write_array<int32_t>(at + c.cells() * 8, raw);
+          fill_->write_array<int32_t>(at + c.cells() * 8, ChunkWindow(c).take_cells(z));
           FillResult r;
           for (int i = 0; i < c.perimeter_count(); ++i) {
             int x, y;
@@ -293,12 +289,11 @@ class Solver {
     std::vector<int32_t> local, raw;
     read_chunk(slot, local, raw_window ? &raw : nullptr);
     std::vector<int32_t> f(win.size(), kNoData);
-    if (raw_window) raw_window->assign(win.size(), kNoData);
-    for (int y = 0; y < c.h; ++y)
-      for (int x = 0; x < c.w; ++x) {
-        f[win.at(x, y)] = local[size_t(y) * c.w + x];
-        if (raw_window) (*raw_window)[win.at(x, y)] = raw[size_t(y) * c.w + x];
-      }
+    win.put_cells(local, f);
+    if (raw_window) {
+      raw_window->assign(win.size(), kNoData);
+      win.put_cells(raw, *raw_window);
+    }
     put_ring(c, f, ring, [&](int64_t n) { return n < 0 ? kNoData : per_.filled[size_t(n)]; });
     if (raw_window)
       put_ring(c, *raw_window, ring,
@@ -319,16 +314,12 @@ class Solver {
       return;
     }
     // The chunk's own, as its last flat round left them.
-    const ChunkWindow win(c);
     std::vector<uint32_t> dc(c.cells());
     std::vector<int32_t> kc(c.cells());
     flats_->read_array<uint32_t>(cell_base_[size_t(slot)] * 8, dc);
     flats_->read_array<int32_t>(cell_base_[size_t(slot)] * 8 + c.cells() * 4, kc);
-    for (int y = 0; y < c.h; ++y)
-      for (int x = 0; x < c.w; ++x) {
-        d[win.at(x, y)] = dc[size_t(y) * c.w + x];
-        key[win.at(x, y)] = kc[size_t(y) * c.w + x];
-      }
+    ChunkWindow(c).put_cells(dc, d);
+    ChunkWindow(c).put_cells(kc, key);
   }
 
   // ---- 3: flats, iterated until the distances at chunk edges settle ----
@@ -367,15 +358,9 @@ class Solver {
             std::vector<uint32_t> d;
             std::vector<int32_t> key;
             flat_windows(slot, ring, f, d, key);
-            std::vector<uint32_t> dc(c.cells());
-            std::vector<int32_t> kc(c.cells());
-            for (int y = 0; y < c.h; ++y)
-              for (int x = 0; x < c.w; ++x) {
-                dc[size_t(y) * c.w + x] = d[win.at(x, y)];
-                kc[size_t(y) * c.w + x] = key[win.at(x, y)];
-              }
-            flats_->write_array<uint32_t>(cell_base_[size_t(slot)] * 8, dc);
-            flats_->write_array<int32_t>(cell_base_[size_t(slot)] * 8 + c.cells() * 4, kc);
+            flats_->write_array<uint32_t>(cell_base_[size_t(slot)] * 8, win.take_cells(d));
+            flats_->write_array<int32_t>(cell_base_[size_t(slot)] * 8 + c.cells() * 4,
+                                         win.take_cells(key));
             FlatResult r;
             for (int i = 0; i < c.perimeter_count(); ++i) {
               int x, y;
