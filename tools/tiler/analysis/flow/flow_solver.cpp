@@ -264,19 +264,23 @@ class Solver {
     return local == kEdgeLabel ? 0 : uint32_t(label_base_[size_t(slot)] + local - 2);
   }
 
-  // The chunk's cells' filled heights (the whole grid's) and raw heights.
-  void read_chunk(int slot, std::vector<int32_t>& filled, std::vector<int32_t>* raw) const {
+  // The filled heights (the whole grid's) and raw heights of the chunk's
+  // rows `first` to `last` - 1 (all of them by default), row-major.
+  void read_chunk(int slot, std::vector<int32_t>& filled, std::vector<int32_t>* raw, int first = 0,
+                  int last = -1) const {
     const Chunk& c = chunk(slot);
-    std::vector<uint32_t> label(c.cells());
-    filled.resize(c.cells());
-    const uint64_t at = cell_base_[size_t(slot)] * 12;
+    if (last < 0) last = c.h;
+    const size_t n = size_t(last - first) * c.w;
+    const uint64_t at = cell_base_[size_t(slot)] * 12 + uint64_t(first) * c.w * 4;
+    std::vector<uint32_t> label(n);
+    filled.resize(n);
     fill_->read_array<int32_t>(at, filled);
     fill_->read_array<uint32_t>(at + c.cells() * 4, label);
-    for (size_t i = 0; i < filled.size(); ++i)
+    for (size_t i = 0; i < n; ++i)
       if (filled[i] != kNoData)
         filled[i] = std::max(filled[i], spill_[global_label(slot, label[i])]);
     if (raw) {
-      raw->resize(c.cells());
+      raw->resize(n);
       fill_->read_array<int32_t>(at + c.cells() * 8, *raw);
     }
   }
@@ -620,11 +624,12 @@ class Solver {
       const int64_t y0 = std::max(p.y0, c.y0), y1 = std::min(p.y0 + p.h, c.y0 + c.h);
       auto mine = [&](int64_t gx) { return gx >= c.x0 && gx < c.x0 + c.w; };
       if (y0 >= y1 || std::none_of(column.begin(), column.end(), mine)) continue;
-      read_chunk(int(k), filled, &raw);
+      // Only the rows the patch covers.
+      read_chunk(int(k), filled, &raw, int(y0 - c.y0), int(y1 - c.y0));
       for (int64_t y = y0; y < y1; ++y)
         for (int x = 0; x < p.w; ++x) {
           if (!mine(column[size_t(x)])) continue;
-          const size_t from = size_t((y - c.y0) * c.w + (column[size_t(x)] - c.x0));
+          const size_t from = size_t((y - y0) * c.w + (column[size_t(x)] - c.x0));
           const size_t to = size_t(y - p.y0) * p.w + x;
           p.filled[to] = filled[from];
           p.raw[to] = raw[from];
