@@ -366,15 +366,19 @@ std::vector<ZoomSummary> PackageReader::zoom_summaries() {
                      "JOIN blobs ON map.blob_id = blobs.blob_id GROUP BY map.zoom_level "
                      "ORDER BY map.zoom_level");
   while (st.step()) {
+    // The corners go through checked_id: a zoom or index out of range is a
+    // format error, never a shift by a stored number.
+    const int64_t zoom = st.column_int(0);
+    const TileId low = checked_id(zoom, st.column_int(3), st.column_int(6));
+    const TileId high = checked_id(zoom, st.column_int(4), st.column_int(5));
     ZoomSummary s;
-    s.zoom = static_cast<int>(st.column_int(0));
+    s.zoom = low.z;
     s.tiles = static_cast<uint64_t>(st.column_int(1));
     s.bytes = static_cast<uint64_t>(st.column_int(2));
-    const uint64_t n = TileId::tiles_per_axis(s.zoom);
-    s.min_x = static_cast<uint32_t>(st.column_int(3));
-    s.max_x = static_cast<uint32_t>(st.column_int(4));
-    s.min_y = TileId::flip_row(static_cast<uint32_t>(st.column_int(6)), n);
-    s.max_y = TileId::flip_row(static_cast<uint32_t>(st.column_int(5)), n);
+    s.min_x = low.x;
+    s.max_x = high.x;
+    s.min_y = low.y;
+    s.max_y = high.y;
     out.push_back(s);
   }
   return out;
