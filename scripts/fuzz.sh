@@ -2,8 +2,8 @@
 # Fuzzes the tile decoders and package opening with libFuzzer under ASan +
 # UBSan: builds the targets of tests/fuzz/ with clang into build-fuzz/, writes
 # the seed corpus (valid blobs and packages), then runs each target for
-# SECONDS (default 60). Inputs that crash are saved under
-# build-fuzz/crashes/<target>/ and the script fails; copy each into
+# SECONDS (default 60), as many at once as there are cores. Inputs that crash
+# are saved under build-fuzz/crashes/<target>/ and the script fails; copy each into
 # tests/data/fuzz/<target>/ and fix the decoder: the regression test
 # (FuzzRegression, label unit) replays every file there.
 # Usage: scripts/fuzz.sh [SECONDS] [TARGET...]
@@ -20,15 +20,26 @@ cmake --build build-fuzz --target make_fuzz_seeds "${targets[@]/#/fuzz_}"
 rm -rf build-fuzz/seeds
 build-fuzz/tests/fuzz/make_fuzz_seeds build-fuzz/seeds
 
+# One target per core at a time; each writes its own log.
+fuzz_one() {
+  local t=$1
+  mkdir -p "build-fuzz/corpus/$t" "build-fuzz/crashes/$t"
+  local dirs=("build-fuzz/corpus/$t" "build-fuzz/seeds/$t")
+  [ -d "tests/data/fuzz/$t" ] && dirs+=("tests/data/fuzz/$t")
+  UBSAN_OPTIONS=print_stacktrace=1 "build-fuzz/tests/fuzz/fuzz_$t" \
+    -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+    -artifact_prefix="build-fuzz/crashes/$t/" "${dirs[@]}" 2> "build-fuzz/fuzz_$t.log"
+}
+declare -A pid_of
+for t in "${targets[@]}"; do
+  while [ "$(jobs -rp | wc -l)" -ge "$(nproc)" ]; do wait -n || true; done
+  echo "fuzz: $t for ${seconds}s" >&2
+  fuzz_one "$t" &
+  pid_of[$t]=$!
+done
 failed=()
 for t in "${targets[@]}"; do
-  mkdir -p "build-fuzz/corpus/$t" "build-fuzz/crashes/$t"
-  dirs=("build-fuzz/corpus/$t" "build-fuzz/seeds/$t")
-  [ -d "tests/data/fuzz/$t" ] && dirs+=("tests/data/fuzz/$t")
-  echo "fuzz: $t for ${seconds}s" >&2
-  if ! UBSAN_OPTIONS=print_stacktrace=1 "build-fuzz/tests/fuzz/fuzz_$t" \
-      -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
-      -artifact_prefix="build-fuzz/crashes/$t/" "${dirs[@]}" 2> "build-fuzz/fuzz_$t.log"; then
+  if ! wait "${pid_of[$t]}"; then
     tail -40 "build-fuzz/fuzz_$t.log" >&2
     failed+=("$t")
   else
