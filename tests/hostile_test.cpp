@@ -13,35 +13,40 @@ namespace {
 class Hostile : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
+    const fs::path script = fs::path(GLOBE_TEST_DATA_DIR) / "hostile" / "make_hostile.sh";
+    inputs_ = new fs::path(shared_folder(
+        "globe-hostile",
+        [&](const fs::path& dir) {
+          const std::string t = (dir / "t.mbtiles").string(), l = (dir / "l.mbtiles").string();
+          return run_all(
+              {tiler() + " terrain " + sample("jacksboro.tif").string() + " -q -o " + t,
+               vectorize() + " lines " + sample("os_wales_contours.shp").string() + " -q -o " + l,
+               "bash " + script.string() + " " + (dir / "corpus").string() + " " + t + " " + l},
+              dir);
+        },
+        {script}));
     dir_ = new fs::path(run_scratch_dir("globe-hostile"));
-    const std::string t = (*dir_ / "t.mbtiles").string(), l = (*dir_ / "l.mbtiles").string();
-    ASSERT_EQ(run(tiler() + " terrain " + sample("jacksboro.tif").string() + " -q -o " + t, *dir_)
-                  .exit_code,
-              0);
-    ASSERT_EQ(
-        run(vectorize() + " lines " + sample("os_wales_contours.shp").string() + " -q -o " + l,
-            *dir_)
-            .exit_code,
-        0);
-    const RunResult r = run("bash " + std::string(GLOBE_TEST_DATA_DIR) +
-                                "/hostile/make_hostile.sh " + corpus().string() + " " + t + " " + l,
-                            *dir_);
-    ASSERT_EQ(r.exit_code, 0) << r.err;
   }
   static void TearDownTestSuite() {
     std::error_code ec;
     fs::remove_all(*dir_, ec);
     delete dir_;
+    delete inputs_;
   }
-  static fs::path corpus() { return *dir_ / "corpus"; }
+  // The corpus and the packages it was made from (shared by the tests, never
+  // changed); what a test writes goes under dir_.
+  static std::string terrain() { return (*inputs_ / "t.mbtiles").string(); }
+  static fs::path corpus() { return *inputs_ / "corpus"; }
   static std::string in(const std::string& name) { return (corpus() / name).string(); }
   static std::string out(const std::string& name) { return (*dir_ / name).string(); }
   // Runs with a time limit: a hang fails the test (timeout's exit code 124).
   static RunResult limited(const std::string& command, int seconds = 120) {
     return run("timeout " + std::to_string(seconds) + " " + command, *dir_);
   }
+  static fs::path* inputs_;
   static fs::path* dir_;
 };
+fs::path* Hostile::inputs_ = nullptr;
 fs::path* Hostile::dir_ = nullptr;
 
 void expect_error(const RunResult& r, int code, const std::string& file, const std::string& why) {
@@ -161,9 +166,8 @@ TEST_F(Hostile, PackagesOfRandomTilesAreReportedNotFollowed) {
                               out("r.png") + " --size 160x90");
   EXPECT_EQ(v.exit_code, 0) << v.err;
   EXPECT_NE(v.err.find("warning"), std::string::npos) << v.err;
-  const RunResult vl =
-      limited(viewer() + " " + out("t.mbtiles") + " " + in("random_lines.mbtiles") +
-              " --snapshot " + out("rl.png") + " --size 160x90");
+  const RunResult vl = limited(viewer() + " " + terrain() + " " + in("random_lines.mbtiles") +
+                               " --snapshot " + out("rl.png") + " --size 160x90");
   EXPECT_EQ(vl.exit_code, 0) << vl.err;
 }
 

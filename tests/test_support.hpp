@@ -7,7 +7,11 @@
 #include <cstdlib>
 #include <iostream>
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/wait.h>
+#include <unistd.h>
+
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -105,6 +109,61 @@ inline fs::path run_scratch_dir(const std::string& prefix) {
   }
   owned.dirs.emplace_back(name);
   return owned.dirs.back();
+}
+
+// Runs each command in `dir` and stops at the first that fails, a test
+// failure with its stderr; returns whether all of them succeeded.
+inline bool run_all(const std::vector<std::string>& commands, const fs::path& dir) {
+  for (const std::string& cmd : commands) {
+    const RunResult r = run(cmd, dir);
+    if (r.exit_code != 0) {
+      ADD_FAILURE() << cmd << ": exit " << r.exit_code << "\n" << r.err;
+      return false;
+    }
+  }
+  return true;
+}
+
+// A folder of inputs that the tests of one binary read and never change,
+// built once per build tree: ctest runs each TEST in a process of its own, so
+// a per-process fixture would be rebuilt for every test. The folder lives
+// under <build>/tests/shared/NAME; the first process builds it while the
+// others wait on a lock, and it is built again whenever the test binary, the
+// tools or the samples folder changed (their sizes and times are the stamp).
+// `build(dir)` returns whether everything it made is good; a failed build
+// leaves no stamp, so the next test tries again. `also` names more files the
+// build reads (a script of tests/data, say) that go into the stamp.
+template <class Build>
+fs::path shared_folder(const std::string& name, Build build, std::vector<fs::path> also = {}) {
+  const fs::path dir = fs::path(GLOBE_TEST_SHARED_DIR) / name;
+  fs::create_directories(dir.parent_path());
+  const std::string lock_path = dir.string() + ".lock";
+  const int lock = ::open(lock_path.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644);
+  if (lock < 0 || ::flock(lock, LOCK_EX) != 0) {
+    ADD_FAILURE() << "cannot lock " << lock_path;
+    if (lock >= 0) ::close(lock);
+    return dir;
+  }
+  std::string stamp;
+  also.insert(also.end(),
+              {fs::path("/proc/self/exe"), fs::path(tiler()), fs::path(vectorize()), samples()});
+  for (const fs::path& p : also) {
+    std::error_code ec;
+    const fs::path real = fs::canonical(p, ec);
+    const auto time = fs::last_write_time(real, ec).time_since_epoch().count();
+    const auto size = fs::is_regular_file(real, ec) ? fs::file_size(real, ec) : 0;
+    stamp += real.string() + " " + std::to_string(size) + " " + std::to_string(time) + "\n";
+  }
+  const fs::path stamp_path = dir / ".stamp";
+  if (!fs::exists(stamp_path) || read_file(stamp_path) != stamp) {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+    fs::create_directories(dir);
+    if (build(dir)) std::ofstream(stamp_path, std::ios::binary) << stamp;
+  }
+  ::flock(lock, LOCK_UN);
+  ::close(lock);
+  return dir;
 }
 
 // Requires a sample fetched by samples/fetch.sh; fails (not skips) without it.

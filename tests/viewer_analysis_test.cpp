@@ -25,23 +25,22 @@ struct Packages {
 const Packages& packages() {
   static const Packages s = [] {
     Packages k;
-    k.dir = run_scratch_dir("globe-view-analysis");
+    k.dir = shared_folder("globe-view-analysis", [](const fs::path& dir) {
+      auto at = [&](const char* name) { return (dir / name).string(); };
+      return run_all(
+          {tiler() + " terrain -q " + sample("jacksboro.tif").string() + " -o " + at("j.mbtiles"),
+           tiler() + " analyze -q " + at("j.mbtiles") +
+               " --layers slope,aspect,curvature,skyview,flow -o " + at("ja.mbtiles"),
+           tiler() + " analyze -q " + at("j.mbtiles") + " --layers skyview -o " + at("js.mbtiles"),
+           tiler() + " terrain -q --tiling local " + sample("brasilia.tif").string() + " -o " +
+               at("b.mbtiles"),
+           tiler() + " analyze -q " + at("b.mbtiles") + " -o " + at("ba.mbtiles")},
+          dir);
+    });
     k.terrain = (k.dir / "j.mbtiles").string();
     k.all = (k.dir / "ja.mbtiles").string();
     k.skyview_only = (k.dir / "js.mbtiles").string();
-    const std::string other_terrain = (k.dir / "b.mbtiles").string();
     k.other = (k.dir / "ba.mbtiles").string();
-    for (const std::string& cmd :
-         {tiler() + " terrain -q " + sample("jacksboro.tif").string() + " -o " + k.terrain,
-          tiler() + " analyze -q " + k.terrain +
-              " --layers slope,aspect,curvature,skyview,flow -o " + k.all,
-          tiler() + " analyze -q " + k.terrain + " --layers skyview -o " + k.skyview_only,
-          tiler() + " terrain -q --tiling local " + sample("brasilia.tif").string() + " -o " +
-              other_terrain,
-          tiler() + " analyze -q " + other_terrain + " -o " + k.other}) {
-      const RunResult r = run(cmd, k.dir);
-      EXPECT_EQ(r.exit_code, 0) << cmd << "\n" << r.err;
-    }
     return k;
   }();
   return s;

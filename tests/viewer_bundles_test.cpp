@@ -29,21 +29,21 @@ struct Packages {
 const Packages& packages() {
   static const Packages p = [] {
     Packages k;
-    k.dir = run_scratch_dir("globe-view-bundles");
-    auto must = [&](const std::string& cmd) {
-      const RunResult r = run(cmd, k.dir);
-      EXPECT_EQ(r.exit_code, 0) << cmd << "\n" << r.err;
-    };
+    k.dir = shared_folder("globe-view-bundles", [](const fs::path& dir) {
+      auto at = [&](const char* name) { return (dir / name).string(); };
+      return run_all({tiler() + " terrain -q " + sample("etopo20.tif").string() +
+                          " --max-zoom 4 -o " + at("world.mbtiles"),
+                      vectorize() + " bundle -q " + sample("us_flights_airport.csv").string() +
+                          " --from-id origin --to-id destination --weight count --locations " +
+                          sample("us_airports.csv").string() + " --id-field iata --network " +
+                          sample("airways.geojson").string() + " -o " + at("flights.mbtiles"),
+                      vectorize() + " lines -q " + sample("airways.geojson").string() +
+                          " --max-zoom 6 -o " + at("airways.mbtiles")},
+                     dir);
+    });
     k.world = (k.dir / "world.mbtiles").string();
     k.bundles = (k.dir / "flights.mbtiles").string();
     k.airways = (k.dir / "airways.mbtiles").string();
-    must(tiler() + " terrain -q " + sample("etopo20.tif").string() + " --max-zoom 4 -o " + k.world);
-    must(vectorize() + " bundle -q " + sample("us_flights_airport.csv").string() +
-         " --from-id origin --to-id destination --weight count --locations " +
-         sample("us_airports.csv").string() + " --id-field iata --network " +
-         sample("airways.geojson").string() + " -o " + k.bundles);
-    must(vectorize() + " lines -q " + sample("airways.geojson").string() + " --max-zoom 6 -o " +
-         k.airways);
     return k;
   }();
   return p;

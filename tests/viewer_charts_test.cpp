@@ -19,7 +19,7 @@ namespace {
 
 using namespace globe_test;
 
-// Packages built once per test binary run, under one scratch folder.
+// Packages built once per build tree (shared_folder), read by every test.
 struct Packages {
   fs::path dir;
   std::string world, flights, flat, one, signed_points;
@@ -30,33 +30,32 @@ const std::vector<std::string> kRegions{"west", "midwest", "south", "northeast",
 const Packages& packages() {
   static const Packages p = [] {
     Packages k;
-    k.dir = run_scratch_dir("globe-view-charts");
-    auto must = [&](const std::string& cmd) {
-      const RunResult r = run(cmd, k.dir);
-      EXPECT_EQ(r.exit_code, 0) << cmd << "\n" << r.err;
-    };
+    k.dir = shared_folder("globe-view-charts", [](const fs::path& dir) {
+      auto at = [&](const char* name) { return (dir / name).string(); };
+      // One place over a flat plain (100 m) for the measurements.
+      const double gt[6] = {10, 1.0 / 256, 0, 46, 0, -1.0 / 256};
+      write_dem(at("flat.tif"), 256, 256, gt, "EPSG:4326", GDT_Float32,
+                [](int, int) { return 100.0; });
+      write_places_csv(at("one.csv"), {"a", "b", "c", "d"}, {{"only", 10.5, 45.5, {1, 2, 3, 6}}});
+      write_places_csv(at("signed.csv"), {"a"}, {{"minus", 10.5, 45.5, {-1}}});
+      return run_all({tiler() + " terrain -q " + sample("etopo20.tif").string() +
+                          " --max-zoom 4 -o " + at("world.mbtiles"),
+                      vectorize() + " points -q " + sample("us_airport_flights.csv").string() +
+                          " --xy longitude,latitude --fields west,midwest,south,northeast,other "
+                          "--label-field iata -o " +
+                          at("flights.mbtiles"),
+                      tiler() + " terrain -q " + at("flat.tif") + " -o " + at("flat.mbtiles"),
+                      vectorize() + " points -q " + at("one.csv") +
+                          " --xy lon,lat --fields a,b,c,d --max-zoom 8 -o " + at("one.mbtiles"),
+                      vectorize() + " points -q " + at("signed.csv") +
+                          " --xy lon,lat --fields a --signed -o " + at("signed.mbtiles")},
+                     dir);
+    });
     k.world = (k.dir / "world.mbtiles").string();
     k.flights = (k.dir / "flights.mbtiles").string();
-    must(tiler() + " terrain -q " + sample("etopo20.tif").string() + " --max-zoom 4 -o " + k.world);
-    must(vectorize() + " points -q " + sample("us_airport_flights.csv").string() +
-         " --xy longitude,latitude --fields west,midwest,south,northeast,other --label-field "
-         "iata -o " +
-         k.flights);
-    // One place over a flat plain (100 m) for the measurements.
-    const std::string dem = (k.dir / "flat.tif").string();
-    const double gt[6] = {10, 1.0 / 256, 0, 46, 0, -1.0 / 256};
-    write_dem(dem, 256, 256, gt, "EPSG:4326", GDT_Float32, [](int, int) { return 100.0; });
     k.flat = (k.dir / "flat.mbtiles").string();
-    must(tiler() + " terrain -q " + dem + " -o " + k.flat);
-    const std::string csv = (k.dir / "one.csv").string();
-    write_places_csv(csv, {"a", "b", "c", "d"}, {{"only", 10.5, 45.5, {1, 2, 3, 6}}});
     k.one = (k.dir / "one.mbtiles").string();
-    must(vectorize() + " points -q " + csv + " --xy lon,lat --fields a,b,c,d --max-zoom 8 -o " +
-         k.one);
-    write_places_csv(csv, {"a"}, {{"minus", 10.5, 45.5, {-1}}});
     k.signed_points = (k.dir / "signed.mbtiles").string();
-    must(vectorize() + " points -q " + csv + " --xy lon,lat --fields a --signed -o " +
-         k.signed_points);
     return k;
   }();
   return p;

@@ -20,15 +20,15 @@ using namespace globe_test;
 
 const char* kCamera = "--camera=-84.30,36.55,2500,30,65";
 
-// Tiles jacksboro once per test binary run.
+// Tiles jacksboro once per build tree (shared_folder).
 const std::string& jacksboro_package() {
   static const std::string pkg = [] {
-    const fs::path dir = run_scratch_dir("globe-view-test");
-    const std::string p = (dir / "jacksboro.mbtiles").string();
-    const RunResult r =
-        run(tiler() + " terrain -q --force " + sample("jacksboro.tif").string() + " -o " + p, dir);
-    EXPECT_EQ(r.exit_code, 0) << r.err;
-    return p;
+    const fs::path dir = shared_folder("globe-view-cli", [](const fs::path& dir) {
+      return run_all({tiler() + " terrain -q " + sample("jacksboro.tif").string() + " -o " +
+                      (dir / "jacksboro.mbtiles").string()},
+                     dir);
+    });
+    return (dir / "jacksboro.mbtiles").string();
   }();
   return pkg;
 }

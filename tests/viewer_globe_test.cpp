@@ -22,30 +22,26 @@ struct Globes {
 const Globes& globes() {
   static const Globes g = [] {
     Globes k;
-    k.dir = run_scratch_dir("globe-view-globe");
+    k.dir = shared_folder("globe-view-globe", [](const fs::path& dir) {
+      auto at = [&](const char* name) { return (dir / name).string(); };
+      const std::string etopo = sample("etopo20.tif").string();
+      return run_all({tiler() + " terrain -q --tiling geodetic " + etopo + " -o " +
+                          at("etopo_geodetic.mbtiles"),
+                      tiler() + " terrain -q --tiling webmercator " + etopo + " -o " +
+                          at("etopo_webmercator.mbtiles"),
+                      // Blue Marble (webmercator, zooms 0-3) and 1000 m contours of
+                      // etopo20 (geodetic, as the terrain).
+                      tiler() + " imagery -q --max-zoom 3 " + sample("bluemarble.tif").string() +
+                          " -o " + at("bluemarble.mbtiles"),
+                      "gdal_contour -q -i 1000 -a elev " + etopo + " " + at("c1000.shp"),
+                      vectorize() + " lines -q --tiling geodetic " + at("c1000.shp") + " -o " +
+                          at("contours.mbtiles") + " --style 'c1000:color=#ffd92f,width=1.5px'"},
+                     dir);
+    });
     k.geodetic = (k.dir / "etopo_geodetic.mbtiles").string();
     k.mercator = (k.dir / "etopo_webmercator.mbtiles").string();
-    for (const auto& [tiling, out] :
-         {std::pair{"geodetic", k.geodetic}, std::pair{"webmercator", k.mercator}}) {
-      const std::string cmd = tiler() + " terrain -q --tiling " + tiling + " " +
-                              sample("etopo20.tif").string() + " -o " + out;
-      const RunResult r = run(cmd, k.dir);
-      EXPECT_EQ(r.exit_code, 0) << cmd << "\n" << r.err;
-    }
-    // Blue Marble (webmercator, zooms 0-3) and 1000 m contours of etopo20
-    // (geodetic, as the terrain).
     k.bluemarble = (k.dir / "bluemarble.mbtiles").string();
     k.contours = (k.dir / "contours.mbtiles").string();
-    for (const std::string& cmd :
-         {tiler() + " imagery -q --max-zoom 3 " + sample("bluemarble.tif").string() + " -o " +
-              k.bluemarble,
-          "gdal_contour -q -i 1000 -a elev " + sample("etopo20.tif").string() + " " +
-              (k.dir / "c1000.shp").string(),
-          vectorize() + " lines -q --tiling geodetic " + (k.dir / "c1000.shp").string() + " -o " +
-              k.contours + " --style 'c1000:color=#ffd92f,width=1.5px'"}) {
-      const RunResult r = run(cmd, k.dir);
-      EXPECT_EQ(r.exit_code, 0) << cmd << "\n" << r.err;
-    }
     return k;
   }();
   return g;

@@ -18,7 +18,7 @@ namespace {
 
 using namespace globe_test;
 
-// Packages built once per test binary run, under one scratch folder.
+// Packages built once per build tree (shared_folder), read by every test.
 struct Packages {
   fs::path dir;
   std::string jacksboro, contours, wales;
@@ -27,21 +27,22 @@ struct Packages {
 const Packages& packages() {
   static const Packages p = [] {
     Packages k;
-    k.dir = run_scratch_dir("globe-view-lines");
-    auto must = [&](const std::string& cmd) {
-      const RunResult r = run(cmd, k.dir);
-      EXPECT_EQ(r.exit_code, 0) << cmd << "\n" << r.err;
-    };
+    k.dir = shared_folder("globe-view-lines", [](const fs::path& dir) {
+      auto at = [&](const char* name) { return (dir / name).string(); };
+      return run_all({tiler() + " terrain -q " + sample("jacksboro.tif").string() + " -o " +
+                          at("jacksboro.mbtiles"),
+                      // Contours of the same DEM: they must lie exactly on its terrain.
+                      "gdal_contour -q -i 50 -a elev " + sample("jacksboro.tif").string() + " " +
+                          at("c50.shp"),
+                      vectorize() + " lines -q " + at("c50.shp") + " -o " + at("contours.mbtiles") +
+                          " --style 'c50:color=#8c2d04,width=1.5px'",
+                      vectorize() + " lines -q " + sample("os_wales_contours.shp").string() +
+                          " -o " + at("wales.mbtiles")},
+                     dir);
+    });
     k.jacksboro = (k.dir / "jacksboro.mbtiles").string();
     k.contours = (k.dir / "contours.mbtiles").string();
     k.wales = (k.dir / "wales.mbtiles").string();
-    must(tiler() + " terrain -q " + sample("jacksboro.tif").string() + " -o " + k.jacksboro);
-    // Contours of the same DEM: they must lie exactly on its terrain.
-    must("gdal_contour -q -i 50 -a elev " + sample("jacksboro.tif").string() + " " +
-         (k.dir / "c50.shp").string());
-    must(vectorize() + " lines -q " + (k.dir / "c50.shp").string() + " -o " + k.contours +
-         " --style 'c50:color=#8c2d04,width=1.5px'");
-    must(vectorize() + " lines -q " + sample("os_wales_contours.shp").string() + " -o " + k.wales);
     return k;
   }();
   return p;

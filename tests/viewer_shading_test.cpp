@@ -21,19 +21,18 @@ struct Shaded {
 const Shaded& packages() {
   static const Shaded s = [] {
     Shaded k;
-    k.dir = run_scratch_dir("globe-view-shading");
+    k.dir = shared_folder("globe-view-shading", [](const fs::path& dir) {
+      auto at = [&](const char* name) { return (dir / name).string(); };
+      const std::string etopo = sample("etopo20.tif").string();
+      return run_all(
+          {tiler() + " terrain -q --tiling geodetic " + etopo + " -o " + at("etopo.mbtiles"),
+           // The Himalaya: etopo20 cut to 70..100 E, 25..40 N (28 m to 6229 m).
+           "gdal_translate -q -projwin 70 40 100 25 " + etopo + " " + at("himalaya.tif"),
+           tiler() + " terrain -q " + at("himalaya.tif") + " -o " + at("himalaya.mbtiles")},
+          dir);
+    });
     k.global = (k.dir / "etopo.mbtiles").string();
     k.himalaya = (k.dir / "himalaya.mbtiles").string();
-    // The Himalaya: etopo20 cut to 70..100 E, 25..40 N (28 m to 6229 m).
-    const std::string crop = (k.dir / "himalaya.tif").string();
-    for (const std::string& cmd :
-         {tiler() + " terrain -q --tiling geodetic " + sample("etopo20.tif").string() + " -o " +
-              k.global,
-          "gdal_translate -q -projwin 70 40 100 25 " + sample("etopo20.tif").string() + " " + crop,
-          tiler() + " terrain -q " + crop + " -o " + k.himalaya}) {
-      const RunResult r = run(cmd, k.dir);
-      EXPECT_EQ(r.exit_code, 0) << cmd << "\n" << r.err;
-    }
     return k;
   }();
   return s;
