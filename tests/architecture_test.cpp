@@ -64,6 +64,7 @@ TEST(Architecture, ViewerIncludesNoGdal) {
   };
   EXPECT_EQ(joined(matches("viewer", gdal)), "");
   EXPECT_EQ(joined(matches("tools/common/kit", gdal)), "") << "the kit is GDAL-free";
+  EXPECT_EQ(joined(matches("tools/tiler/analysis", gdal)), "") << "analysis is GDAL-free";
   EXPECT_EQ(joined(matches("lib", gdal)), "");
 }
 
@@ -135,10 +136,12 @@ TEST(Architecture, EachCApiIsCalledOnlyFromItsWrapper) {
   }
 }
 
-TEST(Architecture, ViewerAndLibTestsLinkNoGdal) {
+// globe-tiler itself runs `analyze` without GDAL and execs globe-tiler-gdal
+// for the rest (tools/tiler/main.cpp).
+TEST(Architecture, ViewerLibTestsAndTheTilerFrontLinkNoGdal) {
   TempDir dir;
   for (const std::string& binary :
-       {std::string(GLOBE_VIEW_PATH), std::string(GLOBE_LIB_TESTS_PATH)}) {
+       {std::string(GLOBE_VIEW_PATH), std::string(GLOBE_LIB_TESTS_PATH), tiler()}) {
     const RunResult r = run("ldd " + binary, dir.path());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.out.find("libgdal"), std::string::npos) << binary << ":\n" << r.out;

@@ -1,45 +1,55 @@
-// globe-tiler: DEMs -> terrain packages, imagery -> image packages, and tools
-// to inspect them.
-// Dispatch and error reporting: tools/common/kit/command_tool.
-#include <malloc.h>
+// globe-tiler: DEMs -> terrain packages, imagery -> image packages, terrain
+// analytics, and tools to inspect them.
+//
+// This executable links no GDAL. Loading GDAL and the hundred libraries it
+// needs costs about 0.1 CPU s at every start (on the CI machines), as much as
+// analyzing a 513^2 DEM; `analyze` reads and writes packages only, so it runs
+// here (as do --help and --version). Every other command runs in
+// globe-tiler-gdal, the executable next to this one: exec'd in this process
+// with the same arguments, so its pid, signals, output and exit code are the
+// command's own (docs/architecture.md).
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
 
 #include "command_tool.hpp"
 #include "commands.hpp"
+#include "errors.hpp"
 
 namespace {
 
-const char* kUsage =
-    "usage: globe-tiler COMMAND [options]\n"
-    "\n"
-    "commands:\n"
-    "  terrain INPUT... -o OUT.mbtiles   DEMs (any GDAL raster, any CRS) -> terrain package\n"
-    "  imagery INPUT... -o OUT.mbtiles   images (any GDAL raster, any CRS) -> image package\n"
-    "  analyze TERRAIN -o OUT.mbtiles    slope, aspect, curvature, sky view, flow -> analysis\n"
-    "  merge SHARD... -o OUT.mbtiles     shards of a --shard I/N build -> one package\n"
-    "  info PACKAGE                      metadata, zoom range, tile counts and sizes\n"
-    "  validate PACKAGE                  decode every tile, check schema and invariants\n"
-    "  extract PACKAGE --zoom Z -o OUT.tif   one zoom as a GeoTIFF (heights, pixels or a layer)\n"
-    "\n"
-    "Run 'globe-tiler COMMAND --help' for the options of a command.\n"
-    "Exit codes: 0 ok, 1 bad input data, 2 bad usage, 3 output cannot be written,\n"
-    "            4 internal error, 5 validate found warnings only.\n";
+// Replaces this process by globe-tiler-gdal with the same arguments; returns
+// only when that fails.
+int run_in_gdal_executable(int argc, char** argv) {
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  const std::string gdal = (self.parent_path() / "globe-tiler-gdal").string();
+  std::vector<char*> args(argv, argv + argc);
+  args.push_back(nullptr);
+  ::execv(gdal.c_str(), args.data());
+  std::fprintf(stderr,
+               "globe-tiler: cannot run %s for '%s': %s; it is built and installed with "
+               "globe-tiler (scripts/build.sh builds both)\n",
+               gdal.c_str(), argv[1], std::strerror(errno));
+  return globe::kExitInternal;
+}
+
+bool runs_here(const std::string& command) {
+  for (const char* c : {"analyze", "-h", "--help", "help", "--version"})
+    if (command == c) return true;
+  return false;
+}
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  // The builders' working buffers (blocks of 257^2 samples, warp windows)
-  // are a few hundred KiB each, allocated and freed per tile: served from
-  // mmap by default, every one of them page-faults afresh. Kept in the heap
-  // (and the heap not trimmed after each), they are reused.
-  mallopt(M_MMAP_THRESHOLD, 64 << 20);
-  mallopt(M_TRIM_THRESHOLD, 256 << 20);
-  return globe::run_command_tool("globe-tiler", GLOBE_VERSION, kUsage,
-                                 {{"terrain", globe::run_terrain},
-                                  {"imagery", globe::run_imagery},
-                                  {"analyze", globe::run_analyze},
-                                  {"merge", globe::run_merge},
-                                  {"info", globe::run_info},
-                                  {"validate", globe::run_validate},
-                                  {"extract", globe::run_extract}},
-                                 argc, argv);
+  if (argc > 1 && !runs_here(argv[1])) return run_in_gdal_executable(argc, argv);
+  globe::tune_tiler_malloc();
+  return globe::run_command_tool("globe-tiler", GLOBE_VERSION, globe::kTilerUsage,
+                                 {{"analyze", globe::run_analyze}}, argc, argv);
 }
