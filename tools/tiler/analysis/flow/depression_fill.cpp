@@ -2,17 +2,58 @@
 #include "depression_fill.hpp"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <queue>
 
 namespace globe::flow {
 
 namespace {
 
-struct Open {
-  int32_t level;
-  uint32_t seq;  // first pushed, first popped among equal levels
-  uint32_t cell;
-  bool operator>(const Open& o) const { return level != o.level ? level > o.level : seq > o.seq; }
+// The open cells of the flood, least level first: a radix heap (Ahuja et al.
+// 1990), which needs only that no level pushed is below the last popped —
+// true here, as a cell is pushed at its own height above the level being
+// flooded (lower ones go to the pit queue). Cells of one level come out in
+// any order: the filled surface does not depend on it (only which watershed
+// label a cell takes, and the spill levels make those agree).
+class OpenCells {
+ public:
+  bool empty() const { return size_ == 0; }
+  void push(int32_t level, uint32_t cell) {
+    const uint32_t key = uint32_t(level) ^ 0x80000000u;  // order-preserving
+    bucket_[bucket_of(key)].push_back({key, cell});
+    ++size_;
+  }
+  uint32_t pop() {
+    if (bucket_[0].empty()) {
+      size_t i = 1;
+      while (bucket_[i].empty())
+        ++i;
+      uint32_t least = UINT32_MAX;
+      for (const Item& e : bucket_[i])
+        least = std::min(least, e.key);
+      last_ = least;
+      for (const Item& e : bucket_[i])
+        bucket_[bucket_of(e.key)].push_back(e);
+      bucket_[i].clear();
+    }
+    const uint32_t cell = bucket_[0].back().cell;
+    bucket_[0].pop_back();
+    --size_;
+    return cell;
+  }
+
+ private:
+  struct Item {
+    uint32_t key, cell;
+  };
+  // 0 for the last popped key, else 1 + the highest bit where they differ.
+  size_t bucket_of(uint32_t key) const {
+    return key == last_ ? 0 : size_t(32 - std::countl_zero(key ^ last_));
+  }
+  std::array<std::vector<Item>, 33> bucket_;
+  uint32_t last_ = 0;
+  size_t size_ = 0;
 };
 
 enum : uint8_t { kNew = 0, kQueued = 1, kClosed = 2, kOutside = 3 };
@@ -35,16 +76,15 @@ ChunkFill fill_chunk(const Chunk& c, const std::vector<int32_t>& z) {
       state[k] = z[k] == kNoData ? kOutside : kNew;
     }
   ChunkFill out;
-  std::priority_queue<Open, std::vector<Open>, std::greater<Open>> open;
+  OpenCells open;
   std::vector<uint32_t> pit;  // cells at the level being flooded: no heap needed
   size_t pit_head = 0;
-  uint32_t seq = 0;
   auto seed = [&](size_t k) {
     if (state[k] != kNew) return;
     state[k] = kQueued;
     filled[k] = z[k];
     if (at_data_edge(z, k, stride)) label[k] = kEdgeLabel;
-    open.push({z[k], seq++, uint32_t(k)});
+    open.push(z[k], uint32_t(k));
   };
   // Seeds: the cells next to no data (anywhere) and the chunk's perimeter.
   for (int y = 0; y < c.h; ++y)
@@ -64,8 +104,7 @@ ChunkFill fill_chunk(const Chunk& c, const std::vector<int32_t>& z) {
       k = pit[pit_head++];
       if (pit_head == pit.size()) pit.clear(), pit_head = 0;
     } else {
-      k = open.top().cell;
-      open.pop();
+      k = open.pop();
     }
     if (state[k] == kClosed) continue;
     state[k] = kClosed;
@@ -91,7 +130,7 @@ ChunkFill fill_chunk(const Chunk& c, const std::vector<int32_t>& z) {
             pit.push_back(uint32_t(n));
           } else {
             filled[n] = z[n];
-            open.push({z[n], seq++, uint32_t(n)});
+            open.push(z[n], uint32_t(n));
           }
       }
     }
