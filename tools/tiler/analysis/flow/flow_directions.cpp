@@ -8,8 +8,8 @@
 
 namespace globe::flow {
 
-void flat_distances(const Chunk& c, const std::vector<int32_t>& f, std::vector<uint32_t>& dist,
-                    std::vector<int32_t>& key) {
+std::vector<uint32_t> classify_flats(const Chunk& c, const std::vector<int32_t>& f,
+                                     std::vector<uint32_t>& dist, std::vector<int32_t>& key) {
   const ChunkWindow win(c);
   const int s = win.stride();
   std::vector<uint32_t> flats;
@@ -29,8 +29,15 @@ void flat_distances(const Chunk& c, const std::vector<int32_t>& f, std::vector<u
       key[k] = flat ? kNoKey : lowest;
       if (flat) flats.push_back(uint32_t(k));
     }
+  return flats;
+}
+
+void settle_flats(const Chunk& c, const std::vector<int32_t>& f, std::vector<uint32_t>& dist,
+                  std::vector<int32_t>& key, const std::vector<uint32_t>& flats) {
   if (flats.empty()) return;
-  // 1: the chunk's flat cells; 2: a source listed below.
+  const ChunkWindow win(c);
+  const int s = win.stride();
+  // 1: the flat cells to settle; 2: a source listed below.
   std::vector<uint8_t> open(win.size(), 0);
   for (uint32_t k : flats)
     open[k] = 1;
@@ -84,6 +91,45 @@ void flat_distances(const Chunk& c, const std::vector<int32_t>& f, std::vector<u
     }
     key[k] = least;
   }
+}
+
+void flat_distances(const Chunk& c, const std::vector<int32_t>& f, std::vector<uint32_t>& dist,
+                    std::vector<int32_t>& key) {
+  settle_flats(c, f, dist, key, classify_flats(c, f, dist, key));
+}
+
+std::vector<uint32_t> flats_next_to(const Chunk& c, const std::vector<int32_t>& f,
+                                    const std::vector<uint32_t>& dist,
+                                    const std::vector<uint8_t>& changed) {
+  const ChunkWindow win(c);
+  const int s = win.stride();
+  auto inside = [&](size_t k) {
+    const int x = int(k % size_t(s)) - 1, y = int(k / size_t(s)) - 1;
+    return x >= 0 && y >= 0 && x < c.w && y < c.h;
+  };
+  std::vector<uint8_t> taken(win.size(), 0);
+  std::vector<uint32_t> cells;
+  for (size_t r = 0; r < changed.size(); ++r) {
+    if (!changed[r] || f[r] == kNoData) continue;
+    for (int d = 1; d <= 8; ++d) {
+      const ptrdiff_t n = ptrdiff_t(r) + ptrdiff_t(kDy[d]) * s + kDx[d];
+      if (n < 0 || size_t(n) >= f.size() || !inside(size_t(n)) || taken[size_t(n)] ||
+          f[size_t(n)] != f[r] || dist[size_t(n)] == 0)
+        continue;
+      // The flat of cell n: its 8-connected cells of one height, all flat.
+      const size_t first = cells.size();
+      taken[size_t(n)] = 1;
+      cells.push_back(uint32_t(n));
+      for (size_t i = first; i < cells.size(); ++i)
+        for (int e = 1; e <= 8; ++e) {
+          const size_t m = size_t(ptrdiff_t(cells[i]) + ptrdiff_t(kDy[e]) * s + kDx[e]);
+          if (!inside(m) || taken[m] || f[m] != f[r] || dist[m] == 0) continue;
+          taken[m] = 1;
+          cells.push_back(uint32_t(m));
+        }
+    }
+  }
+  return cells;
 }
 
 std::vector<uint8_t> d8_receivers(const FlowGrid& g, const Chunk& c, const std::vector<int32_t>& f,

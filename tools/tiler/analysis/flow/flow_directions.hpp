@@ -32,6 +32,24 @@ inline constexpr int32_t kNoKey = INT32_MAX;  // no known key yet
 void flat_distances(const Chunk& chunk, const std::vector<int32_t>& filled,
                     std::vector<uint32_t>& distance, std::vector<int32_t>& key);
 
+// flat_distances in two steps. classify_flats: distance 0 and the key of
+// every cell off a flat, kFar and kNoKey on one; returns the flat cells.
+// settle_flats: the distances and keys of `flats` (window indices, at kFar
+// and kNoKey, whole flats: every flat cell next to one of them at its height
+// is listed too) from the known cells around them.
+std::vector<uint32_t> classify_flats(const Chunk& chunk, const std::vector<int32_t>& filled,
+                                     std::vector<uint32_t>& distance, std::vector<int32_t>& key);
+void settle_flats(const Chunk& chunk, const std::vector<int32_t>& filled,
+                  std::vector<uint32_t>& distance, std::vector<int32_t>& key,
+                  const std::vector<uint32_t>& flats);
+
+// The chunk's flat cells (distance not 0) of every flat that touches a ring
+// cell of its height flagged in `changed` (window-indexed): the flats whose
+// distances and keys a change of those ring cells can alter. Each flat once.
+std::vector<uint32_t> flats_next_to(const Chunk& chunk, const std::vector<int32_t>& filled,
+                                    const std::vector<uint32_t>& distance,
+                                    const std::vector<uint8_t>& changed);
+
 // Receiver codes of the chunk's cells (w * h; kNoDataCode where no data).
 std::vector<uint8_t> d8_receivers(const FlowGrid& grid, const Chunk& chunk,
                                   const std::vector<int32_t>& filled,

@@ -308,22 +308,50 @@ class Solver {
   // The chunk's windows of flat distances and keys.
   void flat_windows(int slot, const std::vector<int64_t>& ring, const std::vector<int32_t>& f,
                     std::vector<uint32_t>& d, std::vector<int32_t>& key) const {
+    if (flats_settled_) return stored_flat_windows(slot, ring, d, key);
     const Chunk& c = chunk(slot);
     d.assign(ChunkWindow(c).size(), kFar);
     key.assign(d.size(), kNoKey);
     put_ring(c, d, ring, [&](int64_t n) { return n < 0 ? kFar : per_.distance[size_t(n)]; });
     put_ring(c, key, ring, [&](int64_t n) { return n < 0 ? kNoKey : per_.key[size_t(n)]; });
-    if (!flats_settled_) {
-      flat_distances(c, f, d, key);
-      return;
-    }
-    // The chunk's own, as its last flat round left them.
+    flat_distances(c, f, d, key);
+  }
+
+  // The ring's distances and keys as they stand, the chunk's own as its
+  // last flat round left them.
+  void stored_flat_windows(int slot, const std::vector<int64_t>& ring, std::vector<uint32_t>& d,
+                           std::vector<int32_t>& key) const {
+    const Chunk& c = chunk(slot);
+    const ChunkWindow win(c);
+    d.assign(win.size(), kFar);
+    key.assign(d.size(), kNoKey);
+    put_ring(c, d, ring, [&](int64_t n) { return n < 0 ? kFar : per_.distance[size_t(n)]; });
+    put_ring(c, key, ring, [&](int64_t n) { return n < 0 ? kNoKey : per_.key[size_t(n)]; });
     std::vector<uint32_t> dc(c.cells());
     std::vector<int32_t> kc(c.cells());
     flats_->read_array<uint32_t>(cell_base_[size_t(slot)] * 8, dc);
     flats_->read_array<int32_t>(cell_base_[size_t(slot)] * 8 + c.cells() * 4, kc);
-    ChunkWindow(c).put_cells(dc, d);
-    ChunkWindow(c).put_cells(kc, key);
+    win.put_cells(dc, d);
+    win.put_cells(kc, key);
+  }
+
+  // A later flat round: only the flats next to ring cells whose distance or
+  // key changed in the last round are solved again. A flat's distances and
+  // keys depend on nothing but its cells and the known cells around it, and
+  // a chunk runs again whenever one of those changed (ring_changed_on_flat),
+  // so the others hold what solving them again would give.
+  void refreshed_flat_windows(int slot, const std::vector<int64_t>& ring,
+                              const std::vector<int32_t>& f, std::vector<uint32_t>& d,
+                              std::vector<int32_t>& key) const {
+    const Chunk& c = chunk(slot);
+    stored_flat_windows(slot, ring, d, key);
+    std::vector<uint8_t> changed(d.size(), 0);
+    put_ring(c, changed, ring,
+             [&](int64_t n) { return uint8_t(n >= 0 && per_.changed[size_t(n)]); });
+    const std::vector<uint32_t> flats = flats_next_to(c, f, d, changed);
+    for (uint32_t k : flats)
+      d[k] = kFar, key[k] = kNoKey;
+    settle_flats(c, f, d, key, flats);
   }
 
   // ---- 3: flats, iterated until the distances at chunk edges settle ----
@@ -361,7 +389,10 @@ class Solver {
             const std::vector<int32_t> f = filled_window(slot, ring);
             std::vector<uint32_t> d;
             std::vector<int32_t> key;
-            flat_windows(slot, ring, f, d, key);
+            if (out_.flat_rounds == 1)
+              flat_windows(slot, ring, f, d, key);
+            else
+              refreshed_flat_windows(slot, ring, f, d, key);
             flats_->write_array<uint32_t>(cell_base_[size_t(slot)] * 8, win.take_cells(d));
             flats_->write_array<int32_t>(cell_base_[size_t(slot)] * 8 + c.cells() * 4,
                                          win.take_cells(key));
