@@ -309,12 +309,18 @@ class Solver {
   void flat_windows(int slot, const std::vector<int64_t>& ring, const std::vector<int32_t>& f,
                     std::vector<uint32_t>& d, std::vector<int32_t>& key) const {
     if (flats_settled_) return stored_flat_windows(slot, ring, d, key);
-    const Chunk& c = chunk(slot);
+    ring_flat_windows(chunk(slot), ring, d, key);
+    flat_distances(chunk(slot), f, d, key);
+  }
+
+  // Windows holding the ring's distances and keys as they stand (the
+  // chunk's own cells unknown).
+  void ring_flat_windows(const Chunk& c, const std::vector<int64_t>& ring, std::vector<uint32_t>& d,
+                         std::vector<int32_t>& key) const {
     d.assign(ChunkWindow(c).size(), kFar);
     key.assign(d.size(), kNoKey);
     put_ring(c, d, ring, [&](int64_t n) { return n < 0 ? kFar : per_.distance[size_t(n)]; });
     put_ring(c, key, ring, [&](int64_t n) { return n < 0 ? kNoKey : per_.key[size_t(n)]; });
-    flat_distances(c, f, d, key);
   }
 
   // The ring's distances and keys as they stand, the chunk's own as its
@@ -323,10 +329,7 @@ class Solver {
                            std::vector<int32_t>& key) const {
     const Chunk& c = chunk(slot);
     const ChunkWindow win(c);
-    d.assign(win.size(), kFar);
-    key.assign(d.size(), kNoKey);
-    put_ring(c, d, ring, [&](int64_t n) { return n < 0 ? kFar : per_.distance[size_t(n)]; });
-    put_ring(c, key, ring, [&](int64_t n) { return n < 0 ? kNoKey : per_.key[size_t(n)]; });
+    ring_flat_windows(c, ring, d, key);
     std::vector<uint32_t> dc(c.cells());
     std::vector<int32_t> kc(c.cells());
     flats_->read_array<uint32_t>(cell_base_[size_t(slot)] * 8, dc);
