@@ -129,7 +129,8 @@ inline bool run_all(const std::vector<std::string>& commands, const fs::path& di
 // a per-process fixture would be rebuilt for every test. The folder lives
 // under <build>/tests/shared/NAME; the first process builds it while the
 // others wait on a lock, and it is built again whenever the test binary, the
-// tools or the samples folder changed (their sizes and times are the stamp).
+// tools (both tiler executables) or the samples folder changed (their sizes
+// and times are the stamp).
 // `build(dir)` returns whether everything it made is good; a failed build
 // leaves no stamp, so the next test tries again. `also` names more files the
 // build reads (a script of tests/data, say) that go into the stamp.
@@ -145,8 +146,9 @@ fs::path shared_folder(const std::string& name, Build build, std::vector<fs::pat
     return dir;
   }
   std::string stamp;
-  also.insert(also.end(),
-              {fs::path("/proc/self/exe"), fs::path(tiler()), fs::path(vectorize()), samples()});
+  const fs::path tiler_gdal = fs::path(tiler()).parent_path() / "globe-tiler-gdal";
+  also.insert(also.end(), {fs::path("/proc/self/exe"), fs::path(tiler()), tiler_gdal,
+                           fs::path(vectorize()), samples()});
   for (const fs::path& p : also) {
     std::error_code ec;
     const fs::path real = fs::canonical(p, ec);
