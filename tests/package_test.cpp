@@ -113,3 +113,29 @@ TEST(Package, ResumeContinuesAKilledWriterToTheSameBytes) {
   EXPECT_EQ(globe_test::read_file(out), globe_test::read_file(ref));
   EXPECT_FALSE(std::filesystem::exists(out + ".tmp-journal"));
 }
+
+// Rows a builder writes right after a tile (a shard's parts) are committed
+// with that tile, even when it fills its batch: --resume skips committed
+// tiles, so a tile committed without its rows would lose them.
+TEST(Package, RowsWrittenAfterATileAreCommittedWithIt) {
+  TempDir dir;
+  const auto out = (dir / "out.mbtiles").string();
+  // A child process puts 600 tiles, each followed by a row of its own, and
+  // dies without unwinding; the batch of the first 512 tiles is committed.
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    PackageWriter w(out, tileformat::IfExists::kFail, "key", tileformat::Resume::kStartAfresh);
+    w.db().exec("CREATE TABLE extra (tile INTEGER NOT NULL)");
+    for (uint32_t i = 0; i < 600; ++i) {
+      w.put_tile({10, i, 7}, std::vector<uint8_t>{uint8_t(i), uint8_t(i >> 8), 42});
+      w.db().exec("INSERT INTO extra VALUES (" + std::to_string(i) + ")");
+    }
+    ::_exit(0);
+  }
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  PackageWriter w(out, tileformat::IfExists::kFail, "key", tileformat::Resume::kContinue);
+  ASSERT_TRUE(w.resumed());
+  EXPECT_EQ(w.tiles_at_zoom(10), 512u);
+  EXPECT_EQ(w.db().query_int("SELECT COUNT(*) FROM extra"), 512);
+}

@@ -181,6 +181,11 @@ void PackageWriter::set_metadata(const std::string& name, const std::string& val
 }
 
 void PackageWriter::put_tile(TileId id, std::span<const uint8_t> blob) {
+  // A full batch ends when the next tile comes, not right after its last
+  // tile: rows a builder writes for a tile after putting it (a shard's parts)
+  // join that tile's transaction, so a resumed build never skips a tile
+  // committed without them.
+  if (in_batch_ >= kBatchTiles || in_batch_bytes_ >= kBatchBytes) flush_batch();
   const int64_t hash = fnv1a(blob);
   int64_t blob_id = -1;
   find_blob_->bind(1, hash);
@@ -205,8 +210,8 @@ void PackageWriter::put_tile(TileId id, std::span<const uint8_t> blob) {
   insert_map_->step();
   insert_map_->reset();
   ++tiles_;
+  ++in_batch_;
   in_batch_bytes_ += blob.size();
-  if (++in_batch_ >= kBatchTiles || in_batch_bytes_ >= kBatchBytes) flush_batch();
 }
 
 void PackageWriter::flush_batch() {

@@ -166,11 +166,9 @@ class Builder {
     if (skip_puts_ > 0) {
       --skip_puts_;  // committed before an interruption
     } else {
-      // The merge builds the zooms above a shard's split zoom from these.
-      // Put before the tile, whose put may end the transaction (see
-      // ShardTableWriter).
-      if (parts_ && out.id.z == shard_->split_zoom) parts_->put(kShardPixels, out.id, out.stage);
       writer.put_tile(out.id, out.blob);
+      // The merge builds the zooms above a shard's split zoom from these.
+      if (parts_ && out.id.z == shard_->split_zoom) parts_->put(kShardPixels, out.id, out.stage);
     }
     coarsest_written_ = out.id.z;
     count_format(out.blob);

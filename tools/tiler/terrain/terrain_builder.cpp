@@ -522,10 +522,8 @@ class Builder {
               in.finals.at(id), vertex_errors(layouts_[id.diagonal()], nb), kFinalZstdLevel);
         },
         [&](size_t i, std::vector<uint8_t>&& blob) {
-          // The parts first: put_tile may end the transaction, and a tile
-          // committed without them would be skipped by --resume.
-          if (parts_) put_shard_parts(stage, tiles[i]);
           writer.put_tile(tiles[i], blob);
+          if (parts_) put_shard_parts(stage, tiles[i]);
           coarsest_written_ = z;
           progress_.advance();
         },

@@ -7,7 +7,9 @@
 //
 // Crash safety and resume (docs/robustness.md): tiles are committed in
 // batches (512 tiles or 4 MiB) through a rollback journal, so a killed build leaves
-// <final>.tmp holding every batch committed before the kill. A writer opened
+// <final>.tmp holding every batch committed before the kill. A full batch is
+// committed when the next tile is put, so rows written on db() right after a
+// tile are committed with it. A writer opened
 // with `resume` keeps that file (its header's user_version holds a hash of
 // the build key, so a build with other inputs or options cannot continue
 // it); the builder then skips the tiles already there (tiles_at_zoom) and

@@ -43,9 +43,8 @@ class ShardTableWriter {
  public:
   // Creates the table in the writer's open transaction unless a resumed
   // build's file already holds it. Rows join the writer's transaction, so
-  // they are committed with the next tile put: put a tile's rows before the
-  // tile (PackageWriter::put_tile may end the transaction after it, and
-  // --resume skips every committed tile).
+  // they are committed with the tiles put before them (PackageWriter ends a
+  // batch only when the next tile comes).
   explicit ShardTableWriter(PackageWriter& writer);
   ~ShardTableWriter();
   // Whether a resumed build's file already held the table (with every row
