@@ -5,7 +5,10 @@
 #include <random>
 
 #include "tileformat/analysis_block.hpp"
+#include "tileformat/blob_header.hpp"
+#include "tileformat/byte_io.hpp"
 #include "tileformat/error.hpp"
+#include "tileformat/zstd_codec.hpp"
 
 namespace {
 
@@ -33,6 +36,87 @@ TEST(AnalysisBlock, RoundTripsExactly) {
     EXPECT_EQ(d.layers, b.layers);
     EXPECT_EQ(d.values, b.values);
   }
+}
+
+// Flow layers: D8 codes 0..8 and log areas, no value at the edge.
+AnalysisBlock random_flow_block(int size, uint32_t seed) {
+  std::mt19937 rng(seed);
+  AnalysisBlock b;
+  b.size = size;
+  b.layers = {AnalysisLayer::kFlowDirection, AnalysisLayer::kFlowAccumulation};
+  std::vector<uint16_t> code(size_t(size) * size), area(code.size());
+  for (size_t i = 0; i < code.size(); ++i) {
+    const bool none = i % size_t(size) == 0;
+    code[i] = none ? kNoValue : static_cast<uint16_t>(rng() % 9);
+    area[i] = none ? kNoValue : static_cast<uint16_t>(15000 + rng() % 20000);
+  }
+  b.values = {code, area};
+  return b;
+}
+
+TEST(AnalysisBlock, FlowLayersRoundTripExactly) {
+  for (int size : {2, 17, 257}) {
+    const AnalysisBlock b = random_flow_block(size, static_cast<uint32_t>(size));
+    const AnalysisBlock d = decode_analysis_block(encode_analysis_block(b));
+    EXPECT_EQ(d.layers, b.layers);
+    EXPECT_EQ(d.values, b.values);
+  }
+}
+
+// The directions are stored as they are (the layer id's high bit set), the
+// accumulation as residuals against the west neighbour: the planes written
+// here by hand decompress to exactly those.
+TEST(AnalysisBlock, FlowDirectionsAreStoredWithoutResiduals) {
+  const int size = 17;
+  const size_t n = size_t(size) * size;
+  const AnalysisBlock b = random_flow_block(size, 5);
+  const std::vector<uint8_t> blob = encode_analysis_block(b);
+  ByteReader r(read_blob_header(blob, BlobKind::kAnalysis), "test", "9");
+  EXPECT_EQ(r.u16(), size);
+  EXPECT_EQ(r.u8(), 2);
+  EXPECT_EQ(r.u8(), 6 | 0x80) << "directions: high bit set";
+  EXPECT_EQ(r.u8(), 7) << "accumulation: residuals";
+  for (size_t layer = 0; layer < 2; ++layer) {
+    const uint32_t len = r.u32();
+    const std::vector<uint8_t> planes = zstd_decompress(r.bytes(len), 2 * n, "test", "9");
+    const std::vector<uint16_t>& v = b.values[layer];
+    for (size_t i = 0; i < n; ++i) {
+      uint16_t expected = v[i];
+      if (layer == 1) {
+        const uint16_t west = i % size ? v[i - 1] : i >= size_t(size) ? v[i - size] : 0;
+        expected = static_cast<uint16_t>(v[i] - west);
+      }
+      ASSERT_EQ(planes[i] | (planes[n + i] << 8), expected) << "layer " << layer << " sample " << i;
+    }
+  }
+}
+
+// Blocks written before the high bit existed stored every layer, directions
+// included, as residuals; they still decode to their values.
+TEST(AnalysisBlock, BlocksWithEveryLayerAsResidualsStillDecode) {
+  const int size = 17;
+  const size_t n = size_t(size) * size;
+  const AnalysisBlock b = random_flow_block(size, 9);
+  ByteWriter w;
+  w.u16(size);
+  w.u8(2);
+  w.u8(6);
+  w.u8(7);
+  for (const std::vector<uint16_t>& v : b.values) {
+    std::vector<uint8_t> planes(2 * n);
+    for (size_t i = 0; i < n; ++i) {
+      const uint16_t west = i % size ? v[i - 1] : i >= size_t(size) ? v[i - size] : 0;
+      const uint16_t residual = static_cast<uint16_t>(v[i] - west);
+      planes[i] = static_cast<uint8_t>(residual);
+      planes[n + i] = static_cast<uint8_t>(residual >> 8);
+    }
+    const std::vector<uint8_t> z = zstd_compress(planes, 3);
+    w.u32(static_cast<uint32_t>(z.size()));
+    w.bytes(z);
+  }
+  const AnalysisBlock d = decode_analysis_block(wrap_blob(BlobKind::kAnalysis, w.take()));
+  EXPECT_EQ(d.layers, b.layers);
+  EXPECT_EQ(d.values, b.values);
 }
 
 TEST(AnalysisBlock, QuantizesToTheStatedPrecision) {
