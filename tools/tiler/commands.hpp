@@ -12,9 +12,6 @@ namespace globe {
 // executables (main.cpp says why there are two).
 extern const char* const kTilerUsage;
 
-// Keeps the builders' working buffers in the heap (tiler_usage.cpp says why).
-void tune_tiler_malloc();
-
 int run_terrain(const std::vector<std::string>& args);
 int run_imagery(const std::vector<std::string>& args);
 int run_analyze(const std::vector<std::string>& args);

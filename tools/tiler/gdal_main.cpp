@@ -4,9 +4,10 @@
 // tools/common/kit/command_tool.
 #include "command_tool.hpp"
 #include "commands.hpp"
+#include "heap_tuning.hpp"
 
 int main(int argc, char** argv) {
-  globe::tune_tiler_malloc();
+  globe::keep_tile_buffers_in_heap();
   return globe::run_command_tool("globe-tiler", GLOBE_VERSION, globe::kTilerUsage,
                                  {{"terrain", globe::run_terrain},
                                   {"imagery", globe::run_imagery},

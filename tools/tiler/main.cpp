@@ -20,6 +20,7 @@
 #include "command_tool.hpp"
 #include "commands.hpp"
 #include "errors.hpp"
+#include "heap_tuning.hpp"
 
 namespace {
 
@@ -49,7 +50,7 @@ bool runs_here(const std::string& command) {
 
 int main(int argc, char** argv) {
   if (argc > 1 && !runs_here(argv[1])) return run_in_gdal_executable(argc, argv);
-  globe::tune_tiler_malloc();
+  globe::keep_tile_buffers_in_heap();
   return globe::run_command_tool("globe-tiler", GLOBE_VERSION, globe::kTilerUsage,
                                  {{"analyze", globe::run_analyze}}, argc, argv);
 }

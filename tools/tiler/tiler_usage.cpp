@@ -1,7 +1,5 @@
 // What both globe-tiler executables share before dispatching: the usage
-// text and the allocator settings.
-#include <malloc.h>
-
+// text.
 #include "commands.hpp"
 
 namespace globe {
@@ -21,14 +19,5 @@ const char* const kTilerUsage =
     "Run 'globe-tiler COMMAND --help' for the options of a command.\n"
     "Exit codes: 0 ok, 1 bad input data, 2 bad usage, 3 output cannot be written,\n"
     "            4 internal error, 5 validate found warnings only.\n";
-
-void tune_tiler_malloc() {
-  // The builders' working buffers (blocks of 257^2 samples, warp windows)
-  // are a few hundred KiB each, allocated and freed per tile: served from
-  // mmap by default, every one of them page-faults afresh. Kept in the heap
-  // (and the heap not trimmed after each), they are reused.
-  mallopt(M_MMAP_THRESHOLD, 64 << 20);
-  mallopt(M_TRIM_THRESHOLD, 256 << 20);
-}
 
 }  // namespace globe
