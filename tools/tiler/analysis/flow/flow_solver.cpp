@@ -24,6 +24,24 @@ constexpr uint64_t kBytesPerCell = 60;
 // Bytes per perimeter cell at the busiest moment of the run (the perimeter
 // graph's solve; the watershed graph's edges are deduplicated per chunk).
 constexpr uint64_t kBytesPerNode = 64;
+// Scratch bytes per grid cell at the busiest pass (the directions): filled
+// heights, watersheds and raw heights 12, flat distances and keys 8,
+// depression receivers and D8 receivers 1 each. The pyramid's levels (about
+// 12 a cell) come once the first three are gone.
+constexpr uint64_t kScratchBytesPerCell = 22;
+
+// The memory a run with chunks of C cells a side holds at its busiest
+// moment, scratch aside: the workers' chunks (each with the blocks it
+// decodes) and the perimeters kept for the whole run.
+uint64_t working_bytes(int64_t c, int64_t whole, int block_size, uint64_t chunks, int threads) {
+  const int64_t steps = block_size - 1;
+  const uint64_t side = uint64_t(std::min(c, whole) + 2);
+  const uint64_t tiles = uint64_t(c / steps + 3) * uint64_t(c / steps + 3);
+  const uint64_t worker = side * side * kBytesPerCell + tiles * block_size * block_size * 5;
+  const uint64_t shared = chunks * 4 * uint64_t(c) * kBytesPerNode;
+  const int busy = int(std::min<uint64_t>(uint64_t(std::max(1, threads)), chunks));
+  return uint64_t(busy) * worker + shared;
+}
 
 using tileformat::TileId;
 
@@ -57,13 +75,16 @@ class Solver {
     }
     const size_t nodes = per_.base.back();
     out_.perimeter_cells = nodes;
-    // One chunk fits the budget with room for its scratch data (21 bytes a
-    // cell against kBytesPerCell): then the scratch stays in memory.
+    // The scratch arrays stay in memory where they fit the budget beside
+    // the workers' chunks (a single chunk has room for them: kBytesPerCell).
     const uint64_t cells = cell_base_.back();
-    const bool in_memory = chunks.size() == 1;
-    auto memory = [&](uint64_t bytes) {
-      return in_memory ? std::optional<uint64_t>(bytes) : std::nullopt;
-    };
+    const int64_t whole =
+        int64_t(std::max(g.tiling().tiles_x(g.zoom()), g.tiling().tiles_y(g.zoom()))) * g.steps();
+    in_memory_ =
+        chunks.size() == 1 ||
+        working_bytes(c, whole, p_.block_size, chunks.size(), s_.threads) +
+                cells * kScratchBytesPerCell <=
+            s_.memory_bytes;
     fill_ = std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "fill.bin", memory(cells * 12));
     fill_pass();
     route_flats();
@@ -73,7 +94,6 @@ class Solver {
       route_depressions();
     }
     dirs_ = std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "receivers.bin", memory(cells));
-    out_.pyramid = std::make_unique<FlowPyramid>(g, p_.min_zoom, s_.scratch_prefix, in_memory);
     accumulate();
     dirs_.reset();
     out_.pyramid->finish();
@@ -82,6 +102,13 @@ class Solver {
 
  private:
   const FlowGrid& grid() const { return *out_.grid; }
+  std::optional<uint64_t> memory(uint64_t bytes) const {
+    return in_memory_ ? std::optional<uint64_t>(bytes) : std::nullopt;
+  }
+  void start_pyramid() {
+    out_.pyramid =
+        std::make_unique<FlowPyramid>(grid(), p_.min_zoom, s_.scratch_prefix, in_memory_);
+  }
   // A single chunk that does not wrap: nothing comes from outside it.
   bool alone() const { return grid().chunks().size() == 1 && !grid().wraps(); }
   const Chunk& chunk(int slot) const { return grid().chunks()[size_t(slot)]; }
@@ -376,10 +403,8 @@ class Solver {
     if (alone()) return;
     // Each chunk's distances and keys as its latest round left them: a chunk
     // not run again saw no change, so they are final for the later passes.
-    flats_ = std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "flats.bin",
-                                                grid().chunks().size() == 1
-                                                    ? std::optional<uint64_t>(cell_base_.back() * 8)
-                                                    : std::nullopt);
+    flats_ =
+        std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "flats.bin", memory(cell_base_.back() * 8));
     while (!run.empty()) {
       ++out_.flat_rounds;
       std::vector<std::pair<int, FlatResult>> results;
@@ -695,6 +720,7 @@ class Solver {
     // A single chunk that does not wrap receives nothing from outside: its
     // own accumulation is final and goes straight to the pyramid.
     const bool alone = this->alone();
+    if (alone) start_pyramid();
     each_chunk<LinkResult>(
         "flow: directions", all_slots(),
         [&](int slot, const BatchBlocks&) {
@@ -757,6 +783,8 @@ class Solver {
     per_ = std::move(kept);
     std::vector<int32_t>().swap(spill_);
     if (alone) return;
+    // Started only now, the pyramid's levels replace the scratch just freed.
+    start_pyramid();
     const std::vector<uint64_t> inflow = solve_inflows(area, successor, crosses);
     each_chunk<int>(
         "flow: accumulate", all_slots(),
@@ -786,6 +814,7 @@ class Solver {
   std::vector<int32_t> spill_;        // per global watershed
   std::unique_ptr<ScratchArrayFile> fill_, flats_, deps_, dirs_;
   bool flats_settled_ = false;  // flats_ holds every chunk's final distances and keys
+  bool in_memory_ = false;      // the scratch arrays in memory, not in files
 };
 
 }  // namespace
@@ -801,8 +830,6 @@ int64_t chunk_size_for(const tileformat::Tiling& t, int zoom, int block_size,
   uint64_t cheapest_bytes = UINT64_MAX, best_cells = UINT64_MAX;
   for (int64_t c = 64; c < 2 * whole; c *= 2) {
     const uint64_t side = uint64_t(std::min(c, whole) + 2);
-    const uint64_t tiles = uint64_t(c / steps + 3) * uint64_t(c / steps + 3);
-    const uint64_t worker = side * side * kBytesPerCell + tiles * block_size * block_size * 5;
     int64_t cx = 0, cy = 0;
     const std::vector<uint8_t> present =
         FlowGrid::present_chunks(t, zoom, int(steps), finest, c, cx, cy);
@@ -812,9 +839,7 @@ int64_t chunk_size_for(const tileformat::Tiling& t, int zoom, int block_size,
     const uint64_t across = uint64_t(std::max<int64_t>(1, c / steps) + 1);
     const uint64_t cells =
         chunks * ((side - 2) * (side - 2) + across * across * uint64_t(block_size) * block_size);
-    const uint64_t shared = chunks * 4 * uint64_t(c) * kBytesPerNode;
-    const int busy = int(std::min<uint64_t>(uint64_t(std::max(1, threads)), chunks));
-    const uint64_t bytes = uint64_t(busy) * worker + shared;
+    const uint64_t bytes = working_bytes(c, whole, block_size, chunks, threads);
     if (bytes <= memory_bytes && cells <= best_cells) best = c, best_cells = cells;
     if (bytes < cheapest_bytes) cheapest_bytes = bytes, cheapest = c;
   }
