@@ -67,15 +67,17 @@ ChunkFill fill_chunk(const Chunk& c, const std::vector<int32_t>& z) {
   for (int d = 1; d <= 8; ++d)
     step[d] = ptrdiff_t(kDy[d]) * stride + kDx[d];
   // Window-indexed state; the ring (the neighbours' cells) is never entered.
-  std::vector<int32_t> filled(win.size(), kNoData);
-  std::vector<uint32_t> label(win.size(), 0);
+  ChunkFill out;
+  std::vector<int32_t>& filled = out.filled;
+  std::vector<uint32_t>& label = out.label;
+  filled.assign(win.size(), kNoData);
+  label.assign(win.size(), 0);
   std::vector<uint8_t> state(win.size(), kOutside);
   for (int y = 0; y < c.h; ++y)
     for (int x = 0; x < c.w; ++x) {
       const size_t k = win.at(x, y);
       state[k] = z[k] == kNoData ? kOutside : kNew;
     }
-  ChunkFill out;
   OpenCells open;
   std::vector<uint32_t> pit;  // cells at the level being flooded: no heap needed
   size_t pit_head = 0;
@@ -134,13 +136,6 @@ ChunkFill fill_chunk(const Chunk& c, const std::vector<int32_t>& z) {
           }
       }
     }
-  }
-  out.filled.resize(c.cells());
-  out.label.resize(c.cells());
-  for (int y = 0; y < c.h; ++y) {
-    const size_t from = win.at(0, y), to = size_t(y) * c.w;
-    std::copy_n(filled.begin() + ptrdiff_t(from), c.w, out.filled.begin() + ptrdiff_t(to));
-    std::copy_n(label.begin() + ptrdiff_t(from), c.w, out.label.begin() + ptrdiff_t(to));
   }
   spill.append_to(out.edges);
   return out;

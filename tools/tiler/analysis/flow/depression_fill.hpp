@@ -39,8 +39,9 @@ class SpillPairs {
 };
 
 struct ChunkFill {
-  std::vector<int32_t> filled;   // w * h; kNoData where no data
-  std::vector<uint32_t> label;   // w * h; 0 where no data
+  // The chunk's window (ChunkWindow), the ring left as kNoData and 0.
+  std::vector<int32_t> filled;   // kNoData where no data
+  std::vector<uint32_t> label;   // 0 where no data
   uint32_t labels = 2;           // labels used: 1 .. labels - 1
   std::vector<SpillEdge> edges;  // lowest spill per pair of labels
 };

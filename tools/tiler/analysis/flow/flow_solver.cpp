@@ -25,10 +25,10 @@ constexpr uint64_t kBytesPerCell = 60;
 // graph's solve; the watershed graph's edges are deduplicated per chunk).
 constexpr uint64_t kBytesPerNode = 64;
 // Scratch bytes per grid cell at the busiest pass (the directions): filled
-// heights, watersheds and raw heights 12, flat distances and keys 8,
-// depression receivers and D8 receivers 1 each. The pyramid's levels (about
-// 12 a cell) come once the first three are gone.
-constexpr uint64_t kScratchBytesPerCell = 22;
+// and raw heights 8, flat distances and keys 8, depression receivers and D8
+// receivers 1 each. The watersheds (4) go before the flats come; the
+// pyramid's levels (about 12 a cell) once the heights and flats are gone.
+constexpr uint64_t kScratchBytesPerCell = 18;
 
 // The memory a run with chunks of C cells a side holds at its busiest
 // moment, scratch aside: the workers' chunks (each with the blocks it
@@ -81,11 +81,12 @@ class Solver {
     const int64_t whole =
         int64_t(std::max(g.tiling().tiles_x(g.zoom()), g.tiling().tiles_y(g.zoom()))) * g.steps();
     in_memory_ =
-        chunks.size() == 1 ||
-        working_bytes(c, whole, p_.block_size, chunks.size(), s_.threads) +
-                cells * kScratchBytesPerCell <=
-            s_.memory_bytes;
-    fill_ = std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "fill.bin", memory(cells * 12));
+        chunks.size() == 1 || working_bytes(c, whole, p_.block_size, chunks.size(), s_.threads) +
+                                      cells * kScratchBytesPerCell <=
+                                  s_.memory_bytes;
+    fill_ = std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "fill.bin", memory(cells * 8));
+    labels_ =
+        std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "watersheds.bin", memory(cells * 4));
     fill_pass();
     route_flats();
     if (!alone()) {
@@ -217,16 +218,16 @@ class Solver {
           const std::vector<int32_t> z =
               chunk_heights(g, c, [&](TileId t) { return blocks.get(t, s_.input); });
           ChunkFill f = fill_chunk(c, z);
-          const uint64_t at = cell_base_[size_t(slot)] * 12;
-          fill_->write_array<int32_t>(at, f.filled);
-          fill_->write_array<uint32_t>(at + c.cells() * 4, f.label);
-          fill_->write_array<int32_t>(at + c.cells() * 8, ChunkWindow(c).take_cells(z));
+          const uint64_t at = cell_base_[size_t(slot)];
+          write_rows(*fill_, at * 8, c, f.filled);
+          write_rows(*fill_, at * 8 + c.cells() * 4, c, z);
+          write_rows(*labels_, at * 4, c, f.label);
           FillResult r;
           for (int i = 0; i < c.perimeter_count(); ++i) {
             int x, y;
             c.perimeter_cell(i, x, y);
             r.height.push_back(z[ChunkWindow(c).at(x, y)]);
-            r.label.push_back(f.label[size_t(y) * c.w + x]);
+            r.label.push_back(f.label[ChunkWindow(c).at(x, y)]);
           }
           r.labels = f.labels;
           r.edges = std::move(f.edges);
@@ -285,6 +286,48 @@ class Solver {
     for (size_t n = 0; n < nodes; ++n)
       if (per_.filled[n] != kNoData)
         per_.filled[n] = std::max(per_.filled[n], spill_[per_.label[n]]);
+    raise_to_spill_levels();
+  }
+
+  // Each chunk's filled heights raised to its watersheds' spill levels, in
+  // place: the later passes read the final surface, and the watersheds go.
+  void raise_to_spill_levels() {
+    each_chunk<int>(
+        "flow: spill levels", all_slots(),
+        [&](int slot, const BatchBlocks&) {
+          const Chunk& c = chunk(slot);
+          const uint64_t at = cell_base_[size_t(slot)];
+          std::vector<int32_t> filled(c.cells());
+          std::vector<uint32_t> label(c.cells());
+          fill_->read_array<int32_t>(at * 8, filled);
+          labels_->read_array<uint32_t>(at * 4, label);
+          for (size_t i = 0; i < filled.size(); ++i)
+            if (filled[i] != kNoData)
+              filled[i] = std::max(filled[i], spill_[global_label(slot, label[i])]);
+          fill_->write_array<int32_t>(at * 8, filled);
+          return 0;
+        },
+        [](int, int&&) {}, false);
+    labels_.reset();
+  }
+
+  // A chunk's rows between a scratch array (row-major, from `at`) and its
+  // window (ChunkWindow), each way.
+  template <typename T>
+  static void write_rows(ScratchArrayFile& file, uint64_t at, const Chunk& c,
+                         const std::vector<T>& window) {
+    const ChunkWindow win(c);
+    for (int y = 0; y < c.h; ++y)
+      file.write_at(at + uint64_t(y) * c.w * sizeof(T), window.data() + win.at(0, y),
+                    size_t(c.w) * sizeof(T));
+  }
+  template <typename T>
+  static void read_rows(const ScratchArrayFile& file, uint64_t at, const Chunk& c,
+                        std::vector<T>& window) {
+    const ChunkWindow win(c);
+    for (int y = 0; y < c.h; ++y)
+      file.read_at(at + uint64_t(y) * c.w * sizeof(T), window.data() + win.at(0, y),
+                   size_t(c.w) * sizeof(T));
   }
 
   uint32_t global_label(int slot, uint32_t local) const {
@@ -292,24 +335,16 @@ class Solver {
   }
 
   // The filled heights (the whole grid's) and raw heights of the chunk's
-  // rows `first` to `last` - 1 (all of them by default), row-major.
-  void read_chunk(int slot, std::vector<int32_t>& filled, std::vector<int32_t>* raw, int first = 0,
-                  int last = -1) const {
+  // rows `first` to `last` - 1, row-major.
+  void read_chunk(int slot, std::vector<int32_t>& filled, std::vector<int32_t>& raw, int first,
+                  int last) const {
     const Chunk& c = chunk(slot);
-    if (last < 0) last = c.h;
     const size_t n = size_t(last - first) * c.w;
-    const uint64_t at = cell_base_[size_t(slot)] * 12 + uint64_t(first) * c.w * 4;
-    std::vector<uint32_t> label(n);
+    const uint64_t at = cell_base_[size_t(slot)] * 8 + uint64_t(first) * c.w * 4;
     filled.resize(n);
+    raw.resize(n);
     fill_->read_array<int32_t>(at, filled);
-    fill_->read_array<uint32_t>(at + c.cells() * 4, label);
-    for (size_t i = 0; i < n; ++i)
-      if (filled[i] != kNoData)
-        filled[i] = std::max(filled[i], spill_[global_label(slot, label[i])]);
-    if (raw) {
-      raw->resize(n);
-      fill_->read_array<int32_t>(at + c.cells() * 8, *raw);
-    }
+    fill_->read_array<int32_t>(at + c.cells() * 4, raw);
   }
 
   // The chunk's window of filled heights (and of raw heights).
@@ -317,13 +352,12 @@ class Solver {
                                      std::vector<int32_t>* raw_window = nullptr) const {
     const Chunk& c = chunk(slot);
     const ChunkWindow win(c);
-    std::vector<int32_t> local, raw;
-    read_chunk(slot, local, raw_window ? &raw : nullptr);
+    const uint64_t at = cell_base_[size_t(slot)] * 8;
     std::vector<int32_t> f(win.size(), kNoData);
-    win.put_cells(local, f);
+    read_rows(*fill_, at, c, f);
     if (raw_window) {
       raw_window->assign(win.size(), kNoData);
-      win.put_cells(raw, *raw_window);
+      read_rows(*fill_, at + c.cells() * 4, c, *raw_window);
     }
     put_ring(c, f, ring, [&](int64_t n) { return n < 0 ? kNoData : per_.filled[size_t(n)]; });
     if (raw_window)
@@ -357,12 +391,8 @@ class Solver {
     const Chunk& c = chunk(slot);
     const ChunkWindow win(c);
     ring_flat_windows(c, ring, d, key);
-    std::vector<uint32_t> dc(c.cells());
-    std::vector<int32_t> kc(c.cells());
-    flats_->read_array<uint32_t>(cell_base_[size_t(slot)] * 8, dc);
-    flats_->read_array<int32_t>(cell_base_[size_t(slot)] * 8 + c.cells() * 4, kc);
-    win.put_cells(dc, d);
-    win.put_cells(kc, key);
+    read_rows(*flats_, cell_base_[size_t(slot)] * 8, c, d);
+    read_rows(*flats_, cell_base_[size_t(slot)] * 8 + c.cells() * 4, c, key);
   }
 
   // A later flat round: only the flats next to ring cells whose distance or
@@ -403,8 +433,8 @@ class Solver {
     if (alone()) return;
     // Each chunk's distances and keys as its latest round left them: a chunk
     // not run again saw no change, so they are final for the later passes.
-    flats_ =
-        std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "flats.bin", memory(cell_base_.back() * 8));
+    flats_ = std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "flats.bin",
+                                                memory(cell_base_.back() * 8));
     while (!run.empty()) {
       ++out_.flat_rounds;
       std::vector<std::pair<int, FlatResult>> results;
@@ -421,9 +451,8 @@ class Solver {
               flat_windows(slot, ring, f, d, key);
             else
               refreshed_flat_windows(slot, ring, f, d, key);
-            flats_->write_array<uint32_t>(cell_base_[size_t(slot)] * 8, win.take_cells(d));
-            flats_->write_array<int32_t>(cell_base_[size_t(slot)] * 8 + c.cells() * 4,
-                                         win.take_cells(key));
+            write_rows(*flats_, cell_base_[size_t(slot)] * 8, c, d);
+            write_rows(*flats_, cell_base_[size_t(slot)] * 8 + c.cells() * 4, c, key);
             FlatResult r;
             for (int i = 0; i < c.perimeter_count(); ++i) {
               int x, y;
@@ -684,7 +713,7 @@ class Solver {
       auto mine = [&](int64_t gx) { return gx >= c.x0 && gx < c.x0 + c.w; };
       if (y0 >= y1 || std::none_of(column.begin(), column.end(), mine)) continue;
       // Only the rows the patch covers.
-      read_chunk(int(k), filled, &raw, int(y0 - c.y0), int(y1 - c.y0));
+      read_chunk(int(k), filled, raw, int(y0 - c.y0), int(y1 - c.y0));
       for (int64_t y = y0; y < y1; ++y)
         for (int x = 0; x < p.w; ++x) {
           if (!mine(column[size_t(x)])) continue;
@@ -725,22 +754,26 @@ class Solver {
         "flow: directions", all_slots(),
         [&](int slot, const BatchBlocks&) {
           const Chunk& c = chunk(slot);
-          const std::vector<int64_t> ring = ring_nodes(c);
-          const HeightPatch p = window_patch(slot, ring, alone);
-          const std::vector<int32_t>& f = p.filled;
-          std::vector<uint32_t> d;
-          std::vector<int32_t> key;
-          flat_windows(slot, ring, f, d, key);
-          std::vector<uint8_t> rec = d8_receivers(grid(), c, f, d, key);
-          if (alone) {
-            route_window_depressions(
-                slot, p, d, key, [&](size_t i, uint8_t code) { rec[i] = code; }, nullptr);
-          } else {
-            std::vector<uint8_t> codes(c.cells());
-            deps_->read_array<uint8_t>(cell_base_[size_t(slot)], codes);
-            for (size_t i = 0; i < codes.size(); ++i)
-              if (codes[i]) rec[i] = codes[i];
-          }
+          // The windows go before the accumulation's arrays come.
+          const std::vector<uint8_t> rec = [&] {
+            const std::vector<int64_t> ring = ring_nodes(c);
+            const HeightPatch p = window_patch(slot, ring, alone);
+            const std::vector<int32_t>& f = p.filled;
+            std::vector<uint32_t> d;
+            std::vector<int32_t> key;
+            flat_windows(slot, ring, f, d, key);
+            std::vector<uint8_t> codes = d8_receivers(grid(), c, f, d, key);
+            if (alone) {
+              route_window_depressions(
+                  slot, p, d, key, [&](size_t i, uint8_t code) { codes[i] = code; }, nullptr);
+            } else {
+              std::vector<uint8_t> routed(c.cells());
+              deps_->read_array<uint8_t>(cell_base_[size_t(slot)], routed);
+              for (size_t i = 0; i < routed.size(); ++i)
+                if (routed[i]) codes[i] = routed[i];
+            }
+            return codes;
+          }();
           LinkResult r;
           std::vector<uint64_t> acc = accumulate_chunk(grid(), c, rec, {}, &r.flow);
           if (alone) {
@@ -812,7 +845,10 @@ class Solver {
   std::vector<uint64_t> cell_base_;   // per slot: its first cell in the scratch files
   std::vector<uint64_t> label_base_;  // per slot: global id of its local label 2
   std::vector<int32_t> spill_;        // per global watershed
-  std::unique_ptr<ScratchArrayFile> fill_, flats_, deps_, dirs_;
+  // Scratch, per cell: filled and raw heights; watersheds (until the spill
+  // levels are known); flat distances and keys; depression receivers; D8
+  // receivers.
+  std::unique_ptr<ScratchArrayFile> fill_, labels_, flats_, deps_, dirs_;
   bool flats_settled_ = false;  // flats_ holds every chunk's final distances and keys
   bool in_memory_ = false;      // the scratch arrays in memory, not in files
 };
