@@ -24,7 +24,10 @@ uint8_t same_column(uint8_t diagonal) {
 }  // namespace
 
 DepressionRouter::DepressionRouter(const HeightPatch& patch)
-    : p_(patch), state_(size_t(patch.w) * patch.h, kOutside), code_(state_.size(), kOutlet) {}
+    : p_(patch),
+      state_(size_t(patch.w) * patch.h, kOutside),
+      code_(state_.size(), kOutlet),
+      diagonal_(size_t(patch.h), -1) {}
 
 std::vector<uint32_t> DepressionRouter::depression(uint32_t seed, bool& reaches_ring) {
   reaches_ring = false;
@@ -47,18 +50,25 @@ std::vector<uint32_t> DepressionRouter::depression(uint32_t seed, bool& reaches_
 }
 
 void DepressionRouter::search(const FlowGrid& g, uint32_t entry) {
-  // (raw height, order of arrival, index): the lowest first, then the earliest.
-  using Item = std::tuple<int32_t, uint64_t, uint32_t>;
+  // (raw height, order of arrival) in one key, and the index: the lowest
+  // first, then the earliest. A patch has fewer than 2^32 cells, each
+  // queued at most once.
+  using Item = std::pair<uint64_t, uint32_t>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
-  uint64_t arrivals = 0;
-  q.push({p_.raw[entry], arrivals++, entry});
+  uint32_t arrivals = 0;
+  auto push = [&](uint32_t n) {
+    q.push({(uint64_t(uint32_t(p_.raw[n]) ^ 0x80000000u) << 32) | arrivals++, n});
+  };
+  push(entry);
   bool entry_worked = false;
   while (!q.empty()) {
-    const uint32_t i = std::get<2>(q.top());
+    const uint32_t i = q.top().second;
     q.pop();
     const int x = int(i % uint32_t(p_.w)), y = int(i / uint32_t(p_.w));
     const int64_t gy = p_.y0 + y;
-    const double dx = g.dx(gy), dy = g.dy(gy), diagonal = std::hypot(dx, dy);
+    const double dx = g.dx(gy), dy = g.dy(gy);
+    double& diagonal = diagonal_[size_t(y)];
+    if (diagonal < 0) diagonal = std::hypot(dx, dy);
     const double length[9] = {0, dy, diagonal, dx, diagonal, dy, diagonal, dx, diagonal};
     // Climbs to the neighbours not yet worked (0 where none or downhill).
     double climb[9] = {0};
@@ -91,7 +101,7 @@ void DepressionRouter::search(const FlowGrid& g, uint32_t entry) {
       }
       state_[n] = kQueued;
       code_[n] = d8_code(-kDx[d], -kDy[d]);
-      q.push({p_.raw[n], arrivals++, n});
+      push(n);
     }
     if (i == entry)
       entry_worked = true;

@@ -75,6 +75,7 @@ class DepressionRouter {
 
   const HeightPatch& p_;
   std::vector<uint8_t> state_, code_;
+  std::vector<double> diagonal_;  // per patch row, once first needed (else -1)
 };
 
 template <typename Mine>
