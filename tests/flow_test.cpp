@@ -192,8 +192,9 @@ int chunks_in(const std::string& stderr_text) {
   return static_cast<int>(integer_after(stderr_text, " cells in "));
 }
 
-// brasilia in 64 chunks (--memory-mb 1) against one chunk: the same samples
-// at every zoom, and the same bytes for 1 and 2 threads.
+// brasilia in 64 chunks (--memory-mb 1, scratch on disk) and in 4 (scratch
+// in memory) against one chunk: the same samples at every zoom, and the same
+// bytes for 1 and 2 threads.
 TEST(FlowOutOfCore, EqualsTheInMemorySolve) {
   TempDir dir;
   const std::string pkg = (dir / "t.mbtiles").string();
@@ -211,10 +212,21 @@ TEST(FlowOutOfCore, EqualsTheInMemorySolve) {
                             dir.path());
     ASSERT_EQ(b.exit_code, 0) << b.err;
     EXPECT_GE(chunks_in(b.err), 16) << b.err;
+    EXPECT_NE(b.err.find("(scratch on disk)"), std::string::npos) << b.err;
     bytes[j - 1] = read_file(ooc);
   }
   EXPECT_TRUE(bytes[0] == bytes[1]) << "-j 1 and -j 2 differ";
   expect_same_layers(dir, whole, ooc, 1);
+  // Several chunks whose scratch fits the budget beside them: kept in memory.
+  // 23 MiB with 2 threads: one 512-cell chunk needs 24.2 MB, two workers on
+  // 256-cell chunks 18.8 MB, the scratch 4.7 MB (flow_solver.cpp).
+  const std::string kept = (dir / "kept.mbtiles").string();
+  const RunResult c = run(
+      tiler() + " analyze --layers flow --memory-mb 23 -j 2 " + pkg + " -o " + kept, dir.path());
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_GT(chunks_in(c.err), 1) << c.err;
+  EXPECT_NE(c.err.find("(scratch in memory)"), std::string::npos) << c.err;
+  expect_same_layers(dir, whole, kept, 1);
 }
 
 // All water leaves through outlets: the outlets' upstream areas add up to

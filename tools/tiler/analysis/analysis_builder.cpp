@@ -217,8 +217,10 @@ AnalysisSummary build_analysis(const AnalysisSettings& s, Progress& progress) {
       const flow::FlowGrid& g = *flow.grid;
       sum.flow_note = "flow: " + std::to_string(g.width()) + " x " + std::to_string(g.height()) +
                       " cells in " + std::to_string(g.chunks().size()) + " chunks of " +
-                      std::to_string(g.chunk_size()) + ", " + std::to_string(flow.watersheds) +
-                      " watersheds, " + std::to_string(flow.flat_rounds) + " flat rounds";
+                      std::to_string(g.chunk_size()) +
+                      (flow.scratch_in_memory ? " (scratch in memory), " : " (scratch on disk), ") +
+                      std::to_string(flow.watersheds) + " watersheds, " +
+                      std::to_string(flow.flat_rounds) + " flat rounds";
     }
     const BlockAnalyzer analyzer(p, s, flow.pyramid.get());
     progress.begin("analyze", items.size());

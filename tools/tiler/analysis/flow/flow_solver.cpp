@@ -84,6 +84,7 @@ class Solver {
         chunks.size() == 1 || working_bytes(c, whole, p_.block_size, chunks.size(), s_.threads) +
                                       cells * kScratchBytesPerCell <=
                                   s_.memory_bytes;
+    out_.scratch_in_memory = in_memory_;
     fill_ = std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "fill.bin", memory(cells * 8));
     labels_ =
         std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "watersheds.bin", memory(cells * 4));

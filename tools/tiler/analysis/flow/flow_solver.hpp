@@ -38,6 +38,7 @@ struct FlowSolution {
   std::unique_ptr<FlowPyramid> pyramid;
   uint64_t watersheds = 0, perimeter_cells = 0;
   int flat_rounds = 0;
+  bool scratch_in_memory = false;  // the per-cell scratch fitted the budget
 };
 
 // The chunk size (a power of two): of those whose working set fits the
