@@ -3,6 +3,7 @@
 // come back from their offsets, on disk and in memory.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <filesystem>
 
 #include "errors.hpp"
@@ -90,5 +91,34 @@ TEST(ScratchArrayFile, ArraysComeBackFromTheirOffsetsOnDiskAndInMemory) {
       }
     }
     EXPECT_FALSE(fs::exists(path));
+  }
+}
+
+// A window's rows (stride apart in memory) go to consecutive bytes of the
+// file and come back into another window; rows of 400 KB go through the
+// file's 1 MiB buffer in batches of two, so seven rows take four batches.
+TEST(ScratchArrayFile, RowsOfAWindowComeBackOnDiskAndInMemory) {
+  TempDir dir;
+  const size_t row = 400 << 10, rows = 7, stride = row + 24, at = 100;
+  std::vector<uint8_t> window(rows * stride, 0);
+  for (size_t i = 0; i < window.size(); ++i)
+    window[i] = uint8_t(i * 31 + i / 977);
+  for (const bool in_memory : {false, true}) {
+    const fs::path path = dir / (in_memory ? "m.bin" : "d.bin");
+    globe::ScratchArrayFile f(path.string(),
+                              in_memory ? std::optional<uint64_t>(at + rows * row) : std::nullopt);
+    f.write_rows_at(at, window.data(), row, rows, stride);
+    std::vector<uint8_t> flat(rows * row);
+    f.read_at(at, flat.data(), flat.size());
+    for (size_t r = 0; r < rows; ++r)
+      ASSERT_EQ(0, std::memcmp(flat.data() + r * row, window.data() + r * stride, row))
+          << "row " << r << (in_memory ? " in memory" : " on disk");
+    std::vector<uint8_t> back(window.size(), 0);
+    f.read_rows_at(at, back.data(), row, rows, stride);
+    for (size_t r = 0; r < rows; ++r) {
+      EXPECT_EQ(0, std::memcmp(back.data() + r * stride, window.data() + r * stride, row))
+          << "row " << r << (in_memory ? " in memory" : " on disk");
+      EXPECT_EQ(back[r * stride + row], 0) << "the gap between rows is left alone";
+    }
   }
 }

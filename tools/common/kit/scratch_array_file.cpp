@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -68,6 +69,48 @@ void ScratchArrayFile::read_at(uint64_t offset, void* data, size_t bytes) const 
     p += n;
     offset += uint64_t(n);
     bytes -= size_t(n);
+  }
+}
+
+namespace {
+// Rows go through a buffer of this size to and from a file: a few calls per
+// array, not one per row.
+constexpr size_t kRowBuffer = size_t(1) << 20;
+}  // namespace
+
+void ScratchArrayFile::write_rows_at(uint64_t offset, const void* data, size_t row_bytes,
+                                     size_t rows, size_t stride) {
+  const auto* p = static_cast<const uint8_t*>(data);
+  if (fd_ < 0) {
+    for (size_t r = 0; r < rows; ++r)
+      write_at(offset + r * row_bytes, p + r * stride, row_bytes);
+    return;
+  }
+  const size_t batch = std::max<size_t>(1, kRowBuffer / std::max<size_t>(1, row_bytes));
+  std::vector<uint8_t> buffer(std::min(rows, batch) * row_bytes);
+  for (size_t r = 0; r < rows; r += batch) {
+    const size_t n = std::min(batch, rows - r);
+    for (size_t k = 0; k < n; ++k)
+      std::memcpy(buffer.data() + k * row_bytes, p + (r + k) * stride, row_bytes);
+    write_at(offset + r * row_bytes, buffer.data(), n * row_bytes);
+  }
+}
+
+void ScratchArrayFile::read_rows_at(uint64_t offset, void* data, size_t row_bytes, size_t rows,
+                                    size_t stride) const {
+  auto* p = static_cast<uint8_t*>(data);
+  if (fd_ < 0) {
+    for (size_t r = 0; r < rows; ++r)
+      read_at(offset + r * row_bytes, p + r * stride, row_bytes);
+    return;
+  }
+  const size_t batch = std::max<size_t>(1, kRowBuffer / std::max<size_t>(1, row_bytes));
+  std::vector<uint8_t> buffer(std::min(rows, batch) * row_bytes);
+  for (size_t r = 0; r < rows; r += batch) {
+    const size_t n = std::min(batch, rows - r);
+    read_at(offset + r * row_bytes, buffer.data(), n * row_bytes);
+    for (size_t k = 0; k < n; ++k)
+      std::memcpy(p + (r + k) * stride, buffer.data() + k * row_bytes, row_bytes);
   }
 }
 

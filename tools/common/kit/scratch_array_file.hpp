@@ -30,6 +30,14 @@ class ScratchArrayFile {
   void write_at(uint64_t offset, const void* data, size_t bytes);
   void read_at(uint64_t offset, void* data, size_t bytes) const;
 
+  // `rows` rows of `row_bytes`, one after the other in the file from
+  // `offset`, `stride` bytes apart in memory (a window's rows); a few calls
+  // per array to a file.
+  void write_rows_at(uint64_t offset, const void* data, size_t row_bytes, size_t rows,
+                     size_t stride);
+  void read_rows_at(uint64_t offset, void* data, size_t row_bytes, size_t rows,
+                    size_t stride) const;
+
   template <typename T>
   void write_array(uint64_t offset, std::span<const T> values) {
     write_at(offset, values.data(), values.size_bytes());

@@ -318,17 +318,15 @@ class Solver {
   static void write_rows(ScratchArrayFile& file, uint64_t at, const Chunk& c,
                          const std::vector<T>& window) {
     const ChunkWindow win(c);
-    for (int y = 0; y < c.h; ++y)
-      file.write_at(at + uint64_t(y) * c.w * sizeof(T), window.data() + win.at(0, y),
-                    size_t(c.w) * sizeof(T));
+    file.write_rows_at(at, window.data() + win.at(0, 0), size_t(c.w) * sizeof(T), size_t(c.h),
+                       size_t(win.stride()) * sizeof(T));
   }
   template <typename T>
   static void read_rows(const ScratchArrayFile& file, uint64_t at, const Chunk& c,
                         std::vector<T>& window) {
     const ChunkWindow win(c);
-    for (int y = 0; y < c.h; ++y)
-      file.read_at(at + uint64_t(y) * c.w * sizeof(T), window.data() + win.at(0, y),
-                   size_t(c.w) * sizeof(T));
+    file.read_rows_at(at, window.data() + win.at(0, 0), size_t(c.w) * sizeof(T), size_t(c.h),
+                      size_t(win.stride()) * sizeof(T));
   }
 
   uint32_t global_label(int slot, uint32_t local) const {
