@@ -15,8 +15,9 @@ std::vector<uint64_t> accumulate_chunk(const FlowGrid& g, const Chunk& c,
   for (int d = 0; d < 9; ++d)
     step[d] = int64_t(kDy[d]) * w + kDx[d];
   auto inside = [&](int x, int y, uint8_t d) {
+    if (d == kOutlet || d == kNoDataCode) return false;
     const int rx = x + kDx[d], ry = y + kDy[d];
-    return d != kOutlet && d != kNoDataCode && rx >= 0 && ry >= 0 && rx < w && ry < h;
+    return rx >= 0 && ry >= 0 && rx < w && ry < h;
   };
   // Own areas (plus inflow at the perimeter) and donor counts.
   std::vector<uint64_t> acc(n, 0);
