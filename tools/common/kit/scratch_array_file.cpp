@@ -73,9 +73,17 @@ void ScratchArrayFile::read_at(uint64_t offset, void* data, size_t bytes) const 
 }
 
 namespace {
-// Rows go through a buffer of this size to and from a file: a few calls per
-// array, not one per row.
-constexpr size_t kRowBuffer = size_t(1) << 20;
+
+// Rows go through a buffer of at most 1 MiB to and from a file: a few calls
+// per array, not one per row. Calls fn(first row, rows, buffer) per batch.
+template <typename F>
+void in_row_batches(size_t row_bytes, size_t rows, F fn) {
+  const size_t batch = std::max<size_t>(1, (size_t(1) << 20) / std::max<size_t>(1, row_bytes));
+  std::vector<uint8_t> buffer(std::min(rows, batch) * row_bytes);
+  for (size_t r = 0; r < rows; r += batch)
+    fn(r, std::min(batch, rows - r), buffer.data());
+}
+
 }  // namespace
 
 void ScratchArrayFile::write_rows_at(uint64_t offset, const void* data, size_t row_bytes,
@@ -86,14 +94,11 @@ void ScratchArrayFile::write_rows_at(uint64_t offset, const void* data, size_t r
       write_at(offset + r * row_bytes, p + r * stride, row_bytes);
     return;
   }
-  const size_t batch = std::max<size_t>(1, kRowBuffer / std::max<size_t>(1, row_bytes));
-  std::vector<uint8_t> buffer(std::min(rows, batch) * row_bytes);
-  for (size_t r = 0; r < rows; r += batch) {
-    const size_t n = std::min(batch, rows - r);
+  in_row_batches(row_bytes, rows, [&](size_t first, size_t n, uint8_t* buffer) {
     for (size_t k = 0; k < n; ++k)
-      std::memcpy(buffer.data() + k * row_bytes, p + (r + k) * stride, row_bytes);
-    write_at(offset + r * row_bytes, buffer.data(), n * row_bytes);
-  }
+      std::memcpy(buffer + k * row_bytes, p + (first + k) * stride, row_bytes);
+    write_at(offset + first * row_bytes, buffer, n * row_bytes);
+  });
 }
 
 void ScratchArrayFile::read_rows_at(uint64_t offset, void* data, size_t row_bytes, size_t rows,
@@ -104,14 +109,11 @@ void ScratchArrayFile::read_rows_at(uint64_t offset, void* data, size_t row_byte
       read_at(offset + r * row_bytes, p + r * stride, row_bytes);
     return;
   }
-  const size_t batch = std::max<size_t>(1, kRowBuffer / std::max<size_t>(1, row_bytes));
-  std::vector<uint8_t> buffer(std::min(rows, batch) * row_bytes);
-  for (size_t r = 0; r < rows; r += batch) {
-    const size_t n = std::min(batch, rows - r);
-    read_at(offset + r * row_bytes, buffer.data(), n * row_bytes);
+  in_row_batches(row_bytes, rows, [&](size_t first, size_t n, uint8_t* buffer) {
+    read_at(offset + first * row_bytes, buffer, n * row_bytes);
     for (size_t k = 0; k < n; ++k)
-      std::memcpy(p + (r + k) * stride, buffer.data() + k * row_bytes, row_bytes);
-  }
+      std::memcpy(p + (first + k) * stride, buffer + k * row_bytes, row_bytes);
+  });
 }
 
 }  // namespace globe
