@@ -13,7 +13,7 @@ void keep_tile_buffers_in_heap() {
   mallopt(M_TRIM_THRESHOLD, 256 << 20);
 }
 
-void reuse_large_arrays(uint64_t reserve_bytes) {
+void reuse_large_arrays([[maybe_unused]] uint64_t reserve_bytes) {
   mallopt(M_ARENA_MAX, 1);
   mallopt(M_MMAP_MAX, 0);
   mallopt(M_TRIM_THRESHOLD, -1);  // never
