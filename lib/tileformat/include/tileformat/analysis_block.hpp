@@ -52,7 +52,9 @@ struct AnalysisBlock {
   std::vector<std::vector<uint16_t>> values;  // per layer, size * size, row-major from north
 };
 
-// Preconditions checked (std::invalid_argument).
+// Preconditions checked (std::invalid_argument). `zstd_level`: of the layers
+// stored as residuals; the flow layers' codings (packed directions, areas
+// predicted along them) always go at level 1 (§9 says why).
 std::vector<uint8_t> encode_analysis_block(const AnalysisBlock& block, int zstd_level = 9);
 // Throws FormatError citing §4/§9 for anything malformed.
 AnalysisBlock decode_analysis_block(std::span<const uint8_t> blob);
