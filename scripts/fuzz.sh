@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(mblock image_tile line_tile point_tile package)
+[ ${#targets[@]} -eq 0 ] && targets=(mblock image_tile line_tile point_tile analysis_block package)
 
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DGLOBE_FUZZ=ON -DGLOBE_BUILD_TESTS=OFF -DGLOBE_SANITIZE=address,undefined >/dev/null

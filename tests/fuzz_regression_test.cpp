@@ -55,6 +55,13 @@ TEST(FuzzRegression, PointTileInputs) {
     globe_fuzz::point_tile(bytes);
 }
 
+TEST(FuzzRegression, AnalysisBlockInputs) {
+  const auto all = inputs("analysis_block");
+  EXPECT_FALSE(all.empty());
+  for (const auto& bytes : all)
+    globe_fuzz::analysis_block(bytes);
+}
+
 TEST(FuzzRegression, PackageInputs) {
   globe_test::TempDir dir;
   const auto all = inputs("package");

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <fstream>
 
+#include "tileformat/analysis_block.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/image_tile.hpp"
 #include "tileformat/line_tile.hpp"
@@ -118,6 +119,16 @@ void point_tile(std::span<const uint8_t> data) {
   });
 }
 
+void analysis_block(std::span<const uint8_t> data) {
+  rejecting_cleanly([&] {
+    const tileformat::AnalysisBlock b = tileformat::decode_analysis_block(data);
+    const tileformat::AnalysisBlock again =
+        tileformat::decode_analysis_block(tileformat::encode_analysis_block(b, 1));
+    if (again.size != b.size || again.layers != b.layers || again.values != b.values)
+      fail("an analysis block does not survive re-encoding");
+  });
+}
+
 void package(std::span<const uint8_t> data, const std::string& scratch_path) {
   {
     std::ofstream out(scratch_path, std::ios::binary | std::ios::trunc);
@@ -137,6 +148,8 @@ void package(std::span<const uint8_t> data, const std::string& scratch_path) {
         line_tile(blob);
       else if (format == tileformat::kPointsFormat)
         point_tile(blob);
+      else if (format == tileformat::kAnalysisFormat)
+        analysis_block(blob);
       else
         image_tile(blob);
     });

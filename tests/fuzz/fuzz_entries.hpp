@@ -22,6 +22,9 @@ void image_tile(std::span<const uint8_t> data);
 void line_tile(std::span<const uint8_t> data);
 // decode_point_tile and peek_point_tile_counts, as for line tiles.
 void point_tile(std::span<const uint8_t> data);
+// decode_analysis_block; what decodes must re-encode and decode to the
+// same block.
+void analysis_block(std::span<const uint8_t> data);
 // The bytes as a package file at `scratch_path`: open, read the metadata,
 // summaries, and every tile, decoding it by the package's format.
 void package(std::span<const uint8_t> data, const std::string& scratch_path);

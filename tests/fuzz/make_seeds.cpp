@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "../golden_block.hpp"
+#include "tileformat/analysis_block.hpp"
 #include "tileformat/kpatch.hpp"
 #include "tileformat/line_clusters.hpp"
 #include "tileformat/line_tile.hpp"
@@ -87,6 +88,27 @@ std::vector<Bytes> image_headers() {
   return {png, jpeg, vp8l, vp8x};
 }
 
+// A block of every coding: slope as residuals, flow directions packed, and
+// upstream areas predicted along them (a 5 x 5 block draining east).
+std::vector<Bytes> analysis_blocks() {
+  tileformat::AnalysisBlock b;
+  b.size = 5;
+  b.layers = {tileformat::AnalysisLayer::kSlope, tileformat::AnalysisLayer::kFlowDirection,
+              tileformat::AnalysisLayer::kFlowAccumulation};
+  std::vector<uint16_t> slope, code, area;
+  for (int y = 0; y < 5; ++y)
+    for (int x = 0; x < 5; ++x) {
+      slope.push_back(uint16_t(100 * x + 7 * y));
+      code.push_back(y == 4 ? tileformat::kNoValue : x == 4 ? 0 : 3);
+      area.push_back(y == 4 ? tileformat::kNoValue : uint16_t(20000 + 1000 * x + y % 2));
+    }
+  b.values = {slope, code, area};
+  tileformat::AnalysisBlock flat = b;
+  flat.layers = {tileformat::AnalysisLayer::kSkyview};
+  flat.values = {slope};
+  return {tileformat::encode_analysis_block(b), tileformat::encode_analysis_block(flat)};
+}
+
 Bytes package(const fs::path& scratch, const char* format, const std::vector<Bytes>& blobs) {
   const std::string path = (scratch / "seed.mbtiles").string();
   fs::remove(path);
@@ -115,7 +137,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   const fs::path out = argv[1];
-  const auto m = mblocks(), l = line_tiles(), i = image_headers(), p = point_tiles();
+  const auto m = mblocks(), l = line_tiles(), i = image_headers(), p = point_tiles(),
+             a = analysis_blocks();
   for (size_t k = 0; k < m.size(); ++k)
     save(out / "mblock", "seed" + std::to_string(k), m[k]);
   for (size_t k = 0; k < l.size(); ++k)
@@ -124,10 +147,13 @@ int main(int argc, char** argv) {
     save(out / "image_tile", "seed" + std::to_string(k), i[k]);
   for (size_t k = 0; k < p.size(); ++k)
     save(out / "point_tile", "seed" + std::to_string(k), p[k]);
+  for (size_t k = 0; k < a.size(); ++k)
+    save(out / "analysis_block", "seed" + std::to_string(k), a[k]);
   fs::create_directories(out / "package");
   save(out / "package", "seed0", package(out, tileformat::kMBlockFormat, {m[0], m[1]}));
   save(out / "package", "seed1", package(out, tileformat::kLineClustersFormat, l));
   save(out / "package", "seed2", package(out, "png", {i[0]}));
   save(out / "package", "seed3", package(out, tileformat::kPointsFormat, p));
+  save(out / "package", "seed4", package(out, tileformat::kAnalysisFormat, a));
   return 0;
 }
