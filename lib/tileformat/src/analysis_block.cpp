@@ -69,14 +69,21 @@ constexpr uint8_t kCodingBits = 0xC0;
 // codes; an upstream area is mostly its donors' areas plus its own, so it
 // is predicted from them where the block holds the directions and they form
 // no cycle (never, as written by the tiler).
-Coding coding_for(const AnalysisBlock& b, size_t layer) {
+Coding coding_for(const AnalysisBlock& b, size_t layer,
+                  const std::optional<flow_coding::AreaPredictor>& areas) {
   if (b.layers[layer] == AnalysisLayer::kFlowDirection)
     return flow_coding::fits_in_nibbles(b.values[layer]) ? kNibbles : kAsIs;
-  if (b.layers[layer] == AnalysisLayer::kFlowAccumulation && layer > 0 &&
-      b.layers[layer - 1] == AnalysisLayer::kFlowDirection &&
-      flow_coding::upstream_first(b.values[layer - 1], b.size))
-    return kAlongFlow;
+  if (areas && areas->upstream_first()) return kAlongFlow;
   return kWestResiduals;
+}
+
+// The predictor of the block's upstream areas, where it holds them right
+// after the flow directions.
+std::optional<flow_coding::AreaPredictor> area_predictor(const AnalysisBlock& b, size_t layer) {
+  if (layer == 0 || b.layers[layer] != AnalysisLayer::kFlowAccumulation ||
+      b.layers[layer - 1] != AnalysisLayer::kFlowDirection)
+    return std::nullopt;
+  return std::optional<flow_coding::AreaPredictor>(std::in_place, b.values[layer - 1], b.size);
 }
 
 // Residuals (v - predicted) modulo 2^16 as a low-byte plane and a high-byte
@@ -105,6 +112,7 @@ uint16_t west(const std::vector<uint16_t>& v, int size, size_t i) {
 
 // The bytes a layer's zstd frame holds.
 std::vector<uint8_t> layer_bytes(const AnalysisBlock& b, size_t layer, Coding coding,
+                                 const std::optional<flow_coding::AreaPredictor>& areas,
                                  uint16_t source) {
   const std::vector<uint16_t>& v = b.values[layer];
   switch (coding) {
@@ -113,9 +121,7 @@ std::vector<uint8_t> layer_bytes(const AnalysisBlock& b, size_t layer, Coding co
     case kAsIs:
       return to_planes(v, [](size_t) { return uint16_t{0}; });
     case kAlongFlow:
-      return to_planes(v, [&](size_t i) {
-        return flow_coding::predicted_area(b.values[layer - 1], v, b.size, i, source);
-      });
+      return to_planes(v, [&](size_t i) { return areas->predict(v, i, source); });
     default:
       return to_planes(v, [&](size_t i) { return west(v, b.size, i); });
   }
@@ -133,17 +139,19 @@ std::vector<uint8_t> encode_analysis_block(const AnalysisBlock& b, int zstd_leve
   w.u16(static_cast<uint16_t>(b.size));
   w.u8(static_cast<uint8_t>(b.layers.size()));
   std::vector<Coding> codings;
+  std::vector<std::optional<flow_coding::AreaPredictor>> areas;
   for (size_t i = 0; i < b.layers.size(); ++i) {
     if (!known_layer(static_cast<uint8_t>(b.layers[i])) || (i && b.layers[i] <= b.layers[i - 1]))
       throw std::invalid_argument("analysis block: layers must be known, ascending, unique");
     if (b.values[i].size() != n) throw std::invalid_argument("analysis block: values not size^2");
-    codings.push_back(coding_for(b, i));
+    areas.push_back(area_predictor(b, i));
+    codings.push_back(coding_for(b, i, areas.back()));
     w.u8(static_cast<uint8_t>(static_cast<uint8_t>(b.layers[i]) | codings[i]));
   }
   for (size_t i = 0; i < b.layers.size(); ++i) {
     uint16_t source = 0;
     if (codings[i] == kAlongFlow) {
-      source = flow_coding::source_value(b.values[i - 1], b.values[i], b.size);
+      source = areas[i]->source_value(b.values[i]);
       w.u16(source);
     }
     // The flow codings leave few and short matches: level 1 stores them
@@ -154,7 +162,7 @@ std::vector<uint8_t> encode_analysis_block(const AnalysisBlock& b, int zstd_leve
     const int level = flow ? 1 : zstd_level;
     const ZstdSearch search = level >= 8 ? ZstdSearch::kLazy : ZstdSearch::kLevelDefault;
     const std::vector<uint8_t> z =
-        zstd_compress(layer_bytes(b, i, codings[i], source), level, search);
+        zstd_compress(layer_bytes(b, i, codings[i], areas[i], source), level, search);
     w.u32(static_cast<uint32_t>(z.size()));
     w.bytes(z);
   }
@@ -200,12 +208,11 @@ AnalysisBlock decode_analysis_block(std::span<const uint8_t> blob) {
           v[k] = residual_at(z, k);
         break;
       case kAlongFlow: {
-        const std::vector<uint16_t>& directions = b.values[i - 1];
-        const auto order = flow_coding::upstream_first(directions, b.size);
+        const flow_coding::AreaPredictor areas(b.values[i - 1], b.size);
+        const auto order = areas.upstream_first();
         if (!order) r.fail("flow_direction forms a cycle: flow_accumulation cannot be decoded");
         for (uint32_t k : *order)
-          v[k] = static_cast<uint16_t>(
-              flow_coding::predicted_area(directions, v, b.size, k, source) + residual_at(z, k));
+          v[k] = static_cast<uint16_t>(areas.predict(v, k, source) + residual_at(z, k));
         break;
       }
       default:

@@ -2,6 +2,7 @@
 #include "flow_layer_coding.hpp"
 
 #include <algorithm>
+#include <bit>
 
 #include "tileformat/analysis_block.hpp"
 
@@ -15,18 +16,8 @@ constexpr int kDy[9] = {0, -1, -1, 0, 1, 1, 1, 0, -1};
 constexpr uint8_t kNoNibble = 15;
 
 // The code pointing back: north <-> south, north-east <-> south-west ...
-uint16_t opposite(int d) {
-  return uint16_t((d + 3) % 8 + 1);
-}
-
-// The receiver of cell i inside the block, or -1 (an outlet, a code that is
-// not 1..8, or a receiver off the block).
-int64_t receiver(const std::vector<uint16_t>& directions, int size, size_t i) {
-  const uint16_t d = directions[i];
-  if (d < 1 || d > 8) return -1;
-  const int x = int(i % size_t(size)) + kDx[d], y = int(i / size_t(size)) + kDy[d];
-  if (x < 0 || y < 0 || x >= size || y >= size) return -1;
-  return int64_t(y) * size + x;
+int opposite(int d) {
+  return (d + 3) % 8 + 1;
 }
 
 std::vector<uint16_t> build_log_add_gains() {
@@ -59,15 +50,11 @@ std::vector<uint16_t> build_log_add_gains() {
   return gains;
 }
 
-uint32_t log_add(uint32_t a, uint32_t b) {
-  return std::max(a, b) + log_add_gain(a > b ? a - b : b - a);
-}
-
 }  // namespace
 
-uint16_t log_add_gain(uint32_t t) {
+const std::vector<uint16_t>& log_add_gains() {
   static const std::vector<uint16_t> gains = build_log_add_gains();
-  return t < gains.size() ? gains[t] : 0;
+  return gains;
 }
 
 bool fits_in_nibbles(const std::vector<uint16_t>& values) {
@@ -93,56 +80,74 @@ std::vector<uint16_t> unpack_nibbles(const std::vector<uint8_t>& packed, size_t 
   return values;
 }
 
-std::optional<std::vector<uint32_t>> upstream_first(const std::vector<uint16_t>& directions,
-                                                    int size) {
-  const size_t n = directions.size();
-  std::vector<uint8_t> donors(n, 0);
-  for (size_t i = 0; i < n; ++i)
-    if (const int64_t r = receiver(directions, size, i); r >= 0) ++donors[size_t(r)];
-  // Kahn's order: a cell goes once its donors have gone.
+AreaPredictor::AreaPredictor(const std::vector<uint16_t>& directions, int size)
+    : directions_(directions),
+      size_(size),
+      receiver_(directions.size(), -1),
+      donors_(directions.size(), 0),
+      donor_count_(directions.size(), 0),
+      gains_(log_add_gains()) {
+  for (int d = 0; d <= 8; ++d)
+    step_[d] = ptrdiff_t(kDy[d]) * size + kDx[d];
+  size_t i = 0;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x, ++i) {
+      // A receiver inside the block (an outlet, a code that is not 1..8, or
+      // one off the block has none).
+      const uint16_t d = directions[i];
+      if (d < 1 || d > 8) continue;
+      const int rx = x + kDx[d], ry = y + kDy[d];
+      if (rx < 0 || ry < 0 || rx >= size || ry >= size) continue;
+      const size_t r = size_t(ry) * size + rx;
+      receiver_[i] = int32_t(r);
+      donors_[r] |= uint8_t(1 << (opposite(d) - 1));
+      ++donor_count_[r];
+    }
+}
+
+std::optional<std::vector<uint32_t>> AreaPredictor::upstream_first() const {
+  const size_t n = directions_.size();
+  std::vector<uint8_t> waiting = donor_count_;  // donors not yet in the order
   std::vector<uint32_t> order;
   order.reserve(n);
   for (size_t i = 0; i < n; ++i)
-    if (donors[i] == 0) order.push_back(uint32_t(i));
+    if (waiting[i] == 0) order.push_back(uint32_t(i));
+  // Kahn's order: a cell goes once its donors have gone.
   for (size_t k = 0; k < order.size(); ++k)
-    if (const int64_t r = receiver(directions, size, order[k]); r >= 0 && --donors[size_t(r)] == 0)
+    if (const int32_t r = receiver_[order[k]]; r >= 0 && --waiting[size_t(r)] == 0)
       order.push_back(uint32_t(r));
   if (order.size() != n) return std::nullopt;
   return order;
 }
 
-uint16_t source_value(const std::vector<uint16_t>& directions, const std::vector<uint16_t>& values,
-                      int size) {
-  std::vector<uint8_t> has_donor(values.size(), 0);
-  for (size_t i = 0; i < values.size(); ++i)
-    if (const int64_t r = receiver(directions, size, i); r >= 0) has_donor[size_t(r)] = 1;
-  std::vector<uint16_t> sources;
-  for (size_t i = 0; i < values.size(); ++i)
-    if (!has_donor[i] && directions[i] != kNoValue && values[i] != kNoValue)
-      sources.push_back(values[i]);
-  std::sort(sources.begin(), sources.end());
+uint16_t AreaPredictor::source_value(const std::vector<uint16_t>& values) const {
+  // Counted in a table kept per thread, cleared where used.
+  thread_local std::vector<uint32_t> count(size_t(kNoValue) + 1, 0);
   uint16_t best = 0;
-  size_t best_run = 0;
-  for (size_t i = 0; i < sources.size();) {
-    size_t j = i;
-    while (j < sources.size() && sources[j] == sources[i])
-      ++j;
-    if (j - i > best_run) best = sources[i], best_run = j - i;
-    i = j;
+  uint32_t best_count = 0;
+  auto source = [&](size_t i) {
+    return !donors_[i] && directions_[i] != kNoValue && values[i] != kNoValue;
+  };
+  for (size_t i = 0; i < values.size(); ++i) {
+    if (!source(i)) continue;
+    const uint32_t c = ++count[values[i]];
+    if (c > best_count || (c == best_count && values[i] < best)) best = values[i], best_count = c;
   }
+  for (size_t i = 0; i < values.size(); ++i)
+    if (source(i)) count[values[i]] = 0;
   return best;
 }
 
-uint16_t predicted_area(const std::vector<uint16_t>& directions,
-                        const std::vector<uint16_t>& values, int size, size_t i, uint16_t source) {
-  if (directions[i] == kNoValue) return kNoValue;
-  const int x = int(i % size_t(size)), y = int(i / size_t(size));
+uint16_t AreaPredictor::predict(const std::vector<uint16_t>& values, size_t i,
+                                uint16_t source) const {
+  if (directions_[i] == kNoValue) return kNoValue;
   uint32_t p = source;
-  for (int d = 1; d <= 8; ++d) {
-    const int nx = x + kDx[d], ny = y + kDy[d];
-    if (nx < 0 || ny < 0 || nx >= size || ny >= size) continue;
-    const size_t j = size_t(ny) * size + nx;
-    if (directions[j] == opposite(d) && values[j] != kNoValue) p = log_add(p, values[j]);
+  // Donors in code order (north first); each lies in the block.
+  for (unsigned mask = donors_[i]; mask; mask &= mask - 1) {
+    const uint16_t q = values[size_t(ptrdiff_t(i) + step_[std::countr_zero(mask) + 1])];
+    if (q == kNoValue) continue;
+    const uint32_t t = p > q ? p - q : q - p;
+    p = std::max<uint32_t>(p, q) + (t < gains_.size() ? gains_[t] : 0);
   }
   return uint16_t(std::min<uint32_t>(p, kNoValue - 1));
 }

@@ -4,6 +4,7 @@
 // analysis block codec.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -16,25 +17,35 @@ bool fits_in_nibbles(const std::vector<uint16_t>& values);
 std::vector<uint8_t> pack_nibbles(const std::vector<uint16_t>& values);
 std::vector<uint16_t> unpack_nibbles(const std::vector<uint8_t>& packed, size_t count);
 
-// The block's cells (row-major indices), every cell after the cells that
-// drain into it (its donors: the neighbours whose D8 code in `directions`
-// points at it); nullopt where the directions form a cycle.
-std::optional<std::vector<uint32_t>> upstream_first(const std::vector<uint16_t>& directions,
-                                                    int size);
+// The prediction of quantized upstream areas from a block's D8 codes: each
+// cell's area from its donors' (the neighbours whose code points at it) and
+// its own (`source`), summed in the log domain.
+class AreaPredictor {
+ public:
+  AreaPredictor(const std::vector<uint16_t>& directions, int size);
 
-// The most common quantized area of the cells without donors (the area of
-// one sample, at the finest zoom), the least of the most common.
-uint16_t source_value(const std::vector<uint16_t>& directions, const std::vector<uint16_t>& values,
-                      int size);
+  // The block's cells (row-major indices), each after its donors; nullopt
+  // where the directions form a cycle.
+  std::optional<std::vector<uint32_t>> upstream_first() const;
+  // The most common value of the cells without donors (the area of one
+  // sample, at the finest zoom), the least of those on ties.
+  uint16_t source_value(const std::vector<uint16_t>& values) const;
+  // The value predicted for cell i from its donors' `values`.
+  uint16_t predict(const std::vector<uint16_t>& values, size_t i, uint16_t source) const;
 
-// The quantized area predicted for cell i from its donors' values (and
-// `source` for the cell's own area), summed in the log domain: see §9.
-uint16_t predicted_area(const std::vector<uint16_t>& directions,
-                        const std::vector<uint16_t>& values, int size, size_t i, uint16_t source);
+ private:
+  const std::vector<uint16_t>& directions_;
+  int size_;
+  std::vector<int32_t> receiver_;     // per cell: the cell it drains into in the block, or -1
+  std::vector<uint8_t> donors_;       // per cell: bit d - 1 where the neighbour at code d drains in
+  std::vector<uint8_t> donor_count_;  // per cell: bits set in donors_
+  ptrdiff_t step_[9];                 // index offset of the neighbour at each code
+  const std::vector<uint16_t>& gains_;
+};
 
-// round(1000 log2(1 + 2^(-t/1000))): the quanta a log-quantized area gains
-// when one t quanta below it is added. Computed in integers, so that every
-// machine builds the same table.
-uint16_t log_add_gain(uint32_t t);
+// round(1000 log2(1 + 2^(-t/1000))) for t = 0 until it is 0: the quanta a
+// log-quantized area gains when one t quanta below it is added. Computed in
+// integers, so that every machine builds the same table.
+const std::vector<uint16_t>& log_add_gains();
 
 }  // namespace tileformat::flow_coding
