@@ -2,12 +2,14 @@
 // malformed blobs rejected with the section cited.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "tileformat/analysis_block.hpp"
 #include "tileformat/blob_header.hpp"
 #include "tileformat/byte_io.hpp"
 #include "tileformat/error.hpp"
+#include "tileformat/flow_layer_coding.hpp"
 #include "tileformat/zstd_codec.hpp"
 
 namespace {
@@ -183,6 +185,19 @@ TEST(AnalysisBlock, OlderFlowBlocksStillDecode) {
     EXPECT_EQ(d.layers, b.layers);
     EXPECT_EQ(d.values, b.values) << (directions_as_is ? "directions as is" : "all residuals");
   }
+}
+
+// The gains are built in integers; every one is the exact function rounded
+// (computed here in floating point, with a margin where it nears a half).
+TEST(AnalysisBlock, LogAddGainsAreTheRoundedLogSum) {
+  const std::vector<uint16_t>& gains = flow_coding::log_add_gains();
+  for (uint32_t t = 0; t < 13000; ++t) {
+    const double exact = 1000 * std::log2(1 + std::exp2(-double(t) / 1000));
+    const uint16_t gain = t < gains.size() ? gains[t] : 0;
+    if (std::abs(exact - std::floor(exact) - 0.5) < 1e-6) continue;
+    ASSERT_EQ(gain, std::lround(exact)) << "t = " << t;
+  }
+  EXPECT_EQ(gains.size(), 11495u) << "the first gain of 0";
 }
 
 TEST(AnalysisBlock, QuantizesToTheStatedPrecision) {

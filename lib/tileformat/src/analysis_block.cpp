@@ -4,10 +4,10 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "flow_layer_coding.hpp"
 #include "tileformat/blob_header.hpp"
 #include "tileformat/byte_io.hpp"
 #include "tileformat/error.hpp"
+#include "tileformat/flow_layer_coding.hpp"
 #include "tileformat/zstd_codec.hpp"
 
 namespace tileformat {
@@ -73,7 +73,7 @@ Coding coding_for(const AnalysisBlock& b, size_t layer,
                   const std::optional<flow_coding::AreaPredictor>& areas) {
   if (b.layers[layer] == AnalysisLayer::kFlowDirection)
     return flow_coding::fits_in_nibbles(b.values[layer]) ? kNibbles : kAsIs;
-  if (areas && areas->upstream_first()) return kAlongFlow;
+  if (areas && areas->acyclic()) return kAlongFlow;
   return kWestResiduals;
 }
 

@@ -1,5 +1,5 @@
 // Codings for the flow layers of analysis blocks (see flow_layer_coding.hpp).
-#include "flow_layer_coding.hpp"
+#include "tileformat/flow_layer_coding.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -118,6 +118,27 @@ std::optional<std::vector<uint32_t>> AreaPredictor::upstream_first() const {
       order.push_back(uint32_t(r));
   if (order.size() != n) return std::nullopt;
   return order;
+}
+
+bool AreaPredictor::acyclic() const {
+  // Walks down from each cell not yet reached until an outlet, a cell of an
+  // earlier walk, or (a cycle) a cell of this one.
+  enum : uint8_t { kUnseen, kOnWalk, kDone };
+  std::vector<uint8_t> state(directions_.size(), kUnseen);
+  std::vector<uint32_t> walk;
+  for (size_t i = 0; i < state.size(); ++i) {
+    int64_t j = int64_t(i);
+    while (j >= 0 && state[size_t(j)] == kUnseen) {
+      state[size_t(j)] = kOnWalk;
+      walk.push_back(uint32_t(j));
+      j = receiver_[size_t(j)];
+    }
+    if (j >= 0 && state[size_t(j)] == kOnWalk) return false;
+    for (uint32_t k : walk)
+      state[k] = kDone;
+    walk.clear();
+  }
+  return true;
 }
 
 uint16_t AreaPredictor::source_value(const std::vector<uint16_t>& values) const {

@@ -1,7 +1,7 @@
 // The two codings of analysis blocks made for the flow layers
 // (docs/tileformat.md §9): D8 codes packed two to a byte, and upstream areas
-// predicted along the flow directions of the same block. Private to the
-// analysis block codec.
+// predicted along the flow directions of the same block. Used by the
+// analysis block codec (analysis_block.hpp is the API; this is its part).
 #pragma once
 
 #include <cstddef>
@@ -27,6 +27,9 @@ class AreaPredictor {
   // The block's cells (row-major indices), each after its donors; nullopt
   // where the directions form a cycle.
   std::optional<std::vector<uint32_t>> upstream_first() const;
+  // Whether the directions form no cycle (what upstream_first finds, for
+  // less).
+  bool acyclic() const;
   // The most common value of the cells without donors (the area of one
   // sample, at the finest zoom), the least of those on ties.
   uint16_t source_value(const std::vector<uint16_t>& values) const;
