@@ -2,6 +2,9 @@
 // damaged bytes, the encoder's format choices, and the pyramid step.
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <thread>
+
 #include "image_codec.hpp"
 #include "image_pyramid.hpp"
 #include "tileformat/error.hpp"
@@ -37,6 +40,30 @@ TEST(ImageTile, EncodesAndIdentifiesEveryFormat) {
         EXPECT_EQ(back.planes, gradient(256, colour, 255).planes);
       }
     }
+}
+
+// The first JPEG and WebP encodes of a process, from many threads at once:
+// GDAL 3.6 built the JPEG driver's option list on first use in every thread
+// that got there together (a use after free under ASan, OSGeo/gdal#12389).
+// Each test runs in its own process, so these are the first encodes.
+TEST(ImageTile, FirstEncodesOnManyThreadsAtOnceAreSafe) {
+  for (ImageFormat f : {ImageFormat::kJpeg, ImageFormat::kWebp}) {
+    std::vector<std::vector<uint8_t>> blobs(8);
+    std::atomic<int> ready{0};
+    std::vector<std::thread> threads;
+    for (size_t t = 0; t < blobs.size(); ++t)
+      threads.emplace_back([&, t] {
+        const globe::TilePixels px = gradient(64, 3, 255);
+        ++ready;
+        while (ready < int(blobs.size())) {
+        }
+        blobs[t] = globe::encode_image_tile(px, {f, 90});
+      });
+    for (std::thread& t : threads)
+      t.join();
+    for (const auto& blob : blobs)
+      EXPECT_EQ(blob, blobs[0]);
+  }
 }
 
 TEST(ImageTile, TransparentJpegTilesBecomePng) {

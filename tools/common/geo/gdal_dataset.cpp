@@ -23,6 +23,13 @@ void gdal_init(int cache_mb) {
     CPLSetErrorHandler(CPLQuietErrorHandler);
     GDALSetCacheMax64(static_cast<GIntBig>(cache_mb) * 1024 * 1024);
     CPLSetConfigOption("GDAL_PAM_ENABLED", "NO");  // never write .aux.xml next to inputs
+    // Some drivers (JPEG in GDAL 3.6) build their creation option list on
+    // its first request, and two threads' first CreateCopy can both build it:
+    // one frees the string the other is parsing (ASan caught it, merging
+    // imagery; OSGeo/gdal#12389). Built once here, before any thread uses it.
+    for (const char* name : {"JPEG", "WEBP", "PNG", "GTiff"})
+      if (GDALDriverH d = GDALGetDriverByName(name))
+        GDALGetMetadataItem(d, GDAL_DMD_CREATIONOPTIONLIST, nullptr);
   });
 }
 
