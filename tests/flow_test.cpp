@@ -217,14 +217,13 @@ TEST(FlowOutOfCore, EqualsTheInMemorySolve) {
   }
   EXPECT_TRUE(bytes[0] == bytes[1]) << "-j 1 and -j 2 differ";
   expect_same_layers(dir, whole, ooc, 1);
-  // Several chunks whose scratch fits the budget beside them: kept in memory.
-  // 23 MiB with 2 threads: one 512-cell chunk needs 24.2 MB, two workers on
-  // 256-cell chunks 18.8 MB, the scratch 4.7 MB (flow_solver.cpp).
+  // Several chunks (--flow-chunk) whose scratch fits the default budget
+  // beside them: kept in memory.
   const std::string kept = (dir / "kept.mbtiles").string();
   const RunResult c = run(
-      tiler() + " analyze --layers flow --memory-mb 23 -j 2 " + pkg + " -o " + kept, dir.path());
+      tiler() + " analyze --layers flow --flow-chunk 256 -j 2 " + pkg + " -o " + kept, dir.path());
   ASSERT_EQ(c.exit_code, 0) << c.err;
-  EXPECT_GT(chunks_in(c.err), 1) << c.err;
+  EXPECT_EQ(chunks_in(c.err), 4) << c.err;
   EXPECT_NE(c.err.find("(scratch in memory)"), std::string::npos) << c.err;
   expect_same_layers(dir, whole, kept, 1);
 }
@@ -462,6 +461,17 @@ TEST(FlowErrors, BadMemoryBudget) {
       run(tiler() + " analyze --layers flow --memory-mb 0 x.mbtiles -o a.mbtiles", dir.path());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--memory-mb"), std::string::npos) << r.err;
+}
+
+TEST(FlowErrors, BadChunkSide) {
+  TempDir dir;
+  for (const char* side : {"100", "32", "x"}) {
+    const RunResult r =
+        run(tiler() + " analyze --layers flow --flow-chunk " + side + " x.mbtiles -o a.mbtiles",
+            dir.path());
+    EXPECT_EQ(r.exit_code, 2) << side;
+    EXPECT_NE(r.err.find("--flow-chunk"), std::string::npos) << r.err;
+  }
 }
 
 }  // namespace

@@ -210,6 +210,7 @@ AnalysisSummary build_analysis(const AnalysisSettings& s, Progress& progress) {
         has_layer(s.layers, AnalysisLayer::kFlowAccumulation)) {
       flow::FlowSettings fs;
       fs.memory_bytes = s.memory_mb << 20;
+      fs.chunk = s.flow_chunk;
       fs.threads = s.worker_threads();
       fs.scratch_prefix = s.output + ".flow-";
       fs.input = path;

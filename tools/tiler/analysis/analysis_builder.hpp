@@ -23,6 +23,7 @@ struct AnalysisSettings : BuildOptions {
   std::vector<tileformat::AnalysisLayer> layers;  // ascending ids
   SkyViewSettings skyview;
   uint64_t memory_mb = 1024;  // the flow solver's working set (--memory-mb)
+  int64_t flow_chunk = 0;     // the flow solver's chunk side (--flow-chunk); 0: chosen
 };
 
 struct AnalysisSummary {

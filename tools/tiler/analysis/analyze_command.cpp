@@ -1,6 +1,7 @@
 // `globe-tiler analyze TERRAIN.mbtiles -o ANALYSIS.mbtiles --layers ...`:
 // parses options and runs the analysis builder.
 #include <algorithm>
+#include <bit>
 #include <cstdio>
 #include <sstream>
 
@@ -85,6 +86,17 @@ int run_analyze(const std::vector<std::string>& args) {
              "out of core in chunks, with scratch files next to the output",
              [&](const std::string& v) {
                s.memory_mb = uint64_t(CliArgs::to_int("--memory-mb", v, 1, 1 << 22));
+             });
+  cli.option("--flow-chunk", "N",
+             "cells a side of the flow solver's chunks, a power of two from 64 (default: the "
+             "whole grid as one chunk where it fits --memory-mb, the least work but solved on "
+             "one thread; else the largest that fits). Smaller chunks are solved in parallel: "
+             "less wall time on many cores, more CPU time; the result is the same",
+             [&](const std::string& v) {
+               const int n = CliArgs::to_int("--flow-chunk", v, 64, 1 << 24);
+               if (!std::has_single_bit(unsigned(n)))
+                 throw UsageError("--flow-chunk: give a power of two (64, 128, ... 16777216)");
+               s.flow_chunk = n;
              });
   cli.option("-o,--output", "OUT.mbtiles", "output analysis package",
              [&](const std::string& v) { s.output = v; });

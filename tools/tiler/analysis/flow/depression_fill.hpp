@@ -49,6 +49,10 @@ struct ChunkFill {
 // `heights`: the chunk's window (chunk_heights).
 ChunkFill fill_chunk(const Chunk& chunk, const std::vector<int32_t>& heights);
 
+// fill_chunk's filled heights alone, without watersheds: the final surface
+// of a chunk that is the whole grid (nothing drains in from outside it).
+std::vector<int32_t> filled_surface(const Chunk& chunk, const std::vector<int32_t>& heights);
+
 // The level each watershed of the global graph must be raised to; node 0 is
 // the data's edge (its level is kNoData, i.e. below everything). Nodes no
 // edge reaches keep kNoData.

@@ -72,19 +72,21 @@ FlowPyramid::FlowPyramid(const FlowGrid& g, int min_zoom, const std::string& pre
     ++in_chunks;
   in_chunks_ = in_chunks;
   const auto& chunks = g.chunks();
+  tops_.resize(chunks.size());
+  if (in_memory) {
+    held_.assign(size_t(in_chunks_), std::vector<LevelGrid>(chunks.size()));
+    return;
+  }
   for (int l = 0; l < in_chunks_; ++l) {
     std::vector<uint64_t> off(chunks.size() + 1, 0);
     for (size_t s = 0; s < chunks.size(); ++s) {
       const Part pt = part(l, int(s));
       off[s + 1] = off[s] + uint64_t(pt.w) * pt.h * 9;
     }
-    const uint64_t bytes = off.back();
     offsets_.push_back(std::move(off));
     files_.push_back(
-        std::make_unique<ScratchArrayFile>(prefix + "level" + std::to_string(l) + ".bin",
-                                           in_memory ? std::optional(bytes) : std::nullopt));
+        std::make_unique<ScratchArrayFile>(prefix + "level" + std::to_string(l) + ".bin"));
   }
-  tops_.resize(chunks.size());
 }
 
 FlowPyramid::Part FlowPyramid::part(int level, int slot) const {
@@ -99,16 +101,23 @@ FlowPyramid::Part FlowPyramid::part(int level, int slot) const {
 
 void FlowPyramid::put_chunk(int slot, LevelGrid g) {
   for (int l = 0; l < in_chunks_; ++l) {
-    if (l > 0)
-      g = coarsen(g, level_shape(grid_, int64_t(1) << (l - 1)),
+    if (l > 0) {
+      const LevelGrid& child = held_.empty() ? g : held_[size_t(l - 1)][size_t(slot)];
+      g = coarsen(child, level_shape(grid_, int64_t(1) << (l - 1)),
                   level_shape(grid_, int64_t(1) << l));
+    }
+    if (!held_.empty()) {
+      // Kept as they are: no copy (each slot's entry is its own).
+      held_[size_t(l)][size_t(slot)] = std::move(g);
+      continue;
+    }
     const Part p = part(l, slot);
     const size_t n = size_t(p.w) * p.h;
     files_[size_t(l)]->write_array<uint64_t>(offset(l, slot), g.area);
     files_[size_t(l)]->write_array<uint8_t>(offset(l, slot) + n * 8, g.code);
   }
   std::lock_guard lock(mutex_);
-  tops_[size_t(slot)] = std::move(g);
+  tops_[size_t(slot)] = held_.empty() ? std::move(g) : held_[size_t(in_chunks_ - 1)][size_t(slot)];
 }
 
 void FlowPyramid::finish() {
@@ -157,7 +166,6 @@ void FlowPyramid::block(tileformat::TileId id, int size, std::vector<uint64_t>& 
       }
     return;
   }
-  const ScratchArrayFile& file = *files_[size_t(level)];
   for (int y = 0; y < size; ++y) {
     const int64_t gy = by + y;
     if (gy >= shape.height) break;
@@ -174,7 +182,15 @@ void FlowPyramid::block(tileformat::TileId id, int size, std::vector<uint64_t>& 
       const int run = int(std::min<int64_t>(size - x, p.x0 + p.w - gx));
       const size_t n = size_t(p.w) * p.h, at = size_t(gy - p.y0) * p.w + size_t(gx - p.x0);
       const size_t out = size_t(y) * size + x;
+      if (!held_.empty()) {
+        const LevelGrid& held = held_[size_t(level)][size_t(slot)];
+        std::copy_n(held.area.begin() + ptrdiff_t(at), run, area.begin() + ptrdiff_t(out));
+        std::copy_n(held.code.begin() + ptrdiff_t(at), run, code.begin() + ptrdiff_t(out));
+        x += run;
+        continue;
+      }
       const uint64_t base = offset(level, slot);
+      const ScratchArrayFile& file = *files_[size_t(level)];
       file.read_array<uint64_t>(base + at * 8, std::span(area.data() + out, size_t(run)));
       file.read_array<uint8_t>(base + n * 8 + at, std::span(code.data() + out, size_t(run)));
       x += run;

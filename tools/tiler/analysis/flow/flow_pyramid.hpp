@@ -7,7 +7,8 @@
 // directions trace the fine rivers and rivers stay continuous at every zoom
 // (network-tracing upscaling). Levels nest, so each is made from the one
 // below by 2 x 2 maxima. Levels no coarser than a chunk are kept per chunk in
-// scratch files; coarser ones (a few samples per chunk) in memory.
+// scratch files (or in memory, as the solver's scratch); coarser ones (a few
+// samples per chunk) in memory.
 #pragma once
 
 #include <cstdint>
@@ -69,10 +70,11 @@ class FlowPyramid {
   const FlowGrid& grid_;
   int levels_;     // zooms: grid.zoom() - levels_ + 1 .. grid.zoom()
   int in_chunks_;  // levels 0 .. in_chunks_ - 1 kept per chunk (level k: factor 2^k)
-  std::vector<std::vector<uint64_t>> offsets_;  // per chunk level, per slot
-  std::vector<std::unique_ptr<ScratchArrayFile>> files_;
-  std::vector<LevelGrid> tops_;    // per slot: its coarsest chunk level
-  std::vector<LevelGrid> coarse_;  // levels in_chunks_ .. levels_ - 1, whole
+  std::vector<std::vector<uint64_t>> offsets_;            // per chunk level, per slot
+  std::vector<std::unique_ptr<ScratchArrayFile>> files_;  // per chunk level, on disk
+  std::vector<std::vector<LevelGrid>> held_;              // or in memory: per chunk level, per slot
+  std::vector<LevelGrid> tops_;                           // per slot: its coarsest chunk level
+  std::vector<LevelGrid> coarse_;                         // levels in_chunks_ .. levels_ - 1, whole
   std::mutex mutex_;
 };
 

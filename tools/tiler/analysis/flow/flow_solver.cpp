@@ -2,6 +2,7 @@
 #include "flow_solver.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <map>
 
 #include "batch_blocks.hpp"
@@ -29,6 +30,12 @@ constexpr uint64_t kBytesPerNode = 64;
 // receivers 1 each. The watersheds (4) go before the flats come; the
 // pyramid's levels (about 12 a cell) once the heights and flats are gone.
 constexpr uint64_t kScratchBytesPerCell = 18;
+
+// Bytes per window cell of the whole grid solved as one chunk (alone) at
+// its busiest, the directions: raw and filled heights 8, flat distances and
+// keys 8, receivers 1, the depression search's state and codes 2, and the
+// flat cells' lists (measured: 22 a cell on the synthetic 4096^2 DEM).
+constexpr uint64_t kAloneBytesPerCell = 24;
 
 // The memory a run with chunks of C cells a side holds at its busiest
 // moment, scratch aside: the workers' chunks (each with the blocks it
@@ -62,8 +69,9 @@ class Solver {
 
   FlowSolution run() {
     const std::vector<TileId> finest = p_.reader->tile_ids(p_.max_zoom);
-    const int64_t c =
-        chunk_size_for(p_.tiling, p_.max_zoom, p_.block_size, finest, s_.memory_bytes, s_.threads);
+    const int64_t c = s_.chunk > 0 ? s_.chunk
+                                   : chunk_size_for(p_.tiling, p_.max_zoom, p_.block_size, finest,
+                                                    s_.memory_bytes, s_.threads);
     out_.grid = std::make_unique<FlowGrid>(p_.tiling, p_.max_zoom, p_.block_size, finest, c);
     const FlowGrid& g = *out_.grid;
     const auto& chunks = g.chunks();
@@ -85,16 +93,19 @@ class Solver {
                                       cells * kScratchBytesPerCell <=
                                   s_.memory_bytes;
     out_.scratch_in_memory = in_memory_;
+    if (alone()) {
+      solve_alone();
+      out_.pyramid->finish();
+      return std::move(out_);
+    }
     fill_ = std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "fill.bin", memory(cells * 8));
     labels_ =
         std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "watersheds.bin", memory(cells * 4));
     fill_pass();
     route_flats();
-    if (!alone()) {
-      deps_ =
-          std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "depressions.bin", memory(cells));
-      route_depressions();
-    }
+    deps_ =
+        std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "depressions.bin", memory(cells));
+    route_depressions();
     dirs_ = std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "receivers.bin", memory(cells));
     accumulate();
     dirs_.reset();
@@ -195,6 +206,51 @@ class Solver {
     for (int x : {-1, c.w})
       for (int y = 0; y < c.h; ++y, ++k)
         window[win.at(x, y)] = value(ring[k]);
+  }
+
+  // ---- The whole grid as one chunk that does not wrap (alone): nothing
+  // comes from outside it, so each pass runs once on its window, in turn,
+  // with no watersheds, flat rounds, perimeters or scratch; the blocks are
+  // decoded one at a time. The same answer as the chunked passes below.
+  void solve_alone() {
+    const FlowGrid& g = grid();
+    const Chunk& c = chunk(0);
+    out_.watersheds = 1;  // the data's edge
+    start_pyramid();
+    std::vector<uint8_t> codes;
+    {
+      HeightPatch p;
+      p.x0 = c.x0 - 1, p.y0 = c.y0 - 1, p.w = c.w + 2, p.h = c.h + 2;
+      progress_.begin("flow: fill depressions", 1);
+      {
+        BatchBlocks one;
+        p.raw = chunk_heights(g, c, [&](TileId t) {
+          one = BatchBlocks();
+          one.add(t, p_.reader->tile(t));
+          return one.get(t, s_.input);
+        });
+      }
+      p.filled = filled_surface(c, p.raw);
+      progress_.advance();
+      progress_.end();
+      progress_.begin("flow: directions", 1);
+      std::vector<uint32_t> d(p.filled.size(), kFar);
+      std::vector<int32_t> key(d.size(), kNoKey);
+      flat_distances(c, p.filled, d, key);
+      codes = d8_receivers(g, c, p.filled, d, key);
+      route_window_depressions(
+          0, p, d, key, [&](size_t i, uint8_t code) { codes[i] = code; }, nullptr);
+      progress_.advance();
+      progress_.end();
+    }
+    progress_.begin("flow: accumulate", 1);
+    LevelGrid level;
+    level.x0 = c.x0, level.y0 = c.y0, level.w = c.w, level.h = c.h;
+    level.area = accumulate_chunk(g, c, codes, {}, nullptr);
+    level.code = std::move(codes);
+    out_.pyramid->put_chunk(0, std::move(level));
+    progress_.advance();
+    progress_.end();
   }
 
   // ---- 1, 2: depression filling ----
@@ -426,10 +482,7 @@ class Solver {
     per_.key.assign(nodes, kNoKey);
     per_.flat.assign(nodes, 0);
     per_.changed.assign(nodes, 0);
-    // A single chunk that does not wrap has no ring to wait for: the
-    // directions pass computes its distances once.
     std::vector<int> run = all_slots();
-    if (alone()) return;
     // Each chunk's distances and keys as its latest round left them: a chunk
     // not run again saw no change, so they are final for the later passes.
     flats_ = std::make_unique<ScratchArrayFile>(s_.scratch_prefix + "flats.bin",
@@ -745,10 +798,6 @@ class Solver {
     std::vector<uint64_t> area(nodes, 0);
     std::vector<int64_t> successor(nodes, kNoNode);
     std::vector<uint8_t> crosses(nodes, 0);
-    // A single chunk that does not wrap receives nothing from outside: its
-    // own accumulation is final and goes straight to the pyramid.
-    const bool alone = this->alone();
-    if (alone) start_pyramid();
     each_chunk<LinkResult>(
         "flow: directions", all_slots(),
         [&](int slot, const BatchBlocks&) {
@@ -756,34 +805,20 @@ class Solver {
           // The windows go before the accumulation's arrays come.
           const std::vector<uint8_t> rec = [&] {
             const std::vector<int64_t> ring = ring_nodes(c);
-            const HeightPatch p = window_patch(slot, ring, alone);
-            const std::vector<int32_t>& f = p.filled;
+            const std::vector<int32_t> f = filled_window(slot, ring);
             std::vector<uint32_t> d;
             std::vector<int32_t> key;
             flat_windows(slot, ring, f, d, key);
             std::vector<uint8_t> codes = d8_receivers(grid(), c, f, d, key);
-            if (alone) {
-              route_window_depressions(
-                  slot, p, d, key, [&](size_t i, uint8_t code) { codes[i] = code; }, nullptr);
-            } else {
-              std::vector<uint8_t> routed(c.cells());
-              deps_->read_array<uint8_t>(cell_base_[size_t(slot)], routed);
-              for (size_t i = 0; i < routed.size(); ++i)
-                if (routed[i]) codes[i] = routed[i];
-            }
+            std::vector<uint8_t> routed(c.cells());
+            deps_->read_array<uint8_t>(cell_base_[size_t(slot)], routed);
+            for (size_t i = 0; i < routed.size(); ++i)
+              if (routed[i]) codes[i] = routed[i];
             return codes;
           }();
           LinkResult r;
-          std::vector<uint64_t> acc = accumulate_chunk(grid(), c, rec, {}, &r.flow);
-          if (alone) {
-            LevelGrid level;
-            level.x0 = c.x0, level.y0 = c.y0, level.w = c.w, level.h = c.h;
-            level.area = std::move(acc);
-            level.code = rec;
-            out_.pyramid->put_chunk(slot, std::move(level));
-          } else {
-            dirs_->write_array<uint8_t>(cell_base_[size_t(slot)], rec);
-          }
+          accumulate_chunk(grid(), c, rec, {}, &r.flow);
+          dirs_->write_array<uint8_t>(cell_base_[size_t(slot)], rec);
           r.target.assign(r.flow.leaves.size(), kNoNode);
           for (size_t i = 0; i < r.flow.leaves.size(); ++i) {
             if (!r.flow.leaves[i]) continue;
@@ -814,7 +849,6 @@ class Solver {
     kept.base = std::move(per_.base);
     per_ = std::move(kept);
     std::vector<int32_t>().swap(spill_);
-    if (alone) return;
     // Started only now, the pyramid's levels replace the scratch just freed.
     start_pyramid();
     const std::vector<uint64_t> inflow = solve_inflows(area, successor, crosses);
@@ -859,6 +893,12 @@ int64_t chunk_size_for(const tileformat::Tiling& t, int zoom, int block_size,
   const int64_t steps = block_size - 1;
   const int64_t cols = int64_t(t.tiles_x(zoom)) * steps, rows = int64_t(t.tiles_y(zoom)) * steps;
   const int64_t whole = std::max(cols, rows);
+  // The whole grid in one chunk that does not wrap, where it fits: each
+  // pass runs once, with nothing to join (the least work, one thread).
+  const int64_t one = std::bit_ceil(uint64_t(whole));
+  const uint64_t window = uint64_t(cols + 2) * uint64_t(rows + 2);
+  if (!t.wrap_tiles() && window * kAloneBytesPerCell <= memory_bytes)
+    return std::max<int64_t>(one, 64);
   // Workers' chunks grow with C, the perimeters kept for the whole run
   // shrink: the largest C that fits, else the cheapest.
   int64_t best = 0, cheapest = 64;

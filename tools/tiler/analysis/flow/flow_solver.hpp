@@ -28,6 +28,7 @@ namespace globe::flow {
 
 struct FlowSettings {
   uint64_t memory_bytes = uint64_t(1024) << 20;
+  int64_t chunk = 0;  // chunk side (a power of two); 0: chunk_size_for
   int threads = 1;
   std::string scratch_prefix;  // scratch files are this + a name
   std::string input;           // the terrain package's path, for messages
@@ -41,7 +42,8 @@ struct FlowSolution {
   bool scratch_in_memory = false;  // the per-cell scratch fitted the budget
 };
 
-// The chunk size (a power of two): of those whose working set fits the
+// The chunk size (a power of two): the whole grid as one chunk where it does
+// not wrap and fits the budget; else, of those whose working set fits the
 // budget, the one that processes the fewest cells (chunks are whole even
 // where the data covers a corner; each decodes the tiles it touches), the
 // largest of equals.
