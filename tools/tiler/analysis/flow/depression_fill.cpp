@@ -153,8 +153,86 @@ ChunkFill fill_chunk(const Chunk& c, const std::vector<int32_t>& z) {
   return flood<true>(c, z);
 }
 
+// The variant of Zhou, Sun and Fu (2016, "An efficient variant of the
+// Priority-Flood algorithm for filling depressions in raster DEMs"): a cell
+// found above the level it was reached from keeps its own height whatever
+// the order, so it needs no heap; it climbs on through its higher
+// neighbours with a plain stack, and goes to the heap only where it has a
+// neighbour not yet reached at or below its height (whose level depends on
+// the order). The heap holds a few cells instead of nearly all of them.
 std::vector<int32_t> filled_surface(const Chunk& c, const std::vector<int32_t>& z) {
-  return std::move(flood<false>(c, z).filled);
+  const ChunkWindow win(c);
+  const int stride = win.stride();
+  ptrdiff_t step[9];
+  for (int d = 1; d <= 8; ++d)
+    step[d] = ptrdiff_t(kDy[d]) * stride + kDx[d];
+  std::vector<int32_t> filled(win.size(), kNoData);
+  std::vector<uint8_t> reached(win.size(), 1);  // the ring and no data count as reached
+  for (int y = 0; y < c.h; ++y)
+    for (int x = 0; x < c.w; ++x) {
+      const size_t k = win.at(x, y);
+      reached[k] = z[k] == kNoData;
+    }
+  OpenCells open;
+  std::vector<uint32_t> pit, climb;
+  auto seed = [&](size_t k) {
+    if (reached[k]) return;
+    reached[k] = 1;
+    filled[k] = z[k];
+    open.push(z[k], uint32_t(k));
+  };
+  for (int y = 0; y < c.h; ++y)
+    for (int x = 0; x < c.w; ++x) {
+      const size_t k = win.at(x, y);
+      if (!reached[k] && at_data_edge(z, k, stride)) seed(k);
+    }
+  for (int i = 0; i < c.perimeter_count(); ++i) {
+    int x, y;
+    c.perimeter_cell(i, x, y);
+    seed(win.at(x, y));
+  }
+  // The neighbours of cell k not yet reached, at k's filled level: those
+  // at or below it fill to it (pit), the others keep their height (climb).
+  auto spread = [&](size_t k) {
+    const int32_t level = filled[k];
+    for (int d = 1; d <= 8; ++d) {
+      const size_t n = size_t(ptrdiff_t(k) + step[d]);
+      if (reached[n]) continue;
+      reached[n] = 1;
+      if (z[n] <= level) {
+        filled[n] = level;
+        pit.push_back(uint32_t(n));
+      } else {
+        filled[n] = z[n];
+        climb.push_back(uint32_t(n));
+      }
+    }
+  };
+  size_t pit_head = 0;
+  while (true) {
+    if (pit_head < pit.size()) {
+      const size_t k = pit[pit_head++];
+      if (pit_head == pit.size()) pit.clear(), pit_head = 0;
+      spread(k);
+    } else if (!climb.empty()) {
+      const size_t k = climb.back();
+      climb.pop_back();
+      bool lower = false;
+      for (int d = 1; d <= 8 && !lower; ++d) {
+        const size_t n = size_t(ptrdiff_t(k) + step[d]);
+        lower = !reached[n] && z[n] <= z[k];
+      }
+      if (lower)
+        open.push(z[k], uint32_t(k));
+      else
+        spread(k);
+    } else if (!open.empty()) {
+      spread(open.pop());
+    } else {
+      break;
+    }
+  }
+  return filled;
 }
 
 void SpillPairs::note(uint32_t a, uint32_t b, int32_t level) {

@@ -1,8 +1,9 @@
 // Routing through filled depressions (see depression_routing.hpp).
 #include "depression_routing.hpp"
 
+#include <algorithm>
 #include <cmath>
-#include <queue>
+#include <functional>
 
 namespace globe::flow {
 
@@ -50,20 +51,24 @@ std::vector<uint32_t> DepressionRouter::depression(uint32_t seed, bool& reaches_
 }
 
 void DepressionRouter::search(const FlowGrid& g, uint32_t entry) {
-  // (raw height, order of arrival) in one key, and the index: the lowest
-  // first, then the earliest. A patch has fewer than 2^32 cells, each
-  // queued at most once.
-  using Item = std::pair<uint64_t, uint32_t>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
-  uint32_t arrivals = 0;
+  // (raw height, order of arrival) in one key, the lowest first, then the
+  // earliest; the cell by its arrival. A patch has fewer than 2^32 cells,
+  // each queued at most once.
+  std::vector<uint64_t>& q = heap_;
+  std::vector<uint32_t>& arrived = arrived_;
+  q.clear();
+  arrived.clear();
   auto push = [&](uint32_t n) {
-    q.push({(uint64_t(uint32_t(p_.raw[n]) ^ 0x80000000u) << 32) | arrivals++, n});
+    q.push_back((uint64_t(uint32_t(p_.raw[n]) ^ 0x80000000u) << 32) | arrived.size());
+    std::push_heap(q.begin(), q.end(), std::greater<>());
+    arrived.push_back(n);
   };
   push(entry);
   bool entry_worked = false;
   while (!q.empty()) {
-    const uint32_t i = q.top().second;
-    q.pop();
+    std::pop_heap(q.begin(), q.end(), std::greater<>());
+    const uint32_t i = arrived[uint32_t(q.back())];
+    q.pop_back();
     const int x = int(i % uint32_t(p_.w)), y = int(i / uint32_t(p_.w));
     const int64_t gy = p_.y0 + y;
     const double dx = g.dx(gy), dy = g.dy(gy);

@@ -75,7 +75,9 @@ class DepressionRouter {
 
   const HeightPatch& p_;
   std::vector<uint8_t> state_, code_;
-  std::vector<double> diagonal_;  // per patch row, once first needed (else -1)
+  std::vector<double> diagonal_;   // per patch row, once first needed (else -1)
+  std::vector<uint64_t> heap_;     // the search's queue, kept between depressions
+  std::vector<uint32_t> arrived_;  // the search's cells in order of arrival
 };
 
 template <typename Mine>
