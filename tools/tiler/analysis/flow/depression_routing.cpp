@@ -24,11 +24,20 @@ uint8_t same_column(uint8_t diagonal) {
 
 }  // namespace
 
+SunkHeights::SunkHeights(const std::vector<int32_t>& raw, const std::vector<int32_t>& filled) {
+  words_.assign((raw.size() + 63) / 64, 0);
+  first_.assign(words_.size(), 0);
+  for (size_t i = 0; i < raw.size(); ++i) {
+    if (i % 64 == 0) first_[i / 64] = uint32_t(values_.size());
+    if (raw[i] == kNoData || raw[i] >= filled[i]) continue;
+    words_[i / 64] |= uint64_t(1) << (i % 64);
+    values_.push_back(raw[i]);
+  }
+  values_.shrink_to_fit();
+}
+
 DepressionRouter::DepressionRouter(const HeightPatch& patch)
-    : p_(patch),
-      state_(size_t(patch.w) * patch.h, kOutside),
-      code_(state_.size(), kOutlet),
-      diagonal_(size_t(patch.h), -1) {}
+    : p_(patch), state_(size_t(patch.w) * patch.h, kOutside), diagonal_(size_t(patch.h), -1) {}
 
 std::vector<uint32_t> DepressionRouter::depression(uint32_t seed, bool& reaches_ring) {
   reaches_ring = false;
@@ -42,7 +51,7 @@ std::vector<uint32_t> DepressionRouter::depression(uint32_t seed, bool& reaches_
     }
     for (int d = 1; d <= 8; ++d) {
       const uint32_t n = uint32_t((y + kDy[d]) * p_.w + x + kDx[d]);
-      if (state_[n] != kOutside || !p_.in_depression(n)) continue;
+      if (state(n) != kOutside || !p_.in_depression(n)) continue;
       state_[n] = kMember;
       cells.push_back(n);
     }
@@ -58,12 +67,12 @@ void DepressionRouter::search(const FlowGrid& g, uint32_t entry) {
   std::vector<uint32_t>& arrived = arrived_;
   q.clear();
   arrived.clear();
-  auto push = [&](uint32_t n) {
-    q.push_back((uint64_t(uint32_t(p_.raw[n]) ^ 0x80000000u) << 32) | arrived.size());
+  auto push = [&](uint32_t n, int32_t raw) {
+    q.push_back((uint64_t(uint32_t(raw) ^ 0x80000000u) << 32) | arrived.size());
     std::push_heap(q.begin(), q.end(), std::greater<>());
     arrived.push_back(n);
   };
-  push(entry);
+  push(entry, p_.raw_at(entry));
   bool entry_worked = false;
   while (!q.empty()) {
     std::pop_heap(q.begin(), q.end(), std::greater<>());
@@ -78,40 +87,41 @@ void DepressionRouter::search(const FlowGrid& g, uint32_t entry) {
     // Climbs to the neighbours not yet worked (0 where none or downhill).
     double climb[9] = {0};
     int64_t at[9] = {0};
+    int32_t raw[9];
+    raw[0] = p_.raw_at(i);
     for (uint8_t d : kOrder) {
       const int nx = x + kDx[d], ny = y + kDy[d];
       at[d] = -1;
       if (nx < 0 || ny < 0 || nx >= p_.w || ny >= p_.h) continue;
       const uint32_t n = uint32_t(ny * p_.w + nx);
-      if (p_.raw[n] == kNoData) continue;
+      raw[d] = p_.raw_at(n);
+      if (raw[d] == kNoData) continue;
       at[d] = n;
-      const bool worked = state_[n] == kWorked || (n == entry && entry_worked);
-      if (!worked && p_.raw[n] > p_.raw[i]) climb[d] = double(p_.raw[n] - p_.raw[i]) / length[d];
+      const bool worked = state(n) == kWorked || (n == entry && entry_worked);
+      if (!worked && raw[d] > raw[0]) climb[d] = double(raw[d] - raw[0]) / length[d];
     }
     for (uint8_t d : kOrder) {
       if (at[d] < 0) continue;
       const uint32_t n = uint32_t(at[d]);
-      if (state_[n] != kMember) continue;  // not of this depression, or reached
+      if (state(n) != kMember) continue;  // not of this depression, or reached
       if (d % 2 == 0 && climb[d] > 0) {
         // A diagonal yields where the climb from the orthogonal neighbour
         // between (higher than this cell) to it is steeper.
         bool yield = false;
         for (uint8_t o : {same_row(d), same_column(d)}) {
           if (climb[o] <= 0 || at[o] < 0) continue;
-          const int32_t from = p_.raw[size_t(at[o])];
           const double step = o == same_row(d) ? dx : dy;
-          if (p_.raw[n] > from && climb[d] < double(p_.raw[n] - from) / step) yield = true;
+          if (raw[d] > raw[o] && climb[d] < double(raw[d] - raw[o]) / step) yield = true;
         }
         if (yield) continue;
       }
-      state_[n] = kQueued;
-      code_[n] = d8_code(-kDx[d], -kDy[d]);
-      push(n);
+      state_[n] = uint8_t(kQueued | d8_code(-kDx[d], -kDy[d]) << 4);
+      push(n, raw[d]);
     }
     if (i == entry)
       entry_worked = true;
     else
-      state_[i] = kWorked;
+      state_[i] = uint8_t((state_[i] & ~kStateMask) | kWorked);
   }
 }
 

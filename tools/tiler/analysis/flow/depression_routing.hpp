@@ -17,6 +17,7 @@
 // chunk edges (flow_solver.cpp). docs/analysis.md, "Flow".
 #pragma once
 
+#include <bit>
 #include <cstdint>
 #include <tuple>
 #include <vector>
@@ -26,13 +27,40 @@
 
 namespace globe::flow {
 
+// The raw heights of the cells that lie below the filled surface only (a
+// patch's depression cells), found by rank: a bit per cell and a count per
+// 64. Elsewhere the raw height is the filled one. Where a fifth of the cells
+// lie in depressions, a quarter of the memory of the whole raw array.
+class SunkHeights {
+ public:
+  SunkHeights() = default;
+  SunkHeights(const std::vector<int32_t>& raw, const std::vector<int32_t>& filled);
+  bool has(size_t i) const { return (words_[i >> 6] >> (i & 63)) & 1; }
+  int32_t at(size_t i) const {  // (has(i))
+    const uint64_t below = words_[i >> 6] & ((uint64_t(1) << (i & 63)) - 1);
+    return values_[first_[i >> 6] + uint32_t(std::popcount(below))];
+  }
+
+ private:
+  std::vector<uint64_t> words_;
+  std::vector<uint32_t> first_;  // per word: the values before it
+  std::vector<int32_t> values_;
+};
+
 // A rectangle of grid cells, row-major: raw and filled heights (kNoData
-// where none). (x0, y0): the grid cell of index 0, before wrapping.
+// where none); the raw ones as a whole array, or (raw empty) in `sunk`.
+// (x0, y0): the grid cell of index 0, before wrapping.
 struct HeightPatch {
   int64_t x0 = 0, y0 = 0;
   int w = 0, h = 0;
   std::vector<int32_t> raw, filled;
-  bool in_depression(size_t i) const { return raw[i] != kNoData && raw[i] < filled[i]; }
+  SunkHeights sunk;
+  bool in_depression(size_t i) const {
+    return raw.empty() ? sunk.has(i) : raw[i] != kNoData && raw[i] < filled[i];
+  }
+  int32_t raw_at(size_t i) const {
+    return raw.empty() ? (sunk.has(i) ? sunk.at(i) : filled[i]) : raw[i];
+  }
 };
 
 // How early the flat routing reaches a rim cell: (flat distance, key, grid
@@ -64,17 +92,20 @@ class DepressionRouter {
   void route(const FlowGrid& grid, const std::vector<uint32_t>& cells, uint32_t entry, Out out) {
     search(grid, entry);
     for (uint32_t i : cells)
-      if (state_[i] == kWorked) out(i, code_[i]);  // (every cell is reached)
+      if (state(i) == kWorked) out(i, uint8_t(state_[i] >> 4));  // (every cell is reached)
     for (uint32_t i : cells)
       state_[i] = kDone;
   }
 
  private:
-  enum : uint8_t { kOutside = 0, kMember, kQueued, kWorked, kDone };
+  // Per cell its state (low 3 bits) and, once queued, its receiver code
+  // (high 4 bits).
+  enum : uint8_t { kOutside = 0, kMember, kQueued, kWorked, kDone, kStateMask = 7 };
+  uint8_t state(size_t i) const { return state_[i] & kStateMask; }
   void search(const FlowGrid& grid, uint32_t entry);
 
   const HeightPatch& p_;
-  std::vector<uint8_t> state_, code_;
+  std::vector<uint8_t> state_;
   std::vector<double> diagonal_;   // per patch row, once first needed (else -1)
   std::vector<uint64_t> heap_;     // the search's queue, kept between depressions
   std::vector<uint32_t> arrived_;  // the search's cells in order of arrival

@@ -59,37 +59,41 @@ void settle_flats(const Chunk& c, const std::vector<int32_t>& f, std::vector<uin
     }
   std::sort(ring_sources.begin(), ring_sources.end());
   sources.insert(sources.end(), ring_sources.begin(), ring_sources.end());
-  std::vector<uint32_t> settled;  // flat cells in the order their distance became final
-  settled.reserve(flats.size());
-  size_t next_source = 0, next_settled = 0;
-  while (next_source < sources.size() || next_settled < settled.size()) {
+  std::vector<Source>().swap(ring_sources);
+  // Keys on the way: a cell's is the least of its neighbours' one step
+  // nearer, each of which passes its own on when it is taken (all of them
+  // before the cell itself is).
+  std::vector<uint32_t> front;  // settled flat cells not yet taken, nearest first
+  size_t next_source = 0, next_front = 0;
+  while (next_source < sources.size() || next_front < front.size()) {
     uint32_t k;
-    if (next_settled < settled.size() &&
-        (next_source == sources.size() ||
-         dist[settled[next_settled]] <= sources[next_source].first))
-      k = settled[next_settled++];
+    if (next_front < front.size() &&
+        (next_source == sources.size() || dist[front[next_front]] <= sources[next_source].first))
+      k = front[next_front++];
     else
       k = sources[next_source++].second;
+    if (next_front >= 4096 && 2 * next_front >= front.size()) {  // the taken ones go
+      front.erase(front.begin(), front.begin() + ptrdiff_t(next_front));
+      next_front = 0;
+    }
     const uint32_t d = dist[k];
+    const int32_t passed = key[k];
     for (int dir = 1; dir <= 8; ++dir) {
       // A ring cell's outer neighbours lie off the window (or wrap to the
       // ring's other side, which is never open).
       const ptrdiff_t n = ptrdiff_t(k) + ptrdiff_t(kDy[dir]) * s + kDx[dir];
-      if (n < 0 || size_t(n) >= open.size() || open[size_t(n)] != 1 || f[size_t(n)] != f[k] ||
-          dist[size_t(n)] <= d + 1)
+      if (n < 0 || size_t(n) >= open.size() || open[size_t(n)] != 1 || f[size_t(n)] != f[k])
         continue;
-      dist[size_t(n)] = d + 1;
-      settled.push_back(uint32_t(n));
+      uint32_t& dn = dist[size_t(n)];
+      int32_t& kn = key[size_t(n)];
+      if (dn > d + 1) {
+        dn = d + 1;
+        kn = passed;
+        front.push_back(uint32_t(n));
+      } else if (dn == d + 1) {
+        kn = std::min(kn, passed);
+      }
     }
-  }
-  // Keys, nearest first: the least of the neighbours one step nearer.
-  for (uint32_t k : settled) {
-    int32_t least = kNoKey;
-    for (int dir = 1; dir <= 8; ++dir) {
-      const size_t n = size_t(ptrdiff_t(k) + ptrdiff_t(kDy[dir]) * s + kDx[dir]);
-      if (f[n] == f[k] && dist[n] + 1 == dist[k]) least = std::min(least, key[n]);
-    }
-    key[k] = least;
   }
 }
 
