@@ -15,11 +15,11 @@ void keep_tile_buffers_in_heap();
 // For work whose buffers are arrays of many megabytes allocated and freed per
 // chunk and per pass by every worker (the flow solver): one heap for all
 // threads, never returned to the system, no array in its own mapping, so a
-// freed array's pages serve the next one without faulting again; and the
-// first `reserve_bytes` of that heap advised for transparent huge pages
-// (where the kernel offers them on request), a 2 MiB fault instead of 512.
-// The heap's peak is the peak of live arrays, as before; it is not given
-// back until the process ends.
-void reuse_large_arrays(uint64_t reserve_bytes);
+// freed array's pages serve the next one without faulting again. The heap's
+// peak is the peak of live arrays, as before; it is not given back until the
+// process ends. (No transparent huge pages: on virtual machines that hand
+// freed memory back to their host, a huge page faulted in costs 5 times as
+// much as its 512 small ones: docs/analysis.md, "Flow: memory".)
+void reuse_large_arrays();
 
 }  // namespace globe

@@ -116,7 +116,7 @@ int run_analyze(const std::vector<std::string>& args) {
   // and per pass: without this, page faults took a third of its CPU.
   if (flow(tileformat::AnalysisLayer::kFlowDirection) ||
       flow(tileformat::AnalysisLayer::kFlowAccumulation))
-    reuse_large_arrays(s.memory_mb << 20);
+    reuse_large_arrays();
   Progress progress(s.progress);
   const AnalysisSummary sum = build_analysis(s, progress);
   std::ostringstream o;

@@ -24,18 +24,6 @@ uint8_t same_column(uint8_t diagonal) {
 
 }  // namespace
 
-SunkHeights::SunkHeights(const std::vector<int32_t>& raw, const std::vector<int32_t>& filled) {
-  words_.assign((raw.size() + 63) / 64, 0);
-  first_.assign(words_.size(), 0);
-  for (size_t i = 0; i < raw.size(); ++i) {
-    if (i % 64 == 0) first_[i / 64] = uint32_t(values_.size());
-    if (raw[i] == kNoData || raw[i] >= filled[i]) continue;
-    words_[i / 64] |= uint64_t(1) << (i % 64);
-    values_.push_back(raw[i]);
-  }
-  values_.shrink_to_fit();
-}
-
 DepressionRouter::DepressionRouter(const HeightPatch& patch)
     : p_(patch), state_(size_t(patch.w) * patch.h, kOutside), diagonal_(size_t(patch.h), -1) {}
 
@@ -72,7 +60,7 @@ void DepressionRouter::search(const FlowGrid& g, uint32_t entry) {
     std::push_heap(q.begin(), q.end(), std::greater<>());
     arrived.push_back(n);
   };
-  push(entry, p_.raw_at(entry));
+  push(entry, p_.raw[entry]);
   bool entry_worked = false;
   while (!q.empty()) {
     std::pop_heap(q.begin(), q.end(), std::greater<>());
@@ -88,13 +76,13 @@ void DepressionRouter::search(const FlowGrid& g, uint32_t entry) {
     double climb[9] = {0};
     int64_t at[9] = {0};
     int32_t raw[9];
-    raw[0] = p_.raw_at(i);
+    raw[0] = p_.raw[i];
     for (uint8_t d : kOrder) {
       const int nx = x + kDx[d], ny = y + kDy[d];
       at[d] = -1;
       if (nx < 0 || ny < 0 || nx >= p_.w || ny >= p_.h) continue;
       const uint32_t n = uint32_t(ny * p_.w + nx);
-      raw[d] = p_.raw_at(n);
+      raw[d] = p_.raw[n];
       if (raw[d] == kNoData) continue;
       at[d] = n;
       const bool worked = state(n) == kWorked || (n == entry && entry_worked);

@@ -17,7 +17,6 @@
 // chunk edges (flow_solver.cpp). docs/analysis.md, "Flow".
 #pragma once
 
-#include <bit>
 #include <cstdint>
 #include <tuple>
 #include <vector>
@@ -27,40 +26,13 @@
 
 namespace globe::flow {
 
-// The raw heights of the cells that lie below the filled surface only (a
-// patch's depression cells), found by rank: a bit per cell and a count per
-// 64. Elsewhere the raw height is the filled one. Where a fifth of the cells
-// lie in depressions, a quarter of the memory of the whole raw array.
-class SunkHeights {
- public:
-  SunkHeights() = default;
-  SunkHeights(const std::vector<int32_t>& raw, const std::vector<int32_t>& filled);
-  bool has(size_t i) const { return (words_[i >> 6] >> (i & 63)) & 1; }
-  int32_t at(size_t i) const {  // (has(i))
-    const uint64_t below = words_[i >> 6] & ((uint64_t(1) << (i & 63)) - 1);
-    return values_[first_[i >> 6] + uint32_t(std::popcount(below))];
-  }
-
- private:
-  std::vector<uint64_t> words_;
-  std::vector<uint32_t> first_;  // per word: the values before it
-  std::vector<int32_t> values_;
-};
-
 // A rectangle of grid cells, row-major: raw and filled heights (kNoData
-// where none); the raw ones as a whole array, or (raw empty) in `sunk`.
-// (x0, y0): the grid cell of index 0, before wrapping.
+// where none). (x0, y0): the grid cell of index 0, before wrapping.
 struct HeightPatch {
   int64_t x0 = 0, y0 = 0;
   int w = 0, h = 0;
   std::vector<int32_t> raw, filled;
-  SunkHeights sunk;
-  bool in_depression(size_t i) const {
-    return raw.empty() ? sunk.has(i) : raw[i] != kNoData && raw[i] < filled[i];
-  }
-  int32_t raw_at(size_t i) const {
-    return raw.empty() ? (sunk.has(i) ? sunk.at(i) : filled[i]) : raw[i];
-  }
+  bool in_depression(size_t i) const { return raw[i] != kNoData && raw[i] < filled[i]; }
 };
 
 // How early the flat routing reaches a rim cell: (flat distance, key, grid

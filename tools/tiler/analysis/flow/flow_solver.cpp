@@ -231,9 +231,6 @@ class Solver {
         });
       }
       p.filled = filled_surface(c, p.raw);
-      // Only the depressions' raw heights are read from here on.
-      p.sunk = SunkHeights(p.raw, p.filled);
-      std::vector<int32_t>().swap(p.raw);
       progress_.advance();
       progress_.end();
       progress_.begin("flow: directions", 1);
