@@ -122,21 +122,19 @@ std::optional<std::vector<uint32_t>> AreaPredictor::upstream_first() const {
 
 bool AreaPredictor::acyclic() const {
   // Walks down from each cell not yet reached until an outlet, a cell of an
-  // earlier walk, or (a cycle) a cell of this one.
-  enum : uint8_t { kUnseen, kOnWalk, kDone };
-  std::vector<uint8_t> state(directions_.size(), kUnseen);
-  std::vector<uint32_t> walk;
-  for (size_t i = 0; i < state.size(); ++i) {
+  // earlier walk, or (a cycle) a cell of this one: each cell is marked with
+  // the number of the walk that reached it.
+  std::vector<uint32_t> walk_of(directions_.size(), 0);
+  uint32_t walk = 0;
+  for (size_t i = 0; i < walk_of.size(); ++i) {
+    if (walk_of[i] != 0) continue;
+    ++walk;
     int64_t j = int64_t(i);
-    while (j >= 0 && state[size_t(j)] == kUnseen) {
-      state[size_t(j)] = kOnWalk;
-      walk.push_back(uint32_t(j));
+    while (j >= 0 && walk_of[size_t(j)] == 0) {
+      walk_of[size_t(j)] = walk;
       j = receiver_[size_t(j)];
     }
-    if (j >= 0 && state[size_t(j)] == kOnWalk) return false;
-    for (uint32_t k : walk)
-      state[k] = kDone;
-    walk.clear();
+    if (j >= 0 && walk_of[size_t(j)] == walk) return false;
   }
   return true;
 }
@@ -157,20 +155,6 @@ uint16_t AreaPredictor::source_value(const std::vector<uint16_t>& values) const 
   for (size_t i = 0; i < values.size(); ++i)
     if (source(i)) count[values[i]] = 0;
   return best;
-}
-
-uint16_t AreaPredictor::predict(const std::vector<uint16_t>& values, size_t i,
-                                uint16_t source) const {
-  if (directions_[i] == kNoValue) return kNoValue;
-  uint32_t p = source;
-  // Donors in code order (north first); each lies in the block.
-  for (unsigned mask = donors_[i]; mask; mask &= mask - 1) {
-    const uint16_t q = values[size_t(ptrdiff_t(i) + step_[std::countr_zero(mask) + 1])];
-    if (q == kNoValue) continue;
-    const uint32_t t = p > q ? p - q : q - p;
-    p = std::max<uint32_t>(p, q) + (t < gains_.size() ? gains_[t] : 0);
-  }
-  return uint16_t(std::min<uint32_t>(p, kNoValue - 1));
 }
 
 }  // namespace tileformat::flow_coding

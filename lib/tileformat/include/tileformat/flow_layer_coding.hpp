@@ -4,10 +4,14 @@
 // analysis block codec (analysis_block.hpp is the API; this is its part).
 #pragma once
 
+#include <algorithm>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <vector>
+
+#include "tileformat/analysis_block.hpp"
 
 namespace tileformat::flow_coding {
 
@@ -33,8 +37,20 @@ class AreaPredictor {
   // The most common value of the cells without donors (the area of one
   // sample, at the finest zoom), the least of those on ties.
   uint16_t source_value(const std::vector<uint16_t>& values) const;
-  // The value predicted for cell i from its donors' `values`.
-  uint16_t predict(const std::vector<uint16_t>& values, size_t i, uint16_t source) const;
+  // The value predicted for cell i from its donors' `values` (inline: the
+  // encoder calls it for every sample).
+  uint16_t predict(const std::vector<uint16_t>& values, size_t i, uint16_t source) const {
+    if (directions_[i] == kNoValue) return kNoValue;
+    uint32_t p = source;
+    // Donors in code order (north first); each lies in the block.
+    for (unsigned mask = donors_[i]; mask; mask &= mask - 1) {
+      const uint16_t q = values[size_t(ptrdiff_t(i) + step_[std::countr_zero(mask) + 1])];
+      if (q == kNoValue) continue;
+      const uint32_t t = p > q ? p - q : q - p;
+      p = std::max<uint32_t>(p, q) + (t < gains_.size() ? gains_[t] : 0);
+    }
+    return uint16_t(std::min<uint32_t>(p, kNoValue - 1));
+  }
 
  private:
   const std::vector<uint16_t>& directions_;
