@@ -47,25 +47,21 @@ std::vector<uint32_t> DepressionRouter::depression(uint32_t seed, bool& reaches_
   return cells;
 }
 
-void DepressionRouter::search(const FlowGrid& g, uint32_t entry) {
-  // (raw height, order of arrival) in one key, the lowest first, then the
-  // earliest; the cell by its arrival. A patch has fewer than 2^32 cells,
-  // each queued at most once.
-  std::vector<uint64_t>& q = heap_;
-  std::vector<uint32_t>& arrived = arrived_;
-  q.clear();
-  arrived.clear();
-  auto push = [&](uint32_t n, int32_t raw) {
-    q.push_back((uint64_t(uint32_t(raw) ^ 0x80000000u) << 32) | arrived.size());
-    std::push_heap(q.begin(), q.end(), std::greater<>());
-    arrived.push_back(n);
-  };
-  push(entry, p_.raw[entry]);
+void DepressionRouter::search(const FlowGrid& g, const std::vector<uint32_t>& cells,
+                              uint32_t entry) {
+  // The lowest raw height first, then the earliest queued (the entry, a rim
+  // cell at the depression's level, and its cells).
+  int32_t lowest = p_.raw[entry], highest = lowest;
+  for (uint32_t c : cells) {
+    lowest = std::min(lowest, p_.raw[c]);
+    highest = std::max(highest, p_.raw[c]);
+  }
+  HeightQueue& q = queue_;
+  q.reset(lowest, highest, cells.size() + 1);
+  q.push(p_.raw[entry], entry);
   bool entry_worked = false;
   while (!q.empty()) {
-    std::pop_heap(q.begin(), q.end(), std::greater<>());
-    const uint32_t i = arrived[uint32_t(q.back())];
-    q.pop_back();
+    const uint32_t i = q.pop();
     const int x = int(i % uint32_t(p_.w)), y = int(i / uint32_t(p_.w));
     const int64_t gy = p_.y0 + y;
     const double dx = g.dx(gy), dy = g.dy(gy);
@@ -104,7 +100,7 @@ void DepressionRouter::search(const FlowGrid& g, uint32_t entry) {
         if (yield) continue;
       }
       state_[n] = uint8_t(kQueued | d8_code(-kDx[d], -kDy[d]) << 4);
-      push(n, raw[d]);
+      q.push(raw[d], n);
     }
     if (i == entry)
       entry_worked = true;

@@ -23,6 +23,7 @@
 
 #include "flow_directions.hpp"
 #include "flow_grid.hpp"
+#include "height_queue.hpp"
 
 namespace globe::flow {
 
@@ -62,7 +63,7 @@ class DepressionRouter {
   // patch index of a rim cell): calls out(index, code) for each cell.
   template <typename Out>
   void route(const FlowGrid& grid, const std::vector<uint32_t>& cells, uint32_t entry, Out out) {
-    search(grid, entry);
+    search(grid, cells, entry);
     for (uint32_t i : cells)
       if (state(i) == kWorked) out(i, uint8_t(state_[i] >> 4));  // (every cell is reached)
     for (uint32_t i : cells)
@@ -74,13 +75,12 @@ class DepressionRouter {
   // (high 4 bits).
   enum : uint8_t { kOutside = 0, kMember, kQueued, kWorked, kDone, kStateMask = 7 };
   uint8_t state(size_t i) const { return state_[i] & kStateMask; }
-  void search(const FlowGrid& grid, uint32_t entry);
+  void search(const FlowGrid& grid, const std::vector<uint32_t>& cells, uint32_t entry);
 
   const HeightPatch& p_;
   std::vector<uint8_t> state_;
-  std::vector<double> diagonal_;   // per patch row, once first needed (else -1)
-  std::vector<uint64_t> heap_;     // the search's queue, kept between depressions
-  std::vector<uint32_t> arrived_;  // the search's cells in order of arrival
+  std::vector<double> diagonal_;  // per patch row, once first needed (else -1)
+  HeightQueue queue_;             // the search's, kept between depressions
 };
 
 template <typename Mine>
