@@ -140,20 +140,35 @@ bool AreaPredictor::acyclic() const {
 }
 
 uint16_t AreaPredictor::source_value(const std::vector<uint16_t>& values) const {
-  // Counted in a table kept per thread, cleared where used.
+  // Counted in a table kept per thread, cleared where used; runs of one
+  // value (most sources share their cell's area) counted in a register.
   thread_local std::vector<uint32_t> count(size_t(kNoValue) + 1, 0);
-  uint16_t best = 0;
-  uint32_t best_count = 0;
-  auto source = [&](size_t i) {
-    return !donors_[i] && directions_[i] != kNoValue && values[i] != kNoValue;
+  std::vector<uint16_t> seen;
+  uint16_t run_value = 0;
+  uint32_t run = 0;
+  auto flush = [&] {
+    if (run == 0) return;
+    if (count[run_value] == 0) seen.push_back(run_value);
+    count[run_value] += run;
   };
   for (size_t i = 0; i < values.size(); ++i) {
-    if (!source(i)) continue;
-    const uint32_t c = ++count[values[i]];
-    if (c > best_count || (c == best_count && values[i] < best)) best = values[i], best_count = c;
+    if (donors_[i] || directions_[i] == kNoValue || values[i] == kNoValue) continue;
+    if (values[i] != run_value) {
+      flush();
+      run_value = values[i];
+      run = 0;
+    }
+    ++run;
   }
-  for (size_t i = 0; i < values.size(); ++i)
-    if (source(i)) count[values[i]] = 0;
+  flush();
+  // The most common, the least of those on ties.
+  uint16_t best = 0;
+  uint32_t best_count = 0;
+  for (uint16_t v : seen) {
+    if (count[v] > best_count || (count[v] == best_count && v < best))
+      best = v, best_count = count[v];
+    count[v] = 0;
+  }
   return best;
 }
 
