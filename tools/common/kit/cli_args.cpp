@@ -179,13 +179,15 @@ std::string CliArgs::reproducible_command_line(const std::string& prefix,
   std::string out = prefix;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
-    if (a == "-j" || a == "--threads" || a == "--progress" || a == "--memory-mb") {
+    if (a == "-j" || a == "--threads" || a == "--progress" || a == "--memory-mb" ||
+        a == "--flow-chunk") {
       ++i;
       continue;
     }
     if (a == "-q" || a == "--quiet" || a == "--force" || a == "--resume" ||
         a.rfind("--threads=", 0) == 0 || a.rfind("--progress=", 0) == 0 ||
-        a.rfind("--memory-mb=", 0) == 0 || (a.size() > 2 && a.rfind("-j", 0) == 0))
+        a.rfind("--memory-mb=", 0) == 0 || a.rfind("--flow-chunk=", 0) == 0 ||
+        (a.size() > 2 && a.rfind("-j", 0) == 0))
       continue;
     out += " " + a;
   }
