@@ -60,12 +60,7 @@ enum : uint8_t { kNew = 0, kQueued = 1, kClosed = 2, kOutside = 3 };
 
 }  // namespace
 
-namespace {
-
-// The flood of fill_chunk; with kWatersheds false only the filled heights
-// (the labels and spills stay empty).
-template <bool kWatersheds>
-ChunkFill flood(const Chunk& c, const std::vector<int32_t>& z) {
+ChunkFill fill_chunk(const Chunk& c, const std::vector<int32_t>& z) {
   const ChunkWindow win(c);
   const int stride = win.stride();
   ptrdiff_t step[9];
@@ -76,7 +71,7 @@ ChunkFill flood(const Chunk& c, const std::vector<int32_t>& z) {
   std::vector<int32_t>& filled = out.filled;
   std::vector<uint32_t>& label = out.label;
   filled.assign(win.size(), kNoData);
-  if (kWatersheds) label.assign(win.size(), 0);
+  label.assign(win.size(), 0);
   std::vector<uint8_t> state(win.size(), kOutside);
   for (int y = 0; y < c.h; ++y)
     for (int x = 0; x < c.w; ++x) {
@@ -90,7 +85,7 @@ ChunkFill flood(const Chunk& c, const std::vector<int32_t>& z) {
     if (state[k] != kNew) return;
     state[k] = kQueued;
     filled[k] = z[k];
-    if (kWatersheds && at_data_edge(z, k, stride)) label[k] = kEdgeLabel;
+    if (at_data_edge(z, k, stride)) label[k] = kEdgeLabel;
     open.push(z[k], uint32_t(k));
   };
   // Seeds: the cells next to no data (anywhere) and the chunk's perimeter.
@@ -115,7 +110,7 @@ ChunkFill flood(const Chunk& c, const std::vector<int32_t>& z) {
     }
     if (state[k] == kClosed) continue;
     state[k] = kClosed;
-    if (kWatersheds && label[k] == 0) label[k] = out.labels++;
+    if (label[k] == 0) label[k] = out.labels++;
     const int32_t level = filled[k];
     for (int d = 1; d <= 8; ++d) {
       const size_t n = size_t(ptrdiff_t(k) + step[d]);
@@ -123,16 +118,15 @@ ChunkFill flood(const Chunk& c, const std::vector<int32_t>& z) {
         case kOutside:
           break;
         case kClosed:
-          if (kWatersheds && label[n] != label[k])
-            spill.note(label[k], label[n], std::max(level, filled[n]));
+          if (label[n] != label[k]) spill.note(label[k], label[n], std::max(level, filled[n]));
           break;
         case kQueued:
           // A perimeter seed not yet reached: it joins this watershed.
-          if (kWatersheds && label[n] == 0) label[n] = label[k];
+          if (label[n] == 0) label[n] = label[k];
           break;
         default:  // kNew
           state[n] = kQueued;
-          if (kWatersheds) label[n] = label[k];
+          label[n] = label[k];
           if (z[n] <= level) {
             filled[n] = level;
             pit.push_back(uint32_t(n));
@@ -145,12 +139,6 @@ ChunkFill flood(const Chunk& c, const std::vector<int32_t>& z) {
   }
   spill.append_to(out.edges);
   return out;
-}
-
-}  // namespace
-
-ChunkFill fill_chunk(const Chunk& c, const std::vector<int32_t>& z) {
-  return flood<true>(c, z);
 }
 
 // The variant of Zhou, Sun and Fu (2016, "An efficient variant of the
