@@ -13,6 +13,9 @@
 //      flow_accumulation)
 //   6. the perimeter graph -> each chunk's inflow
 //   7. final accumulation per chunk -> every zoom (flow_pyramid)
+// Where the whole grid fits the budget as one chunk that does not wrap, the
+// same passes run once on it, without the joining (1 and 2 as one flood with
+// no watersheds), on one thread; --flow-chunk chooses chunks instead.
 #pragma once
 
 #include <cstdint>
