@@ -9,14 +9,19 @@
 # Usage: scripts/fuzz.sh [SECONDS] [TARGET...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
+. scripts/lib/stage.sh
 seconds=${1:-60}
 shift || true
 targets=("$@")
 [ ${#targets[@]} -eq 0 ] && targets=(mblock image_tile line_tile point_tile analysis_block package)
 
-CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DGLOBE_FUZZ=ON -DGLOBE_BUILD_TESTS=OFF -DGLOBE_SANITIZE=address,undefined >/dev/null
-cmake --build build-fuzz --target make_fuzz_seeds "${targets[@]/#/fuzz_}"
+build_fuzz() {
+  CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DGLOBE_FUZZ=ON -DGLOBE_BUILD_TESTS=OFF -DGLOBE_SANITIZE=address,undefined >/dev/null
+  cmake --build build-fuzz --target make_fuzz_seeds "${targets[@]/#/fuzz_}"
+}
+stage "build (build-fuzz/)" build_fuzz
+fuzz_start=$SECONDS
 rm -rf build-fuzz/seeds
 build-fuzz/tests/fuzz/make_fuzz_seeds build-fuzz/seeds
 
@@ -52,3 +57,6 @@ if [ ${#failed[@]} -gt 0 ]; then
   exit 1
 fi
 echo "fuzz: no crash in ${targets[*]}" >&2
+line=$(printf '%-28s %5d s' "fuzz (${#targets[@]} x ${seconds}s)" $((SECONDS - fuzz_start)))
+echo "stage: $line" >&2
+if [ -n "${GLOBE_STAGE_LOG:-}" ]; then echo "$line" >>"$GLOBE_STAGE_LOG"; fi

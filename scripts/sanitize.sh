@@ -6,7 +6,8 @@
 # Usage: scripts/sanitize.sh [ctest args]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-BUILD_DIR=build-asan scripts/build.sh -DGLOBE_SANITIZE=address,undefined
+. scripts/lib/stage.sh
+BUILD_DIR=build-asan stage "build (build-asan/)" scripts/build.sh -DGLOBE_SANITIZE=address,undefined
 supp=$(pwd)/scripts/lsan.supp
 cd build-asan
 export LSAN_OPTIONS=suppressions=$supp:print_suppressions=0 UBSAN_OPTIONS=print_stacktrace=1
@@ -16,7 +17,8 @@ export LSAN_OPTIONS=suppressions=$supp:print_suppressions=0 UBSAN_OPTIONS=print_
 # can no longer be named and suppressed as Mesa's like the others.
 egl_test='ViewerRender.OsMesaAndEglGiveTheSameImage|ViewerImageryWindow|ViewerGlobe.WindowZooms|ViewerChartsWindow|ViewerBundlesWindow'
 status=0
-ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j "$(nproc)" --timeout 1500 \
-  -E "$egl_test" "$@" || status=1
-ASAN_OPTIONS=detect_leaks=0 ctest --output-on-failure --timeout 1500 -R "$egl_test" || status=1
+ASAN_OPTIONS=detect_leaks=1 stage "tests (build-asan/)" ctest --output-on-failure -j "$(nproc)" \
+  --timeout 1500 -E "$egl_test" "$@" || status=1
+ASAN_OPTIONS=detect_leaks=0 stage "tests (build-asan/, EGL/GLX)" ctest --output-on-failure \
+  --timeout 1500 -R "$egl_test" || status=1
 exit $status

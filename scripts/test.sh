@@ -4,8 +4,9 @@
 #   scripts/test.sh -L unit
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/install-deps.sh
-scripts/build.sh
-samples/fetch.sh small
+. scripts/lib/stage.sh
+stage "install" scripts/install-deps.sh
+stage "build (build/)" scripts/build.sh
+stage "samples" samples/fetch.sh small
 cd build
-ctest --output-on-failure -j "$(nproc)" "$@"
+stage "tests (build/)" ctest --output-on-failure -j "$(nproc)" "$@"
