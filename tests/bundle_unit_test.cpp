@@ -126,12 +126,40 @@ Routed route_random(const RandomNetwork& net, int connections, uint32_t seed) {
   return r;
 }
 
-TEST(BundleRouting, ShortestPathsMatchAReferenceDijkstraAndAreConnectedChains) {
+// Loops hung on every `every`-th place: a triangle out of the place and back
+// (a lasso: one reduced edge from the place to itself), and beside it a ring
+// of three nodes touching nothing (an interior loop, no junction).
+void add_loops(RandomNetwork& net, size_t every) {
+  for (size_t i = 0; i < net.places.size(); i += every) {
+    const LonLat p = net.places[i];
+    net.lines.push_back({p, {p.lon + 0.03, p.lat + 0.005}, {p.lon + 0.02, p.lat + 0.03}, p});
+    const LonLat q{p.lon - 0.05, p.lat - 0.05};
+    net.lines.push_back({q, {q.lon + 0.01, q.lat}, {q.lon, q.lat + 0.01}, q});
+  }
+}
+
+// Every reduced node lists exactly the edges that touch it: a loop once,
+// any other edge once at each end.
+void expect_consistent_adjacency(const ReducedGraph& r) {
+  std::vector<uint32_t> listed(r.edges.size(), 0);
+  for (uint32_t v = 0; v + 1 < r.offsets.size(); ++v)
+    for (uint32_t k = r.offsets[v]; k < r.offsets[v + 1]; ++k) {
+      const ReducedGraph::Edge& e = r.edges[r.incident[k]];
+      EXPECT_TRUE(e.a == v || e.b == v) << "node " << v << " lists edge " << r.incident[k];
+      ++listed[r.incident[k]];
+    }
+  for (uint32_t e = 0; e < r.edges.size(); ++e)
+    EXPECT_EQ(listed[e], r.edges[e].a == r.edges[e].b ? 1u : 2u) << "edge " << e;
+}
+
+void expect_shortest_chains(uint32_t seed, bool loops) {
   Progress quiet(ProgressMode::kQuiet);
-  for (uint32_t seed : {1u, 2u, 3u}) {
-    const RandomNetwork net = random_network(60, seed);
+  {
+    RandomNetwork net = random_network(60, seed);
+    if (loops) add_loops(net, 3);
     const Routed r = route_random(net, 150, seed * 7);
     ASSERT_GT(r.od.size(), 50u);
+    expect_consistent_adjacency(r.reduced);
     std::map<uint32_t, std::vector<double>> reference;
     const auto routes = route_connections(r.reduced, r.od, 2, quiet);
     for (size_t c = 0; c < r.od.size(); ++c) {
@@ -159,6 +187,20 @@ TEST(BundleRouting, ShortestPathsMatchAReferenceDijkstraAndAreConnectedChains) {
           << "seed " << seed << " connection " << c;
     }
   }
+}
+
+TEST(BundleRouting, ShortestPathsMatchAReferenceDijkstraAndAreConnectedChains) {
+  for (uint32_t seed : {1u, 2u, 3u})
+    expect_shortest_chains(seed, false);
+}
+
+// Loops in the network (a lasso reduces to an edge from a node to itself)
+// once left a slot of their node's adjacency unfilled, read as edge 0: the
+// route back from a destination then never reached its origin (issue 33:
+// bad_alloc on London -> Los Angeles over the airways).
+TEST(BundleRouting, LoopsInTheNetworkKeepRoutesShortestChains) {
+  for (uint32_t seed : {4u, 5u, 6u})
+    expect_shortest_chains(seed, true);
 }
 
 TEST(BundleRouting, RoutesDoNotDependOnTheThreadCount) {

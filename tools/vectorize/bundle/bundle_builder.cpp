@@ -8,6 +8,8 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <stdexcept>
+#include <string>
 
 #include "bundle/bundle_curve.hpp"
 #include "bundle/bundles.hpp"
@@ -251,7 +253,14 @@ class Builder {
         od_connection.push_back(c);
       }
     }
-    std::vector<std::vector<uint32_t>> found = route_connections(reduced_, od, threads_, progress_);
+    std::vector<std::vector<uint32_t>> found;
+    try {
+      found = route_connections(reduced_, od, threads_, progress_);
+    } catch (const RouteError& e) {
+      const Connection& c = flows_.connections[od_connection[e.connection]];
+      throw std::logic_error("routing " + s_.flows + " row " + std::to_string(c.row) + " (" +
+                             c.origin + " -> " + c.destination + "): " + e.what());
+    }
     routes_.assign(flows_.connections.size(), {});
     for (size_t i = 0; i < od.size(); ++i) {
       routes_[od_connection[i]] = std::move(found[i]);

@@ -308,11 +308,16 @@ ReducedGraph reduce_graph(const NetworkGraph& g, const std::vector<char>& termin
     r.graph_node.push_back(v);
     walk(v, e);
   }
-  // Reduced adjacency (CSR).
+  // Reduced adjacency (CSR). A loop (a == b: a lasso off a junction, or a
+  // ring of interior nodes) is listed once at its node: counting it twice
+  // left a slot unfilled, read as edge 0 by the router, whose path
+  // reconstruction then followed an edge that does not touch the node.
   const size_t m = r.graph_node.size();
   r.offsets.assign(m + 1, 0);
-  for (const auto& e : r.edges)
-    ++r.offsets[e.a + 1], ++r.offsets[e.b + 1];
+  for (const auto& e : r.edges) {
+    ++r.offsets[e.a + 1];
+    if (e.b != e.a) ++r.offsets[e.b + 1];
+  }
   for (size_t i = 0; i < m; ++i)
     r.offsets[i + 1] += r.offsets[i];
   r.incident.resize(r.offsets[m]);

@@ -5,6 +5,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <string>
 
 #include "parallel_batches.hpp"
 
@@ -112,10 +113,21 @@ std::vector<std::vector<uint32_t>> route_connections(const ReducedGraph& g,
           std::vector<uint32_t> path;
           uint32_t v = od[c].destination;
           if (s.node[v].done == gen) {
+            // Each step goes to a node settled earlier, so a path has fewer
+            // edges than the graph has nodes; more means the graph's
+            // adjacency is inconsistent (an edge listed at a node it does
+            // not touch): an internal error naming the connection, never an
+            // endless walk.
             while (v != origin) {
               const uint32_t e = s.node[v].via;
+              const ReducedGraph::Edge& edge = g.edges[e];
+              if (path.size() >= n || (edge.a != v && edge.b != v))
+                throw RouteError(c, "the path back from node " + std::to_string(od[c].destination) +
+                                        " does not reach its origin " + std::to_string(origin) +
+                                        " (edge " + std::to_string(e) + " after " +
+                                        std::to_string(path.size()) + " steps)");
               path.push_back(e);
-              v = g.edges[e].a == v ? g.edges[e].b : g.edges[e].a;
+              v = edge.a == v ? edge.b : edge.a;
             }
             std::reverse(path.begin(), path.end());
           }
