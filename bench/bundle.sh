@@ -7,7 +7,11 @@
 #            to it `globe-vectorize lines` of the same network (tiling the
 #            network alone: what the bundle's package costs at least);
 #   flights: the vega-datasets US flights (5,366 routes) over FlightGear's
-#            airways (70,291 segments), the thesis's airline case.
+#            airways (70,291 segments), the thesis's airline case;
+#   global:  20,000 connections between the world's 2,385 ILS airports
+#            (samples/data/world_airports.csv), pairs drawn with probability
+#            proportional to runway ends (fixed seed), over the same airways:
+#            transoceanic and antimeridian routes at airline scale (issue 33).
 # Usage: bench/bundle.sh [VERTICES] [CONNECTIONS] [TOWNS]  (default 975491 31608 2500)
 # Needs: scripts/build.sh and samples/fetch.sh done. Scratch: bench/scratch/bundle.
 set -euo pipefail
@@ -61,3 +65,29 @@ f=$(bundle "$scratch/flights.mbtiles" samples/data/us_flights_airport.csv --from
 report flights "$f"
 grep -o 'wrote.*bundles, mean detour [0-9.]*, ink ratio [0-9.]*; network [^;]*' "$scratch/err.txt" |
   sed 's/^/         /'
+
+global="$scratch/global-20000.csv"
+if [ ! -f "$global" ]; then
+  python3 - samples/data/world_airports.csv >"$global.part" <<'PY'
+import csv, random, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+rng = random.Random(33)
+weights = [int(r["ils_runway_ends"]) for r in rows]
+print("origin,olon,olat,destination,dlon,dlat,weight")
+n = 0
+while n < 20000:
+    a, b = rng.choices(rows, weights, k=2)
+    if a is b:
+        continue
+    print(",".join([a["icao"], a["lon"], a["lat"], b["icao"], b["lon"], b["lat"],
+                    str(int(a["ils_runway_ends"]) + int(b["ils_runway_ends"]))]))
+    n += 1
+PY
+  mv "$global.part" "$global"
+fi
+g=$(bundle "$scratch/global.mbtiles" "$global" --from olon,olat --to dlon,dlat --weight weight \
+  --network samples/data/airways.geojson)
+report global "$g"
+grep -o 'wrote.*bundles, mean detour [0-9.]*, ink ratio [0-9.]*; network [^;]*' "$scratch/err.txt" |
+  sed 's/^/         /'
+grep -o '[0-9]* routed, [0-9]* unrouted[^;]*' "$scratch/err.txt" | head -1 | sed 's/^/         /'

@@ -10,8 +10,9 @@
 #          ne_admin1, canada_roads, os_wales, efas_rivers (lines, ~35 MB of packages) and
 #          landsat, cbers20, bluemarble (imagery, +15 MB) and
 #          us_flights (npm vega-datasets: airports, routes; points per airport, +18 MB) and
-#          airways (FlightGear's airway network, one 1.2 MB file streamed out of
-#          flightgear-data-base, converted to GeoJSON)
+#          airways and world_airports (FlightGear's airway network and navaids, two
+#          files of 1.7 and 0.7 MB streamed out of flightgear-data-base, converted to
+#          GeoJSON lines and a CSV of the airports with an ILS)
 #   all:   small + nothing else yet (the benchmarks synthesize larger DEMs)
 # Exit codes: 0 ok, 1 a download/checksum/conversion failed, 2 usage error.
 set -euo pipefail
@@ -112,30 +113,48 @@ if [ ! -f "$data/us_airport_flights.csv" ]; then
   mv "$data/us_airport_flights.csv.part" "$data/us_airport_flights.csv"
 fi
 
-# airways: FlightGear's airway segments (Navaids/awy.dat.gz) out of
-# flightgear-data-base, a package of about 1 GB: its data.tar.xz is streamed
-# until tar has found the file (the first few MB), not downloaded whole.
-stream_deb_member() { # package inner-path output
-  local pkg=$1 inner=$2 out=$3 uri
-  [ -f "$data/$out" ] && return 0
+# airways: FlightGear's airway segments (Navaids/awy.dat.gz) and navaids
+# (Navaids/nav.dat.gz, whose ILS entries place the world's larger airports)
+# out of flightgear-data-base, a package of about 1 GB: its data.tar.xz is
+# streamed until tar has found both files (the first part of it), not
+# downloaded whole.
+stream_deb_members() { # package inner-path:output...
+  local pkg=$1 uri tmp spec missing=() inners=()
+  shift
+  for spec in "$@"; do
+    [ -f "$data/${spec#*:}" ] || missing+=("$spec")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
   if [ $apt_updated = 0 ] && [ -z "$(ls /var/lib/apt/lists/ 2>/dev/null | grep -v lock | head -n 1)" ]; then
     apt-get update -qq; apt_updated=1
   fi
   uri=$(apt-get download --print-uris "$pkg" 2>/dev/null | awk '{print $1}' | tr -d "'")
   [ -n "$uri" ] || { echo "fetch: no download address for $pkg (apt-get update?)" >&2; return 1; }
-  echo "fetch: streaming $inner out of $pkg" >&2
-  # The pipeline ends early on purpose (tar stops after the file): judge it
-  # by its output, not its status.
+  for spec in "${missing[@]}"; do inners+=("./${spec%%:*}"); done
+  echo "fetch: streaming ${inners[*]} out of $pkg" >&2
+  tmp=$(mktemp -d)
+  # The pipeline ends early on purpose (tar stops once it has every file):
+  # judge it by its output, not its status.
   (set +o pipefail; curl -fsL --retry 3 "$uri" | python3 "$here/deb_member.py" data.tar.xz |
-    xz -dc 2>/dev/null | tar -x -O --occurrence=1 "./$inner" >"$data/$out.part" 2>/dev/null) || true
-  [ -s "$data/$out.part" ] || { echo "fetch: could not take $inner out of $pkg" >&2; return 1; }
-  mv "$data/$out.part" "$data/$out"
+    xz -dc 2>/dev/null | tar -x -C "$tmp" --occurrence=1 "${inners[@]}" 2>/dev/null) || true
+  for spec in "${missing[@]}"; do
+    [ -s "$tmp/${spec%%:*}" ] || { echo "fetch: could not take ${spec%%:*} out of $pkg" >&2; rm -rf "$tmp"; return 1; }
+    mv "$tmp/${spec%%:*}" "$data/${spec#*:}"
+  done
+  rm -rf "$tmp"
 }
-stream_deb_member flightgear-data-base usr/share/games/flightgear/Navaids/awy.dat.gz \
-  flightgear_awy.dat.gz
+stream_deb_members flightgear-data-base \
+  usr/share/games/flightgear/Navaids/awy.dat.gz:flightgear_awy.dat.gz \
+  usr/share/games/flightgear/Navaids/nav.dat.gz:flightgear_nav.dat.gz
 if [ ! -f "$data/airways.geojson" ]; then
   python3 "$here/airways_geojson.py" "$data/flightgear_awy.dat.gz" >"$data/airways.geojson.part"
   mv "$data/airways.geojson.part" "$data/airways.geojson"
+fi
+# world_airports: the airports with instrument landing systems, one row each
+# (ICAO code, the mean position of its ILS localizers, how many runways have one).
+if [ ! -f "$data/world_airports.csv" ]; then
+  python3 "$here/ils_airports.py" "$data/flightgear_nav.dat.gz" >"$data/world_airports.csv.part"
+  mv "$data/world_airports.csv.part" "$data/world_airports.csv"
 fi
 
 # Writes a GDAL VRT describing a headerless raster file.
