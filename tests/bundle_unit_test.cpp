@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <random>
 #include <set>
 
@@ -68,6 +69,15 @@ NetworkGraph build_graph(const std::vector<std::vector<LonLat>>& lines) {
   for (const auto& l : lines)
     b.add_line({l}, std::nan(""));
   return b.finish();
+}
+
+// Great-circle metres on the mean sphere (lon, lat pairs).
+double haversine_m(std::pair<double, double> a, std::pair<double, double> b) {
+  constexpr double kR = 6371008.8, d = std::numbers::pi / 180;
+  const double h = std::pow(std::sin((b.second - a.second) * d / 2), 2) +
+                   std::cos(a.second * d) * std::cos(b.second * d) *
+                       std::pow(std::sin((b.first - a.first) * d / 2), 2);
+  return 2 * kR * std::asin(std::min(1.0, std::sqrt(h)));
 }
 
 // Reference: Dijkstra over the unreduced graph, O(n^2) with arrays, costs
@@ -251,6 +261,26 @@ TEST(BundleGraph, NearestNodeWrapsAtTheAntimeridian) {
   const auto n = g.nearest({-179.995, 10}, 5000);
   ASSERT_TRUE(n.has_value());
   EXPECT_DOUBLE_EQ(g.nodes()[*n].lon, 179.99);  // 1.6 km west across the antimeridian
+}
+
+// Unrouted connections are drawn along the geodesic: London -> Los Angeles
+// in steps of 10 km (or a little less) goes far north, over Hudson Bay, and
+// its steps add up to the great circle within the sphere's 0.6 %. (The
+// line's length was once NaN, and the curve one straight step.)
+TEST(BundleGeodesic, StraightLinesFollowTheGeodesic) {
+  const auto pts = geodesic_points(-0.4619, 51.4706, -118.4081, 33.9425, 10000);
+  ASSERT_GT(pts.size(), 870u);
+  ASSERT_LT(pts.size(), 890u);
+  double north = -90, total = 0;
+  for (size_t i = 1; i < pts.size(); ++i) {
+    north = std::max(north, pts[i].second);
+    const double h = haversine_m(pts[i - 1], pts[i]);
+    EXPECT_NEAR(h, 10000, 150) << "step " << i;
+    total += h;
+  }
+  EXPECT_GT(north, 60);
+  EXPECT_NEAR(total, haversine_m(pts.front(), pts.back()), 0.006 * total);
+  EXPECT_DOUBLE_EQ(pts.back().first, -118.4081);
 }
 
 TEST(BundleSets, BundlesPartitionTheUsedEdgesAndConserveWeightAtEveryNode) {

@@ -30,7 +30,11 @@ double geodesic_distance_m(double lon1, double lat1, double lon2, double lat2) {
 std::vector<std::pair<double, double>> geodesic_points(double lon1, double lat1, double lon2,
                                                        double lat2, double step_m) {
   geod_geodesicline line;
-  geod_inverseline(&line, &wgs84(), lat1, lon1, lat2, lon2, GEOD_LATITUDE | GEOD_LONGITUDE);
+  // GEOD_DISTANCE for the line's length (s13, else NaN: the line was drawn
+  // as one straight step, found by clang's UBSan at the NaN's cast) and
+  // GEOD_DISTANCE_IN for positions by distance (else NaN too).
+  geod_inverseline(&line, &wgs84(), lat1, lon1, lat2, lon2,
+                   GEOD_LATITUDE | GEOD_LONGITUDE | GEOD_DISTANCE | GEOD_DISTANCE_IN);
   const double length = line.s13;
   const int steps = std::max(1, static_cast<int>(std::ceil(length / std::max(step_m, 1.0))));
   std::vector<std::pair<double, double>> out;
