@@ -16,6 +16,11 @@ function(globe_target name)
     target_compile_options(${name} PRIVATE -fsanitize=${GLOBE_SANITIZE} -fno-omit-frame-pointer
                                            -fno-sanitize-recover=all)
     target_link_options(${name} PRIVATE -fsanitize=${GLOBE_SANITIZE})
+    # One name for "under ASan" with either compiler (GCC defines
+    # __SANITIZE_ADDRESS__, clang 14 only answers __has_feature).
+    if(GLOBE_SANITIZE MATCHES "address")
+      target_compile_definitions(${name} PRIVATE GLOBE_ADDRESS_SANITIZER=1)
+    endif()
   endif()
   if(GLOBE_FUZZ)  # coverage feedback for libFuzzer in every library it links
     target_compile_options(${name} PRIVATE -fsanitize=fuzzer-no-link)

@@ -280,7 +280,7 @@ double peak_rss_mb(const std::string& command, const fs::path& dir) {
 // overhead (stated as 40 MB: 36 MB is the tool with GDAL and PROJ loaded,
 // doing nothing), and the answer equals the default budget's.
 TEST(FlowOutOfCore, PeakMemoryStaysWithinTheBudget) {
-#ifdef __SANITIZE_ADDRESS__
+#ifdef GLOBE_ADDRESS_SANITIZER
   GTEST_SKIP() << "AddressSanitizer's shadow memory and quarantine are not the tool's";
 #endif
   TempDir dir;

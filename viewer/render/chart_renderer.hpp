@@ -71,7 +71,7 @@ class ChartRenderer {
 
  private:
   GlProgram sprite_, column_;
-  GLuint fbo_ = 0, color_ = 0, picks_ = 0, depth_fbo_ = 0;
+  GLuint fbo_ = 0, color_ = 0, picks_ = 0;
   GLuint sprite_vao_ = 0, column_vao_ = 0, corner_vbo_ = 0, box_vbo_ = 0, instance_vbo_ = 0;
   GLuint terrain_table_ = 0, timer_ = 0;
   GLsizei instances_ = 0;

@@ -32,8 +32,7 @@ constexpr double kMaxSpanPerDistance = 4.0;
 }  // namespace
 
 PatchSelector::PatchSelector(const TerrainPackage& package)
-    : package_(&package),
-      layout_(package.block_size - 1, package.lattice, 0),
+    : layout_(package.block_size - 1, package.lattice, 0),
       steps_(package.block_size - 1),
       lattice_(package.lattice),
       depth_(layout_.depth()),

@@ -87,7 +87,6 @@ class PatchSelector {
   bool in_extent(const KeyPoint& p) const;
   tileformat::TileId tile_at(int z, int64_t kx, int64_t ky) const;
 
-  TerrainPackage const* package_;
   tileformat::KPatchLayout layout_;
   int steps_, lattice_, depth_, min_zoom_, max_zoom_;
   int64_t extent_x_, extent_y_;  // key units

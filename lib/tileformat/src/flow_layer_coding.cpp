@@ -82,7 +82,6 @@ std::vector<uint16_t> unpack_nibbles(const std::vector<uint8_t>& packed, size_t 
 
 AreaPredictor::AreaPredictor(const std::vector<uint16_t>& directions, int size)
     : directions_(directions),
-      size_(size),
       receiver_(directions.size(), -1),
       donors_(directions.size(), 0),
       donor_count_(directions.size(), 0),

@@ -54,7 +54,6 @@ class AreaPredictor {
 
  private:
   const std::vector<uint16_t>& directions_;
-  int size_;
   std::vector<int32_t> receiver_;     // per cell: the cell it drains into in the block, or -1
   std::vector<uint8_t> donors_;       // per cell: bit d - 1 where the neighbour at code d drains in
   std::vector<uint8_t> donor_count_;  // per cell: bits set in donors_
