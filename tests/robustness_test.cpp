@@ -10,6 +10,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <random>
@@ -55,10 +56,11 @@ bool continued_from_saved_work(const std::string& err) {
 
 // Builds `build` (a command without -o) uninterrupted with -j1 and with -j2
 // (same bytes), then again with -j2 --resume, killing it (SIGKILL) after
-// random delays until it has been killed `min_kills` times, then once at 3/4
-// of its usual time. Every kill must leave either no file under the final name or
-// the complete package; every run that finishes, and the last resumed run,
-// must give the uninterrupted run's bytes, and the last run must have
+// random delays (up to `max_delay`, or 1.2 times the -j2 build's time where
+// that is shorter) until it has been killed `min_kills` times, then once at
+// 3/4 of its usual time. Every kill must leave either no file under the final
+// name or the complete package; every run that finishes, and the last resumed
+// run, must give the uninterrupted run's bytes, and the last run must have
 // continued from saved work.
 void kill_and_resume(const std::string& build, int min_kills, std::chrono::milliseconds max_delay) {
   TempDir dir;
@@ -76,8 +78,15 @@ void kill_and_resume(const std::string& build, int min_kills, std::chrono::milli
   ASSERT_TRUE(same_bytes(out, ref)) << "-j2 and -j1 builds differ";
   fs::remove(out);
 
+  // Delays up to `max_delay`, or a little past the uninterrupted build's
+  // duration where that is shorter: a kill drawn later than the build's end
+  // would only rerun the whole build, unkilled (the imagery case once spent
+  // two minutes so).
+  const auto duration_ms = std::chrono::duration_cast<std::chrono::milliseconds>(duration).count();
+  const int upper = static_cast<int>(
+      std::clamp<int64_t>(duration_ms * 6 / 5, 100, std::max<int64_t>(100, max_delay.count())));
   std::mt19937 rng(20261122);
-  std::uniform_int_distribution<int> delay_ms(20, static_cast<int>(max_delay.count()));
+  std::uniform_int_distribution<int> delay_ms(20, upper);
   int kills = 0, finished = 0, resumed_with_work = 0;
   for (int attempt = 0; kills < min_kills && attempt < 20 * min_kills; ++attempt) {
     const pid_t pid = spawn(dir / "work", build + " -o out.mbtiles -j2 --resume >/dev/null 2>" +
