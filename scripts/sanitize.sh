@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Builds with AddressSanitizer + UndefinedBehaviorSanitizer into build-asan/
+# Builds with AddressSanitizer + UndefinedBehaviorSanitizer (clang) into build-asan/
 # and runs the whole test suite there (every label: unit, cli, real, render,
 # slow). Leaks are reported, except Mesa's own (scripts/lsan.supp says why).
 # Needs the samples (scripts/test.sh fetches them).
@@ -7,7 +7,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 . scripts/lib/stage.sh
-BUILD_DIR=build-asan stage "build (build-asan/)" scripts/build.sh -DGLOBE_SANITIZE=address,undefined
+# clang, not GCC: the same sanitizers, built in half the time (GCC 12 spent
+# 2.2x clang 14's CPU on ASan-instrumented code; docs/ci.md).
+BUILD_DIR=build-asan stage "build (build-asan/)" scripts/build.sh -DCMAKE_C_COMPILER=clang \
+  -DCMAKE_CXX_COMPILER=clang++ -DGLOBE_SANITIZE=address,undefined
 supp=$(pwd)/scripts/lsan.supp
 cd build-asan
 export LSAN_OPTIONS=suppressions=$supp:print_suppressions=0 UBSAN_OPTIONS=print_stacktrace=1
