@@ -33,11 +33,7 @@ struct LL {
 };
 
 double haversine(LL a, LL b) {
-  constexpr double kR = 6371008.8, d = std::numbers::pi / 180;
-  const double h =
-      std::pow(std::sin((b.lat - a.lat) * d / 2), 2) +
-      std::cos(a.lat * d) * std::cos(b.lat * d) * std::pow(std::sin((b.lon - a.lon) * d / 2), 2);
-  return 2 * kR * std::asin(std::min(1.0, std::sqrt(h)));
+  return haversine_m(a.lon, a.lat, b.lon, b.lat);
 }
 
 std::string fmt(double v) {

@@ -12,7 +12,6 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <numbers>
 #include <random>
 #include <set>
 
@@ -22,6 +21,7 @@
 #include "bundle/routing.hpp"
 #include "geodesic.hpp"
 #include "progress.hpp"
+#include "test_support.hpp"
 
 namespace globe {
 namespace {
@@ -69,15 +69,6 @@ NetworkGraph build_graph(const std::vector<std::vector<LonLat>>& lines) {
   for (const auto& l : lines)
     b.add_line({l}, std::nan(""));
   return b.finish();
-}
-
-// Great-circle metres on the mean sphere (lon, lat pairs).
-double haversine_m(std::pair<double, double> a, std::pair<double, double> b) {
-  constexpr double kR = 6371008.8, d = std::numbers::pi / 180;
-  const double h = std::pow(std::sin((b.second - a.second) * d / 2), 2) +
-                   std::cos(a.second * d) * std::cos(b.second * d) *
-                       std::pow(std::sin((b.first - a.first) * d / 2), 2);
-  return 2 * kR * std::asin(std::min(1.0, std::sqrt(h)));
 }
 
 // Reference: Dijkstra over the unreduced graph, O(n^2) with arrays, costs
@@ -274,12 +265,16 @@ TEST(BundleGeodesic, StraightLinesFollowTheGeodesic) {
   double north = -90, total = 0;
   for (size_t i = 1; i < pts.size(); ++i) {
     north = std::max(north, pts[i].second);
-    const double h = haversine_m(pts[i - 1], pts[i]);
+    const double h =
+        globe_test::haversine_m(pts[i - 1].first, pts[i - 1].second, pts[i].first, pts[i].second);
     EXPECT_NEAR(h, 10000, 150) << "step " << i;
     total += h;
   }
   EXPECT_GT(north, 60);
-  EXPECT_NEAR(total, haversine_m(pts.front(), pts.back()), 0.006 * total);
+  EXPECT_NEAR(total,
+              globe_test::haversine_m(pts.front().first, pts.front().second, pts.back().first,
+                                      pts.back().second),
+              0.006 * total);
   EXPECT_DOUBLE_EQ(pts.back().first, -118.4081);
 }
 

@@ -12,7 +12,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -57,6 +59,16 @@ inline std::string tiler() {
 inline std::string vectorize() {
   return GLOBE_VECTORIZE_PATH;
 }
+// Great-circle metres on the mean sphere (haversine): the bundling tests'
+// reference length, written here, not the tools' ellipsoid (they agree
+// within 0.6 %).
+inline double haversine_m(double lon1, double lat1, double lon2, double lat2) {
+  constexpr double kR = 6371008.8, d = 3.14159265358979323846 / 180;
+  const double sy = std::sin((lat2 - lat1) * d / 2), sx = std::sin((lon2 - lon1) * d / 2);
+  const double h = sy * sy + std::cos(lat1 * d) * std::cos(lat2 * d) * sx * sx;
+  return 2 * kR * std::asin(std::min(1.0, std::sqrt(h)));
+}
+
 inline fs::path samples() {
   return GLOBE_SAMPLES_DIR;
 }
