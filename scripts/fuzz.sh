@@ -15,15 +15,13 @@ shift || true
 targets=("$@")
 [ ${#targets[@]} -eq 0 ] && targets=(mblock image_tile line_tile point_tile analysis_block package)
 
+# (Both stages run as functions under `stage`, where `set -e` does not
+# apply: each step's failure is returned explicitly.)
 build_fuzz() {
   CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DGLOBE_FUZZ=ON -DGLOBE_BUILD_TESTS=OFF -DGLOBE_SANITIZE=address,undefined >/dev/null
+    -DGLOBE_FUZZ=ON -DGLOBE_BUILD_TESTS=OFF -DGLOBE_SANITIZE=address,undefined >/dev/null || return
   cmake --build build-fuzz --target make_fuzz_seeds "${targets[@]/#/fuzz_}"
 }
-stage "build (build-fuzz/)" build_fuzz
-fuzz_start=$SECONDS
-rm -rf build-fuzz/seeds
-build-fuzz/tests/fuzz/make_fuzz_seeds build-fuzz/seeds
 
 # One target per core at a time; each writes its own log.
 fuzz_one() {
@@ -35,28 +33,33 @@ fuzz_one() {
     -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
     -artifact_prefix="build-fuzz/crashes/$t/" "${dirs[@]}" 2> "build-fuzz/fuzz_$t.log"
 }
-declare -A pid_of
-for t in "${targets[@]}"; do
-  while [ "$(jobs -rp | wc -l)" -ge "$(nproc)" ]; do wait -n || true; done
-  echo "fuzz: $t for ${seconds}s" >&2
-  fuzz_one "$t" &
-  pid_of[$t]=$!
-done
-failed=()
-for t in "${targets[@]}"; do
-  if ! wait "${pid_of[$t]}"; then
-    tail -40 "build-fuzz/fuzz_$t.log" >&2
-    failed+=("$t")
-  else
-    grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "build-fuzz/fuzz_$t.log" |
-      sed "s/^/fuzz: $t /" >&2
+
+fuzz_all() {
+  rm -rf build-fuzz/seeds
+  build-fuzz/tests/fuzz/make_fuzz_seeds build-fuzz/seeds || return
+  local t failed=()
+  local -A pid_of
+  for t in "${targets[@]}"; do
+    while [ "$(jobs -rp | wc -l)" -ge "$(nproc)" ]; do wait -n || true; done
+    echo "fuzz: $t for ${seconds}s" >&2
+    fuzz_one "$t" &
+    pid_of[$t]=$!
+  done
+  for t in "${targets[@]}"; do
+    if ! wait "${pid_of[$t]}"; then
+      tail -40 "build-fuzz/fuzz_$t.log" >&2
+      failed+=("$t")
+    else
+      grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "build-fuzz/fuzz_$t.log" |
+        sed "s/^/fuzz: $t /" >&2
+    fi
+  done
+  if [ ${#failed[@]} -gt 0 ]; then
+    echo "fuzz: crashes in ${failed[*]}; inputs under build-fuzz/crashes/" >&2
+    return 1
   fi
-done
-if [ ${#failed[@]} -gt 0 ]; then
-  echo "fuzz: crashes in ${failed[*]}; inputs under build-fuzz/crashes/" >&2
-  exit 1
-fi
-echo "fuzz: no crash in ${targets[*]}" >&2
-line=$(printf '%-28s %5d s' "fuzz (${#targets[@]} x ${seconds}s)" $((SECONDS - fuzz_start)))
-echo "stage: $line" >&2
-if [ -n "${GLOBE_STAGE_LOG:-}" ]; then echo "$line" >>"$GLOBE_STAGE_LOG"; fi
+  echo "fuzz: no crash in ${targets[*]}" >&2
+}
+
+stage "build (build-fuzz/)" build_fuzz
+stage "fuzz (${#targets[@]} x ${seconds}s)" fuzz_all
