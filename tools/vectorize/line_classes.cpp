@@ -49,7 +49,7 @@ void parse_style(const std::string& spec, LineStyle& s, const std::string& conte
     const auto eq = kv.find('=');
     if (eq == std::string::npos)
       throw UsageError(context + ": '" + kv +
-                       "' is not key=value (keys: color, width, casing, dash)");
+                       "' is not key=value (keys: color, width, casing, dash, opacity)");
     const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
     if (key == "color") {
       if (!is_hex_color(value))
@@ -71,9 +71,13 @@ void parse_style(const std::string& spec, LineStyle& s, const std::string& conte
         s.dash.push_back(parse_length(d, context + " dash", nullptr));
       if (s.dash.size() % 2 != 0 || s.dash.empty())
         throw UsageError(context + ": dash needs on+off pairs, e.g. dash=6+3");
+    } else if (key == "opacity") {
+      s.opacity = CliArgs::to_double(context + " opacity", value);
+      if (!(s.opacity >= 0 && s.opacity <= 1))
+        throw UsageError(context + ": opacity '" + value + "' is not between 0 and 1");
     } else {
       throw UsageError(context + ": unknown style key '" + key +
-                       "' (keys: color, width, casing, dash)");
+                       "' (keys: color, width, casing, dash, opacity)");
     }
   }
 }
@@ -142,7 +146,9 @@ std::string LineClasses::json() const {
            "\",\"casing_width\":" + number(s.casing_width) + ",\"dash\":[";
     for (size_t k = 0; k < s.dash.size(); ++k)
       out += (k ? "," : "") + number(s.dash[k]);
-    out += "]}";
+    out += "]";
+    if (s.opacity < 1) out += ",\"opacity\":" + number(s.opacity);  // absent: opaque
+    out += "}";
   }
   return out + "]";
 }

@@ -133,7 +133,9 @@ void LineRenderer::set_styles(const std::vector<NamedLineStyle>& classes) {
     float dash[8] = {};
     for (size_t i = 0; i < s.dash.size() && i < 8; ++i)
       dash[i] = static_cast<float>(s.dash[i]);
-    v.push_back(hex_rgba(s.color));
+    glm::vec4 fill = hex_rgba(s.color);
+    fill.a = static_cast<float>(std::clamp(s.opacity, 0.0, 1.0));
+    v.push_back(fill);
     v.push_back(casing ? hex_rgba(s.casing_color) : glm::vec4(0));
     v.push_back({s.visible ? s.width / 2 : 0.0, casing ? s.casing_width : 0.0,
                  s.width_in_m ? 1.0 : 0.0, static_cast<float>(s.dash.size())});

@@ -131,9 +131,13 @@ void main() {
   uint ci = uint(cell.y) * grid + uint(cell.x);
   uint begin = arena[r0.x + ci], end = arena[r0.x + ci + 1u];
   float reach_m = reach * min(m_per_unit.x, m_per_unit.y);
-  float best_c = 0.0, best_f = 0.0;
-  int cls_c = -1, cls_f = -1;
-  uint seg_c = 0u, seg_f = 0u;
+  // The classes covering the pixel, at most kLayers of the highest ids: per
+  // class its best casing and fill coverage and the segment of that fill.
+  const int kLayers = 4;
+  int lay_cls[kLayers];
+  float lay_c[kLayers], lay_f[kLayers];
+  uint lay_seg[kLayers];
+  int layers = 0;
   for (uint k = begin; k < end; ++k) {
     uint seg = arena[r0.y + k];
     uint o = r0.z + seg * 6u;
@@ -178,15 +182,41 @@ void main() {
         cov_f *= dash_coverage(along * u_units_to_nominal_px, u_units_to_nominal_px / px_per_unit, cls);
       }
     }
-    if (cov_c > 0.0 && (cov_c > best_c || (cov_c == best_c && cls > cls_c)))
-      best_c = cov_c, cls_c = cls, seg_c = seg;
-    if (cov_f > 0.0 && (cov_f > best_f || (cov_f == best_f && cls > cls_f)))
-      best_f = cov_f, cls_f = cls, seg_f = seg;
+    if (cov_c <= 0.0 && cov_f <= 0.0) continue;
+    int at = -1, lowest = 0;
+    for (int i = 0; i < layers; ++i) {
+      if (lay_cls[i] == cls) at = i;
+      if (lay_cls[i] < lay_cls[lowest]) lowest = i;
+    }
+    if (at < 0) {
+      if (layers < kLayers) {
+        at = layers++;
+      } else {
+        if (cls < lay_cls[lowest]) continue;  // under kLayers higher classes
+        at = lowest;
+      }
+      lay_cls[at] = cls, lay_c[at] = 0.0, lay_f[at] = 0.0, lay_seg[at] = seg;
+    }
+    lay_c[at] = max(lay_c[at], cov_c);
+    if (cov_f > lay_f[at]) lay_f[at] = cov_f, lay_seg[at] = seg;
   }
-  o_segment = cls_f >= 0 ? seg_f + 1u : cls_c >= 0 ? seg_c + 1u : 0u;
+  // Lowest class first, each casing then fill over what lies under it at its
+  // coverage times the class's opacity (styles[cls * 5].a).
+  for (int i = 1; i < layers; ++i)
+    for (int j = i; j > 0 && lay_cls[j - 1] > lay_cls[j]; --j) {
+      int tc = lay_cls[j]; lay_cls[j] = lay_cls[j - 1]; lay_cls[j - 1] = tc;
+      float t = lay_c[j]; lay_c[j] = lay_c[j - 1]; lay_c[j - 1] = t;
+      t = lay_f[j]; lay_f[j] = lay_f[j - 1]; lay_f[j - 1] = t;
+      uint ts = lay_seg[j]; lay_seg[j] = lay_seg[j - 1]; lay_seg[j - 1] = ts;
+    }
   vec3 col = base.rgb;
-  if (cls_c >= 0) col = mix(col, styles[cls_c * 5 + 1].rgb, best_c);
-  if (cls_f >= 0) col = mix(col, styles[cls_f * 5].rgb, best_f);
+  for (int i = 0; i < layers; ++i) {
+    int cls = lay_cls[i];
+    float a = styles[cls * 5].a;
+    col = mix(col, styles[cls * 5 + 1].rgb, lay_c[i] * a);
+    col = mix(col, styles[cls * 5].rgb, lay_f[i] * a);
+    o_segment = lay_seg[i] + 1u;  // the top one stays: what picking names
+  }
   o_color = vec4(col, 1.0);
 }
 )";

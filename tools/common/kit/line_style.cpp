@@ -70,13 +70,17 @@ void read_style(const JsonValue& o, const std::string& where, LineStyle& s) {
       for (double d : s.dash)
         sum += d;
       if (!s.dash.empty() && sum <= 0) throw InputError(at + ": the pattern has zero length");
+    } else if (key == "opacity") {
+      if (!v.is_number() || !(v.number() >= 0 && v.number() <= 1))
+        throw InputError(at + ": expected a number from 0 to 1");
+      s.opacity = v.number();
     } else if (key == "visible") {
       if (!v.is_bool()) throw InputError(at + ": expected true/false");
       s.visible = v.boolean();
     } else if (key != "id" && key != "name" && key != "layer" && key != "features") {
       throw InputError(at +
                        ": unknown key (color, width, unit, casing_color, casing_width, dash, "
-                       "visible)");
+                       "opacity, visible)");
     }
   }
 }

@@ -17,6 +17,7 @@ struct LineStyle {
   double casing_width = 0;   // on each side, in the unit of `width`
   std::vector<double> dash;  // on/off lengths in the unit of `width`; empty = solid
   bool visible = true;       // style files may hide a class
+  double opacity = 1;        // 0..1: how much of what lies under the line shows through
   // Half the drawn width including casing, in the width's unit.
   double half_extent() const { return width / 2 + (casing_color.empty() ? 0 : casing_width); }
 };
@@ -37,7 +38,7 @@ std::vector<NamedLineStyle> parse_classes_json(const std::string& json, const st
 // Applies a style file on top of `classes`: a JSON object whose keys are
 // class names, or "*" for every class a key does not name, each holding any
 // of "color", "width", "unit" ("px"|"m"), "casing_color", "casing_width",
-// "dash" (array of on/off lengths) and "visible". Throws InputError naming
+// "dash" (array of on/off lengths), "opacity" (0..1) and "visible". Throws InputError naming
 // `context` (the file) and the key.
 void apply_style_json(const std::string& json, const std::string& context,
                       std::vector<NamedLineStyle>& classes);
