@@ -403,4 +403,54 @@ TEST_F(BundleCli, BadInputSaysWhatIsWrongAndWritesNothing) {
   expect_error(path("flows.csv") + " --network " + grid, 2, "say where connections start and end");
   expect_error(path("flows.csv") + xy + grid + " --unrouted maybe", 2,
                "--unrouted: 'maybe' is not straight or drop");
+  expect_error(path("flows.csv") + xy + grid + " --significance 2", 2,
+               "--significance: expected a share from 0 to 1");
+  expect_error(path("flows.csv") + xy + grid + " --opacities 0.5,0.2", 2,
+               "--opacities: expected 0 < MIN <= MAX <= 1");
+  expect_error(path("flows.csv") + xy + grid + " --min-weight -1", 2,
+               "--min-weight must be 0 or more");
+  expect_error(path("flows.csv") + xy + grid + " --style weight-1:opacity=3", 2,
+               "opacity '3' is not between 0 and 1");
+}
+
+// The significance filter and --min-weight as the summary and info count
+// them: by default the coarsest zoom hides the light flows of the grid,
+// with --significance 0 none; --min-weight above every weight draws nothing
+// and says so.
+TEST_F(BundleCli, SignificanceAndMinWeightAreCountedAndReported) {
+  write_text(path("grid.geojson"), geojson_lines(grid_lines()));
+  std::vector<Flow> flows = random_flows(60, 7);
+  flows[0].weight = 100000;  // one trunk flow far heavier than the rest
+  write_text(path("flows.csv"), flows_csv(flows));
+  const std::string args = path("flows.csv") + " --from olon,olat --to dlon,dlat --weight trips " +
+                           "--network " + path("grid.geojson") + " --tiling geodetic -o ";
+  auto hidden = [&](const std::string& name, const std::string& extra) {
+    const RunResult r = bundle(args + path(name) + extra);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    const RunResult info = run(vectorize() + " info " + path(name), dir_.path());
+    EXPECT_EQ(info.exit_code, 0) << info.err;
+    unsigned long long n = 0, never = 0;
+    const size_t at = info.out.find("  significance ");
+    EXPECT_NE(at, std::string::npos) << info.out;
+    if (at != std::string::npos) {
+      EXPECT_EQ(std::sscanf(info.out.c_str() + at,
+                            "  significance %*g of the heaviest flow in view: %llu flows hidden "
+                            "at the coarsest zoom; --min-weight %*g: %llu never drawn",
+                            &n, &never),
+                2)
+          << info.out;
+    }
+    return std::pair(n, never);
+  };
+  const auto [by_default, none_never] = hidden("default.mbtiles", "");
+  EXPECT_GT(by_default, 0u);
+  EXPECT_EQ(none_never, 0u);
+  EXPECT_EQ(hidden("all.mbtiles", " --significance 0").first, 0u);
+  const RunResult r = bundle(args + path("none.mbtiles") + " --min-weight 1000000");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("every bundle and line is lighter than --min-weight 1000000 (the "
+                      "heaviest weighs "),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(path("none.mbtiles")));
 }

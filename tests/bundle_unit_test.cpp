@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -19,6 +20,7 @@
 #include "bundle/bundles.hpp"
 #include "bundle/network_graph.hpp"
 #include "bundle/routing.hpp"
+#include "bundle/significance.hpp"
 #include "geodesic.hpp"
 #include "progress.hpp"
 #include "test_support.hpp"
@@ -441,6 +443,82 @@ TEST(BundleCurve, AZeroCorridorGivesThePolylineAndAWideOneAStraightishCurve) {
   ASSERT_EQ(loose.size(), 1u);
   for (const XY& p : loose[0].curve)
     EXPECT_LT(distance_to({poly.front(), poly.back()}, p), 1e-6);
+}
+
+// The direction of a sampled curve's first step (or, at_end, its last).
+XY end_direction(const std::vector<XY>& c, bool at_end) {
+  const XY a = at_end ? c[c.size() - 2] : c[0], b = at_end ? c.back() : c[1];
+  const double len = std::hypot(b.x - a.x, b.y - a.y);
+  return {(b.x - a.x) / len, (b.y - a.y) / len};
+}
+
+double angle_deg(XY a, XY b) {
+  return std::acos(std::clamp(a.x * b.x + a.y * b.y, -1.0, 1.0)) * 180 / M_PI;
+}
+
+// Two bundles meeting at a node at about 40 degrees, a light branch leaving
+// there too: with junction tangents the curve of the first arrives in the
+// direction the second leaves (no kink), both still within their corridor;
+// without, they meet at an angle.
+TEST(BundleCurve, BundlesMeetingAtAJunctionShareItsTangent) {
+  const std::vector<std::vector<XY>> polys = {{{-1000, 0}, {-500, 100}, {-200, -60}, {0, 0}},
+                                              {{0, 0}, {400, 300}, {700, 500}, {1000, 800}},
+                                              {{0, 0}, {100, -600}}};
+  const std::vector<std::pair<uint32_t, uint32_t>> ends = {{0, 1}, {1, 2}, {1, 3}};
+  const std::vector<double> weights = {10, 10, 1};
+  const auto tangents = junction_tangents(polys, ends, weights);
+  ASSERT_EQ(tangents.size(), 3u);
+  EXPECT_EQ(tangents[0].first, (XY{0, 0})) << "node 0 ends one bundle: free";
+  EXPECT_LT(angle_deg(tangents[0].second, tangents[1].first), 1e-4);
+  const std::vector<double> tol(1, 150.0), step(1, 1.0);
+  auto curve = [&](size_t b, bool tangent) {
+    const auto levels =
+        smooth_bundle(polys[b], 0, 0, tol, step, tangent ? tangents[b].first : XY{0, 0},
+                      tangent ? tangents[b].second : XY{0, 0});
+    EXPECT_EQ(levels.size(), 1u);
+    for (const XY& p : levels[0].curve)
+      EXPECT_LE(distance_to(polys[b], p), tol[0] * 1.0001);
+    return levels[0].curve;
+  };
+  const auto a = curve(0, true), b = curve(1, true);
+  EXPECT_EQ(a.back(), b.front());
+  // (Directions of the first and last sampled steps: within a few degrees.)
+  EXPECT_LT(angle_deg(end_direction(a, true), end_direction(b, false)), 3.0);
+  EXPECT_LT(angle_deg(end_direction(a, true), tangents[0].second), 3.0);
+  const auto free_a = curve(0, false), free_b = curve(1, false);
+  EXPECT_GT(angle_deg(end_direction(free_a, true), end_direction(free_b, false)), 20.0)
+      << "the junction was not a kink to begin with";
+}
+
+// A heavy flow, a light one beside it, a light one alone far away and a
+// tiny one: the light neighbour shows only once zooms separate it from the
+// heavy flow's view (and at the finest zoom), the lone one as soon as a view
+// around it no longer reaches the heavy one, the tiny one never
+// (--min-weight); without a share, all but the tiny one everywhere.
+TEST(BundleSignificance, LightFlowsShowWhereNothingHeavyIsInView) {
+  const tileformat::Tiling t = tileformat::Tiling::geodetic();
+  const std::vector<WeightedFlow> flows = {{1000, {{{0, 10}, {20, 10}}}},
+                                           {10, {{{0, 10.5}, {20, 10.5}}}},
+                                           {10, {{{100, -40}, {110, -40}}}},
+                                           {1, {{{-50, 0}, {-40, 0}}}}};
+  const int max_zoom = 12;
+  const uint32_t all = (2u << max_zoom) - 1;
+  const auto z = significant_zooms(flows, t, 0, max_zoom, {0.05, 5});
+  EXPECT_EQ(z[0], all);
+  EXPECT_EQ(z[2], all & ~7u) << "5 x 3 tiles of zoom 2 reach the heavy flow, of zoom 3 not";
+  EXPECT_EQ(z[3], 0u);
+  EXPECT_FALSE(z[1] & 1u) << "beside the heavy flow at zoom 0";
+  EXPECT_TRUE(z[1] >> max_zoom & 1u) << "every flow shows at the finest zoom";
+  const int first = std::countr_zero(z[1]);
+  EXPECT_GT(first, 6);
+  EXPECT_EQ(z[1], all & ~((1u << first) - 1)) << "once shown, shown at every finer zoom";
+  // Across the antimeridian, the window wraps: a light flow at 179.9 E next
+  // to a heavy one at 179.9 W is hidden at zoom 3.
+  const std::vector<WeightedFlow> wrap = {{1000, {{{-179.9, 0}, {-179.5, 0}}}},
+                                          {10, {{{179.5, 0}, {179.9, 0}}}}};
+  EXPECT_FALSE(significant_zooms(wrap, t, 0, max_zoom, {0.05, 0})[1] >> 3 & 1u);
+  const auto off = significant_zooms(flows, t, 0, max_zoom, {0, 5});
+  EXPECT_EQ(off, (std::vector<uint32_t>{all, all, all, 0}));
 }
 
 }  // namespace

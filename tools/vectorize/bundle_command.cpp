@@ -96,7 +96,8 @@ int run_bundle(const std::vector<std::string>& args) {
                s.unrouted = v == "straight" ? Unrouted::kStraight : Unrouted::kDrop;
              });
   cli.option("--weight-classes", "N",
-             "classes weight-1..weight-N on a log scale of bundle weight (default 6)",
+             "classes weight-1..weight-N by the square root of a bundle's share of the\n"
+             "                              heaviest bundle's weight (default 6)",
              [&](const std::string& v) {
                s.weight_classes = CliArgs::to_int("--weight-classes", v, 1, 64);
              });
@@ -108,6 +109,36 @@ int run_bundle(const std::vector<std::string>& args) {
                s.min_width = w[0];
                s.max_width = w[1];
              });
+  cli.option("--opacities", "MIN,MAX", "opacities of weight-1 and weight-N (default 0.45,1)",
+             [&](const std::string& v) {
+               const std::vector<double> o = CliArgs::to_doubles("--opacities", v, 2);
+               if (!(o[0] > 0) || !(o[1] >= o[0]) || o[1] > 1)
+                 throw UsageError("--opacities: expected 0 < MIN <= MAX <= 1");
+               s.min_opacity = o[0];
+               s.max_opacity = o[1];
+             });
+  cli.option("--significance", "SHARE",
+             "at each zoom, draw a flow only where it carries at least this share of the\n"
+             "                              heaviest flow in a view (5x3 tiles) around it; zooming "
+             "in\n"
+             "                              shows the lighter ones (default 0.02; 0 = all at every "
+             "zoom)",
+             [&](const std::string& v) {
+               s.significance = CliArgs::to_double("--significance", v);
+               if (!(s.significance >= 0 && s.significance <= 1))
+                 throw UsageError("--significance: expected a share from 0 to 1");
+             });
+  cli.option("--min-weight", "W",
+             "never draw bundles or unrouted lines lighter than W (they stay in the features\n"
+             "                              table; default 0)",
+             [&](const std::string& v) {
+               s.min_weight = CliArgs::to_double("--min-weight", v);
+               if (!(s.min_weight >= 0)) throw UsageError("--min-weight must be 0 or more");
+             });
+  cli.flag("--no-junction-tangents",
+           "let curves turn where one bundle hands over to the next (default: they share a\n"
+           "                              tangent there, no kink)",
+           [&] { s.smooth_junctions = false; });
   cli.option("--like", "PACKAGE",
              "use the tiling of this package (e.g. a local terrain), so tile ids match",
              [&](const std::string& v) { s.like = v; });
@@ -138,13 +169,15 @@ int run_bundle(const std::vector<std::string>& args) {
     << " connections from " << sum.rows << " rows (" << sum.bad_rows << " bad rows, "
     << sum.zero_weights << " of weight 0): " << sum.routed << " routed, " << sum.unrouted
     << " unrouted (" << sum.unsnapped << " beyond --max-snap, " << sum.same_node << " on one node, "
-    << sum.disconnected << " across components); " << sum.bundles << " bundles, mean detour "
-    << sum.mean_detour << ", ink ratio " << sum.ink_ratio << "; network " << sum.network_nodes
-    << " nodes, " << sum.network_edges << " edges, " << sum.components << " components, reduced to "
-    << sum.reduced_nodes << " nodes and " << sum.reduced_edges << " edges; zoom " << sum.min_zoom
-    << ".." << sum.max_zoom << ", " << sum.curve_levels << " curves (" << sum.curve_points
-    << " points), " << sum.tiles << " tiles (" << sum.unique_blobs << " unique), " << sum.file_bytes
-    << " bytes, " << sum.seconds << " s (";
+    << sum.disconnected << " across components); " << sum.bundles << " bundles ("
+    << sum.hidden_at_min_zoom << " flows too light to draw at zoom " << sum.min_zoom << ", "
+    << sum.never_drawn << " under --min-weight), mean detour " << sum.mean_detour << ", ink ratio "
+    << sum.ink_ratio << "; network " << sum.network_nodes << " nodes, " << sum.network_edges
+    << " edges, " << sum.components << " components, reduced to " << sum.reduced_nodes
+    << " nodes and " << sum.reduced_edges << " edges; zoom " << sum.min_zoom << ".." << sum.max_zoom
+    << ", " << sum.curve_levels << " curves (" << sum.curve_points << " points), " << sum.tiles
+    << " tiles (" << sum.unique_blobs << " unique), " << sum.file_bytes << " bytes, " << sum.seconds
+    << " s (";
   for (size_t i = 0; i < sum.stage_seconds.size(); ++i)
     o << (i ? ", " : "") << sum.stage_seconds[i].first << " " << sum.stage_seconds[i].second;
   o << ")";

@@ -40,6 +40,11 @@ void print_bundle_info(const std::string& json, const std::string& path) {
   std::printf("  bundles %.0f, straight lines %.0f\n", num("bundles"), num("straight_lines"));
   std::printf("  mean detour %.3f (path length / great-circle distance)\n", num("mean_detour"));
   std::printf("  ink ratio %.3f (drawn length / sum of straight lengths)\n", num("ink_ratio"));
+  if (b.find("significance"))
+    std::printf(
+        "  significance %g of the heaviest flow in view: %.0f flows hidden at the coarsest "
+        "zoom; --min-weight %g: %.0f never drawn\n",
+        num("significance"), num("hidden_at_min_zoom"), num("min_weight"), num("never_drawn"));
   if (const tileformat::JsonValue* n = b.find("network"); n && n->is_object()) {
     auto nn = [&](const char* key) {
       const tileformat::JsonValue* v = n->find(key);

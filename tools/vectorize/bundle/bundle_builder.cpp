@@ -14,6 +14,7 @@
 #include "bundle/bundle_curve.hpp"
 #include "bundle/bundles.hpp"
 #include "bundle/routing.hpp"
+#include "bundle/significance.hpp"
 #include "errors.hpp"
 #include "geodesic.hpp"
 #include "geometry_scratch.hpp"
@@ -359,39 +360,44 @@ class Builder {
           " with a place beyond --max-snap, " + std::to_string(sum_.same_node) + " on one node, " +
           std::to_string(sum_.disconnected) + " across network components) and --unrouted drop");
 
-    // Weight classes on a log scale between the lightest and heaviest bundle.
+    // Weight classes by the square root of a bundle's share of the heaviest
+    // (widths then grow about as the square root of weight), wider, darker
+    // and more opaque with weight; class ids lightest first, so heavier
+    // classes are drawn on top.
     std::vector<std::string> styles;
     const int n = s_.weight_classes;
+    styles.push_back("unrouted:color=#8c8c8c,width=" + number(s_.min_width) +
+                     ",dash=6+4,opacity=" + number(s_.min_opacity));
     for (int k = 1; k <= n; ++k) {
       const double t = n > 1 ? double(k - 1) / (n - 1) : 1;
-      styles.push_back("weight-" + std::to_string(k) + ":color=" + ramp_color(t) +
-                       ",width=" + number(s_.min_width + t * (s_.max_width - s_.min_width)));
+      styles.push_back("weight-" + std::to_string(k) + ":color=" + ramp_color(t) + ",width=" +
+                       number(s_.min_width + t * (s_.max_width - s_.min_width)) + ",opacity=" +
+                       number(s_.min_opacity + t * (s_.max_opacity - s_.min_opacity)));
     }
-    styles.push_back("unrouted:color=#8c8c8c,width=" + number(s_.min_width) + ",dash=6+4");
     styles.insert(styles.end(), s_.styles.begin(), s_.styles.end());
     classes_ = LineClasses("", styles);
-    double lo = 1e300, hi = 0;
+    double hi = 0;
     for (const Bundle& b : bundles_.bundles)
-      lo = std::min(lo, b.weight), hi = std::max(hi, b.weight);
+      hi = std::max(hi, b.weight);
     class_bounds_.assign(size_t(n), {1e300, 0});
     std::vector<int> weight_class;
     for (const Bundle& b : bundles_.bundles) {
-      int k = (n + 1) / 2;
-      if (hi > lo)
-        k = 1 + std::min(n - 1, static_cast<int>(n * std::log(b.weight / lo) / std::log(hi / lo)));
+      const double root = hi > 0 ? std::sqrt(b.weight / hi) : 1;
+      const int k = std::clamp(static_cast<int>(std::ceil(root * n)), 1, n);
       weight_class.push_back(k);
       auto& [cmin, cmax] = class_bounds_[size_t(k - 1)];
       cmin = std::min(cmin, b.weight), cmax = std::max(cmax, b.weight);
     }
-    // Class ids in weight order (lightest first), each counting its bundles.
+    // Class ids: unrouted first (under every bundle), then the weight
+    // classes lightest first, each counting its features.
+    unrouted_class_ = straight_.empty() ? 0 : classes_.class_for("unrouted", "unrouted");
+    for (size_t i = 1; i < straight_.size(); ++i)
+      classes_.class_for("unrouted", "unrouted");
     bundle_class_.assign(bundles_.bundles.size(), 0);
     for (int k = 1; k <= n; ++k)
       for (size_t b = 0; b < bundles_.bundles.size(); ++b)
         if (weight_class[b] == k)
           bundle_class_[b] = classes_.class_for("bundles", "weight-" + std::to_string(k));
-    unrouted_class_ = straight_.empty() ? 0 : classes_.class_for("unrouted", "unrouted");
-    for (size_t i = 1; i < straight_.size(); ++i)
-      classes_.class_for("unrouted", "unrouted");  // per-class feature counts
     plan_ = plan_lines(s_, frame_, facts_.extent, lengths, classes_);
     if (!s_.max_zoom && plan_.max_zoom < kMinDefaultMaxZoom) {
       // Curves are sampled for their finest zoom: a network of long segments
@@ -402,6 +408,35 @@ class Builder {
     }
     sum_.min_zoom = plan_.min_zoom;
     sum_.max_zoom = plan_.max_zoom;
+
+    std::vector<WeightedFlow> flows;
+    for (size_t b = 0; b < bundles_.bundles.size(); ++b)
+      flows.push_back({bundles_.bundles[b].weight, frame_parts(bundle_polys_[b])});
+    for (const auto& [c, parts] : straight_)
+      flows.push_back({flows_.connections[c].weight, parts});
+    flow_zooms_ = significant_zooms(flows, plan_.tiling, plan_.min_zoom, plan_.max_zoom,
+                                    {s_.significance, s_.min_weight});
+    double heaviest = 0;
+    for (const WeightedFlow& f : flows)
+      heaviest = std::max(heaviest, f.weight);
+    for (uint32_t z : flow_zooms_) {
+      sum_.hidden_at_min_zoom += !(z >> plan_.min_zoom & 1);
+      sum_.never_drawn += z == 0;
+    }
+    if (sum_.never_drawn == flows.size())
+      throw InputError(s_.flows + ": every bundle and line is lighter than --min-weight " +
+                       number(s_.min_weight) + " (the heaviest weighs " + number(heaviest) +
+                       "); nothing written");
+    tangents_.assign(bundles_.bundles.size(), {XY{0, 0}, XY{0, 0}});
+    if (s_.smooth_junctions) {
+      std::vector<std::pair<uint32_t, uint32_t>> ends;
+      std::vector<double> weights;
+      for (const Bundle& b : bundles_.bundles) {
+        ends.emplace_back(b.nodes.front(), b.nodes.back());
+        weights.push_back(b.weight);
+      }
+      tangents_ = junction_tangents(bundle_polys_, ends, weights);
+    }
   }
 
   // Curves of every bundle (in parallel, consumed in order) and the straight
@@ -420,11 +455,13 @@ class Builder {
         [&](size_t b, int, const NoInputs&) {
           Levels out;
           for (CurveLevel& level :
-               smooth_bundle(bundle_polys_[b], plan_.min_zoom, plan_.max_zoom, tolerance, step)) {
+               smooth_bundle(bundle_polys_[b], plan_.min_zoom, plan_.max_zoom, tolerance, step,
+                             tangents_[b].first, tangents_[b].second)) {
             ProjectedFeature f;
             f.id = b + 1;
             f.class_id = bundle_class_[b];
-            f.zooms = level.zooms;
+            f.zooms = level.zooms & flow_zooms_[b];
+            if (f.zooms == 0) continue;
             f.lines = frame_parts(level.curve);
             out.push_back(std::move(f));
           }
@@ -446,6 +483,8 @@ class Builder {
       ProjectedFeature f;
       f.id = bundles_.bundles.size() + i + 1;
       f.class_id = unrouted_class_;
+      f.zooms = flow_zooms_[bundles_.bundles.size() + i];
+      if (f.zooms == 0) continue;
       f.lines = straight_[i].second;
       scratch.write(f);
       ++scratch_features_;
@@ -550,6 +589,10 @@ class Builder {
            "]},\"mean_detour\":" + number(sum_.mean_detour) +
            ",\"ink_ratio\":" + number(sum_.ink_ratio) +
            ",\"corridor_px\":" + number(s_.corridor_px) +
+           ",\"significance\":" + number(s_.significance) +
+           ",\"min_weight\":" + number(s_.min_weight) +
+           ",\"hidden_at_min_zoom\":" + std::to_string(sum_.hidden_at_min_zoom) +
+           ",\"never_drawn\":" + std::to_string(sum_.never_drawn) +
            ",\"max_snap_m\":" + number(s_.max_snap_m) +
            ",\"network\":{\"nodes\":" + std::to_string(n.nodes) +
            ",\"edges\":" + std::to_string(n.edges) +
@@ -576,6 +619,8 @@ class Builder {
   BundleSet bundles_;
   std::vector<std::vector<XY>> bundle_polys_;  // frame, unrolled
   std::vector<uint32_t> bundle_class_;
+  std::vector<uint32_t> flow_zooms_;         // bundles, then straight lines: bit z drawn
+  std::vector<std::pair<XY, XY>> tangents_;  // per bundle: start and end tangents
   std::vector<std::pair<double, double>> class_bounds_;  // weight range per class
   uint32_t unrouted_class_ = 0;
   std::vector<std::pair<uint32_t, std::vector<std::vector<XY>>>> straight_;  // connection, parts

@@ -27,6 +27,8 @@ struct BundleSummary {
   uint64_t network_nodes = 0, network_edges = 0, components = 0;
   uint64_t reduced_nodes = 0, reduced_edges = 0, curve_levels = 0, curve_points = 0;
   double mean_detour = 0, ink_ratio = 0;
+  uint64_t hidden_at_min_zoom = 0;  // flows the significance filter hides at the coarsest zoom
+  uint64_t never_drawn = 0;         // flows lighter than --min-weight
   int min_zoom = 0, max_zoom = 0;
   uint64_t tiles = 0, unique_blobs = 0, file_bytes = 0;
   std::vector<std::string> bad_row_examples;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 namespace globe {
 
@@ -16,13 +17,29 @@ struct Expanded {
   std::vector<uint32_t> source;  // the polyline vertex of each
 };
 
+double dist(XY a, XY b) {
+  return std::hypot(a.x - b.x, a.y - b.y);
+}
+
 Expanded expand(std::span<const XY> poly, const ControlPoints& c) {
   Expanded e;
-  for (size_t k = 0; k < c.index.size(); ++k)
+  const size_t last = c.index.size() - 1;
+  // The tangent point of end k (toward control point `toward`), if any.
+  auto tangent_point = [&](size_t k, size_t toward, XY t, double sign) {
+    if (c.sharp[k] || (t.x == 0 && t.y == 0)) return;
+    const XY p = poly[c.index[k]];
+    const double d = dist(p, poly[c.index[toward]]) / 3 * sign;
+    e.p.push_back({p.x + d * t.x, p.y + d * t.y});
+    e.source.push_back(c.index[k]);
+  };
+  for (size_t k = 0; k <= last; ++k) {
+    if (k == last && last > 0) tangent_point(last, last - 1, c.end_tangent, -1);
     for (int m = 0; m < (c.sharp[k] ? 3 : 1); ++m) {
       e.p.push_back(poly[c.index[k]]);
       e.source.push_back(c.index[k]);
     }
+    if (k == 0 && last > 0) tangent_point(0, 1, c.start_tangent, 1);
+  }
   return e;
 }
 
@@ -44,10 +61,6 @@ XY de_boor(const std::vector<XY>& ctrl, int s, double u, int p) {
       d[j] = {(1 - a) * d[j - 1].x + a * d[j].x, (1 - a) * d[j - 1].y + a * d[j].y};
     }
   return d[p];
-}
-
-double dist(XY a, XY b) {
-  return std::hypot(a.x - b.x, a.y - b.y);
 }
 
 // Calls visit(span, sample point) for the curve of `e` sampled about every
@@ -131,6 +144,8 @@ void refine(std::span<const XY> poly, ControlPoints& c, double tolerance, double
     std::sort(gaps.begin(), gaps.end());
     gaps.erase(std::unique(gaps.begin(), gaps.end()), gaps.end());
     ControlPoints next;
+    next.start_tangent = c.start_tangent;
+    next.end_tangent = c.end_tangent;
     std::vector<uint8_t> sharpen(c.index.size(), 0);
     std::vector<uint32_t> insert(c.index.size(), 0);  // vertex after index[k] (0: none)
     for (size_t k : gaps) {
@@ -165,12 +180,15 @@ std::vector<XY> evaluate_curve(std::span<const XY> poly, const ControlPoints& co
 
 std::vector<CurveLevel> smooth_bundle(std::span<const XY> poly, int min_zoom, int max_zoom,
                                       std::span<const double> tolerance,
-                                      std::span<const double> step) {
+                                      std::span<const double> step, XY start_tangent,
+                                      XY end_tangent) {
   std::vector<CurveLevel> levels;
   if (poly.size() < 2) return levels;
   ControlPoints c;
   c.index = {0, static_cast<uint32_t>(poly.size() - 1)};
   c.sharp = {0, 0};
+  c.start_tangent = start_tangent;
+  c.end_tangent = end_tangent;
   ControlPoints level_controls;
   int level_finest = -1;
   auto close_level = [&] {
@@ -192,6 +210,72 @@ std::vector<CurveLevel> smooth_bundle(std::span<const XY> poly, int min_zoom, in
   }
   close_level();
   return levels;
+}
+
+namespace {
+
+// The unit direction from a polyline's first point toward its point a
+// quarter of its length along ({0, 0} for a polyline of no length).
+XY leg_direction(std::span<const XY> poly) {
+  double total = 0;
+  for (size_t i = 1; i < poly.size(); ++i)
+    total += dist(poly[i - 1], poly[i]);
+  if (!(total > 0)) return {0, 0};
+  double left = total / 4;
+  XY at = poly.back();
+  for (size_t i = 1; i < poly.size(); ++i) {
+    const double d = dist(poly[i - 1], poly[i]);
+    if (d >= left) {
+      const double s = left / d;
+      at = {poly[i - 1].x + s * (poly[i].x - poly[i - 1].x),
+            poly[i - 1].y + s * (poly[i].y - poly[i - 1].y)};
+      break;
+    }
+    left -= d;
+  }
+  const double len = dist(poly.front(), at);
+  return len > 0 ? XY{(at.x - poly.front().x) / len, (at.y - poly.front().y) / len} : XY{0, 0};
+}
+
+}  // namespace
+
+std::vector<std::pair<XY, XY>> junction_tangents(
+    std::span<const std::vector<XY>> polys, std::span<const std::pair<uint32_t, uint32_t>> ends,
+    std::span<const double> weights) {
+  constexpr double kAgreement = 0.5;  // |weighted mean| / total weight an axis needs
+  struct Axis {
+    double c = 0, s = 0, w = 0;  // sums of w cos 2a, w sin 2a, w
+    int legs = 0;
+  };
+  std::unordered_map<uint32_t, Axis> axes;
+  std::vector<std::pair<XY, XY>> legs(polys.size());  // leaving each end, into the bundle
+  for (size_t b = 0; b < polys.size(); ++b) {
+    std::vector<XY> reversed(polys[b].rbegin(), polys[b].rend());
+    legs[b] = {leg_direction(polys[b]), leg_direction(reversed)};
+    for (auto [node, leg] :
+         {std::pair{ends[b].first, legs[b].first}, std::pair{ends[b].second, legs[b].second}}) {
+      if (leg.x == 0 && leg.y == 0) continue;
+      const double a = 2 * std::atan2(leg.y, leg.x);
+      Axis& x = axes[node];
+      x.c += weights[b] * std::cos(a), x.s += weights[b] * std::sin(a), x.w += weights[b];
+      ++x.legs;
+    }
+  }
+  // The axis at `node`, pointing along `leg` ({0, 0}: free).
+  auto tangent = [&](uint32_t node, XY leg) {
+    const Axis& x = axes[node];
+    if (x.legs < 2 || !(std::hypot(x.c, x.s) >= kAgreement * x.w)) return XY{0, 0};
+    const double a = std::atan2(x.s, x.c) / 2;
+    XY t{std::cos(a), std::sin(a)};
+    if (t.x * leg.x + t.y * leg.y < 0) t = {-t.x, -t.y};
+    return t;
+  };
+  std::vector<std::pair<XY, XY>> out(polys.size());
+  for (size_t b = 0; b < polys.size(); ++b) {
+    const XY in = tangent(ends[b].second, legs[b].second);  // points back into the bundle
+    out[b] = {tangent(ends[b].first, legs[b].first), {-in.x, -in.y}};
+  }
+  return out;
 }
 
 }  // namespace globe

@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "line_geometry.hpp"
@@ -19,10 +20,15 @@
 namespace globe {
 
 // Control points: ascending polyline vertex indices (first and last always
-// there) and whether each is sharp.
+// there) and whether each is sharp. An end with a tangent (a unit direction,
+// the way the curve leaves its first point or arrives at its last; {0, 0} =
+// free) gets one more control point on that tangent, a third of the way to
+// its neighbour, unless the end is sharp: so curves that meet at a junction
+// with the same tangent join without a kink.
 struct ControlPoints {
   std::vector<uint32_t> index;
   std::vector<uint8_t> sharp;
+  XY start_tangent{0, 0}, end_tangent{0, 0};
   bool operator==(const ControlPoints&) const = default;
 };
 
@@ -43,6 +49,18 @@ struct CurveLevel {
 // level (sampled at the finest of them).
 std::vector<CurveLevel> smooth_bundle(std::span<const XY> poly, int min_zoom, int max_zoom,
                                       std::span<const double> tolerance,
-                                      std::span<const double> step);
+                                      std::span<const double> step, XY start_tangent = {0, 0},
+                                      XY end_tangent = {0, 0});
+
+// Junction tangents (docs/bundles.md "Smoothing"): where bundles meet at a
+// network node, the axis their legs agree on (the weighted mean of the
+// legs' directions taken modulo 180 degrees: the heavier corridor leads); each
+// bundle end there takes that axis, pointing along the bundle. Ends at nodes
+// where one bundle ends, or whose legs do not agree on an axis, stay free.
+// polys: per bundle, its polyline (in a plane); ends: per bundle, its first
+// and last node; returns per bundle {start tangent, end tangent}.
+std::vector<std::pair<XY, XY>> junction_tangents(
+    std::span<const std::vector<XY>> polys, std::span<const std::pair<uint32_t, uint32_t>> ends,
+    std::span<const double> weights);
 
 }  // namespace globe

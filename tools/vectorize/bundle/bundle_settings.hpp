@@ -22,8 +22,12 @@ struct BundleSettings : LinesSettings {
   double max_snap_m = 25000;  // --max-snap: a place this far from every node is unrouted
   double corridor_px = 4;     // --corridor-px: the curve's distance from the network
   Unrouted unrouted = Unrouted::kStraight;
-  int weight_classes = 6;               // --weight-classes
-  double min_width = 1, max_width = 9;  // --widths MIN,MAX (px) of the weight classes
+  int weight_classes = 6;                      // --weight-classes
+  double min_width = 1, max_width = 9;         // --widths MIN,MAX (px) of the weight classes
+  double min_opacity = 0.45, max_opacity = 1;  // --opacities MIN,MAX of the weight classes
+  double significance = 0.02;    // --significance: share of the heaviest flow in view (0: off)
+  double min_weight = 0;         // --min-weight: lighter flows are not drawn
+  bool smooth_junctions = true;  // --no-junction-tangents turns it off
 };
 
 }  // namespace globe
