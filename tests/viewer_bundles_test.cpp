@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "raster_fixtures.hpp"
@@ -50,6 +51,10 @@ const Packages& packages() {
 }
 
 const std::string kView = " --size 480x300 --camera=-97,39,5000000,0,0";
+
+std::pair<double, double> lonlat_pair(const tileformat::JsonValue& a) {
+  return {a.array()[0].number(), a.array()[1].number()};
+}
 
 // The highlight colour (line_layer.cpp), which no default style uses.
 bool is_highlight(const uint8_t* p) {
@@ -204,6 +209,126 @@ TEST(ViewerBundlesWindow, AClickNamesTheBundleInTheTitle) {
   ASSERT_EQ(w.exit_code, 0) << w.err << read_file(dir / "viewer.stderr");
   EXPECT_NE(w.out.find("globe-view  bundle "), std::string::npos) << w.out;
   EXPECT_NE(w.out.find(" connections"), std::string::npos) << w.out;
+}
+
+// Readability at continental scale (docs/bundles.md "Weights and styles"):
+// the US flights at 1280 x 720 over North America cover at most 20 % of the
+// land pixels (land: a render of the heights with a two-colour ramp), and
+// the 20 heaviest bundles are drawn on top: a pick at each one's midpoint
+// (on its zoom-3 curve, from `extract`) names it, or a heavier bundle that
+// covers it there, and most name themselves.
+TEST(ViewerBundles, AContinentalViewShowsTheHeaviestCorridorsWithLittleInk) {
+  const Packages& k = packages();
+  TempDir dir;
+  const std::string view = " --size 1280x720 --camera=-97,39,5000000,0,0";
+  std::ofstream(dir / "land.txt") << "-12000 0 0 0\n-0.01 0 0 0\n0 255 255 255\n9000 255 255 255\n";
+  const std::string base = (dir / "base.png").string(), land = (dir / "land.png").string(),
+                    flows = (dir / "flows.png").string();
+  ASSERT_EQ(run(viewer() + " " + k.world + view + " --snapshot " + base, dir.path()).exit_code, 0);
+  ASSERT_EQ(run(viewer() + " " + k.world + view + " --shading elevation --colormap " +
+                    (dir / "land.txt").string() + " --snapshot " + land,
+                dir.path())
+                .exit_code,
+            0);
+
+  // Bundle weights, heaviest first.
+  const RunResult rows = run("sqlite3 -separator ' ' " + k.bundles +
+                                 " \"SELECT id, json_extract(properties, '$.weight') FROM features "
+                                 "WHERE layer = 'bundles' ORDER BY 2 DESC, 1\"",
+                             dir.path());
+  ASSERT_EQ(rows.exit_code, 0) << rows.err;
+  std::map<uint64_t, double> weight;
+  std::vector<uint64_t> heaviest;
+  std::istringstream in(rows.out);
+  for (uint64_t id; in >> id;) {
+    in >> weight[id];
+    if (heaviest.size() < 20) heaviest.push_back(id);
+  }
+  ASSERT_EQ(heaviest.size(), 20u);
+
+  // Midpoints: on each bundle's zoom-3 curve, the point as far (on the
+  // sphere) from its two ends, searched along every segment.
+  const std::string curves = (dir / "z3.geojson").string();
+  ASSERT_EQ(run(vectorize() + " extract -q " + k.bundles + " --zoom 3 -o " + curves, dir.path())
+                .exit_code,
+            0);
+  const auto doc = tileformat::JsonValue::parse(read_file(curves));
+  auto lonlat = [](const tileformat::JsonValue& c) {  // EPSG:3857 -> degrees
+    const double r = 6378137.0;
+    return std::pair(c.array()[0].number() / r * 180 / M_PI,
+                     (2 * std::atan(std::exp(c.array()[1].number() / r)) - M_PI / 2) * 180 / M_PI);
+  };
+  std::map<uint64_t, std::pair<double, std::pair<double, double>>> mid;  // id -> (score, lon/lat)
+  for (const auto& f : doc.find("features")->array()) {
+    const auto& props = *f.find("properties");
+    const uint64_t id = static_cast<uint64_t>(props.find("feature_id")->number());
+    if (std::find(heaviest.begin(), heaviest.end(), id) == heaviest.end()) continue;
+    const auto& p = *props.find("properties");
+    const auto from = lonlat_pair(*p.find("from")), to = lonlat_pair(*p.find("to"));
+    const auto& coords = f.find("geometry")->find("coordinates")->array();
+    for (size_t i = 0; i + 1 < coords.size(); ++i) {
+      const auto a = lonlat(coords[i]), b = lonlat(coords[i + 1]);
+      for (int s = 0; s <= 32; ++s) {
+        const std::pair<double, double> q{a.first + (b.first - a.first) * s / 32,
+                                          a.second + (b.second - a.second) * s / 32};
+        const double score = std::fabs(haversine_m(q.first, q.second, from.first, from.second) -
+                                       haversine_m(q.first, q.second, to.first, to.second));
+        auto it = mid.find(id);
+        if (it == mid.end() || score < it->second.first) mid[id] = {score, q};
+      }
+    }
+  }
+  std::string picks;
+  for (uint64_t id : heaviest) {
+    ASSERT_TRUE(mid.count(id)) << "bundle " << id << " is not drawn at zoom 3";
+    char at[64];
+    std::snprintf(at, sizeof at, " --pick @%.6f,%.6f", mid[id].second.first, mid[id].second.second);
+    picks += at;
+  }
+  // The last pick, at the sky's corner, clears the highlight for the snapshot.
+  const RunResult picked = run(
+      viewer() + " " + k.world + " " + k.bundles + view + picks + " --pick 0,0 --snapshot " + flows,
+      dir.path());
+  ASSERT_EQ(picked.exit_code, 0) << picked.err;
+  std::istringstream said(picked.out);
+  int themselves = 0;
+  for (uint64_t id : heaviest) {
+    std::string line;
+    std::getline(said, line);
+    unsigned long long found = 0;
+    ASSERT_EQ(std::sscanf(line.c_str(), "bundle %llu:", &found), 1)
+        << "bundle " << id << " (weight " << weight[id] << ") not found at its midpoint: '" << line
+        << "'";
+    EXPECT_GE(weight[found], weight[id])
+        << "bundle " << id << " is under the lighter bundle " << found;
+    themselves += found == id;
+  }
+  EXPECT_GE(themselves, 15) << "of the 20 heaviest bundles, picked at their midpoints";
+
+  // Ink: pixels the flows change, on land, outside the legend's corner.
+  int w = 0, h = 0;
+  const auto plain = read_rgb(base, w, h), mask = read_rgb(land, w, h),
+             drawn = read_rgb(flows, w, h);
+  size_t land_px = 0, ink = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = (size_t(y) * w + x) * 3;
+      if (mask[i] < 200 || mask[i + 1] < 200 || mask[i + 2] < 200) continue;
+      if (x < 260 && y > h - 170) continue;  // the legend
+      ++land_px;
+      for (int c = 0; c < 3; ++c)
+        if (std::abs(int(drawn[i + c]) - int(plain[i + c])) > 8) {
+          ++ink;
+          break;
+        }
+    }
+  ASSERT_GT(land_px, size_t(w) * h / 4);
+  const double share = double(ink) / double(land_px);
+  EXPECT_LE(share, 0.20) << ink << " of " << land_px << " land pixels carry flows";
+  std::printf(
+      "ink: %.1f %% of %zu land pixels; %d of the 20 heaviest bundles picked at their "
+      "midpoints\n",
+      100 * share, land_px, themselves);
 }
 
 TEST(ViewerBundles, BundlesIn3dOverTheGlobeMatchExpected) {

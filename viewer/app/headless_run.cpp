@@ -23,6 +23,24 @@ double median(std::vector<double> v) {
   return v.size() % 2 ? v[v.size() / 2] : (v[v.size() / 2 - 1] + v[v.size() / 2]) / 2;
 }
 
+// The pixel (from the top-left) where the point lon/lat (degrees) at height 0
+// lands in `view`; {-1, -1} when it is behind the eye or not in the tiling.
+std::pair<int, int> pixel_of(const View& view, const WorldFrame& world, double lon, double lat) {
+  glm::dvec2 crs;
+  try {
+    crs = world.lonlat_to_crs(lon, lat);
+  } catch (const std::exception&) {
+    return {-1, -1};
+  }
+  const glm::dvec2 key = world.crs_to_key(crs.x, crs.y);
+  const glm::dvec3 p = world.key_to_world(key.x, key.y, 0, view.origin);
+  const glm::dvec4 clip = view.proj * view.view * glm::dvec4(p, 1);
+  if (clip.w <= 0) return {-1, -1};
+  const double x = (clip.x / clip.w + 1) / 2 * view.width,
+               y = (1 - clip.y / clip.w) / 2 * view.height;
+  return {static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y))};
+}
+
 }  // namespace
 
 int run_headless(const ViewerSettings& settings) {
@@ -62,18 +80,22 @@ int run_headless(const ViewerSettings& settings) {
       max_resident = std::max(max_resident, scene.cache().stats().resident_bytes);
     }
   }
-  if (settings.pick) {
-    const auto [x, y] = *settings.pick;
-    if (scene.charts()) {
-      std::printf("%s\n", scene.charts()->describe(x, y).c_str());
-    } else if (scene.lines()) {
-      // The picked line is highlighted in the snapshot: one more frame.
-      std::printf("%s\n", scene.lines()->pick(x, y).c_str());
-      if (!scene.lines()->highlighted().empty())
-        f = scene.frame(poses.back(), Loading::kSettle, TerrainScene::Output::kDraw);
-    } else {
+  if (!settings.picks.empty()) {
+    if (!scene.charts() && !scene.lines())
       throw UsageError("--pick finds charts or lines; give a point or line package too");
+    // Every pick reads the frame drawn; the last one's highlight shows in the next.
+    for (size_t i = 0; i < settings.picks.size(); ++i) {
+      const ViewerSettings::PickAt& at = settings.picks[i];
+      const auto [x, y] = at.geographic ? pixel_of(f.view, scene.world(), at.a, at.b)
+                                        : std::pair(int(at.a), int(at.b));
+      if (scene.charts())
+        std::printf("%s\n", scene.charts()->describe(x, y).c_str());
+      else
+        std::printf("%s\n", scene.lines()->pick(x, y, i + 1 == settings.picks.size()).c_str());
     }
+    // The last picked line is highlighted in the snapshot: one more frame.
+    if (!scene.charts() && !scene.lines()->highlighted().empty())
+      f = scene.frame(poses.back(), Loading::kSettle, TerrainScene::Output::kDraw);
   }
   if (settings.snapshot)
     write_png(*settings.snapshot, scene.read_pixels(), scene.renderer().width(),

@@ -53,8 +53,12 @@ LineLayer::LineLayer(const std::string& path, LinePackage package,
       features_(std::make_unique<tileformat::PackageReader>(path)),
       mode_(mode),
       cache_(path, std::move(package), budget_bytes),
-      renderer_(cache_.arena_words(), width, height) {
-  renderer_.set_styles(read_styles());
+      renderer_(cache_.arena_words(), width, height),
+      width_(width),
+      height_(height),
+      legend_(bundle_legend_rows(cache_.package().meta.bundle_json)) {
+  styles_ = read_styles();
+  renderer_.set_styles(styles_);
   if (style_path_) {
     std::error_code ec;
     style_time_ = std::filesystem::last_write_time(*style_path_, ec);
@@ -83,7 +87,9 @@ void LineLayer::reload_style(Reload when) {
   if (when == Reload::kIfChanged && (ec || t == style_time_)) return;
   style_time_ = t;
   try {
-    renderer_.set_styles(read_styles());
+    std::vector<NamedLineStyle> styles = read_styles();
+    renderer_.set_styles(styles);
+    styles_ = std::move(styles);
     std::fprintf(stderr, "globe-view: styles reloaded from %s\n", style_path_->c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "globe-view: %s; keeping the previous styles\n", e.what());
@@ -120,6 +126,10 @@ double LineLayer::draw(const GBuffer& g, const View& view, const WorldFrame& wor
     idle_rounds = loaded == 0 ? idle_rounds + 1 : 0;
     if (idle_rounds > 3 || round > 200) break;
     if (cache_.loader_busy()) cache_.wait_for_loader();
+  }
+  if (!legend_.empty()) {
+    queue_bundle_legend(legend_, styles_, height_, overlay_);
+    overlay_.draw(renderer_.output_fbo(), width_, height_);
   }
   return ms;
 }
@@ -188,13 +198,14 @@ std::string LineLayer::describe(uint64_t feature, std::vector<uint64_t>& lit) {
   }
 }
 
-std::string LineLayer::pick(int x, int y) {
+std::string LineLayer::pick(int x, int y, bool highlight) {
   std::vector<uint64_t> lit;
   std::string text;
   if (const std::optional<uint64_t> feature = feature_at(x, y)) {
     lit = {*feature};
     text = describe(*feature, lit);
   }
+  if (!highlight) return text;
   std::sort(lit.begin(), lit.end());
   lit.erase(std::unique(lit.begin(), lit.end()), lit.end());
   if (lit != highlighted_) {

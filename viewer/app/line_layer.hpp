@@ -2,7 +2,8 @@
 // package, optionally overridden by a style file that can be reloaded while
 // the window is open) and the line pass that draws them over the terrain;
 // picking: the feature under a pixel, drawn highlighted from then on (for a
-// bundled-flows package, every connection through the picked bundle).
+// bundled-flows package, every connection through the picked bundle); a
+// bundled-flows package's legend of weight classes.
 #pragma once
 
 #include <cstdint>
@@ -13,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "app/bundle_legend.hpp"
 #include "data/line_cache.hpp"
 #include "line_style.hpp"
 #include "render/line_renderer.hpp"
@@ -35,7 +37,10 @@ class LineLayer {
   LineLayer(const std::string& path, LinePackage package, std::optional<std::string> style_path,
             LineMode mode, uint64_t budget_bytes, int width, int height);
 
-  void resize(int width, int height) { renderer_.resize(width, height); }
+  void resize(int width, int height) {
+    renderer_.resize(width, height);
+    width_ = width, height_ = height;
+  }
   // The line pass over `g`; Loading::kSettle: keep loading until no visible
   // tile is missing (headless). Returns the GPU time of the last pass in ms.
   double draw(const GBuffer& g, const View& view, const WorldFrame& world, double exaggeration,
@@ -55,7 +60,8 @@ class LineLayer {
   // description, and the frames that follow highlight it; in a bundled-flows
   // package (tileformat §7.5) a bundle highlights every bundle of the
   // connections through it. Picking where no line is clears the highlight.
-  std::string pick(int x, int y);
+  // highlight false: only the description (picks that read one frame).
+  std::string pick(int x, int y, bool highlight = true);
   // The feature ids drawn highlighted (sorted; empty: none).
   const std::vector<uint64_t>& highlighted() const { return highlighted_; }
 
@@ -87,6 +93,10 @@ class LineLayer {
   LineRenderer renderer_;
   uint32_t frame_ = 0;
   size_t tiles_used_ = 0;
+  int width_ = 0, height_ = 0;
+  std::vector<NamedLineStyle> styles_;  // as drawn (package, style file, highlight)
+  std::vector<LegendRow> legend_;       // bundled flows: the weight classes
+  TextOverlay overlay_;
 };
 
 }  // namespace globe::viewer

@@ -275,14 +275,17 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
            });
   cli.flag("--stats", "print frame statistics as JSON on stdout (headless)",
            [&] { s.stats = true; });
-  cli.option("--pick", "X,Y",
-             "print what is at pixel X,Y (from the top-left) on stdout, one line (empty: "
-             "nothing): the place whose chart covers it and its values, or else the line "
-             "feature drawn there, which the snapshot then highlights (in bundled flows: the "
-             "bundle, with every connection through it) (headless)",
+  cli.option("--pick", "X,Y|@LON,LAT",
+             "print what is at pixel X,Y (from the top-left), or where the point LON,LAT at "
+             "height 0 lands, on stdout, one line (empty: nothing): the place whose chart covers "
+             "it and its values, or else the line feature drawn on top there, which the snapshot "
+             "then highlights (in bundled flows: the bundle, with every connection through it); "
+             "repeatable: one line per pick, all in the same frame, the last one highlighted "
+             "(headless)",
              [&](const std::string& v) {
-               const auto d = CliArgs::to_doubles("--pick", v, 2);
-               s.pick = std::pair(static_cast<int>(d[0]), static_cast<int>(d[1]));
+               const bool geographic = !v.empty() && v[0] == '@';
+               const auto d = CliArgs::to_doubles("--pick", geographic ? v.substr(1) : v, 2);
+               s.picks.push_back({geographic, d[0], d[1]});
              });
   cli.option("--frames", "N", "frames measured for --stats (default 5)",
              [&](const std::string& v) { s.frames = CliArgs::to_int("--frames", v, 1, 10000); });
@@ -301,7 +304,7 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
   auto positional = cli.parse_command(args, 1, 11, "package");
   if (!positional) return std::nullopt;
   s.packages = *positional;
-  if (s.platform == "glfw" && (s.snapshot || s.export_mesh || s.stats || s.pick))
+  if (s.platform == "glfw" && (s.snapshot || s.export_mesh || s.stats || !s.picks.empty()))
     throw UsageError(
         "--platform glfw opens a window; --snapshot/--stats/--export-mesh/--pick are headless");
   if (s.imagery_unlit) s.shading.mode = Shading::kHillshade;

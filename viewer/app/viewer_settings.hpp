@@ -20,7 +20,12 @@ struct ViewerSettings {
   std::optional<std::string> snapshot;     // PNG path: render headless and exit
   std::optional<std::string> export_mesh;  // PLY path
   bool stats = false;
-  std::optional<std::pair<int, int>> pick;  // --pick X,Y: describe the chart at that pixel
+  // --pick X,Y or @LON,LAT (repeatable): describe what is drawn there.
+  struct PickAt {
+    bool geographic = false;  // a, b: lon, lat (degrees) or pixel x, y
+    double a = 0, b = 0;
+  };
+  std::vector<PickAt> picks;
   int width = 1280, height = 720;
   std::optional<CameraPose> camera;
   std::vector<CameraPose> camera_path;  // --camera-path: one pose per line
@@ -45,7 +50,8 @@ struct ViewerSettings {
   bool charts_given = false;          // any of those options
 
   bool headless() const {
-    return snapshot || export_mesh || stats || pick || platform == "osmesa" || platform == "egl";
+    return snapshot || export_mesh || stats || !picks.empty() || platform == "osmesa" ||
+           platform == "egl";
   }
 };
 

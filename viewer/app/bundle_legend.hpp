@@ -1,0 +1,32 @@
+// The legend of a bundled-flows package (docs/bundles.md "Viewer"): one row
+// per weight class, its stroke (width, colour and opacity of the class's
+// style, as drawn) and the weights it holds, from the package's globe:bundle
+// metadata; queued into a TextOverlay in the bottom-left corner.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "line_style.hpp"
+#include "render/text_overlay.hpp"
+
+namespace globe::viewer {
+
+struct LegendRow {
+  std::string class_name;  // "weight-3"
+  double min = 0, max = 0;
+};
+
+// The rows of globe:bundle's "weight_classes" (none when absent or not JSON).
+std::vector<LegendRow> bundle_legend_rows(const std::string& bundle_json);
+
+// "533k", "1.2M", "71", "0.5": a weight in at most four characters or so.
+std::string short_weight(double w);
+
+// Queues the legend for a `height`-pixel frame; rows whose class is not in
+// `styles` or is hidden are left out.
+void queue_bundle_legend(const std::vector<LegendRow>& rows,
+                         const std::vector<NamedLineStyle>& styles, int height,
+                         TextOverlay& overlay);
+
+}  // namespace globe::viewer
