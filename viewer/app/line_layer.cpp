@@ -99,7 +99,7 @@ void LineLayer::reload_style(Reload when) {
 size_t LineLayer::upload_loaded() {
   const std::vector<uint32_t> loaded = cache_.take_loaded();
   for (uint32_t r : loaded) {
-    renderer_.upload(cache_.records()[r]);
+    renderer_.upload(r, cache_.records()[r]);
     cache_.drop_words(r);
   }
   return loaded.size();

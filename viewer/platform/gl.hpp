@@ -95,7 +95,8 @@
   X(PFNGLBLENDFUNCSEPARATEPROC, BlendFuncSeparate)                     \
   X(PFNGLVERTEXARRAYATTRIBFORMATPROC, VertexArrayAttribFormat)         \
   X(PFNGLCLEARNAMEDFRAMEBUFFERUIVPROC, ClearNamedFramebufferuiv)       \
-  X(PFNGLUNIFORM4FVPROC, Uniform4fv)
+  X(PFNGLUNIFORM4FVPROC, Uniform4fv)                                   \
+  X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)
 
 namespace gl {
 

@@ -18,36 +18,50 @@ GLuint compile(const std::string& name, GLenum type, const std::string& src) {
     char log[4096] = {};
     gl::GetShaderInfoLog(s, sizeof log, nullptr, log);
     gl::DeleteShader(s);
-    throw std::runtime_error(name + (type == GL_VERTEX_SHADER ? " vertex" : " fragment") +
-                             " shader does not compile: " + log);
+    const char* kind = type == GL_VERTEX_SHADER    ? " vertex"
+                       : type == GL_COMPUTE_SHADER ? " compute"
+                                                   : " fragment";
+    throw std::runtime_error(name + kind + " shader does not compile: " + log);
   }
   return s;
+}
+
+// Links `shaders` (deleted after) into a program; throws with the log.
+GLuint link(const std::string& name, const std::vector<GLuint>& shaders,
+            const std::vector<const char*>& feedback) {
+  const GLuint id = gl::CreateProgram();
+  for (GLuint s : shaders)
+    gl::AttachShader(id, s);
+  if (!feedback.empty())
+    gl::TransformFeedbackVaryings(id, static_cast<GLsizei>(feedback.size()), feedback.data(),
+                                  GL_INTERLEAVED_ATTRIBS);
+  gl::LinkProgram(id);
+  for (GLuint s : shaders)
+    gl::DeleteShader(s);
+  GLint ok = 0;
+  gl::GetProgramiv(id, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[4096] = {};
+    gl::GetProgramInfoLog(id, sizeof log, nullptr, log);
+    gl::DeleteProgram(id);
+    throw std::runtime_error(name + " program does not link: " + log);
+  }
+  return id;
 }
 
 }  // namespace
 
 GlProgram::GlProgram(const std::string& name, const std::string& vertex_src,
                      const std::string& fragment_src, const std::vector<const char*>& feedback) {
-  const GLuint vs = compile(name, GL_VERTEX_SHADER, vertex_src);
-  const GLuint fs = fragment_src.empty() ? 0 : compile(name, GL_FRAGMENT_SHADER, fragment_src);
-  id_ = gl::CreateProgram();
-  gl::AttachShader(id_, vs);
-  if (fs) gl::AttachShader(id_, fs);
-  if (!feedback.empty())
-    gl::TransformFeedbackVaryings(id_, static_cast<GLsizei>(feedback.size()), feedback.data(),
-                                  GL_INTERLEAVED_ATTRIBS);
-  gl::LinkProgram(id_);
-  gl::DeleteShader(vs);
-  if (fs) gl::DeleteShader(fs);
-  GLint ok = 0;
-  gl::GetProgramiv(id_, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[4096] = {};
-    gl::GetProgramInfoLog(id_, sizeof log, nullptr, log);
-    gl::DeleteProgram(id_);
-    id_ = 0;
-    throw std::runtime_error(name + " program does not link: " + log);
-  }
+  std::vector<GLuint> shaders{compile(name, GL_VERTEX_SHADER, vertex_src)};
+  if (!fragment_src.empty()) shaders.push_back(compile(name, GL_FRAGMENT_SHADER, fragment_src));
+  id_ = link(name, shaders, feedback);
+}
+
+GlProgram GlProgram::compute(const std::string& name, const std::string& compute_src) {
+  GlProgram p;
+  p.id_ = link(name, {compile(name, GL_COMPUTE_SHADER, compute_src)}, {});
+  return p;
 }
 
 GlProgram::~GlProgram() {

@@ -15,6 +15,8 @@ class GlProgram {
   // vertex outputs captured by transform feedback (interleaved).
   GlProgram(const std::string& name, const std::string& vertex_src, const std::string& fragment_src,
             const std::vector<const char*>& feedback = {});
+  // A compute program (same errors).
+  static GlProgram compute(const std::string& name, const std::string& compute_src);
   ~GlProgram();
   GlProgram(GlProgram&& o) noexcept : id_(o.id_) { o.id_ = 0; }
   GlProgram& operator=(GlProgram&& o) noexcept;

@@ -67,21 +67,25 @@ LineRenderer::LineRenderer(uint64_t arena_words, int width, int height) {
                 program_source("terrain_table", kTerrainTable,
                                std::string(shaders::kLineQuadGlsl) + shaders::kLineGeometryVertex),
                 shaders::kLineGeometryFragment);
-  lifted_ = GlProgram("lifted lines",
-                      program_source("line_table", kLineTable,
-                                     tile_table_glsl("terrain", kTerrainTable) +
-                                         shaders::kFrameWorldGlsl + shaders::kKeyHeightGlsl +
-                                         shaders::kLineQuadGlsl + shaders::kLineLiftedVertex),
-                      shaders::kLineLiftedFragment);
-  GLuint buffers[7];
-  gl::CreateBuffers(7, buffers);
+  lifted_points_ = GlProgram::compute(
+      "lifted line points",
+      program_source("line_table", kLineTable,
+                     tile_table_glsl("terrain", kTerrainTable) + shaders::kFrameWorldGlsl +
+                         shaders::kKeyHeightGlsl + shaders::kLineLiftedPoints));
+  lifted_ = GlProgram(
+      "lifted lines",
+      std::string(shaders::kLineCommon) + shaders::kLineQuadGlsl + shaders::kLineLiftedVertex,
+      shaders::kLineLiftedFragment);
+  GLuint buffers[9];
+  gl::CreateBuffers(9, buffers);
   arena_ = buffers[0], records_ = buffers[1], table_ = buffers[2], styles_ = buffers[3],
-  requests_ = buffers[4], used_ = buffers[5], terrain_table_ = buffers[6];
+  requests_ = buffers[4], used_ = buffers[5], terrain_table_ = buffers[6], points_ = buffers[7],
+  items_ = buffers[8];
   gl::NamedBufferStorage(arena_, std::max<uint64_t>(arena_words, 4) * 4, nullptr,
                          GL_DYNAMIC_STORAGE_BIT);
   gl::NamedBufferStorage(requests_, kRequestSlots * 2 * sizeof(uint32_t), nullptr,
                          GL_DYNAMIC_STORAGE_BIT);
-  for (GLuint b : {records_, table_, styles_, used_, terrain_table_})
+  for (GLuint b : {records_, table_, styles_, used_, terrain_table_, points_, items_})
     fill_buffer(b, 0, nullptr);
   gl::CreateVertexArrays(1, &vao_);
   gl::CreateQueries(GL_TIME_ELAPSED, 1, &timer_);
@@ -90,8 +94,9 @@ LineRenderer::LineRenderer(uint64_t arena_words, int width, int height) {
 }
 
 LineRenderer::~LineRenderer() {
-  GLuint buffers[7] = {arena_, records_, table_, styles_, requests_, used_, terrain_table_};
-  gl::DeleteBuffers(7, buffers);
+  GLuint buffers[9] = {arena_, records_,       table_,  styles_, requests_,
+                       used_,  terrain_table_, points_, items_};
+  gl::DeleteBuffers(9, buffers);
   gl::DeleteVertexArrays(1, &vao_);
   GLuint fbos[2] = {fbo_, geometry_fbo_}, textures[3] = {output_, pixel_record_, pixel_segment_};
   gl::DeleteFramebuffers(2, fbos);
@@ -158,9 +163,14 @@ void LineRenderer::set_styles(const std::vector<NamedLineStyle>& classes) {
   });
 }
 
-void LineRenderer::upload(const LineRecord& r) {
-  if (!r.tile.words.empty())
-    gl::NamedBufferSubData(arena_, r.offset * 4, r.tile.words.size() * 4, r.tile.words.data());
+void LineRenderer::upload(uint32_t index, const LineRecord& r) {
+  std::vector<uint16_t>& classes = segment_classes_[index];
+  classes.clear();
+  if (r.tile.words.empty()) return;
+  gl::NamedBufferSubData(arena_, r.offset * 4, r.tile.words.size() * 4, r.tile.words.data());
+  const size_t segs = size_t(r.tile.grid) * r.tile.grid + 1 + r.tile.cell_entries;
+  for (uint32_t s = 0; s < r.tile.segments; ++s)
+    classes.push_back(static_cast<uint16_t>(r.tile.words[segs + size_t(s) * 6 + 4]));
 }
 
 void LineRenderer::upload_tables(const LineCache& cache) {
@@ -343,62 +353,108 @@ void LineRenderer::draw_lifted(const View& view, const WorldFrame& world, double
                                const LineCache& cache, const TerrainHeights& terrain, GLuint depth,
                                const std::vector<uint32_t>& used, uint32_t frame) {
   if (!terrain.frame) throw std::logic_error("lifted lines without the terrain's frame");
+  constexpr int kPieces = 8;
   const uint32_t terrain_mask = upload_terrain_table(terrain);
 
+  // Where each chosen tile's points go, and the items of each class.
+  struct Tile {
+    uint32_t record, first_point;
+  };
+  std::vector<Tile> tiles;
+  std::vector<std::vector<glm::uvec2>> items(static_cast<size_t>(class_count_));
+  uint32_t points = 0;
+  for (uint32_t r : used) {
+    const LineRecord& rec = cache.records()[r];
+    const auto classes = segment_classes_.find(r);
+    if (rec.empty || rec.tile.segments == 0 || classes == segment_classes_.end()) continue;
+    tiles.push_back({r, points});
+    for (uint32_t s = 0; s < rec.tile.segments; ++s) {
+      const uint16_t c = classes->second[s];
+      if (c < class_count_) items[c].push_back({points + s * (kPieces + 1), c});
+    }
+    points += rec.tile.segments * (kPieces + 1);
+  }
+  if (points == 0) return;
+  if (points > points_capacity_) {
+    points_capacity_ = std::max<size_t>(points, points_capacity_ * 2);
+    gl::NamedBufferData(points_, points_capacity_ * sizeof(glm::vec4), nullptr, GL_DYNAMIC_COPY);
+  }
+  std::vector<glm::uvec2> all;
+  std::vector<std::pair<uint32_t, uint32_t>> range(static_cast<size_t>(class_count_));  // items
+  for (int c = 0; c < class_count_; ++c) {
+    range[size_t(c)] = {static_cast<uint32_t>(all.size()),
+                        static_cast<uint32_t>(items[size_t(c)].size())};
+    all.insert(all.end(), items[size_t(c)].begin(), items[size_t(c)].end());
+  }
+  fill_buffer(items_, all.size() * sizeof(glm::uvec2), all.data());
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, points_);
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, items_);
+
+  // 1. The lifted points of every chosen tile.
+  const GlProgram& c = lifted_points_;
+  terrain.frame->set_frame_uniforms(c, view, world, exaggeration);  // uses c
+  gl::Uniform1ui(c.uniform("terrain_mask"), terrain_mask);
+  gl::Uniform1ui(c.uniform("line_table_mask"), table_mask_);
+  gl::Uniform1i(c.uniform("u_tmin"), terrain.min_zoom);
+  gl::Uniform1i(c.uniform("u_tmax"), terrain.max_zoom);
+  gl::Uniform1i(c.uniform("u_key_zoom"), world.key_zoom());
+  gl::Uniform1i(c.uniform("u_steps"), world.steps());
+  gl::Uniform1f(c.uniform("u_block_size"), float(terrain.block_size));
+  gl::Uniform2i(c.uniform("u_origin"), static_cast<int>(view.origin.x),
+                static_cast<int>(view.origin.y));
+  gl::Uniform1f(c.uniform("u_focal_px"), float(height_ * 0.5 * view.proj[1][1]));
+  gl::Uniform1ui(c.uniform("u_frame"), frame);
+  gl::Uniform1i(c.uniform("u_max_zoom"), cache.package().max_zoom);
+  gl::Uniform1f(c.uniform("u_lift"), static_cast<float>(terrain.lift_m * world.height_scale()));
+  gl::Uniform1f(c.uniform("u_error_px"), static_cast<float>(terrain.error_px));
+  gl::Uniform3f(c.uniform("u_eye"), float(view.eye.x), float(view.eye.y), float(view.eye.z));
+  gl::Uniform1i(c.uniform("u_pieces"), kPieces);
+  for (const Tile& t : tiles) {
+    const LineRecord& rec = cache.records()[t.record];
+    // The tile's origin and scale in key units (its zoom may be finer or
+    // coarser than the terrain's finest, the key zoom).
+    const double keys = std::ldexp(double(world.steps()), world.key_zoom() - rec.id.z);
+    const uint32_t cells = rec.tile.grid * rec.tile.grid + 1;
+    const uint32_t count = rec.tile.segments * (kPieces + 1);
+    gl::Uniform1ui(c.uniform("u_segs_base"),
+                   static_cast<uint32_t>(rec.offset) + cells + rec.tile.cell_entries);
+    gl::Uniform1ui(c.uniform("u_points_base"), t.first_point);
+    gl::Uniform1ui(c.uniform("u_point_count"), count);
+    gl::Uniform1i(c.uniform("u_zoom"), rec.id.z);
+    gl::Uniform2i(c.uniform("u_tile"), static_cast<int>(rec.id.x), static_cast<int>(rec.id.y));
+    gl::Uniform1f(c.uniform("u_extent"), float(rec.tile.extent));
+    gl::Uniform2f(c.uniform("u_tile_key"), float(rec.id.x * keys - double(view.origin.x)),
+                  float(rec.id.y * keys - double(view.origin.y)));
+    gl::Uniform1f(c.uniform("u_keys_per_unit"), float(keys / rec.tile.extent));
+    // Heights from a ring of half the longest piece of the tile (at least 2
+    // px of its nominal 256) around each point.
+    const double ring = std::max(1.0 / 128, rec.tile.longest / (2.0 * kPieces) / rec.tile.extent);
+    gl::Uniform1f(c.uniform("u_ring_keys"), float(keys * ring));
+    gl::DispatchCompute((count + 63) / 64, 1, 1);
+  }
+  gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+
+  // 2. Per layer and class (casings under fills, classes in lifted_order_),
+  // the pieces of that class's segments.
   gl::NamedFramebufferTexture(geometry_fbo_, GL_DEPTH_ATTACHMENT, depth, 0);
   gl::BindFramebuffer(GL_FRAMEBUFFER, geometry_fbo_);
   const GlProgram& p = lifted_;
-  terrain.frame->set_frame_uniforms(p, view, world, exaggeration);  // uses p
-  gl::Uniform1ui(p.uniform("terrain_mask"), terrain_mask);
-  gl::Uniform1ui(p.uniform("line_table_mask"), table_mask_);
-  gl::Uniform1i(p.uniform("u_tmin"), terrain.min_zoom);
-  gl::Uniform1i(p.uniform("u_tmax"), terrain.max_zoom);
-  gl::Uniform1i(p.uniform("u_key_zoom"), world.key_zoom());
-  gl::Uniform1i(p.uniform("u_steps"), world.steps());
-  gl::Uniform1f(p.uniform("u_block_size"), float(terrain.block_size));
-  gl::Uniform2i(p.uniform("u_origin"), static_cast<int>(view.origin.x),
-                static_cast<int>(view.origin.y));
+  gl::UseProgram(p.id());
+  gl::UniformMatrix4fv(p.uniform("u_view_proj"), 1, GL_FALSE, glm::value_ptr(view.view_proj));
   gl::Uniform2f(p.uniform("u_viewport"), float(width_), float(height_));
   gl::Uniform1f(p.uniform("u_focal_px"), float(height_ * 0.5 * view.proj[1][1]));
   gl::Uniform1i(p.uniform("u_class_count"), class_count_);
   gl::Uniform1f(p.uniform("u_world_per_m"), static_cast<float>(world.ground_height_scale()));
-  gl::Uniform1ui(p.uniform("u_frame"), frame);
-  gl::Uniform1i(p.uniform("u_max_zoom"), cache.package().max_zoom);
-  gl::Uniform1f(p.uniform("u_lift"), static_cast<float>(terrain.lift_m * world.height_scale()));
-  gl::Uniform1f(p.uniform("u_error_px"), static_cast<float>(terrain.error_px));
-  gl::Uniform3f(p.uniform("u_eye"), float(view.eye.x), float(view.eye.y), float(view.eye.z));
-  constexpr int kPieces = 8;
   gl::Uniform1i(p.uniform("u_pieces"), kPieces);
-
   gl::Enable(GL_DEPTH_TEST);
   gl::DepthFunc(GL_LEQUAL);
   gl::DepthMask(GL_FALSE);
-  // Casings under fills, classes in lifted_order_.
   for (int pass = 0; pass < 2 * class_count_; ++pass) {
+    const auto [first, count] = range[size_t(lifted_order_[size_t(pass % class_count_)])];
+    if (count == 0) continue;
     gl::Uniform1i(p.uniform("u_layer"), pass / class_count_);
-    gl::Uniform1i(p.uniform("u_class"), lifted_order_[size_t(pass % class_count_)]);
-    for (uint32_t r : used) {
-      const LineRecord& rec = cache.records()[r];
-      if (rec.empty || rec.tile.segments == 0) continue;
-      // The tile's origin and scale in key units (its zoom may be finer or
-      // coarser than the terrain's finest, the key zoom).
-      const double keys = std::ldexp(double(world.steps()), world.key_zoom() - rec.id.z);
-      const uint32_t cells = rec.tile.grid * rec.tile.grid + 1;
-      gl::Uniform1ui(p.uniform("u_segs_base"),
-                     static_cast<uint32_t>(rec.offset) + cells + rec.tile.cell_entries);
-      gl::Uniform1i(p.uniform("u_zoom"), rec.id.z);
-      gl::Uniform2i(p.uniform("u_tile"), static_cast<int>(rec.id.x), static_cast<int>(rec.id.y));
-      gl::Uniform1f(p.uniform("u_extent"), float(rec.tile.extent));
-      gl::Uniform2f(p.uniform("u_tile_key"), float(rec.id.x * keys - double(view.origin.x)),
-                    float(rec.id.y * keys - double(view.origin.y)));
-      gl::Uniform1f(p.uniform("u_keys_per_unit"), float(keys / rec.tile.extent));
-      // Heights from a ring of half the longest piece of the tile (at least 2
-      // px of its nominal 256) around each point.
-      const double ring = std::max(1.0 / 128, rec.tile.longest / (2.0 * kPieces) / rec.tile.extent);
-      gl::Uniform1f(p.uniform("u_ring_keys"), float(keys * ring));
-      gl::DrawArraysInstanced(GL_TRIANGLES, 0, 6,
-                              static_cast<GLsizei>(rec.tile.segments * kPieces));
-    }
+    gl::Uniform1ui(p.uniform("u_item_base"), first);
+    gl::DrawArraysInstanced(GL_TRIANGLES, 0, 6, static_cast<GLsizei>(count * kPieces));
   }
   gl::DepthMask(GL_TRUE);
   gl::Disable(GL_DEPTH_TEST);

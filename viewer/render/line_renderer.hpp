@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -49,8 +50,9 @@ class LineRenderer {
 
   void resize(int width, int height);
   void set_styles(const std::vector<NamedLineStyle>& classes);
-  // Copies a freshly loaded record's words into the arena.
-  void upload(const LineRecord& record);
+  // Copies freshly loaded record `index`'s words into the arena (and keeps
+  // its segments' classes, for lifted lines).
+  void upload(uint32_t index, const LineRecord& record);
   // Draws the lines over g's colour into output_fbo(); returns the GPU time
   // of the line work in ms (geometry mode: the quads alone, not the tile
   // selection pass) and fills `feedback`.
@@ -75,7 +77,7 @@ class LineRenderer {
                    const LineCache& cache, const TerrainHeights& terrain, GLuint depth,
                    const std::vector<uint32_t>& used, uint32_t frame);
 
-  GlProgram deferred_, geometry_, lifted_;
+  GlProgram deferred_, geometry_, lifted_points_, lifted_;
   GLuint arena_ = 0, records_ = 0, table_ = 0, styles_ = 0, requests_ = 0, used_ = 0,
          terrain_table_ = 0;
   // fbo_: output + pixel records (the full-screen pass); geometry_fbo_:
@@ -85,6 +87,11 @@ class LineRenderer {
   uint32_t table_mask_ = 0, record_count_ = 0;
   int class_count_ = 0, width_ = 0, height_ = 0;
   std::vector<int> lifted_order_;  // the classes lifted lines draw, bottom first
+  // Lifted lines: per record, its segments' classes; the frame's lifted
+  // points and its (first point, class) items, grouped by class.
+  std::unordered_map<uint32_t, std::vector<uint16_t>> segment_classes_;
+  GLuint points_ = 0, items_ = 0;
+  size_t points_capacity_ = 0;
 };
 
 }  // namespace globe::viewer

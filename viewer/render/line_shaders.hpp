@@ -313,24 +313,30 @@ void main() {
 }
 )";
 
-// Lifted lines (--lines lifted, --bundles 3d): each segment of the tiles the
-// selection pass chose, cut into u_pieces pieces, as screen-space quads
-// between points lifted above the terrain. A point's height is the highest of
-// the finest resident terrain samples at it and at eight points u_ring_keys
+// Lifted lines (--lines lifted, --bundles 3d), in two steps per frame.
+// 1. kLineLiftedPoints (compute, one dispatch per tile the selection pass
+// chose): each segment is cut into u_pieces pieces and each of its u_pieces + 1
+// points lifted above the terrain, into Points: the world position and, in
+// w, whether the piece starting there is drawn (pieces that a finer chosen
+// tile also covers are left to it). A point's height is the highest of the
+// finest resident terrain samples at it and at eight points u_ring_keys
 // around it (half the tile's longest piece), plus u_lift, plus the LOD's
 // error bound at the point's distance (so no LOD rises above the sampled
 // heights); it depends on the point alone, so consecutive segments meet. The
-// pieces keep a long segment from sagging into the globe. Pieces that a
-// finer chosen tile also covers are left to it. After kLineCommon, the tile
-// hash, the line table, the terrain table ("terrain"), kFrameWorldGlsl,
-// kKeyHeightGlsl and kLineQuadGlsl.
-inline constexpr const char* kLineLiftedVertex = R"(
+// pieces keep a long segment from sagging into the globe.
+// 2. kLineLiftedVertex (one draw per class and layer, over that class's
+// segments only, listed in Items): each piece as a screen-space quad
+// between its two lifted points, depth-tested against the terrain.
+// The compute program follows kLineCommon, the tile hash, the line table,
+// the terrain table ("terrain"), kFrameWorldGlsl and kKeyHeightGlsl.
+inline constexpr const char* kLineLiftedPoints = R"(
+layout(local_size_x = 64) in;
 layout(std430, binding = 1) readonly buffer Records { uvec4 records[]; };  // 2 per record
 layout(std430, binding = 5) readonly buffer Used { uint used[]; };
+layout(std430, binding = 7) writeonly buffer Points { vec4 points[]; };
 uniform ivec2 u_origin;  // the view origin, key units
-uniform mat4 u_view_proj;
 uniform uint u_segs_base, u_frame;
-uniform int u_class;  // the class this draw shows (classes are drawn in order: heavier on top)
+uniform uint u_points_base, u_point_count;  // where this tile's points go, and how many
 uniform int u_pieces;
 uniform int u_zoom, u_max_zoom;  // the record's zoom, the package's finest
 uniform ivec2 u_tile;            // the record's tile
@@ -340,6 +346,7 @@ uniform float u_keys_per_unit;
 uniform float u_ring_keys;
 uniform float u_lift;      // world z units
 uniform float u_error_px;  // the terrain LOD's screen-space error bound
+uniform float u_focal_px;  // pixels per world unit at clip w = 1
 uniform vec3 u_eye;        // world
 
 // World position of tile point P (units), lifted.
@@ -370,20 +377,37 @@ bool drawn_finer(vec2 P) {
   return false;
 }
 void main() {
-  int seg = gl_InstanceID / u_pieces, piece = gl_InstanceID % u_pieces;
-  uint o = u_segs_base + uint(seg) * 6u;
-  int cls = int(arena[o + 4u]);
-  bool metres;
-  float hw = layer_half_width(cls, metres);
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= u_point_count) return;
+  uint n = uint(u_pieces) + 1u, seg = i / n, k = i % n;
+  uint o = u_segs_base + seg * 6u;
   vec2 A = seg_a(o), B = seg_b(o);
-  vec2 P0 = mix(A, B, float(piece) / float(u_pieces));
-  vec2 P1 = mix(A, B, float(piece + 1) / float(u_pieces));
-  if (cls != u_class || hw <= 0.0 || drawn_finer(0.5 * (P0 + P1))) {
+  float t = float(k) / float(u_pieces);
+  bool drawn = k < uint(u_pieces) && !drawn_finer(mix(A, B, t + 0.5 / float(u_pieces)));
+  points[u_points_base + i] = vec4(lifted(mix(A, B, t)), drawn ? 1.0 : 0.0);
+}
+)";
+
+// After kLineCommon and kLineQuadGlsl: piece gl_InstanceID % u_pieces of
+// item u_item_base + gl_InstanceID / u_pieces (its first point, its class).
+inline constexpr const char* kLineLiftedVertex = R"(
+layout(std430, binding = 7) readonly buffer Points { vec4 points[]; };
+layout(std430, binding = 8) readonly buffer Items { uvec2 items[]; };
+uniform mat4 u_view_proj;
+uniform uint u_item_base;
+uniform int u_pieces;
+void main() {
+  uvec2 item = items[u_item_base + uint(gl_InstanceID / u_pieces)];
+  uint piece = uint(gl_InstanceID % u_pieces);
+  bool metres;
+  float hw = layer_half_width(int(item.y), metres);
+  vec4 pa = points[item.x + piece], pb = points[item.x + piece + 1u];
+  if (hw <= 0.0 || pa.w == 0.0) {
     gl_Position = kCulled;
     return;
   }
-  vec4 ca = u_view_proj * vec4(lifted(P0), 1.0);
-  vec4 cb = u_view_proj * vec4(lifted(P1), 1.0);
+  vec4 ca = u_view_proj * vec4(pa.xyz, 1.0);
+  vec4 cb = u_view_proj * vec4(pb.xyz, 1.0);
   gl_Position = ca.w <= 0.0 || cb.w <= 0.0 ? kCulled : quad_vertex(ca, cb, quad_corner(), hw, metres);
 }
 )";
