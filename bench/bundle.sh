@@ -54,7 +54,7 @@ report() { # NAME RESULT (two lines)
 r=$(bundle "$scratch/roads.mbtiles" "$flows" --from olon,olat --to dlon,dlat --weight trips \
   --network "$roads")
 report roads "$r"
-grep -o 'wrote.*bundles, mean detour [0-9.]*, ink ratio [0-9.]*; network [^;]*' "$scratch/err.txt" |
+grep -o 'wrote.*bundles ([^)]*), mean detour [0-9.]*, ink ratio [0-9.]*; network [^;]*' "$scratch/err.txt" |
   sed 's/^/         /'
 l=$(usage $V lines -q --force "$roads" -o "$scratch/roads-lines.mbtiles")
 echo "$l" | awk '{ printf "lines    wall %6.2f s, CPU %6.2f s, peak RSS %5.0f MB (the network alone as a line package)\n", $1, $3, $2 / 1024 }'
@@ -63,7 +63,7 @@ f=$(bundle "$scratch/flights.mbtiles" samples/data/us_flights_airport.csv --from
   --to-id destination --weight count --locations samples/data/us_airports.csv --id-field iata \
   --network samples/data/airways.geojson)
 report flights "$f"
-grep -o 'wrote.*bundles, mean detour [0-9.]*, ink ratio [0-9.]*; network [^;]*' "$scratch/err.txt" |
+grep -o 'wrote.*bundles ([^)]*), mean detour [0-9.]*, ink ratio [0-9.]*; network [^;]*' "$scratch/err.txt" |
   sed 's/^/         /'
 
 global="$scratch/global-20000.csv"
@@ -88,6 +88,24 @@ fi
 g=$(bundle "$scratch/global.mbtiles" "$global" --from olon,olat --to dlon,dlat --weight weight \
   --network samples/data/airways.geojson)
 report global "$g"
-grep -o 'wrote.*bundles, mean detour [0-9.]*, ink ratio [0-9.]*; network [^;]*' "$scratch/err.txt" |
+grep -o 'wrote.*bundles ([^)]*), mean detour [0-9.]*, ink ratio [0-9.]*; network [^;]*' "$scratch/err.txt" |
   sed 's/^/         /'
 grep -o '[0-9]* routed, [0-9]* unrouted[^;]*' "$scratch/err.txt" | head -1 | sed 's/^/         /'
+
+# The US flights in the viewer at 1280 x 720 over the etopo20 globe (llvmpipe
+# here): median frame and line-pass times of 5 frames, flat (deferred) and
+# lifted (--bundles 3d) at the continental view of the readability test, and
+# lifted at an oblique one.
+world="$scratch/etopo20-z4.mbtiles"
+[ -f "$world" ] || $B/tools/tiler/globe-tiler terrain -q samples/data/etopo20.tif --max-zoom 4 -o "$world"
+view() { # NAME ARGS...
+  local name=$1
+  shift
+  $B/viewer/globe-view "$world" "$scratch/flights.mbtiles" --size 1280x720 --stats "$@" |
+    tr -d '{}"' | tr ',' '\n' | awk -v n="$name" -F': ' '
+      $1 ~ /^ *frame_ms$/ { f = $2 } $1 ~ /^ *lines_ms$/ { l = $2 }
+      END { printf "%-8s frame %7.1f ms, line pass %7.1f ms\n", n, f, l }'
+}
+view "2d" --camera=-97,39,5000000,0,0
+view "3d" --camera=-97,39,5000000,0,0 --bundles 3d --exaggeration 20
+view "3d tilt" --camera=-97,25,1500000,0,40 --bundles 3d --exaggeration 20
