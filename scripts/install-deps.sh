@@ -10,7 +10,7 @@ packages=(
   # fuzzing (scripts/fuzz.sh): clang and its libFuzzer runtime
   clang libclang-rt-14-dev
   # libraries (see README "Dependencies")
-  libgdal-dev libproj-dev libtiff-dev libzstd-dev libsqlite3-dev libpng-dev
+  libgdal-dev libproj-dev libtiff-dev libzstd-dev libsqlite3-dev libpng-dev zlib1g-dev
   # viewer image tile decoding without GDAL
   libjpeg62-turbo-dev libwebp-dev
   googletest libgtest-dev
@@ -41,11 +41,14 @@ done
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install-deps: all ${#packages[@]} packages present" >&2
-  exit 0
+else
+  sudo=""
+  if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+  echo "install-deps: installing ${missing[*]}" >&2
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y --no-install-recommends "${missing[@]}"
 fi
 
-sudo=""
-if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
-echo "install-deps: installing ${missing[*]}" >&2
-$sudo apt-get update -qq
-DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y --no-install-recommends "${missing[@]}"
+# The web tests' browser and client libraries (chromium, npm packages in a
+# cache folder): tests/web/README.md.
+"$(dirname "$0")/web-deps.sh" >/dev/null
