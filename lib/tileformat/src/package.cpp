@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "tileformat/error.hpp"
+#include "tileformat/fnv1a.hpp"
 
 namespace tileformat {
 namespace {
@@ -20,13 +21,6 @@ namespace {
 // fall at the same places in every run (the file's bytes depend on them).
 constexpr uint64_t kBatchTiles = 512;
 constexpr uint64_t kBatchBytes = uint64_t{4} << 20;
-
-int64_t fnv1a(std::span<const uint8_t> bytes) {
-  uint64_t h = 1469598103934665603ull;
-  for (uint8_t b : bytes)
-    h = (h ^ b) * 1099511628211ull;
-  return static_cast<int64_t>(h);
-}
 
 void fsync_path(const std::string& path) {
   int fd = ::open(path.c_str(), O_RDONLY);
@@ -58,8 +52,8 @@ std::optional<int32_t> read_key_file(const std::string& temp_path) {
 }  // namespace
 
 int32_t build_key_hash(const std::string& build_key) {
-  const auto h = static_cast<uint64_t>(
-      fnv1a({reinterpret_cast<const uint8_t*>(build_key.data()), build_key.size()}));
+  const auto h = static_cast<uint64_t>(static_cast<int64_t>(
+      fnv1a({reinterpret_cast<const uint8_t*>(build_key.data()), build_key.size()})));
   // Never 0: a finished package's user_version is 0.
   return static_cast<int32_t>((h ^ (h >> 32)) & 0x7fffffff) | 1;
 }
@@ -186,7 +180,7 @@ void PackageWriter::put_tile(TileId id, std::span<const uint8_t> blob) {
   // join that tile's transaction, so a resumed build never skips a tile
   // committed without them.
   if (in_batch_ >= kBatchTiles || in_batch_bytes_ >= kBatchBytes) flush_batch();
-  const int64_t hash = fnv1a(blob);
+  const int64_t hash = static_cast<int64_t>(fnv1a(blob));
   int64_t blob_id = -1;
   find_blob_->bind(1, hash);
   while (find_blob_->step()) {
