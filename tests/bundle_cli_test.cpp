@@ -449,7 +449,7 @@ TEST_F(BundleCli, SignificanceAndMinWeightAreCountedAndReported) {
   const RunResult r = bundle(args + path("none.mbtiles") + " --min-weight 1000000");
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("every bundle and line is lighter than --min-weight 1000000 (the "
-                      "heaviest weighs "),
+                       "heaviest weighs "),
             std::string::npos)
       << r.err;
   EXPECT_FALSE(fs::exists(path("none.mbtiles")));

@@ -19,5 +19,6 @@ int run_merge(const std::vector<std::string>& args);
 int run_info(const std::vector<std::string>& args);
 int run_validate(const std::vector<std::string>& args);
 int run_extract(const std::vector<std::string>& args);
+int run_export(const std::vector<std::string>& args);
 
 }  // namespace globe

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
                                   {"merge", globe::run_merge},
                                   {"info", globe::run_info},
                                   {"validate", globe::run_validate},
-                                  {"extract", globe::run_extract}},
+                                  {"extract", globe::run_extract},
+                                  {"export", globe::run_export}},
                                  argc, argv);
 }

@@ -41,7 +41,7 @@ int run_in_gdal_executable(int argc, char** argv) {
 }
 
 bool runs_here(const std::string& command) {
-  for (const char* c : {"analyze", "-h", "--help", "help", "--version"})
+  for (const char* c : {"analyze", "export", "-h", "--help", "help", "--version"})
     if (command == c) return true;
   return false;
 }
@@ -52,5 +52,6 @@ int main(int argc, char** argv) {
   if (argc > 1 && !runs_here(argv[1])) return run_in_gdal_executable(argc, argv);
   globe::keep_tile_buffers_in_heap();
   return globe::run_command_tool("globe-tiler", GLOBE_VERSION, globe::kTilerUsage,
-                                 {{"analyze", globe::run_analyze}}, argc, argv);
+                                 {{"analyze", globe::run_analyze}, {"export", globe::run_export}},
+                                 argc, argv);
 }

@@ -15,6 +15,7 @@ const char* const kTilerUsage =
     "  info PACKAGE                      metadata, zoom range, tile counts and sizes\n"
     "  validate PACKAGE                  decode every tile, check schema and invariants\n"
     "  extract PACKAGE --zoom Z -o OUT.tif   one zoom as a GeoTIFF (heights, pixels or a layer)\n"
+    "  export PACKAGE -o OUT.pmtiles     web formats: Terrarium/Terrain-RGB, image tiles\n"
     "\n"
     "Run 'globe-tiler COMMAND --help' for the options of a command.\n"
     "Exit codes: 0 ok, 1 bad input data, 2 bad usage, 3 output cannot be written,\n"

@@ -1,0 +1,274 @@
+// globe-tiler export (docs/web.md) as users run it, checked with references
+// that share no code with it: the PMTiles and raster-DEM readers written from
+// the specifications (spec_readers/), GDAL's PNG driver, the sqlite3 program
+// and an analytic surface. (In a real client: web_maplibre_test.cpp.)
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <gdal.h>
+
+#include "raster_fixtures.hpp"
+#include "spec_readers/pmtiles_reader.hpp"
+#include "spec_readers/raster_dem.hpp"
+#include "test_support.hpp"
+#include "tileformat/json.hpp"
+#include "tileformat/package.hpp"
+#include "web_fixtures.hpp"
+
+namespace {
+
+using namespace globe_test;
+namespace pmr = spec_readers::pmtiles;
+namespace dem = spec_readers::raster_dem;
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The surface: 1200 + 900 sin(2 pi (lon - 10) / 2) cos(2 pi (lat - 45) / 1.5)
+// over 10..14 E, 45..48 N, written at 1/128 degree.
+constexpr double kWest = 10, kEast = 14, kSouth = 45, kNorth = 48, kSource = 1.0 / 128;
+constexpr double kAmp = 900, kKx = 2 * kPi / 2, kKy = 2 * kPi / 1.5;  // radians per degree
+double surface(double lon, double lat) {
+  return 1200 + kAmp * std::sin(kKx * (lon - kWest)) * std::cos(kKy * (lat - kSouth));
+}
+
+const fs::path& surface_dem() {
+  static const fs::path dir = shared_folder("web-export-surface", [](const fs::path& d) {
+    const double gt[6] = {kWest, kSource, 0, kNorth, 0, -kSource};
+    write_dem((d / "surface.tif").string(), int((kEast - kWest) / kSource),
+              int((kNorth - kSouth) / kSource), gt, "EPSG:4326", GDT_Float32, [](int x, int y) {
+                return surface(kWest + (x + 0.5) * kSource, kNorth - (y + 0.5) * kSource);
+              });
+    return run_all({tiler() + " terrain -q " + (d / "surface.tif").string() + " -o " +
+                        (d / "mercator.mbtiles").string(),
+                    tiler() + " terrain -q --tiling geodetic " + (d / "surface.tif").string() +
+                        " -o " + (d / "geodetic.mbtiles").string()},
+                   d);
+  });
+  return dir;
+}
+
+struct PixelErrors {
+  size_t pixels = 0, beyond = 0;
+  double worst = 0;  // metres beyond the bound (<= 0: all within)
+  std::string where;
+};
+
+// Every pixel of every tile of a raster-DEM PMTiles export whose centre lies
+// well inside the surface's area, against the surface at that centre. The
+// bound: the package's height step / 2, Terrarium's 1/512 m, and bilinear
+// interpolation between samples no farther apart than the pixels (and the
+// source grid's own): |h_xx| dx^2 / 8 + |h_yy| dy^2 / 8 + |h_xy| dx dy / 4.
+PixelErrors check_surface_export(const std::string& pmtiles, double height_step) {
+  const std::string file = read_file(pmtiles);
+  PixelErrors e;
+  e.worst = -1e300;
+  for (const pmr::Entry& entry : pmr::validate_archive(file)) {
+    for (uint32_t r = 0; r < entry.run_length; ++r) {
+      const pmr::TileCoord t = pmr::tile_id_to_zxy(entry.tile_id + r);
+      int w = 0, h = 0;
+      const auto rgb = png_rgb(
+          file.substr(pmr::read_header(file).tile_data_offset + entry.offset, entry.length), w, h);
+      EXPECT_EQ(w, 256);
+      if (rgb.empty()) {
+        ADD_FAILURE() << "tile " << int(t.z) << "/" << t.x << "/" << t.y << " is not a PNG";
+        continue;
+      }
+      const double pix = 360.0 / (std::ldexp(1.0, t.z) * w);  // degrees of longitude
+      const double d2 = std::max(pix, kSource) * std::max(pix, kSource);
+      const double bound =
+          height_step / 2 + 1.0 / 512 + 0.02 + kAmp * (kKx * kKx * d2 + kKy * kKy * d2) / 8 +
+          kAmp * kKx * kKy * d2 / 4 + kAmp * (kKx * kKx + kKy * kKy) * kSource * kSource / 8;
+      const double margin = 2 * std::max(pix, kSource) + 2 * kSource;
+      for (int py = 0; py < h; ++py)
+        for (int px = 0; px < w; ++px) {
+          const dem::LonLat c = dem::pixel_center_lon_lat(t.z, t.x, t.y, px, py, w);
+          if (c.lon_deg < kWest + margin || c.lon_deg > kEast - margin ||
+              c.lat_deg < kSouth + margin || c.lat_deg > kNorth - margin)
+            continue;
+          const double got =
+              dem::pixel_height(rgb.data(), w, h, 3, px, py, dem::Encoding::Terrarium);
+          const double err = std::fabs(got - surface(c.lon_deg, c.lat_deg)) - bound;
+          ++e.pixels;
+          if (err > 0) ++e.beyond;
+          if (err > e.worst) {
+            e.worst = err;
+            std::ostringstream where;
+            where << int(t.z) << "/" << t.x << "/" << t.y << " pixel " << px << "," << py << ": "
+                  << got << " m, surface " << surface(c.lon_deg, c.lat_deg) << " m, bound "
+                  << bound;
+            e.where = where.str();
+          }
+        }
+    }
+  }
+  return e;
+}
+
+double height_step(const std::string& pkg, const fs::path& dir) {
+  const RunResult r = run(
+      "sqlite3 " + pkg + " \"SELECT value FROM metadata WHERE name = 'globe:height_step'\"", dir);
+  return std::stod(r.out);
+}
+
+}  // namespace
+
+// Both tilings: a webmercator package keeps its tiles, a geodetic one is
+// resampled to web mercator; every pixel is the surface at its centre within
+// the bound of bilinear interpolation between samples.
+TEST(ExportDem, TerrariumPixelsAreTheSurfaceAtTheirCentres) {
+  const fs::path& d = surface_dem();
+  TempDir dir;
+  for (const char* tiling : {"mercator", "geodetic"}) {
+    const std::string pkg = (d / (std::string(tiling) + ".mbtiles")).string();
+    const std::string out = (dir / (std::string(tiling) + ".pmtiles")).string();
+    const RunResult r =
+        run(tiler() + " export " + pkg + " --format terrarium -o " + out, dir.path());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const PixelErrors e = check_surface_export(out, height_step(pkg, dir.path()));
+    EXPECT_GT(e.pixels, 100000u) << tiling;
+    EXPECT_EQ(e.beyond, 0u) << tiling << ": " << e.beyond << " of " << e.pixels
+                            << " pixels beyond the bound; worst " << e.where;
+  }
+}
+
+// Terrain-RGB into a folder and Terrarium into MBTiles hold the same heights
+// (within Terrain-RGB's 0.1 m); the folder says its encoding in
+// metadata.json; the MBTiles rows count from the south (TMS), as the sqlite3
+// program reads them.
+TEST(ExportDem, FoldersAndMbtilesHoldTheSameHeights) {
+  const fs::path& d = surface_dem();
+  TempDir dir;
+  const std::string pkg = (d / "mercator.mbtiles").string();
+  const std::string folder = (dir / "rgb").string(), mb = (dir / "t.mbtiles").string();
+  ASSERT_EQ(run(tiler() + " export -q " + pkg + " --format terrain-rgb -o " + folder, dir.path())
+                .exit_code,
+            0);
+  ASSERT_EQ(
+      run(tiler() + " export -q " + pkg + " --format terrarium -o " + mb, dir.path()).exit_code, 0);
+  const auto meta = tileformat::JsonValue::parse(read_file(fs::path(folder) / "metadata.json"));
+  EXPECT_EQ(meta.find("encoding")->string(), "mapbox");
+  EXPECT_EQ(meta.find("tiles")->array()[0].string(), "{z}/{x}/{y}.png");
+  size_t tiles = 0;
+  for (const auto& f : fs::recursive_directory_iterator(folder)) {
+    if (f.path().extension() != ".png") continue;
+    const int y = std::stoi(f.path().stem().string());
+    const int x = std::stoi(f.path().parent_path().filename().string());
+    const int z = std::stoi(f.path().parent_path().parent_path().filename().string());
+    const std::string hex = (dir / "tile.png").string();
+    const RunResult r = run("sqlite3 " + mb + " \"SELECT writefile('" + hex +
+                                "', tile_data) FROM tiles WHERE zoom_level = " + std::to_string(z) +
+                                " AND tile_column = " + std::to_string(x) +
+                                " AND tile_row = " + std::to_string((1 << z) - 1 - y) + "\"",
+                            dir.path());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    int w1 = 0, h1 = 0, w2 = 0, h2 = 0;
+    const auto rgb = png_rgb(read_file(f.path()), w1, h1);
+    const auto terrarium = png_rgb(read_file(hex), w2, h2);
+    ASSERT_EQ(rgb.size(), terrarium.size()) << f.path();
+    ASSERT_FALSE(rgb.empty());
+    double worst = 0;
+    for (int py = 0; py < h1; py += 3)
+      for (int px = 0; px < w1; px += 3)
+        worst = std::max(worst, std::fabs(dem::pixel_height(rgb.data(), w1, h1, 3, px, py,
+                                                            dem::Encoding::TerrainRgb) -
+                                          dem::pixel_height(terrarium.data(), w2, h2, 3, px, py,
+                                                            dem::Encoding::Terrarium)));
+    EXPECT_LE(worst, 0.05 + 1.0 / 512) << f.path();
+    ++tiles;
+  }
+  EXPECT_GT(tiles, 10u);
+}
+
+TEST(ExportDem, BadInputIsRefusedAndLeavesNothing) {
+  const fs::path& d = surface_dem();
+  TempDir dir;
+  const std::string pkg = (d / "mercator.mbtiles").string();
+  auto refused = [&](const std::string& args, int code, const std::string& says,
+                     const std::string& out) {
+    const RunResult r = run(tiler() + " export " + args, dir.path());
+    EXPECT_EQ(r.exit_code, code) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(says), std::string::npos) << args << "\n" << r.err;
+    if (!out.empty()) {
+      EXPECT_FALSE(fs::exists(out + ".tmp")) << args;
+      EXPECT_FALSE(fs::exists(out + ".tiles.tmp")) << args;
+    }
+  };
+  const std::string out = (dir / "out.pmtiles").string();
+  refused(pkg + " -o " + out, 2, "give --format terrarium or terrain-rgb", out);
+  refused(pkg + " --format png -o " + out, 2, "--format: 'png' is not terrarium or terrain-rgb",
+          out);
+  refused(pkg + " --format terrarium --tile-size 300 -o " + out, 2, "--tile-size: 256 or 512", out);
+  refused((dir / "missing.mbtiles").string() + " --format terrarium -o " + out, 1,
+          "missing.mbtiles", out);
+  EXPECT_FALSE(fs::exists(out));
+  // A local tiling cannot become web mercator.
+  const double gt[6] = {500000, 30, 0, 5200000, 0, -30};
+  write_dem((dir / "utm.tif").string(), 64, 64, gt, "EPSG:32632", GDT_Float32,
+            [](int x, int y) { return 100.0 + x + y; });
+  const std::string local = (dir / "local.mbtiles").string();
+  ASSERT_EQ(
+      run(tiler() + " terrain -q --tiling local " + (dir / "utm.tif").string() + " -o " + local,
+          dir.path())
+          .exit_code,
+      0);
+  refused(local + " --format terrarium -o " + out, 2, "local tiling cannot become web mercator",
+          out);
+  // An existing output stays as it was without --force.
+  std::ofstream(out) << "keep";
+  refused(pkg + " --format terrarium -o " + out, 3, "already exists", "");
+  EXPECT_EQ(read_file(out), "keep");
+  EXPECT_EQ(run(tiler() + " export -q --force " + pkg + " --format terrarium -o " + out, dir.path())
+                .exit_code,
+            0);
+  EXPECT_NO_THROW(pmr::validate_archive(read_file(out)));
+}
+
+// An image package's tiles, exported to PMTiles, are the package's bytes
+// (read from the package here, the exporter's input), tile for tile.
+TEST(ExportImages, PmtilesHoldThePackagesTilesByteForByte) {
+  TempDir dir;
+  const double gt[6] = {10, 0.01, 0, 47, 0, -0.01};
+  gdal_setup();
+  const std::string tif = (dir / "rgb.tif").string();
+  GDALDatasetH ds =
+      GDALCreate(GDALGetDriverByName("GTiff"), tif.c_str(), 300, 200, 3, GDT_Byte, nullptr);
+  GDALSetGeoTransform(ds, const_cast<double*>(gt));
+  OGRSpatialReferenceH srs = OSRNewSpatialReference(nullptr);
+  OSRSetFromUserInput(srs, "EPSG:4326");
+  GDALSetSpatialRef(ds, srs);
+  OSRRelease(srs);
+  std::vector<uint8_t> band(300 * 200);
+  for (int b = 0; b < 3; ++b) {
+    for (int i = 0; i < 300 * 200; ++i)
+      band[size_t(i)] = static_cast<uint8_t>((i % 300) * (b + 1) + (i / 300) * (3 - b));
+    ASSERT_EQ(GDALRasterIO(GDALGetRasterBand(ds, b + 1), GF_Write, 0, 0, 300, 200, band.data(), 300,
+                           200, GDT_Byte, 0, 0),
+              CE_None);
+  }
+  GDALClose(ds);
+  const std::string pkg = (dir / "img.mbtiles").string(), out = (dir / "img.pmtiles").string();
+  ASSERT_EQ(run(tiler() + " imagery -q " + tif + " -o " + pkg, dir.path()).exit_code, 0);
+  const RunResult r = run(tiler() + " export " + pkg + " -o " + out, dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string file = read_file(out);
+  const auto entries = pmr::validate_archive(file);
+  EXPECT_EQ(pmr::read_header(file).tile_type, pmr::TileType::Png);
+  tileformat::PackageReader reader(pkg);
+  size_t tiles = 0;
+  reader.for_each_tile([&](tileformat::TileId id, std::span<const uint8_t> blob) {
+    const auto got = pmr::get_tile(file, id.z, id.x, id.y);
+    ASSERT_TRUE(got.has_value()) << id.str();
+    EXPECT_EQ(*got, std::string(blob.begin(), blob.end())) << id.str();
+    ++tiles;
+  });
+  EXPECT_GT(tiles, 3u);
+  uint64_t addressed = 0;
+  for (const pmr::Entry& e : entries)
+    addressed += e.run_length;
+  EXPECT_EQ(addressed, tiles);
+}

@@ -1,0 +1,56 @@
+// Helpers of the web export tests: PNG pixels through GDAL's PNG driver (an
+// independent decoder), and running a page of tests/web/pages in headless
+// chromium (tests/web/README.md).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <cpl_vsi.h>
+#include <gdal.h>
+
+#include "raster_fixtures.hpp"
+#include "test_support.hpp"
+
+namespace globe_test {
+
+// RGB pixels of a PNG in memory (GDAL's PNG driver).
+inline std::vector<uint8_t> png_rgb(const std::string& bytes, int& w, int& h) {
+  gdal_setup();
+  static int serial = 0;
+  const std::string name = "/vsimem/web_export_" + std::to_string(++serial) + ".png";
+  VSIFCloseL(VSIFileFromMemBuffer(name.c_str(),
+                                  reinterpret_cast<GByte*>(const_cast<char*>(bytes.data())),
+                                  vsi_l_offset(bytes.size()), FALSE));
+  GDALDatasetH ds = GDALOpen(name.c_str(), GA_ReadOnly);
+  std::vector<uint8_t> rgb;
+  if (ds) {
+    w = GDALGetRasterXSize(ds), h = GDALGetRasterYSize(ds);
+    rgb.resize(size_t(w) * h * 3);
+    int bands[3] = {1, 2, 3};
+    if (GDALDatasetRasterIO(ds, GF_Read, 0, 0, w, h, rgb.data(), w, h, GDT_Byte, 3, bands, 3,
+                            size_t(w) * 3, 1) != CE_None)
+      rgb.clear();
+    GDALClose(ds);
+  }
+  VSIUnlink(name.c_str());
+  return rgb;
+}
+
+// Runs tests/web/pages/PAGE with /data serving `data` and the query string;
+// installs the browser and the npm packages first if missing.
+inline RunResult run_web_page(const std::string& page, const fs::path& data,
+                              const std::string& query, const fs::path& screenshot,
+                              const fs::path& scratch) {
+  const std::string web = std::string(GLOBE_TEST_DATA_DIR) + "/../web";
+  const RunResult cache =
+      run(std::string(GLOBE_TEST_DATA_DIR) + "/../../scripts/web-deps.sh", scratch);
+  if (cache.exit_code != 0) return cache;
+  const std::string dir = cache.out.substr(0, cache.out.find_last_not_of('\n') + 1);
+  return run("GLOBE_WEB_CACHE=" + dir + " node " + web +
+                 "/run_page.mjs --timeout 90 --mount /data=" + data.string() + " --query '" +
+                 query + "' --screenshot " + screenshot.string() + " " + web + "/pages/" + page,
+             scratch);
+}
+
+}  // namespace globe_test

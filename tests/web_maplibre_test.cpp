@@ -1,0 +1,149 @@
+// Exports in a real client (label web): MapLibre GL JS in headless Debian
+// chromium (SwiftShader WebGL) driven by playwright-core, the page served
+// from 127.0.0.1 with HTTP ranges (tests/web/README.md). The expected values
+// come from the exported tiles decoded here (spec_readers/, GDAL's PNG
+// driver) and from the plain source DEM.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <tuple>
+
+#include "spec_readers/pmtiles_reader.hpp"
+#include "spec_readers/raster_dem.hpp"
+#include "tileformat/json.hpp"
+#include "web_fixtures.hpp"
+
+namespace {
+
+using namespace globe_test;
+namespace pmr = spec_readers::pmtiles;
+namespace dem = spec_readers::raster_dem;
+constexpr double kPi = 3.14159265358979323846;
+
+}  // namespace
+
+// MapLibre GL JS, as a user's page: the jacksboro DEM exported to Terrarium
+// PMTiles, served over HTTP with ranges, 3D terrain; queryTerrainElevation at
+// 30 points equals the bilinear interpolation of the pixel centres (decoded
+// here) of the tile MapLibre drew there, the finest for most (a parent, or
+// the tile's own edge pixels across a border whose neighbour has not loaded,
+// are MapLibre's own fallbacks), and p90 is within 10 m of the plain source
+// DEM.
+TEST(WebMapLibre, TerrariumPmtilesElevationsAreTheTilesPixels) {
+  TempDir dir;
+  const std::string pkg = (dir / "jb.mbtiles").string();
+  const std::string out = (dir / "jb.pmtiles").string();
+  ASSERT_EQ(
+      run(tiler() + " terrain -q " + sample("jacksboro.tif").string() + " -o " + pkg, dir.path())
+          .exit_code,
+      0);
+  ASSERT_EQ(
+      run(tiler() + " export -q " + pkg + " --format terrarium -o " + out, dir.path()).exit_code,
+      0);
+  const std::string file = read_file(out);
+  const int zmax = pmr::read_header(file).max_zoom;
+  const double lon0 = -84.2458, lat0 = 36.5896;
+  // The finest tiles' pixels, decoded on demand.
+  std::map<std::tuple<int, uint32_t, uint32_t>, std::vector<uint8_t>> tiles;
+  auto pixel = [&](int zoom, int64_t gx, int64_t gy) {
+    const auto key = std::tuple(zoom, uint32_t(gx / 256), uint32_t(gy / 256));
+    auto it = tiles.find(key);
+    if (it == tiles.end()) {
+      const auto bytes = pmr::get_tile(file, zoom, std::get<1>(key), std::get<2>(key));
+      int w = 0, h = 0;
+      it = tiles.emplace(key, bytes ? png_rgb(*bytes, w, h) : std::vector<uint8_t>{}).first;
+    }
+    if (it->second.empty()) return std::nan("");
+    return dem::pixel_height(it->second.data(), 256, 256, 3, int(gx % 256), int(gy % 256),
+                             dem::Encoding::Terrarium);
+  };
+  // clamped: the tile's own edge pixels stand in for its neighbours' (what
+  // MapLibre interpolates at a tile's border until the neighbour has loaded).
+  auto expected = [&](double lon, double lat, int zoom, bool clamped = false) {
+    const double n = std::ldexp(256.0, zoom);
+    const double gx = (lon + 180) / 360 * n,
+                 gy = (1 - std::asinh(std::tan(lat * kPi / 180)) / kPi) / 2 * n;
+    const double u = gx - 0.5, v = gy - 0.5;
+    const int64_t i = int64_t(std::floor(u)), j = int64_t(std::floor(v));
+    const double a = u - i, b = v - j;
+    const int64_t tx = int64_t(gx) / 256 * 256, ty = int64_t(gy) / 256 * 256;
+    auto at = [&](int64_t x, int64_t y) {
+      if (clamped) x = std::clamp(x, tx, tx + 255), y = std::clamp(y, ty, ty + 255);
+      return pixel(zoom, x, y);
+    };
+    return (1 - b) * ((1 - a) * at(i, j) + a * at(i + 1, j)) +
+           b * ((1 - a) * at(i, j + 1) + a * at(i + 1, j + 1));
+  };
+  // The plain source: NAD83 degrees at 3", pixels as areas.
+  gdal_setup();
+  GDALDatasetH src = GDALOpen(sample("jacksboro.tif").c_str(), GA_ReadOnly);
+  ASSERT_NE(src, nullptr);
+  double sgt[6];
+  GDALGetGeoTransform(src, sgt);
+  const int sw = GDALGetRasterXSize(src), sh = GDALGetRasterYSize(src);
+  std::vector<float> heights(size_t(sw) * sh);
+  ASSERT_EQ(GDALRasterIO(GDALGetRasterBand(src, 1), GF_Read, 0, 0, sw, sh, heights.data(), sw, sh,
+                         GDT_Float32, 0, 0),
+            CE_None);
+  GDALClose(src);
+  auto source = [&](double lon, double lat) {
+    const double u = (lon - sgt[0]) / sgt[1] - 0.5, v = (lat - sgt[3]) / sgt[5] - 0.5;
+    const int i = int(std::floor(u)), j = int(std::floor(v));
+    const double a = u - i, b = v - j;
+    auto at = [&](int x, int y) { return double(heights[size_t(y) * sw + x]); };
+    return (1 - b) * ((1 - a) * at(i, j) + a * at(i + 1, j)) +
+           b * ((1 - a) * at(i, j + 1) + a * at(i + 1, j + 1));
+  };
+  std::string points;
+  std::vector<std::pair<double, double>> where;
+  for (int k = 0; k < 30; ++k) {
+    const double lon = lon0 - 0.05 + 0.1 * ((k * 7) % 30) / 29.0;
+    const double lat = lat0 - 0.03 + 0.06 * ((k * 11) % 30) / 29.0;
+    where.emplace_back(lon, lat);
+    char p[64];
+    std::snprintf(p, sizeof p, "%s%.6f,%.6f", k ? ";" : "", lon, lat);
+    points += p;
+  }
+  const RunResult page = run_web_page(
+      "maplibre_dem.html", dir.path(),
+      "pmtiles=/data/jb.pmtiles&encoding=terrarium&center=" + std::to_string(lon0) + "," +
+          std::to_string(lat0) + "&zoom=" + std::to_string(zmax + 1) + "&points=" + points,
+      dir / "maplibre.png", dir.path());
+  ASSERT_EQ(page.exit_code, 0) << page.err;
+  const auto result = tileformat::JsonValue::parse(page.out);
+  const auto& got = result.find("elevations")->array();
+  ASSERT_EQ(got.size(), where.size());
+  std::vector<double> off_source;
+  double worst = 0;
+  int finest = 0;
+  for (size_t k = 0; k < where.size(); ++k) {
+    ASSERT_TRUE(got[k].is_number()) << "no elevation at point " << k;
+    // MapLibre interpolates the DEM tile it drew there: the finest, or a
+    // parent where the finest is not loaded (at the view's edge), with its
+    // neighbours' pixels across its border, or its own before they load.
+    double off = 1e300;
+    int zoom = zmax;
+    for (int z = zmax; z >= std::max(0, zmax - 3) && off > 0.02; --z)
+      for (bool clamped : {false, true}) {
+        const double d =
+            std::fabs(got[k].number() - expected(where[k].first, where[k].second, z, clamped));
+        if (d < off) off = d, zoom = z;
+      }
+    finest += zoom == zmax;
+    worst = std::max(worst, off);
+    EXPECT_LE(off, 0.02) << "point " << k << " (" << where[k].first << ", " << where[k].second
+                         << "): " << got[k].number() << " m, the finest tiles' pixels give "
+                         << expected(where[k].first, where[k].second, zmax) << " m";
+    off_source.push_back(std::fabs(got[k].number() - source(where[k].first, where[k].second)));
+  }
+  EXPECT_GE(finest, 25) << "points where MapLibre drew the finest tiles";
+  std::sort(off_source.begin(), off_source.end());
+  const double p90 = off_source[off_source.size() * 9 / 10];
+  EXPECT_LE(p90, 10.0);
+  std::printf(
+      "MapLibre %s: 30 points (%d on the finest tiles), worst %.4f m from the tiles' "
+      "pixels; p90 %.2f m, max %.2f m from the plain source\n",
+      result.find("maplibre")->string().c_str(), finest, worst, p90, off_source.back());
+}

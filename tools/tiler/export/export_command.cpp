@@ -1,0 +1,92 @@
+// `globe-tiler export PACKAGE -o OUT [--format F]`: packages to the formats
+// web clients read (docs/web.md). Parses options, picks the exporter by the
+// package's kind and --format.
+#include <sstream>
+
+#include "build_options.hpp"
+#include "cli_args.hpp"
+#include "commands.hpp"
+#include "dem_export.hpp"
+#include "errors.hpp"
+#include "image_export.hpp"
+#include "package_open.hpp"
+
+namespace globe {
+
+int run_export(const std::vector<std::string>& args) {
+  BuildOptions o;
+  std::string format;
+  int tile_size = 256;
+  CliArgs cli(
+      "globe-tiler export",
+      "globe-tiler export PACKAGE --format FORMAT -o OUT.pmtiles|OUT.mbtiles|DIR\n\n"
+      "Converts a package to a format web maps read, into one PMTiles file (static hosting:\n"
+      "any HTTP server with range requests), an MBTiles file (for tile servers) or a folder\n"
+      "DIR/{z}/{x}/{y}.EXT with DIR/metadata.json (TileJSON). Nothing appears under OUT\n"
+      "until the export is complete.\n"
+      "  terrain, --format terrarium|terrain-rgb: raster-DEM PNG tiles in web mercator XYZ\n"
+      "    for MapLibre GL (raster-dem source, encoding \"terrarium\" or \"mapbox\"): each\n"
+      "    pixel the package's height at the pixel's centre, bilinear between its samples;\n"
+      "    a geodetic package is resampled to web mercator. Terrarium keeps 1/256 m,\n"
+      "    Terrain-RGB 0.1 m.\n"
+      "  images (no --format): the image tiles as stored (web mercator packages).\n"
+      "docs/web.md says how to host the outputs and shows a MapLibre page for each.");
+  cli.option("--format", "FORMAT", "terrarium or terrain-rgb (terrain packages)",
+             [&](const std::string& v) {
+               if (v != "terrarium" && v != "terrain-rgb")
+                 throw UsageError("--format: '" + v + "' is not terrarium or terrain-rgb");
+               format = v;
+             });
+  cli.option("--tile-size", "PX", "raster-DEM tiles of 256 (default) or 512 pixels",
+             [&](const std::string& v) {
+               tile_size = CliArgs::to_int("--tile-size", v, 256, 512);
+               if (tile_size != 256 && tile_size != 512)
+                 throw UsageError("--tile-size: 256 or 512");
+             });
+  cli.option("-o,--output", "OUT", "OUT.pmtiles, OUT.mbtiles or a folder",
+             [&](const std::string& v) { o.output = v; });
+  declare_run_options(cli, o);
+  if (!parse_build_command(cli, o, args, "globe-tiler export", "PACKAGE")) return kExitOk;
+  if (o.inputs.size() != 1) throw UsageError("give exactly one package to export");
+  if (o.resume) throw UsageError("--resume: an export is written afresh each time");
+  const std::string& input = o.inputs[0];
+  const std::optional<tileformat::PackageKind> kind = package_kind(input);
+  Progress progress(o.progress);
+  ExportSummary sum;
+  if (kind == tileformat::PackageKind::kTerrain) {
+    if (format.empty())
+      throw UsageError(input + " is a terrain package: give --format terrarium or terrain-rgb");
+    DemExportSettings s;
+    s.input = input, s.output = o.output, s.force = o.force;
+    s.encoding =
+        format == "terrarium" ? web::DemEncoding::kTerrarium : web::DemEncoding::kTerrainRgb;
+    s.tile_size = tile_size;
+    s.threads = o.worker_threads();
+    sum = export_raster_dem(s, progress);
+  } else if (kind == tileformat::PackageKind::kImage) {
+    if (!format.empty())
+      throw UsageError(input +
+                       " is an image package: its tiles are exported as stored; drop "
+                       "--format " +
+                       format);
+    ImageExportSettings s;
+    s.input = input, s.output = o.output, s.force = o.force;
+    sum = export_images(s, progress);
+  } else {
+    throw UsageError(input +
+                     ": globe-tiler export takes terrain and image packages; line, point and "
+                     "bundle packages are exported by globe-vectorize");
+  }
+  std::ostringstream msg;
+  msg.precision(3);
+  msg << std::fixed << "globe-tiler: wrote " << o.output << ": " << sum.tiles << " tiles, zoom "
+      << sum.min_zoom << ".." << sum.max_zoom << ", " << sum.bytes << " bytes, " << sum.seconds
+      << " s";
+  if (sum.pixels_without_data)
+    msg << "; " << sum.pixels_without_data
+        << " pixels of tiles at the data's edge had no block under them and hold 0 m";
+  progress.note(msg.str());
+  return kExitOk;
+}
+
+}  // namespace globe
