@@ -299,4 +299,34 @@ std::string json_escape(std::string_view s) {
   return out;
 }
 
+std::string JsonValue::text() const {
+  switch (type_) {
+    case Type::kNull:
+      return "null";
+    case Type::kBool:
+      return bool_ ? "true" : "false";
+    case Type::kNumber: {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%.17g", number_);
+      return buf;
+    }
+    case Type::kString:
+      return "\"" + json_escape(string_) + "\"";
+    case Type::kArray: {
+      std::string out = "[";
+      for (size_t i = 0; i < array_.size(); ++i)
+        out += (i ? "," : "") + array_[i].text();
+      return out + "]";
+    }
+    case Type::kObject: {
+      std::string out = "{";
+      for (size_t i = 0; i < members_.size(); ++i)
+        out +=
+            (i ? ",\"" : "\"") + json_escape(members_[i].first) + "\":" + members_[i].second.text();
+      return out + "}";
+    }
+  }
+  return "null";
+}
+
 }  // namespace tileformat

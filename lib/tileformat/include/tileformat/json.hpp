@@ -39,6 +39,8 @@ class JsonValue {
   // An object's member (the last one of that name), or nullptr (also for
   // non-objects).
   const JsonValue* find(std::string_view key) const;
+  // The value as compact JSON text (numbers with 17 significant digits).
+  std::string text() const;
 
  private:
   friend class JsonParser;
