@@ -272,3 +272,148 @@ TEST(ExportImages, PmtilesHoldThePackagesTilesByteForByte) {
     addressed += e.run_length;
   EXPECT_EQ(addressed, tiles);
 }
+
+namespace {
+
+struct OgrLine {
+  int64_t id = 0;
+  std::string layer, cls;
+  bool zero_length = false;
+  std::vector<std::pair<double, double>> pts;
+  std::map<std::string, std::string> fields;
+};
+
+// Every feature of an OGR dataset (GDAL's own readers), with its fields as text.
+std::vector<OgrLine> read_ogr(const std::string& path, const std::vector<std::string>& options,
+                              const char* id_field) {
+  gdal_setup();
+  std::vector<const char*> opts;
+  for (const std::string& o : options)
+    opts.push_back(o.c_str());
+  opts.push_back(nullptr);
+  GDALDatasetH ds = GDALOpenEx(path.c_str(), GDAL_OF_VECTOR, nullptr, opts.data(), nullptr);
+  std::vector<OgrLine> out;
+  if (!ds) return out;
+  for (int l = 0; l < GDALDatasetGetLayerCount(ds); ++l) {
+    OGRLayerH layer = GDALDatasetGetLayer(ds, l);
+    OGR_L_ResetReading(layer);
+    while (OGRFeatureH f = OGR_L_GetNextFeature(layer)) {
+      OgrLine line;
+      line.layer = OGR_L_GetName(layer);
+      OGRFeatureDefnH defn = OGR_F_GetDefnRef(f);
+      for (int i = 0; i < OGR_FD_GetFieldCount(defn); ++i)
+        if (OGR_F_IsFieldSetAndNotNull(f, i))
+          line.fields[OGR_Fld_GetNameRef(OGR_FD_GetFieldDefn(defn, i))] =
+              OGR_F_GetFieldAsString(f, i);
+      line.id = std::stoll(line.fields[id_field]);
+      line.cls = line.fields["class"];
+      line.zero_length = line.fields.count("zero_length") && line.fields["zero_length"] != "0";
+      if (OGRGeometryH g = OGR_F_GetGeometryRef(f)) {
+        const int n = OGR_G_GetPointCount(g);
+        for (int i = 0; i < n; ++i)
+          line.pts.emplace_back(OGR_G_GetX(g, i), OGR_G_GetY(g, i));
+      }
+      out.push_back(std::move(line));
+      OGR_F_Destroy(f);
+    }
+  }
+  GDALClose(ds);
+  return out;
+}
+
+double distance_to_line(std::pair<double, double> p,
+                        const std::vector<std::pair<double, double>>& l) {
+  double best = 1e300;
+  for (size_t i = 0; i < l.size(); ++i) {
+    const auto a = l[i], b = i + 1 < l.size() ? l[i + 1] : l[i];
+    const double dx = b.first - a.first, dy = b.second - a.second, len2 = dx * dx + dy * dy;
+    const double t =
+        len2 > 0
+            ? std::clamp(((p.first - a.first) * dx + (p.second - a.second) * dy) / len2, 0.0, 1.0)
+            : 0.0;
+    best = std::min(best, std::hypot(p.first - a.first - t * dx, p.second - a.second - t * dy));
+  }
+  return best;
+}
+
+}  // namespace
+
+// Lines in Europe (one 0.8 m long: a single position at zoom 8, which MVT
+// cannot hold as a line) as a line package, exported to a folder of MVT: GDAL's MVT driver reads
+// every tile of the finest zoom, and each line lies within 1 px (of its zoom) of what
+// `globe-vectorize extract` writes for that tile, same id, class and
+// attributes; the zero-length line is a point tagged zero_length; the style
+// draws each class with its colour.
+TEST(ExportMvt, GdalReadsTheLinesExtractWrites) {
+  TempDir dir;
+  std::ofstream(dir / "lines.geojson")
+      << R"({"type":"FeatureCollection","features":[)"
+      << R"({"type":"Feature","properties":{"kind":"river","name":"Aare","rank":3},"geometry":{"type":"LineString","coordinates":[[7.0,46.9],[7.4,46.95],[7.9,47.3],[8.2,47.6]]}},)"
+      << R"({"type":"Feature","properties":{"kind":"road","name":"A1"},"geometry":{"type":"LineString","coordinates":[[6.1,46.2],[6.6,46.5],[7.4,46.9],[8.5,47.4],[9.4,47.4]]}},)"
+      << R"({"type":"Feature","properties":{"kind":"road","name":"spot"},"geometry":{"type":"LineString","coordinates":[[8.0,46.5],[8.00001,46.5]]}}]})";
+  const std::string pkg = (dir / "lines.mbtiles").string(), out = (dir / "mvt").string();
+  ASSERT_EQ(
+      run(vectorize() + " lines -q " + (dir / "lines.geojson").string() +
+              " --class-field kind --max-zoom 8 --style 'road:color=#d7301f,width=3px' -o " + pkg,
+          dir.path())
+          .exit_code,
+      0);
+  const RunResult r = run(vectorize() + " export " + pkg + " -o " + out + " --style-json " +
+                              (dir / "style.json").string(),
+                          dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("(1 zero-length lines as points)"), std::string::npos) << r.err;
+  const std::string z8 = (dir / "z8.gpkg").string();
+  ASSERT_EQ(run(vectorize() + " extract -q " + pkg + " --zoom 8 -o " + z8, dir.path()).exit_code,
+            0);
+  const auto extracted = read_ogr(z8, {}, "feature_id");
+  ASSERT_FALSE(extracted.empty());
+  const double tile_m = 2 * 20037508.342789244 / 256, px = tile_m / 256;
+  size_t checked = 0, zero = 0;
+  std::map<std::string, std::vector<OgrLine>> tiles;  // "x/y" -> MVT features
+  for (const OgrLine& e : extracted) {
+    const std::string t = e.fields.at("tile");  // "8/x/y"
+    const std::string xy = t.substr(t.find('/') + 1);
+    if (!tiles.count(xy)) {
+      const int x = std::stoi(xy.substr(0, xy.find('/'))),
+                y = std::stoi(xy.substr(xy.find('/') + 1));
+      tiles[xy] = read_ogr(out + "/8/" + xy + ".pbf",
+                           {"X=" + std::to_string(x), "Y=" + std::to_string(y), "Z=8", "CLIP=NO"},
+                           "mvt_id");
+      ASSERT_FALSE(tiles[xy].empty()) << "tile 8/" << xy << " missing or unreadable";
+    }
+    const OgrLine* m = nullptr;
+    double worst = 1e300;
+    for (const OgrLine& c : tiles[xy]) {
+      if (c.id != e.id) continue;
+      double w = 0;
+      for (const auto& p : e.pts)
+        w = std::max(w, distance_to_line(p, c.pts));
+      if (w < worst) worst = w, m = &c;
+    }
+    ASSERT_NE(m, nullptr) << "feature " << e.id << " missing from tile 8/" << xy;
+    EXPECT_LE(worst, px) << "feature " << e.id << " in tile 8/" << xy;
+    EXPECT_EQ(m->cls, e.cls);
+    const auto props = tileformat::JsonValue::parse(e.fields.at("properties"));
+    for (const auto& [k, v] : props.members())
+      if (k != "kind") {
+        ASSERT_TRUE(m->fields.count(k)) << k;
+        if (v.is_string()) {
+          EXPECT_EQ(m->fields.at(k), v.string());
+        } else if (v.is_number()) {
+          EXPECT_DOUBLE_EQ(std::stod(m->fields.at(k)), v.number());
+        }
+      }
+    zero += m->zero_length;
+    ++checked;
+  }
+  EXPECT_GE(checked, 3u);
+  EXPECT_GE(zero, 1u) << "the zero-length line is not a point tagged zero_length";
+  const auto style = tileformat::JsonValue::parse(read_file(dir / "style.json"));
+  EXPECT_EQ(style.find("version")->number(), 8);
+  bool road = false;
+  for (const auto& l : style.find("layers")->array())
+    if (l.find("filter")->text() == R"(["==",["get","class"],"road"])")
+      road = l.find("paint")->find("line-color")->string() == "#d7301f";
+  EXPECT_TRUE(road) << read_file(dir / "style.json");
+}

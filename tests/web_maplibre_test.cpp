@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
+#include <sstream>
 #include <tuple>
 
 #include "spec_readers/pmtiles_reader.hpp"
@@ -146,4 +148,50 @@ TEST(WebMapLibre, TerrariumPmtilesElevationsAreTheTilesPixels) {
       "MapLibre %s: 30 points (%d on the finest tiles), worst %.4f m from the tiles' "
       "pixels; p90 %.2f m, max %.2f m from the plain source\n",
       result.find("maplibre")->string().c_str(), finest, worst, p90, off_source.back());
+}
+
+// The US flights bundled over the airways, exported to MVT PMTiles with the
+// generated style: MapLibre draws the weight classes the view holds with the
+// style's layers, and every feature it renders is a bundle or unrouted line
+// of the package's features table (read with the sqlite3 program).
+TEST(WebMapLibre, BundlesAsMvtPmtilesDrawWithTheGeneratedStyle) {
+  TempDir dir;
+  const std::string pkg = (dir / "flights.mbtiles").string();
+  ASSERT_EQ(run(vectorize() + " bundle -q " + sample("us_flights_airport.csv").string() +
+                    " --from-id origin --to-id destination --weight count --locations " +
+                    sample("us_airports.csv").string() + " --id-field iata --network " +
+                    sample("airways.geojson").string() + " -o " + pkg,
+                dir.path())
+                .exit_code,
+            0);
+  const RunResult r =
+      run(vectorize() + " export -q " + pkg + " -o " + (dir / "flights.pmtiles").string() +
+              " --style-json " + (dir / "style.json").string(),
+          dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const RunResult page =
+      run_web_page("maplibre_mvt.html", dir.path(),
+                   "style=/data/style.json&pmtiles=/data/flights.pmtiles&center=-97,39&zoom=3.5",
+                   dir / "mvt.png", dir.path());
+  ASSERT_EQ(page.exit_code, 0) << page.err;
+  const auto result = tileformat::JsonValue::parse(page.out);
+  const RunResult rows = run("sqlite3 " + pkg +
+                                 " \"SELECT id FROM features WHERE layer IN ('bundles', "
+                                 "'unrouted')\"",
+                             dir.path());
+  std::set<int64_t> drawable;
+  std::istringstream in(rows.out);
+  for (int64_t id; in >> id;)
+    drawable.insert(id);
+  const auto& ids = result.find("ids")->array();
+  EXPECT_GT(ids.size(), 100u) << "bundles rendered at the continental view";
+  for (const auto& id : ids)
+    EXPECT_TRUE(drawable.count(int64_t(id.number()))) << "rendered id " << id.number();
+  const auto& layers = result.find("layers")->members();
+  std::set<std::string> drawn;
+  for (const auto& [name, count] : layers)
+    if (count.number() > 0) drawn.insert(name);
+  for (const char* heavy : {"bundles/weight-1", "bundles/weight-6"})
+    EXPECT_TRUE(drawn.count(heavy)) << heavy << " not drawn; drawn: " << page.out.substr(0, 300);
+  std::printf("MapLibre drew %zu features of %zu style layers\n", ids.size(), drawn.size());
 }

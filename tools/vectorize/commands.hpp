@@ -15,5 +15,6 @@ int run_lines_extract(const std::vector<std::string>& args);
 int run_lines_merge(const std::vector<std::string>& args);
 int run_points(const std::vector<std::string>& args);
 int run_bundle(const std::vector<std::string>& args);
+int run_export(const std::vector<std::string>& args);
 
 }  // namespace globe

@@ -19,6 +19,7 @@ const char* kUsage =
     "  validate PACKAGE                   decode every tile, recheck every cluster grid\n"
     "  extract PACKAGE --zoom Z -o OUT.gpkg   decoded lines of one zoom as vector data\n"
     "  merge SHARD... -o OUT.mbtiles      join the shards of a `lines --shard I/N` build\n"
+    "  export LINES -o OUT.pmtiles        vector tiles (MVT) for web maps, a MapLibre style\n"
     "\n"
     "Run 'globe-vectorize COMMAND --help' for the options of a command.\n"
     "Exit codes: 0 ok, 1 bad input data, 2 bad usage, 3 output cannot be written,\n"
@@ -34,6 +35,7 @@ int main(int argc, char** argv) {
                                   {"extract", globe::run_lines_extract},
                                   {"merge", globe::run_lines_merge},
                                   {"points", globe::run_points},
-                                  {"bundle", globe::run_bundle}},
+                                  {"bundle", globe::run_bundle},
+                                  {"export", globe::run_export}},
                                  argc, argv);
 }

@@ -1,0 +1,32 @@
+// `globe-vectorize export LINES --format mvt` (docs/web.md "Vector tiles"): a
+// line-cluster package (lines, bundles) as Mapbox Vector Tiles 2.1, one MVT
+// layer per layer of the features table ("roads", "bundles", "unrouted"),
+// each run of a tile a LINESTRING with the feature's id, its class ("class")
+// and its attributes from the features table; tile coordinates as stored
+// (extent 4096, the margin as the MVT buffer); tiles gzipped. Optionally a
+// MapLibre style (version 8) that draws the classes with the package's
+// colours, widths, dashes, casings and opacities.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "progress.hpp"
+
+namespace globe {
+
+struct MvtExportSettings {
+  std::string input, output;
+  std::string style_json;  // "" = none
+  bool force = false;
+};
+
+struct MvtExportSummary {
+  uint64_t tiles = 0, bytes = 0, features = 0, zero_length = 0;
+  int min_zoom = 0, max_zoom = 0;
+  double seconds = 0;
+};
+
+MvtExportSummary export_mvt(const MvtExportSettings& s, Progress& progress);
+
+}  // namespace globe
