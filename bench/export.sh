@@ -34,7 +34,7 @@ row() { # NAME BUILD_WALL OUT ARGS...
   [[ "$out" == *.pmtiles ]] && tiles=$(od -An -tu8 -j72 -N8 "$out" | tr -d ' ')
   echo "$r $build $bytes $tiles" | awk -v n="$name" '{ printf "  %-22s wall %6.2f s, CPU %6.2f s, %5.0f MB RSS, %5.2fx the build, %9d bytes (%d tiles, %d B/tile)\n", n, $1, $3, $2 / 1024, $1 / $4, $5, $6, $5 / ($6 ? $6 : 1) }'
 }
-for case in jacksboro etopo20 synthetic; do
+for case in ${EXPORT_CASES:-jacksboro etopo20 synthetic}; do
   case $case in
     jacksboro) src=samples/data/jacksboro.tif tiling=webmercator ;;
     etopo20) src=samples/data/etopo20.tif tiling=geodetic ;;
@@ -49,3 +49,18 @@ for case in jacksboro etopo20 synthetic; do
   row "terrarium folder" "$build" "$scratch/$case-dir" "$pkg" --format terrarium
   row "terrain-rgb .pmtiles" "$build" "$scratch/$case-rgb.pmtiles" "$pkg" --format terrain-rgb
 done
+
+# Vector tiles: the FlightGear airways (70,291 segments, samples/data/airways.geojson) to MVT
+# PMTiles, zooms 0..8: `globe-vectorize lines` then `globe-vectorize export`, against
+# tippecanoe (bench/fetch_tippecanoe.sh) from the same GeoJSON, -Z0 -z8, no limits on features
+# or tile size (as bench/lines.sh runs it). CPU seconds, peak RSS, bytes.
+V=$B/tools/vectorize/globe-vectorize
+tippecanoe=$(bench/fetch_tippecanoe.sh)
+airways=samples/data/airways.geojson
+lines=$(best $V lines -q --force --max-zoom 8 "$airways" -o "$scratch/airways.mbtiles")
+mvt=$(best $V export -q --force "$scratch/airways.mbtiles" -o "$scratch/airways.pmtiles")
+tip=$(best "$tippecanoe" -o "$scratch/airways.tippecanoe.pmtiles" --force -q -P -Z0 -z8 \
+  --no-feature-limit --no-tile-size-limit -l airways "$airways")
+echo "airways to MVT PMTiles, zooms 0..8 (tippecanoe $("$tippecanoe" --version 2>&1 | head -1)):"
+echo "$lines $mvt $(stat -c %s "$scratch/airways.pmtiles")" | awk '{ printf "  ours        CPU %6.2f s (lines %.2f + export %.2f), %4.0f MB RSS, %9d bytes\n", $3 + $6, $3, $6, ($2 > $5 ? $2 : $5) / 1024, $7 }'
+echo "$tip $(stat -c %s "$scratch/airways.tippecanoe.pmtiles")" | awk '{ printf "  tippecanoe  CPU %6.2f s, %4.0f MB RSS, %9d bytes\n", $3, $2 / 1024, $4 }'
