@@ -19,8 +19,6 @@
 // std::runtime_error("quantized-mesh: ...") naming what is wrong and where.
 #pragma once
 
-#include <zlib.h>
-
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -31,6 +29,8 @@
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "spec_readers/gunzip.hpp"
 
 namespace spec_readers::quantized_mesh {
 
@@ -94,36 +94,9 @@ namespace detail {
   throw std::runtime_error("quantized-mesh: " + what);
 }
 
-// gzip (RFC 1952) via zlib: windowBits 16 + MAX_WBITS accepts only a gzip
-// wrapper. The input must be exactly one gzip member.
+// gzip (RFC 1952): one gzip member, nothing after it (spec_readers/gunzip.hpp).
 inline std::string gunzip(std::string_view in, std::size_t max_output = std::size_t{1} << 30) {
-  z_stream zs{};
-  if (inflateInit2(&zs, 16 + MAX_WBITS) != Z_OK) fail("zlib inflateInit2 failed");
-  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(in.data()));
-  zs.avail_in = static_cast<uInt>(in.size());
-  std::string out;
-  char buffer[1 << 15];
-  int rc = Z_OK;
-  while (rc != Z_STREAM_END) {
-    zs.next_out = reinterpret_cast<Bytef*>(buffer);
-    zs.avail_out = sizeof buffer;
-    rc = inflate(&zs, Z_NO_FLUSH);
-    if (rc != Z_OK && rc != Z_STREAM_END) {
-      const std::string reason = rc == Z_BUF_ERROR ? "truncated" : (zs.msg ? zs.msg : "corrupt");
-      const auto at = zs.total_in;
-      inflateEnd(&zs);
-      fail("gzip data " + reason + " (at compressed byte " + std::to_string(at) + ")");
-    }
-    out.append(buffer, sizeof buffer - zs.avail_out);
-    if (out.size() > max_output) {
-      inflateEnd(&zs);
-      fail("gzip data inflates to more than " + std::to_string(max_output) + " bytes");
-    }
-  }
-  const auto left = zs.avail_in;
-  inflateEnd(&zs);
-  if (left != 0) fail(std::to_string(left) + " trailing bytes after the gzip stream");
-  return out;
+  return spec_readers::gunzip(in, "quantized-mesh: ", max_output);
 }
 
 // Little-endian cursor over the (decompressed) tile with bounds checks.

@@ -128,15 +128,8 @@ MvtExportSummary export_mvt(const MvtExportSettings& s, Progress& progress) {
   } catch (const tileformat::FormatError&) {
     table.reset();  // an older package: ids and classes only
   }
-  struct Item {
-    uint64_t id;
-    tileformat::TileId tile;
-  };
-  std::vector<Item> items;
-  for (int z = pkg.min_zoom; z <= pkg.max_zoom; ++z)
-    for (const tileformat::TileId& id : pkg.reader->tile_ids(z))
-      items.push_back({pm::tile_id(z, id.x, id.y), id});
-  std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) { return a.id < b.id; });
+  const std::vector<tileformat::TileId> items =
+      tiles_in_output_order(*pkg.reader, pkg.min_zoom, pkg.max_zoom);
 
   std::unique_ptr<TileOutput> out = TileOutput::open(s.output, s.force, "pbf", false);
   std::unordered_map<uint64_t, FeatureInfo> features;  // cleared when large
@@ -162,15 +155,15 @@ MvtExportSummary export_mvt(const MvtExportSettings& s, Progress& progress) {
   std::map<std::string, std::set<uint32_t>> classes_in;              // MVT layer -> classes drawn
   std::map<std::string, std::map<std::string, std::string>> fields;  // layer -> key -> type
   progress.begin("encode vector tiles", items.size());
-  for (const Item& it : items) {
-    const auto blob = pkg.reader->tile(it.tile);
+  for (const tileformat::TileId& it : items) {
+    const auto blob = pkg.reader->tile(it);
     progress.advance();
     if (!blob) continue;
     tileformat::LineTile t;
     try {
       t = tileformat::decode_line_tile(*blob);
     } catch (const tileformat::FormatError& e) {
-      throw InputError(s.input + ": tile " + it.tile.str() + ": " + e.what() +
+      throw InputError(s.input + ": tile " + it.str() + ": " + e.what() +
                        "; check the package with globe-vectorize validate");
     }
     std::vector<web::MvtLayer> layers;
@@ -211,7 +204,7 @@ MvtExportSummary export_mvt(const MvtExportSettings& s, Progress& progress) {
       ++sum.features;
     }
     const std::vector<uint8_t> tile = web::encode_mvt(layers);
-    if (!tile.empty()) out->put(it.tile.z, it.tile.x, it.tile.y, web::gzip(tile));
+    if (!tile.empty()) out->put(it.z, it.x, it.y, web::gzip(tile));
   }
   progress.end();
 

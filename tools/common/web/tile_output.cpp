@@ -1,6 +1,7 @@
 // Export outputs (see tile_output.hpp).
 #include "tile_output.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -192,6 +193,21 @@ bool ends_with(const std::string& s, const std::string& tail) {
 }
 
 }  // namespace
+
+std::vector<tileformat::TileId> tiles_in_output_order(tileformat::PackageReader& reader,
+                                                      int min_zoom, int max_zoom) {
+  std::vector<std::pair<uint64_t, tileformat::TileId>> items;
+  for (int z = min_zoom; z <= max_zoom; ++z)
+    for (const tileformat::TileId& id : reader.tile_ids(z))
+      items.emplace_back(pm::tile_id(z, id.x, id.y), id);
+  std::sort(items.begin(), items.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<tileformat::TileId> out;
+  out.reserve(items.size());
+  for (const auto& [_, id] : items)
+    out.push_back(id);
+  return out;
+}
 
 OutputKind output_kind(const std::string& path) {
   if (ends_with(path, ".pmtiles")) return OutputKind::kPmtiles;

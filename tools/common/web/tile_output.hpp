@@ -11,13 +11,20 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <vector>
 
+#include "tileformat/package.hpp"
 #include "tileformat/pmtiles.hpp"
 
 namespace globe {
 
 enum class OutputKind { kPmtiles, kMbtiles, kDirectory };
 OutputKind output_kind(const std::string& path);
+
+// Every tile of a web mercator package's zooms min..max, in the order the
+// outputs take them (PMTiles tile ids).
+std::vector<tileformat::TileId> tiles_in_output_order(tileformat::PackageReader& reader,
+                                                      int min_zoom, int max_zoom);
 
 // What the outputs record about the tiles (PMTiles header and metadata,
 // MBTiles metadata, the folder's metadata.json: TileJSON 3.0.0).

@@ -21,15 +21,8 @@ ExportSummary export_images(const ImageExportSettings& s, Progress& progress) {
                      tileformat::scheme_name(pkg.tiling.scheme) +
                      " tiling; build it with --tiling webmercator");
   namespace pm = tileformat::pmtiles;
-  struct Item {
-    uint64_t id;
-    tileformat::TileId tile;
-  };
-  std::vector<Item> items;
-  for (int z = pkg.min_zoom; z <= pkg.max_zoom; ++z)
-    for (const tileformat::TileId& id : pkg.reader->tile_ids(z))
-      items.push_back({pm::tile_id(z, id.x, id.y), id});
-  std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) { return a.id < b.id; });
+  const std::vector<tileformat::TileId> items =
+      tiles_in_output_order(*pkg.reader, pkg.min_zoom, pkg.max_zoom);
 
   ExportInfo info;
   switch (pkg.format) {
@@ -44,9 +37,9 @@ ExportSummary export_images(const ImageExportSettings& s, Progress& progress) {
   }
   std::unique_ptr<TileOutput> out = TileOutput::open(s.output, s.force, info.extension, false);
   progress.begin("copy tiles", items.size());
-  for (const Item& it : items) {
-    const auto blob = pkg.reader->tile(it.tile);
-    if (blob) out->put(it.tile.z, it.tile.x, it.tile.y, *blob);
+  for (const tileformat::TileId& it : items) {
+    const auto blob = pkg.reader->tile(it);
+    if (blob) out->put(it.z, it.x, it.y, *blob);
     progress.advance();
   }
   progress.end();
