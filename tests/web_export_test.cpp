@@ -139,26 +139,33 @@ double height_step(const std::string& pkg, const fs::path& dir) {
   return std::stod(r.out);
 }
 
+// Exports the webmercator and the geodetic package of `f` (in `packages`) to
+// Terrarium PMTiles and checks the `wanted` tiles' pixels against `f`.
+void expect_surface_exports(const fs::path& packages, const Surface& f,
+                            const std::function<bool(int, uint32_t, uint32_t)>& wanted,
+                            size_t min_pixels) {
+  TempDir dir;
+  for (const char* tiling : {"mercator", "geodetic"}) {
+    const std::string pkg = (packages / (std::string(tiling) + ".mbtiles")).string();
+    const std::string out = (dir / (std::string(tiling) + ".pmtiles")).string();
+    const RunResult r =
+        run(tiler() + " export " + pkg + " --format terrarium -o " + out, dir.path());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const PixelErrors e = check_surface_export(out, height_step(pkg, dir.path()), f, wanted);
+    EXPECT_GT(e.pixels, min_pixels) << tiling;
+    EXPECT_EQ(e.beyond, 0u) << tiling << ": " << e.beyond << " of " << e.pixels
+                            << " pixels beyond the bound; worst " << e.where;
+  }
+}
+
 }  // namespace
 
 // Both tilings: a webmercator package keeps its tiles, a geodetic one is
 // resampled to web mercator; every pixel is the surface at its centre within
 // the bound of bilinear interpolation between samples.
 TEST(ExportDem, TerrariumPixelsAreTheSurfaceAtTheirCentres) {
-  const fs::path& d = surface_dem();
-  TempDir dir;
-  for (const char* tiling : {"mercator", "geodetic"}) {
-    const std::string pkg = (d / (std::string(tiling) + ".mbtiles")).string();
-    const std::string out = (dir / (std::string(tiling) + ".pmtiles")).string();
-    const RunResult r =
-        run(tiler() + " export " + pkg + " --format terrarium -o " + out, dir.path());
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    const PixelErrors e = check_surface_export(out, height_step(pkg, dir.path()), kRegional,
-                                               [](int, uint32_t, uint32_t) { return true; });
-    EXPECT_GT(e.pixels, 100000u) << tiling;
-    EXPECT_EQ(e.beyond, 0u) << tiling << ": " << e.beyond << " of " << e.pixels
-                            << " pixels beyond the bound; worst " << e.where;
-  }
+  expect_surface_exports(
+      surface_dem(), kRegional, [](int, uint32_t, uint32_t) { return true; }, 100000);
 }
 
 // A global grid, in both tilings: the tiles of zooms 0..3 whole and, at every
@@ -166,21 +173,9 @@ TEST(ExportDem, TerrariumPixelsAreTheSurfaceAtTheirCentres) {
 // 85.05 degrees of latitude within the same bound (a pixel next to 180 E
 // interpolates up to the blocks' samples on 180 itself).
 TEST(ExportDem, GlobalGridsWrapAtTheAntimeridian) {
-  const fs::path d = surface_packages(kGlobal, "global");
-  TempDir dir;
-  for (const char* tiling : {"mercator", "geodetic"}) {
-    const std::string pkg = (d / (std::string(tiling) + ".mbtiles")).string();
-    const std::string out = (dir / (std::string(tiling) + ".pmtiles")).string();
-    const RunResult r =
-        run(tiler() + " export " + pkg + " --format terrarium -o " + out, dir.path());
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    const PixelErrors e = check_surface_export(
-        out, height_step(pkg, dir.path()), kGlobal,
-        [](int z, uint32_t x, uint32_t) { return z <= 3 || x == 0 || x + 1 == (1u << z); });
-    EXPECT_GT(e.pixels, 1000000u) << tiling;
-    EXPECT_EQ(e.beyond, 0u) << tiling << ": " << e.beyond << " of " << e.pixels
-                            << " pixels beyond the bound; worst " << e.where;
-  }
+  expect_surface_exports(
+      surface_packages(kGlobal, "global"), kGlobal,
+      [](int z, uint32_t x, uint32_t) { return z <= 3 || x == 0 || x + 1 == (1u << z); }, 1000000);
 }
 
 // Terrain-RGB into a folder and Terrarium into MBTiles hold the same heights
