@@ -459,3 +459,26 @@ TEST(ExportMvt, GdalReadsTheLinesExtractWrites) {
       road = l.find("paint")->find("line-color")->string() == "#d7301f";
   EXPECT_TRUE(road) << read_file(dir / "style.json");
 }
+
+// The same bytes for any thread count (the tiles are encoded in parallel and
+// written in tile-id order).
+TEST(ExportDem, SameBytesForAnyThreadCount) {
+  const fs::path& d = surface_dem();
+  TempDir dir;
+  const std::string pkg = (d / "geodetic.mbtiles").string();
+  std::string first;
+  for (int threads : {1, 3}) {
+    // The same name: it is the archive's name in its metadata.
+    fs::create_directories(dir / ("j" + std::to_string(threads)));
+    const std::string out = (dir / ("j" + std::to_string(threads)) / "out.pmtiles").string();
+    ASSERT_EQ(run(tiler() + " export -q -j " + std::to_string(threads) + " " + pkg +
+                      " --format terrarium -o " + out,
+                  dir.path())
+                  .exit_code,
+              0);
+    if (first.empty())
+      first = read_file(out);
+    else
+      EXPECT_TRUE(read_file(out) == first) << "-j " << threads << " differs from -j 1";
+  }
+}
