@@ -28,10 +28,11 @@ class TerrainSampler {
   // package's zooms); nullopt where no block covers the point. Throws
   // InputError naming the package and tile for a block that does not decode.
   std::optional<double> height(double crs_x, double crs_y, int zoom);
+  // The decoded block of a tile; nullptr where the package has none. Valid
+  // until the next call (it may be dropped from the cache).
+  const tileformat::MBlock* block(tileformat::TileId id);
 
  private:
-  const tileformat::MBlock* block(tileformat::TileId id);  // nullptr: none there
-
   TerrainPackage& package_;
   std::mutex& read_mutex_;
   size_t max_blocks_;

@@ -117,6 +117,8 @@ class MbtilesOutput : public TileOutput {
                                           number((i.south + i.north) / 2) + "," +
                                           std::to_string(i.min_zoom));
       writer_->set_metadata("json", metadata_json(i, ""));
+      for (const auto& [name, text] : i.side_files)
+        writer_->set_metadata(name, text);
       writer_->commit();
     } catch (const tileformat::PackageError& e) {
       throw write_error(path_, e);
@@ -168,6 +170,11 @@ class DirectoryOutput : public TileOutput {
       std::ofstream meta(fs::path(temp_) / "metadata.json");
       meta << metadata_json(i, "{z}/{x}/{y}." + ext_) << "\n";
       if (!meta) throw OutputError(temp_ + "/metadata.json: cannot write (disk full?)");
+      for (const auto& [name, text] : i.side_files) {
+        std::ofstream side(fs::path(temp_) / name);
+        side << text;
+        if (!side) throw OutputError(temp_ + "/" + name + ": cannot write (disk full?)");
+      }
     }
     std::error_code ec;
     if (fs::exists(path_, ec)) {

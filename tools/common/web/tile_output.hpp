@@ -11,6 +11,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tileformat/package.hpp"
@@ -39,6 +40,9 @@ struct ExportInfo {
   double west = -180, south = -85.0511287798, east = 180, north = 85.0511287798;
   bool tms_rows = false;   // rows count from the south (quantized-mesh): metadata "scheme"
   std::string extra_json;  // more members of the metadata object ("\"encoding\":...")
+  // Files beside the tiles (quantized-mesh's layer.json): written into a
+  // folder, kept as metadata rows of that name in MBTiles.
+  std::vector<std::pair<std::string, std::string>> side_files;
 };
 
 class TileOutput {

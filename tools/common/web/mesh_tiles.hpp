@@ -1,0 +1,70 @@
+// A terrain package's tiles as quantized-mesh (docs/web.md "Quantized-mesh"),
+// for the export and the server: each tile's samples from its block (zooms
+// below the package's coarsest: every 2^k-th sample of that zoom's blocks,
+// 0 m where it has none), cut into a TIN within CesiumJS's geometric error
+// for the level (terrain_mesh.hpp), vertex normals from the samples around
+// each vertex, and layer.json with the tiles' availability.
+//
+// Tile ids are the package's own (rows from the north); Cesium's rows count
+// from the south (TMS), which the outputs and layer.json apply.
+#pragma once
+
+#include <cstdint>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "terrain_mesh.hpp"
+#include "terrain_package.hpp"
+#include "terrain_sampler.hpp"
+#include "tileformat/tile_id.hpp"
+
+namespace globe::web {
+
+// Samples of one package for mesh tiles; one per thread, sharing read_mutex.
+class MeshTileSource {
+ public:
+  MeshTileSource(TerrainPackage& package, std::mutex& read_mutex);
+
+  // The tile's samples with a one-sample apron: NaN beyond the poles and,
+  // from zoom 1 on at the package's zooms, where no block is; 0 m elsewhere
+  // without a block.
+  TileGrid grid(tileformat::TileId id);
+  // The height at global sample (gx, gy) of zoom z (gx wraps around the
+  // Earth); nullopt where no block has it.
+  std::optional<double> sample(int z, int64_t gx, int64_t gy);
+  const TerrainPackage& package() const { return package_; }
+
+ private:
+  TerrainPackage& package_;
+  TerrainSampler sampler_;
+};
+
+struct MeshTileOptions {
+  double error_scale = 1.0;  // threshold = scale * cesium_level_error(z)
+  bool normals = true;       // extension octvertexnormals
+};
+
+// Ground metres of one sample step of zoom z at the equator (the widest).
+double mesh_sample_metres(const tileformat::Tiling& tiling, int z, int steps);
+
+// The tile's quantized-mesh bytes (not gzipped), from its grid and its
+// errors after joining the neighbours' edges.
+std::vector<uint8_t> encode_mesh_tile(const tileformat::Tiling& tiling, tileformat::TileId id,
+                                      const TileGrid& grid, const MeshErrors& errors,
+                                      const MeshTileOptions& options);
+
+// The tiles a quantized-mesh export of the package holds, per zoom 0..max:
+// the package's own; below its coarsest zoom the parents of those; and at
+// zoom 0 every root (Cesium always loads both geodetic roots), 0 m where the
+// package has no data.
+std::vector<std::vector<tileformat::TileId>> mesh_tile_plan(TerrainPackage& package);
+
+// layer.json (Cesium's CesiumTerrainProvider reads it): tiles template with
+// {version}, TMS rows, projection, extensions, availability of `plan`.
+std::string layer_json(const TerrainPackage& package,
+                       const std::vector<std::vector<tileformat::TileId>>& plan,
+                       const std::string& name, const std::string& description, bool normals);
+
+}  // namespace globe::web
