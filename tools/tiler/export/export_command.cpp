@@ -9,6 +9,7 @@
 #include "dem_export.hpp"
 #include "errors.hpp"
 #include "image_export.hpp"
+#include "mesh_export.hpp"
 #include "package_open.hpp"
 
 namespace globe {
@@ -17,6 +18,8 @@ int run_export(const std::vector<std::string>& args) {
   BuildOptions o;
   std::string format;
   int tile_size = 256;
+  bool gzip = false, normals = true;
+  double mesh_error = 1.0;
   CliArgs cli(
       "globe-tiler export",
       "globe-tiler export PACKAGE --format FORMAT -o OUT.pmtiles|OUT.mbtiles|DIR\n\n"
@@ -29,13 +32,34 @@ int run_export(const std::vector<std::string>& args) {
       "    pixel the package's height at the pixel's centre, bilinear between its samples;\n"
       "    a geodetic package is resampled to web mercator. Terrarium keeps 1/256 m,\n"
       "    Terrain-RGB 0.1 m.\n"
+      "  terrain, --format quantized-mesh: CesiumJS terrain, -o DIR (DIR/layer.json and\n"
+      "    DIR/{z}/{x}/{y}.terrain, rows from the south) or -o OUT.mbtiles for a server.\n"
+      "    Each tile a TIN within Cesium's geometric error for its level, neighbours\n"
+      "    sharing their border vertices, with vertex normals (octvertexnormals).\n"
+      "    Geodetic packages become EPSG:4326 terrain (Cesium's default), webmercator\n"
+      "    ones EPSG:3857.\n"
       "  images (no --format): the image tiles as stored (web mercator packages).\n"
       "docs/web.md says how to host the outputs and shows a MapLibre page for each.");
-  cli.option("--format", "FORMAT", "terrarium or terrain-rgb (terrain packages)",
+  cli.option(
+      "--format", "FORMAT", "terrarium, terrain-rgb or quantized-mesh (terrain packages)",
+      [&](const std::string& v) {
+        if (v != "terrarium" && v != "terrain-rgb" && v != "quantized-mesh")
+          throw UsageError("--format: '" + v + "' is not terrarium, terrain-rgb or quantized-mesh");
+        format = v;
+      });
+  cli.flag("--gzip",
+           "quantized-mesh: gzip each tile (the server must then send them with "
+           "Content-Encoding: gzip)",
+           [&] { gzip = true; });
+  cli.flag("--no-normals", "quantized-mesh: leave out the vertex normals",
+           [&] { normals = false; });
+  cli.option("--mesh-error", "F",
+             "quantized-mesh: TIN error as a fraction of Cesium's geometric error per level "
+             "(default 1; smaller: more triangles)",
              [&](const std::string& v) {
-               if (v != "terrarium" && v != "terrain-rgb")
-                 throw UsageError("--format: '" + v + "' is not terrarium or terrain-rgb");
-               format = v;
+               mesh_error = CliArgs::to_double("--mesh-error", v);
+               if (!(mesh_error > 0 && mesh_error <= 16))
+                 throw UsageError("--mesh-error: a fraction above 0 and at most 16");
              });
   cli.option("--tile-size", "PX", "raster-DEM tiles of 256 (default) or 512 pixels",
              [&](const std::string& v) {
@@ -55,14 +79,24 @@ int run_export(const std::vector<std::string>& args) {
   ExportSummary sum;
   if (kind == tileformat::PackageKind::kTerrain) {
     if (format.empty())
-      throw UsageError(input + " is a terrain package: give --format terrarium or terrain-rgb");
-    DemExportSettings s;
-    s.input = input, s.output = o.output, s.force = o.force;
-    s.encoding =
-        format == "terrarium" ? web::DemEncoding::kTerrarium : web::DemEncoding::kTerrainRgb;
-    s.tile_size = tile_size;
-    s.threads = o.worker_threads();
-    sum = export_raster_dem(s, progress);
+      throw UsageError(input +
+                       " is a terrain package: give --format terrarium, terrain-rgb or "
+                       "quantized-mesh");
+    if (format == "quantized-mesh") {
+      MeshExportSettings m;
+      m.input = input, m.output = o.output, m.force = o.force;
+      m.threads = o.worker_threads();
+      m.gzip = gzip, m.normals = normals, m.error_scale = mesh_error;
+      sum = export_quantized_mesh(m, progress);
+    } else {
+      DemExportSettings s;
+      s.input = input, s.output = o.output, s.force = o.force;
+      s.encoding =
+          format == "terrarium" ? web::DemEncoding::kTerrarium : web::DemEncoding::kTerrainRgb;
+      s.tile_size = tile_size;
+      s.threads = o.worker_threads();
+      sum = export_raster_dem(s, progress);
+    }
   } else if (kind == tileformat::PackageKind::kImage) {
     if (!format.empty())
       throw UsageError(input +
