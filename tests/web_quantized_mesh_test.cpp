@@ -145,13 +145,14 @@ void check_tile(const MeshTile& t, const MeshCheck& c, int max_zoom, std::mt1993
   // (the vertex sits at a sample; its decoded position is rounded).
   if (t.z != max_zoom) return;
   const double position =
-      c.surface.amp * (c.surface.kx * (t.rect.east - t.rect.west) +
-                       c.surface.ky * (t.rect.north - t.rect.south)) /
+      c.surface.amp *
+      (c.surface.kx * (t.rect.east - t.rect.west) + c.surface.ky * (t.rect.north - t.rect.south)) /
       (2 * qm::kQuantizedMax);
   for (size_t k = 0; k < m.vertex_count(); ++k) {
     const double lon = t.vertex_lon(k), lat = t.vertex_lat(k);
     if (!c.inside(lon, lat)) continue;
-    EXPECT_NEAR(t.vertex_height(k), c.surface.bilinear(lon, lat), c.step / 2 + quant + position + 0.02)
+    EXPECT_NEAR(t.vertex_height(k), c.surface.bilinear(lon, lat),
+                c.step / 2 + quant + position + 0.02)
         << name << " vertex " << k << " at " << lon << ", " << lat;
   }
 }
