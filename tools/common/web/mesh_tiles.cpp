@@ -136,12 +136,17 @@ double mesh_sample_metres(const tileformat::Tiling& tiling, int z, int steps) {
              : crs;
 }
 
+double MeshTileOptions::threshold(int z, int roots_x) const {
+  const double level = error_scale * cesium_level_error(z, roots_x);
+  return z == finest_zoom ? std::min(level, finest_error) : level;
+}
+
 std::vector<uint8_t> encode_mesh_tile(const tileformat::Tiling& tiling, TileId id,
                                       const TileGrid& grid, const MeshErrors& errors,
                                       const MeshTileOptions& options) {
   const int n = grid.steps;
   const std::vector<std::array<GridPoint, 3>> triangles =
-      cut_mesh(errors, options.error_scale * cesium_level_error(id.z, tiling.roots_x));
+      cut_mesh(errors, options.threshold(id.z, tiling.roots_x));
   // Vertices numbered by first use.
   std::vector<int32_t> number(size_t(n + 1) * (n + 1), -1);
   std::vector<GridPoint> vertices;

@@ -43,7 +43,12 @@ class MeshTileSource {
 
 struct MeshTileOptions {
   double error_scale = 1.0;  // threshold = scale * cesium_level_error(z)
-  bool normals = true;       // extension octvertexnormals
+  // At the finest zoom (CesiumJS cannot refine past it, so it shows those
+  // tiles however close the camera comes): metres, the data's own accuracy.
+  int finest_zoom = -1;
+  double finest_error = 2.0;
+  bool normals = true;  // extension octvertexnormals
+  double threshold(int z, int roots_x) const;
 };
 
 // Ground metres of one sample step of zoom z at the equator (the widest).

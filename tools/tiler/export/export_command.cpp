@@ -19,7 +19,7 @@ int run_export(const std::vector<std::string>& args) {
   std::string format;
   int tile_size = 256;
   bool gzip = false, normals = true;
-  double mesh_error = 1.0;
+  double mesh_error = 1.0, finest_error = 2.0;
   CliArgs cli(
       "globe-tiler export",
       "globe-tiler export PACKAGE --format FORMAT -o OUT.pmtiles|OUT.mbtiles|DIR\n\n"
@@ -61,6 +61,14 @@ int run_export(const std::vector<std::string>& args) {
                if (!(mesh_error > 0 && mesh_error <= 16))
                  throw UsageError("--mesh-error: a fraction above 0 and at most 16");
              });
+  cli.option("--finest-error", "M",
+             "quantized-mesh: TIN error in metres at the package's finest zoom, which CesiumJS "
+             "shows however close the camera comes (default 2: below the vertical accuracy of SRTM "
+             "and Copernicus GLO-30)",
+             [&](const std::string& v) {
+               finest_error = CliArgs::to_double("--finest-error", v);
+               if (!(finest_error >= 0)) throw UsageError("--finest-error: metres, 0 or more");
+             });
   cli.option("--tile-size", "PX", "raster-DEM tiles of 256 (default) or 512 pixels",
              [&](const std::string& v) {
                tile_size = CliArgs::to_int("--tile-size", v, 256, 512);
@@ -87,6 +95,7 @@ int run_export(const std::vector<std::string>& args) {
       m.input = input, m.output = o.output, m.force = o.force;
       m.threads = o.worker_threads();
       m.gzip = gzip, m.normals = normals, m.error_scale = mesh_error;
+      m.finest_error = finest_error;
       sum = export_quantized_mesh(m, progress);
     } else {
       DemExportSettings s;

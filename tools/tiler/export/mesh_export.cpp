@@ -121,6 +121,8 @@ ExportSummary export_quantized_mesh(const MeshExportSettings& s, Progress& progr
   web::MeshTileOptions options;
   options.normals = s.normals;
   options.error_scale = s.error_scale;
+  options.finest_zoom = pkg.max_zoom;
+  options.finest_error = s.finest_error;
   progress.begin("encode tiles", tiles.size());
   parallel_batches<NoInputs, std::vector<uint8_t>>(
       tiles.size(), s.threads, 16, [](size_t, size_t) { return NoInputs{}; },

@@ -18,9 +18,10 @@ struct MeshExportSettings {
   std::string input, output;
   int threads = 1;
   bool force = false;
-  bool gzip = false;         // gzip each tile (servers then send Content-Encoding: gzip)
-  bool normals = true;       // extension octvertexnormals
-  double error_scale = 1.0;  // of CesiumJS's geometric error per level
+  bool gzip = false;          // gzip each tile (servers then send Content-Encoding: gzip)
+  bool normals = true;        // extension octvertexnormals
+  double error_scale = 1.0;   // of CesiumJS's geometric error per level
+  double finest_error = 2.0;  // metres, at the package's finest zoom
 };
 
 ExportSummary export_quantized_mesh(const MeshExportSettings& s, Progress& progress);
