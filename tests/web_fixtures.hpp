@@ -41,15 +41,15 @@ inline std::vector<uint8_t> png_rgb(const std::string& bytes, int& w, int& h) {
 // installs the browser and the npm packages first if missing.
 inline RunResult run_web_page(const std::string& page, const fs::path& data,
                               const std::string& query, const fs::path& screenshot,
-                              const fs::path& scratch) {
+                              const fs::path& scratch, const std::string& viewport = "800x600") {
   const std::string web = std::string(GLOBE_TEST_DATA_DIR) + "/../web";
   const RunResult cache =
       run(std::string(GLOBE_TEST_DATA_DIR) + "/../../scripts/web-deps.sh", scratch);
   if (cache.exit_code != 0) return cache;
   const std::string dir = cache.out.substr(0, cache.out.find_last_not_of('\n') + 1);
-  return run("GLOBE_WEB_CACHE=" + dir + " node " + web +
-                 "/run_page.mjs --timeout 90 --mount /data=" + data.string() + " --query '" +
-                 query + "' --screenshot " + screenshot.string() + " " + web + "/pages/" + page,
+  return run("GLOBE_WEB_CACHE=" + dir + " node " + web + "/run_page.mjs --timeout 90 --viewport " +
+                 viewport + " --mount /data=" + data.string() + " --query '" + query +
+                 "' --screenshot " + screenshot.string() + " " + web + "/pages/" + page,
              scratch);
 }
 

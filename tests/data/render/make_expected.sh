@@ -86,3 +86,12 @@ build/viewer/globe-view "$tmp/w4.mbtiles" "$tmp/bundles.mbtiles" --size 480x300 
   --camera=-97,39,5000000,0,0 --snapshot $out/us_flights_bundled.png
 build/viewer/globe-view "$tmp/w4.mbtiles" "$tmp/bundles.mbtiles" --bundles 3d --exaggeration 20 \
   --size 480x300 --camera=-97,25,1500000,0,40 --snapshot $out/us_flights_bundled_3d.png
+# CesiumJS (tests/web_cesium_test.cpp): the same DEM, geodetic, exported as
+# quantized-mesh, lit by its vertex normals.
+build/tools/tiler/globe-tiler terrain -q --tiling geodetic samples/data/jacksboro.tif \
+  -o "$tmp/jg.mbtiles"
+build/tools/tiler/globe-tiler export -q "$tmp/jg.mbtiles" --format quantized-mesh -o "$tmp/qm"
+GLOBE_WEB_CACHE=$(scripts/web-deps.sh) node tests/web/run_page.mjs --viewport 480x320 \
+  --mount /data="$tmp" --screenshot $out/cesium_jacksboro_lit.png \
+  --query 'terrain=/data/qm&exaggeration=1.5&camera=-84.25,36.45,6000,0,-30&points=-84.2,36.55' \
+  tests/web/pages/cesium_terrain.html > /dev/null

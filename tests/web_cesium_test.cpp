@@ -1,0 +1,113 @@
+// Quantized-mesh exports in CesiumJS (label web): headless Debian chromium
+// (SwiftShader WebGL) driven by playwright-core, the folder served from
+// 127.0.0.1 (tests/web/README.md). The expected heights come from the
+// exported tiles decoded here (spec_readers/) and from the analytic source.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "quantized_mesh_fixtures.hpp"
+#include "render_fixtures.hpp"
+#include "tileformat/json.hpp"
+#include "web_fixtures.hpp"
+#include "web_surfaces.hpp"
+
+namespace {
+
+using namespace globe_test;
+
+}  // namespace
+
+// CesiumJS as a user's page: CesiumTerrainProvider over the exported folder
+// (layer.json, vertex normals), sampleTerrainMostDetailed at 30 points equal
+// to the exported mesh there (the source's heights at the enclosing
+// triangle's vertices, interpolated in the triangle) within the height step,
+// the quantization and 0.1 m, p90 within 10 m of the plain source.
+TEST(WebCesium, SampledHeightsAreTheExportedMesh) {
+  const fs::path& d = surface_dem();
+  TempDir dir("web-cesium");
+  const fs::path out = dir.path() / "terrain";
+  const RunResult r = run(tiler() + " export -q " + (d / "geodetic.mbtiles").string() +
+                              " --format quantized-mesh -o " + out.string(),
+                          dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const MeshTiles tiles = read_mesh_folder(out, false);
+  const double step = std::stod(run("sqlite3 " + (d / "geodetic.mbtiles").string() +
+                                        " \"SELECT value FROM metadata WHERE name = "
+                                        "'globe:height_step'\"",
+                                    dir.path())
+                                    .out);
+
+  std::vector<std::pair<double, double>> points;
+  std::ostringstream query;
+  query.precision(10);
+  query << "terrain=/data/terrain&points=";
+  for (int k = 0; k < 30; ++k) {  // a low-discrepancy spread over the surface's inside
+    const double lon =
+        kRegional.west + 0.1 +
+        (kRegional.east - kRegional.west - 0.2) * std::fmod(0.5 + k * 0.618033988749895, 1.0);
+    const double lat =
+        kRegional.south + 0.1 +
+        (kRegional.north - kRegional.south - 0.2) * std::fmod(0.5 + k * 0.754877666246693, 1.0);
+    points.push_back({lon, lat});
+    query << (k ? ";" : "") << lon << "," << lat;
+  }
+  const fs::path shot = dir.path() / "cesium.png";
+  const RunResult page =
+      run_web_page("cesium_terrain.html", dir.path(), query.str(), shot, dir.path(), "480x320");
+  ASSERT_EQ(page.exit_code, 0) << page.err;
+  const tileformat::JsonValue result = tileformat::JsonValue::parse(page.out);
+  EXPECT_TRUE(result.find("hasVertexNormals")->boolean());
+  const auto& heights = result.find("heights")->array();
+  ASSERT_EQ(heights.size(), points.size());
+
+  std::vector<double> plain;
+  for (size_t k = 0; k < points.size(); ++k) {
+    const auto [lon, lat] = points[k];
+    const MeshTile* t = finest_tile_at(tiles, lon, lat);
+    ASSERT_TRUE(t) << lon << ", " << lat;
+    // The source at each vertex's decoded position, interpolated in the triangle.
+    const std::optional<double> mesh = mesh_height_at(*t, lon, lat, [&](size_t v) {
+      return kRegional.bilinear(t->vertex_lon(v), t->vertex_lat(v));
+    });
+    ASSERT_TRUE(mesh);
+    const double got = heights[k].number();
+    const double position = kRegional.amp *
+                            (kRegional.kx * (t->rect.east - t->rect.west) +
+                             kRegional.ky * (t->rect.north - t->rect.south)) /
+                            (2 * qm::kQuantizedMax);
+    EXPECT_NEAR(got, *mesh, step / 2 + t->quantum() / 2 + position + 0.1)
+        << "point " << k << " (" << lon << ", " << lat << ") in tile " << t->z << "/" << t->x << "/"
+        << t->y;
+    plain.push_back(std::fabs(got - kRegional.bilinear(lon, lat)));
+  }
+  std::sort(plain.begin(), plain.end());
+  const double p90 = plain[plain.size() * 9 / 10];
+  EXPECT_LE(p90, 10.0) << "p90 against the plain source";
+  std::cerr << "cesium " << result.find("cesium")->string() << ": p90 " << p90
+            << " m from the plain source, max " << plain.back() << " m\n";
+}
+
+// The jacksboro DEM as a user's page shows it: geodetic terrain, lit by the
+// tiles' vertex normals, oblique, against its expected image.
+TEST(WebCesium, RealReliefLitByTheVertexNormals) {
+  TempDir dir("web-cesium-view");
+  const std::string pkg = (dir.path() / "j.mbtiles").string();
+  ASSERT_TRUE(run_all(
+      {tiler() + " terrain -q --tiling geodetic " + sample("jacksboro.tif").string() + " -o " + pkg,
+       tiler() + " export -q " + pkg + " --format quantized-mesh -o " +
+           (dir.path() / "terrain").string()},
+      dir.path()));
+  const fs::path shot = dir.path() / "cesium.png";
+  const RunResult page = run_web_page(
+      "cesium_terrain.html", dir.path(),
+      "terrain=/data/terrain&exaggeration=1.5&camera=-84.25,36.45,6000,0,-30&points=-84.2,36.55",
+      shot, dir.path(), "480x320");
+  ASSERT_EQ(page.exit_code, 0) << page.err;
+  const tileformat::JsonValue result = tileformat::JsonValue::parse(page.out);
+  EXPECT_TRUE(result.find("hasVertexNormals")->boolean());
+  EXPECT_TRUE(result.find("rendered")->find("tilesLoaded")->boolean());
+  expect_image(shot.string(), "cesium_jacksboro_lit");
+}
