@@ -5,12 +5,14 @@
 // code with the exporter.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>
 #include <optional>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include "spec_readers/quantized_mesh_reader.hpp"
 #include "test_support.hpp"
@@ -75,26 +77,59 @@ inline MeshTiles read_mesh_folder(const fs::path& dir, bool mercator) {
   return tiles;
 }
 
+// The triangles of a tile bucketed by a grid over (u, v), for lookups.
+struct TriangleIndex {
+  static constexpr int kCells = 32;
+  std::vector<std::vector<uint32_t>> cells;  // triangle numbers per cell
+  explicit TriangleIndex(const qm::Mesh& m) : cells(kCells * kCells) {
+    auto cell = [](double q) {
+      return std::min(kCells - 1, int(q * kCells / (qm::kQuantizedMax + 1.0)));
+    };
+    for (uint32_t k = 0; k + 2 < m.triangles.size(); k += 3) {
+      const uint32_t a = m.triangles[k], b = m.triangles[k + 1], c = m.triangles[k + 2];
+      const int x0 = cell(std::min({m.u[a], m.u[b], m.u[c]})),
+                x1 = cell(std::max({m.u[a], m.u[b], m.u[c]}));
+      const int y0 = cell(std::min({m.v[a], m.v[b], m.v[c]})),
+                y1 = cell(std::max({m.v[a], m.v[b], m.v[c]}));
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x)
+          cells[size_t(y) * kCells + x].push_back(k / 3);
+    }
+  }
+};
+
 // The height of the tile's surface at (lon, lat), interpolated in the
 // triangle containing it as CesiumJS does (in u, v), from `height(vertex)`;
 // nullopt outside every triangle.
 inline std::optional<double> mesh_height_at(const MeshTile& t, double lon, double lat,
-                                            const std::function<double(size_t)>& height) {
+                                            const std::function<double(size_t)>& height,
+                                            const TriangleIndex* index = nullptr) {
   const double u = (lon - t.rect.west) / (t.rect.east - t.rect.west) * qm::kQuantizedMax;
   const double v = (lat - t.rect.south) / (t.rect.north - t.rect.south) * qm::kQuantizedMax;
   const qm::Mesh& m = t.mesh;
-  for (size_t k = 0; k + 2 < m.triangles.size(); k += 3) {
+  auto try_triangle = [&](size_t k) -> std::optional<double> {
     const uint32_t a = m.triangles[k], b = m.triangles[k + 1], c = m.triangles[k + 2];
     const double ax = m.u[a], ay = m.v[a], bx = m.u[b], by = m.v[b], cx = m.u[c], cy = m.v[c];
     const double area = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
-    if (area == 0) continue;
+    if (area == 0) return std::nullopt;
     const double wa = ((bx - u) * (cy - v) - (by - v) * (cx - u)) / area;
     const double wb = ((cx - u) * (ay - v) - (cy - v) * (ax - u)) / area;
     const double wc = 1 - wa - wb;
     const double eps = -1e-9;
-    if (wa < eps || wb < eps || wc < eps) continue;
+    if (wa < eps || wb < eps || wc < eps) return std::nullopt;
     return wa * height(a) + wb * height(b) + wc * height(c);
+  };
+  if (index) {
+    const int x = std::clamp(int(u * TriangleIndex::kCells / (qm::kQuantizedMax + 1.0)), 0,
+                             TriangleIndex::kCells - 1);
+    const int y = std::clamp(int(v * TriangleIndex::kCells / (qm::kQuantizedMax + 1.0)), 0,
+                             TriangleIndex::kCells - 1);
+    for (uint32_t k : index->cells[size_t(y) * TriangleIndex::kCells + x])
+      if (const auto h = try_triangle(size_t(k) * 3)) return h;
+    return std::nullopt;
   }
+  for (size_t k = 0; k + 2 < m.triangles.size(); k += 3)
+    if (const auto h = try_triangle(k)) return h;
   return std::nullopt;
 }
 
