@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Web exports (docs/web.md), side by side in one run: per package, the
 # terrain build's time, then `globe-tiler export --format terrarium` into each
-# container (PMTiles, MBTiles, folder) and Terrain-RGB into PMTiles: wall and
+# container (PMTiles, MBTiles, folder), Terrain-RGB into PMTiles and
+# quantized-mesh (folder, gzipped folder, MBTiles): wall and
 # CPU seconds, peak RSS, the export's time / the build's, bytes (and bytes per
 # tile), fastest of 3 runs.
 #   jacksboro: the 403 x 344 3" sample DEM, webmercator (tiles kept)
@@ -30,7 +31,7 @@ row() { # NAME BUILD_WALL OUT ARGS...
   r=$(best $T export -q --force "$@" -o "$out")
   bytes=$(du -sb "$out" | cut -f1)
   tiles=$( (sqlite3 "$out" 'SELECT COUNT(*) FROM tiles' 2>/dev/null) ||
-    find "$out" -name '*.png' 2>/dev/null | wc -l)
+    find "$out" -name '*.png' -o -name '*.terrain' 2>/dev/null | wc -l)
   [[ "$out" == *.pmtiles ]] && tiles=$(od -An -tu8 -j72 -N8 "$out" | tr -d ' ')
   echo "$r $build $bytes $tiles" | awk -v n="$name" '{ printf "  %-22s wall %6.2f s, CPU %6.2f s, %5.0f MB RSS, %5.2fx the build, %9d bytes (%d tiles, %d B/tile)\n", n, $1, $3, $2 / 1024, $1 / $4, $5, $6, $5 / ($6 ? $6 : 1) }'
 }
@@ -48,6 +49,9 @@ for case in ${EXPORT_CASES:-jacksboro etopo20 synthetic}; do
   row "terrarium .mbtiles" "$build" "$scratch/$case-t.mbtiles" "$pkg" --format terrarium
   row "terrarium folder" "$build" "$scratch/$case-dir" "$pkg" --format terrarium
   row "terrain-rgb .pmtiles" "$build" "$scratch/$case-rgb.pmtiles" "$pkg" --format terrain-rgb
+  row "quantized-mesh folder" "$build" "$scratch/$case-qm" "$pkg" --format quantized-mesh
+  row "quantized-mesh gzip" "$build" "$scratch/$case-qmz" "$pkg" --format quantized-mesh --gzip
+  row "quantized-mesh .mbtiles" "$build" "$scratch/$case-qm.mbtiles" "$pkg" --format quantized-mesh
 done
 
 # Vector tiles: the FlightGear airways (70,291 segments, samples/data/airways.geojson) to MVT

@@ -85,7 +85,7 @@ ExportSummary export_quantized_mesh(const MeshExportSettings& s, Progress& progr
 
   // The edges' errors, exchanged between neighbours until they agree: an edge
   // vertex's descendants reach into the tiles beside both its tiles, so one
-  // exchange is not always enough (on the test surfaces: 2 or 3 passes).
+  // exchange is not always enough (2 to 4 passes on the tests and benchmarks).
   std::vector<Halves> edges;
   constexpr int kMaxPasses = 12;
   int pass = 1;
