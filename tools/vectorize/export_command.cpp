@@ -1,5 +1,5 @@
-// `globe-vectorize export LINES --format mvt -o OUT [--style-json STYLE.json]`:
-// line and bundle packages as vector tiles for web maps (docs/web.md).
+// `globe-vectorize export PACKAGE --format mvt -o OUT [--style-json STYLE.json]`:
+// line, bundle and point packages as vector tiles for web maps (docs/web.md).
 #include <sstream>
 
 #include "build_options.hpp"
@@ -8,6 +8,7 @@
 #include "errors.hpp"
 #include "mvt_export.hpp"
 #include "package_open.hpp"
+#include "point_mvt_export.hpp"
 
 namespace globe {
 
@@ -17,7 +18,7 @@ int run_export(const std::vector<std::string>& args) {
   std::string format = "mvt";
   CliArgs cli(
       "globe-vectorize export",
-      "globe-vectorize export LINES --format mvt -o OUT.pmtiles|OUT.mbtiles|DIR\n"
+      "globe-vectorize export PACKAGE --format mvt -o OUT.pmtiles|OUT.mbtiles|DIR\n"
       "                       [--style-json STYLE.json]\n\n"
       "Converts a line or bundle package (web mercator) to Mapbox Vector Tiles 2.1 for web\n"
       "maps (MapLibre GL, OpenLayers, QGIS): one MVT layer per layer of the package's\n"
@@ -26,7 +27,10 @@ int run_export(const std::vector<std::string>& args) {
       "one PMTiles file, an MBTiles file or a folder DIR/{z}/{x}/{y}.pbf with metadata.json.\n"
       "--style-json writes a MapLibre style that draws the classes with the package's colours,\n"
       "widths, dashes, casings and opacities. Lines of zero length, which MVT cannot hold,\n"
-      "become points tagged zero_length. docs/web.md has a MapLibre page.");
+      "become points tagged zero_length. A point package becomes one layer 'points': each\n"
+      "place a point with its id, 'count' (the source places it stands for) and its fields\n"
+      "(sums or means, as the package aggregates); its style draws circles sized by count.\n"
+      "docs/web.md has a MapLibre page.");
   cli.option("--format", "mvt", "vector tiles (the only format, the default)",
              [&](const std::string& v) {
                if (v != "mvt") throw UsageError("--format: '" + v + "' is not mvt");
@@ -37,16 +41,20 @@ int run_export(const std::vector<std::string>& args) {
   cli.option("-o,--output", "OUT", "OUT.pmtiles, OUT.mbtiles or a folder",
              [&](const std::string& v) { o.output = v; });
   declare_run_options(cli, o);
-  if (!parse_build_command(cli, o, args, "globe-vectorize export", "LINES")) return kExitOk;
-  if (o.inputs.size() != 1) throw UsageError("give exactly one line package to export");
+  if (!parse_build_command(cli, o, args, "globe-vectorize export", "PACKAGE")) return kExitOk;
+  if (o.inputs.size() != 1)
+    throw UsageError("give exactly one line, bundle or point package to export");
   if (o.resume) throw UsageError("--resume: an export is written afresh each time");
   s.input = o.inputs[0], s.output = o.output, s.force = o.force;
-  if (package_kind(s.input) != tileformat::PackageKind::kLines)
+  const auto kind = package_kind(s.input);
+  if (kind != tileformat::PackageKind::kLines && kind != tileformat::PackageKind::kPoints)
     throw UsageError(s.input +
-                     ": globe-vectorize export takes line and bundle packages; terrain and "
-                     "image packages are exported by globe-tiler export");
+                     ": globe-vectorize export takes line, bundle and point packages; terrain "
+                     "and image packages are exported by globe-tiler export");
   Progress progress(o.progress);
-  const MvtExportSummary sum = export_mvt(s, progress);
+  const MvtExportSummary sum = kind == tileformat::PackageKind::kPoints
+                                   ? export_point_mvt(s, progress)
+                                   : export_mvt(s, progress);
   std::ostringstream msg;
   msg.precision(3);
   msg << std::fixed << "globe-vectorize: wrote " << s.output << ": " << sum.tiles << " tiles, zoom "

@@ -113,6 +113,30 @@ std::string maplibre_style(const LinePackage& pkg,
 
 }  // namespace
 
+std::string mvt_source_url(const std::string& output) {
+  const std::string name = std::filesystem::path(output).filename().string();
+  switch (output_kind(output)) {
+    case OutputKind::kPmtiles:
+      return "pmtiles://" + name;
+    case OutputKind::kDirectory:
+      return name + "/metadata.json";
+    default:
+      return name;
+  }
+}
+
+void write_style_json(const std::string& path, const std::string& style) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << style << "\n";
+    if (!out) throw OutputError(tmp + ": cannot write (disk full?)");
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) throw OutputError(path + ": cannot write (" + ec.message() + ")");
+}
+
 MvtExportSummary export_mvt(const MvtExportSettings& s, Progress& progress) {
   const auto start = std::chrono::steady_clock::now();
   LinePackage pkg = open_line_package(s.input);
@@ -208,9 +232,6 @@ MvtExportSummary export_mvt(const MvtExportSettings& s, Progress& progress) {
   }
   progress.end();
 
-  std::vector<std::string> names;
-  for (const auto& [n, _] : classes_in)
-    names.push_back(n);
   ExportInfo info;
   info.name = std::filesystem::path(s.output).stem().string();
   info.description = "Lines of " + s.input + " as Mapbox Vector Tiles 2.1 (gzip)";
@@ -222,37 +243,11 @@ MvtExportSummary export_mvt(const MvtExportSettings& s, Progress& progress) {
   info.min_zoom = pkg.min_zoom, info.max_zoom = pkg.max_zoom;
   const tileformat::Bounds& b = pkg.meta.common.lonlat;
   info.west = b.min_x, info.south = b.min_y, info.east = b.max_x, info.north = b.max_y;
-  info.extra_json = "\"vector_layers\":[";
-  for (size_t i = 0; i < names.size(); ++i) {
-    info.extra_json += (i ? "," : "") + std::string("{\"id\":\"") +
-                       tileformat::json_escape(names[i]) + "\",\"fields\":{";
-    bool first = true;
-    for (const auto& [k, type] : fields[names[i]]) {
-      info.extra_json +=
-          (first ? "\"" : ",\"") + tileformat::json_escape(k) + "\":\"" + type + "\"";
-      first = false;
-    }
-    info.extra_json += "}}";
-  }
-  info.extra_json += "]";
+  info.extra_json = "\"vector_layers\":" + web::vector_layers_json(fields);
   sum.tiles = out->tiles();
   sum.bytes = out->finish(info);
-  if (!s.style_json.empty()) {
-    const std::string url =
-        output_kind(s.output) == OutputKind::kPmtiles
-            ? "pmtiles://" + std::filesystem::path(s.output).filename().string()
-            : std::filesystem::path(s.output).filename().string() +
-                  (output_kind(s.output) == OutputKind::kDirectory ? "/metadata.json" : "");
-    const std::string tmp = s.style_json + ".tmp";
-    {
-      std::ofstream style(tmp);
-      style << maplibre_style(pkg, classes_in, url) << "\n";
-      if (!style) throw OutputError(tmp + ": cannot write (disk full?)");
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, s.style_json, ec);
-    if (ec) throw OutputError(s.style_json + ": cannot write (" + ec.message() + ")");
-  }
+  if (!s.style_json.empty())
+    write_style_json(s.style_json, maplibre_style(pkg, classes_in, mvt_source_url(s.output)));
   sum.min_zoom = pkg.min_zoom, sum.max_zoom = pkg.max_zoom;
   sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return sum;

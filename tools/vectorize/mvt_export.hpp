@@ -29,4 +29,10 @@ struct MvtExportSummary {
 
 MvtExportSummary export_mvt(const MvtExportSettings& s, Progress& progress);
 
+// The URL a generated style gives its source, relative to the style's folder:
+// pmtiles://NAME.pmtiles, NAME.mbtiles, or DIR/metadata.json.
+std::string mvt_source_url(const std::string& output);
+// Writes a style file whole (PATH.tmp renamed); throws OutputError.
+void write_style_json(const std::string& path, const std::string& style);
+
 }  // namespace globe

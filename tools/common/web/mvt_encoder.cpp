@@ -4,6 +4,8 @@
 #include <cstring>
 #include <tuple>
 
+#include "tileformat/json.hpp"
+
 namespace globe::web {
 namespace {
 
@@ -145,6 +147,24 @@ std::vector<uint8_t> encode_mvt(const std::vector<MvtLayer>& layers) {
   for (const MvtLayer& l : layers)
     if (!l.empty()) bytes_field(tile, 3, l.encode());
   return std::vector<uint8_t>(tile.begin(), tile.end());
+}
+
+std::string vector_layers_json(
+    const std::map<std::string, std::map<std::string, std::string>>& layers) {
+  std::string out = "[";
+  bool first_layer = true;
+  for (const auto& [id, fields] : layers) {
+    out += (first_layer ? "" : ",") + std::string("{\"id\":\"") + tileformat::json_escape(id) +
+           "\",\"fields\":{";
+    first_layer = false;
+    bool first = true;
+    for (const auto& [k, type] : fields) {
+      out += (first ? "\"" : ",\"") + tileformat::json_escape(k) + "\":\"" + type + "\"";
+      first = false;
+    }
+    out += "}}";
+  }
+  return out + "]";
 }
 
 }  // namespace globe::web

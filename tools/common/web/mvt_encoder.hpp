@@ -60,4 +60,9 @@ class MvtLayer {
 // The Tile message of `layers` (empty layers left out).
 std::vector<uint8_t> encode_mvt(const std::vector<MvtLayer>& layers);
 
+// TileJSON's "vector_layers" array: per layer its id and fields (name -> type,
+// "String", "Number" or "Boolean").
+std::string vector_layers_json(
+    const std::map<std::string, std::map<std::string, std::string>>& layers);
+
 }  // namespace globe::web
