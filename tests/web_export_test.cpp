@@ -416,6 +416,78 @@ TEST(ExportMvt, GdalReadsTheLinesExtractWrites) {
   EXPECT_TRUE(road) << read_file(dir / "style.json");
 }
 
+// Places (a CSV of 60 across Europe, two fields) as a point package, exported
+// to a folder of MVT: GDAL's MVT driver reads the finest zoom's tiles, where
+// every place is its own point (--merge-px 0) within 1 px of its CSV position
+// with its count and fields; at zoom 0 the counts and sums add up to the CSV's.
+TEST(ExportMvt, PointsKeepTheirPositionsCountsAndFields) {
+  TempDir dir;
+  struct Row {
+    double lon, lat, a, b;
+  };
+  std::vector<Row> rows;
+  std::ofstream csv(dir / "places.csv");
+  csv << "lon,lat,a,b\n";
+  for (int k = 0; k < 60; ++k) {
+    const Row r{-9 + 0.37 * k, 38 + std::fmod(k * 0.618, 1.0) * 16, double(k % 7 + 1),
+                double(k * 3 % 11)};
+    rows.push_back(r);
+    csv << r.lon << "," << r.lat << "," << r.a << "," << r.b << "\n";
+  }
+  csv.close();
+  const std::string pkg = (dir / "places.mbtiles").string(), out = (dir / "mvt").string();
+  ASSERT_TRUE(run_all({vectorize() + " points -q " + (dir / "places.csv").string() +
+                           " --xy lon,lat --fields a,b --merge-px 0 --max-zoom 9 -o " + pkg,
+                       vectorize() + " export -q " + pkg + " -o " + out + " --style-json " +
+                           (dir / "style.json").string()},
+                      dir.path()));
+  const double half = 20037508.342789244, px9 = 2 * half / 512 / 256;
+  size_t found = 0;
+  for (const auto& e : fs::recursive_directory_iterator(fs::path(out) / "9")) {
+    if (e.path().extension() != ".pbf") continue;
+    const int x = std::stoi(e.path().parent_path().filename().string()),
+              y = std::stoi(e.path().stem().string());
+    for (const OgrLine& f :
+         read_ogr(e.path().string(), {"X=" + std::to_string(x), "Y=" + std::to_string(y), "Z=9"},
+                  "mvt_id")) {
+      ASSERT_EQ(f.layer, "points");
+      ASSERT_EQ(f.pts.size(), 1u);
+      EXPECT_EQ(f.fields.at("count"), "1");
+      // The CSV place it is: the nearest, within 1 px of zoom 9.
+      double best = 1e300;
+      const Row* match = nullptr;
+      for (const Row& r : rows) {
+        const double mx = r.lon / 180 * half,
+                     my = std::log(std::tan((90 + r.lat) * kPi / 360)) / kPi * half;
+        const double d = std::hypot(mx - f.pts[0].first, my - f.pts[0].second);
+        if (d < best) best = d, match = &r;
+      }
+      ASSERT_LE(best, px9) << "point " << f.id << " in tile 9/" << x << "/" << y;
+      EXPECT_EQ(std::stod(f.fields.at("a")), match->a);
+      EXPECT_EQ(std::stod(f.fields.at("b")), match->b);
+      ++found;
+    }
+  }
+  EXPECT_EQ(found, rows.size());
+  double count = 0, a = 0, b = 0;
+  for (const OgrLine& f : read_ogr(out + "/0/0/0.pbf", {"X=0", "Y=0", "Z=0"}, "mvt_id")) {
+    count += std::stod(f.fields.at("count"));
+    a += std::stod(f.fields.at("a"));
+    b += std::stod(f.fields.at("b"));
+  }
+  double ra = 0, rb = 0;
+  for (const Row& r : rows)
+    ra += r.a, rb += r.b;
+  EXPECT_EQ(count, double(rows.size()));
+  EXPECT_DOUBLE_EQ(a, ra);
+  EXPECT_DOUBLE_EQ(b, rb);
+  const auto style = tileformat::JsonValue::parse(read_file(dir / "style.json"));
+  EXPECT_EQ(style.find("layers")->array().at(0).find("type")->string(), "circle");
+  const auto meta = tileformat::JsonValue::parse(read_file(fs::path(out) / "metadata.json"));
+  EXPECT_EQ(meta.find("vector_layers")->array().at(0).find("fields")->find("a")->string(),
+            "Number");
+}
+
 // The same bytes for any thread count (the tiles are encoded in parallel and
 // written in tile-id order).
 TEST(ExportDem, SameBytesForAnyThreadCount) {
