@@ -103,6 +103,38 @@ std::optional<double> MeshTileSource::sample(int z, int64_t gx, int64_t gy) {
   return std::nullopt;
 }
 
+bool MeshTileSource::has_tile(TileId id) {
+  return id.z == 0 || id.z < package_.min_zoom || sampler_.block(id) != nullptr;
+}
+
+const std::vector<float>* MeshTileSource::own(TileId id) {
+  const uint64_t key = uint64_t(id.z) << 58 | uint64_t(id.x) << 29 | id.y;
+  for (auto it = own_.begin(); it != own_.end(); ++it)
+    if (it->first == key) {
+      own_.splice(own_.begin(), own_, it);
+      return &own_.front().second;
+    }
+  if (!has_tile(id)) return nullptr;
+  const TileGrid g = grid(id);
+  if (own_.size() >= 64) own_.pop_back();
+  own_.emplace_front(key, own_errors(g, mesh_sample_metres(package_.tiling, id.z, g.steps)));
+  return &own_.front().second;
+}
+
+MeshErrors MeshTileSource::errors(TileId id) {
+  const tileformat::Tiling& t = package_.tiling;
+  const int64_t cols = int64_t(t.tiles_x(id.z)), rows = int64_t(t.tiles_y(id.z));
+  std::array<const std::vector<float>*, 9> around{};
+  // Fetch all nine first (the cache keeps 64, so none is dropped meanwhile).
+  for (int k = 0; k < 9; ++k) {
+    int64_t x = int64_t(id.x) + k % 3 - 1, y = int64_t(id.y) + k / 3 - 1;
+    if (t.wraps_x()) x = (x % cols + cols) % cols;
+    if (x < 0 || y < 0 || x >= cols || y >= rows) continue;
+    around[k] = own({id.z, uint32_t(x), uint32_t(y)});
+  }
+  return MeshErrors(package_.block_size - 1, int((id.x + id.y) & 1), around);
+}
+
 TileGrid MeshTileSource::grid(TileId id) {
   const int steps = package_.block_size - 1;
   TileGrid g(steps, int((id.x + id.y) & 1));

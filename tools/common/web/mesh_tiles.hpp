@@ -2,14 +2,16 @@
 // for the export and the server: each tile's samples from its block (zooms
 // below the package's coarsest: every 2^k-th sample of that zoom's blocks,
 // 0 m where it has none), cut into a TIN within CesiumJS's geometric error
-// for the level (terrain_mesh.hpp), vertex normals from the samples around
-// each vertex, and layer.json with the tiles' availability.
+// for the level (terrain_mesh.hpp; each tile alone, from the blocks of it
+// and its eight neighbours), vertex normals from the samples around each
+// vertex, and layer.json with the tiles' availability.
 //
 // Tile ids are the package's own (rows from the north); Cesium's rows count
 // from the south (TMS), which the outputs and layer.json apply.
 #pragma once
 
 #include <cstdint>
+#include <list>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -34,11 +36,20 @@ class MeshTileSource {
   // The height at global sample (gx, gy) of zoom z (gx wraps around the
   // Earth); nullopt where no block has it.
   std::optional<double> sample(int z, int64_t gx, int64_t gy);
+  // Whether the tile has samples: at zoom 0 and below the package's zooms
+  // every tile of the Earth, elsewhere those with a block.
+  bool has_tile(tileformat::TileId id);
+  // The tile's saturated errors, from its own and its eight neighbours' own
+  // errors (kept for the last 64 tiles asked).
+  MeshErrors errors(tileformat::TileId id);
   const TerrainPackage& package() const { return package_; }
 
  private:
+  const std::vector<float>* own(tileformat::TileId id);  // nullptr: no such tile
+
   TerrainPackage& package_;
   TerrainSampler sampler_;
+  std::list<std::pair<uint64_t, std::vector<float>>> own_;  // most recent first
 };
 
 struct MeshTileOptions {

@@ -32,110 +32,95 @@ float triangle_error(const TileGrid& g, GridPoint a, GridPoint b, GridPoint c) {
 
 }  // namespace
 
-MeshErrors::MeshErrors(const TileGrid& grid, double sample_metres)
-    : steps_(grid.steps),
-      diagonal_(grid.diagonal),
-      sample_metres_(sample_metres),
-      grid_(&grid),
-      e_(size_t(grid.steps + 1) * (grid.steps + 1), 0.0f) {
-  saturate(true);
-  grid_ = nullptr;  // the grid is needed only here
-}
-
-// Bottom up, scale s = 2, 4, ..., steps: first the midpoints of the edges of
-// length s, then the centres of the squares of side s. `with_own` adds each
-// vertex's own diamond triangles (first pass); without, only the children
-// are taken again (after joining neighbours).
-void MeshErrors::saturate(bool with_own) {
-  const int n = steps_;
+std::vector<float> own_errors(const TileGrid& grid, double sample_metres) {
+  const int n = grid.steps;
+  std::vector<float> e(size_t(n + 1) * (n + 1), 0.0f);
+  auto ref = [&](int i, int j) -> float& { return e[size_t(j) * (n + 1) + size_t(i)]; };
   constexpr double kEarthRadius = 6378137.0;
   for (int s = 2; s <= n; s *= 2) {
-    const int h = s / 2, q = s / 4;
+    const int h = s / 2;
     // Sagittas of the hypotenuses: s for an edge's triangles, s sqrt 2 for a square's.
-    const double d = s * sample_metres_;
+    const double d = s * sample_metres;
     const float edge_sagitta = float(d * d / (8 * kEarthRadius));
     const float square_sagitta = 2 * edge_sagitta;
-    // Edge midpoints: horizontal edges (mi, j0), vertical edges (i0, mj).
+    // Midpoints of the edges of length s: each with the triangle(s) towards
+    // the centres of scale s on either side that lie in the tile.
     for (int j0 = 0; j0 <= n; j0 += h)
       for (int i0 = 0; i0 <= n; i0 += h) {
         const bool horizontal = (j0 % s == 0) && (i0 % s == h);
         const bool vertical = (i0 % s == 0) && (j0 % s == h);
         if (!horizontal && !vertical) continue;
-        float e = at(i0, j0);
-        // The two centres of scale s on either side, each with its triangle.
+        float err = 0;
         for (int side : {-1, 1}) {
           const GridPoint c =
               horizontal ? GridPoint{i0, j0 + side * h} : GridPoint{i0 + side * h, j0};
           if (c.i < 0 || c.i > n || c.j < 0 || c.j > n) continue;
-          if (with_own) {
-            const GridPoint p1 = horizontal ? GridPoint{i0 - h, j0} : GridPoint{i0, j0 - h};
-            const GridPoint p2 = horizontal ? GridPoint{i0 + h, j0} : GridPoint{i0, j0 + h};
-            e = std::max({e, edge_sagitta, triangle_error(*grid_, c, p1, p2)});
-          }
-          if (q > 0)  // children: centres of scale s / 2 on that side
-            for (int t : {-1, 1}) {
-              const GridPoint k = horizontal ? GridPoint{i0 + t * q, j0 + side * q}
-                                             : GridPoint{i0 + side * q, j0 + t * q};
-              e = std::max(e, at(k.i, k.j));
-            }
+          const GridPoint p1 = horizontal ? GridPoint{i0 - h, j0} : GridPoint{i0, j0 - h};
+          const GridPoint p2 = horizontal ? GridPoint{i0 + h, j0} : GridPoint{i0, j0 + h};
+          err = std::max({err, edge_sagitta, triangle_error(grid, c, p1, p2)});
         }
-        ref(i0, j0) = e;
+        ref(i0, j0) = err;
       }
-    // Square centres.
+    // Centres of the squares of side s: the square's two halves.
     for (int j0 = 0; j0 < n; j0 += s)
       for (int i0 = 0; i0 < n; i0 += s) {
-        const GridPoint c{i0 + h, j0 + h};
-        float e = at(c.i, c.j);
-        if (with_own) {
-          e = std::max(e, square_sagitta);
-          const int orient = s == n ? diagonal_ : ((i0 / s + j0 / s) & 1);
-          const GridPoint tl{i0, j0}, tr{i0 + s, j0}, bl{i0, j0 + s}, br{i0 + s, j0 + s};
-          if (orient == 0)
-            e = std::max(
-                {e, triangle_error(*grid_, tr, tl, br), triangle_error(*grid_, bl, tl, br)});
-          else
-            e = std::max(
-                {e, triangle_error(*grid_, tl, tr, bl), triangle_error(*grid_, br, tr, bl)});
-        }
-        e = std::max({e, at(c.i, j0), at(c.i, j0 + s), at(i0, c.j), at(i0 + s, c.j)});
-        ref(c.i, c.j) = e;
+        const int orient = s == n ? grid.diagonal : ((i0 / s + j0 / s) & 1);
+        const GridPoint tl{i0, j0}, tr{i0 + s, j0}, bl{i0, j0 + s}, br{i0 + s, j0 + s};
+        ref(i0 + h, j0 + h) = orient == 0
+                                  ? std::max({square_sagitta, triangle_error(grid, tr, tl, br),
+                                              triangle_error(grid, bl, tl, br)})
+                                  : std::max({square_sagitta, triangle_error(grid, tl, tr, bl),
+                                              triangle_error(grid, br, tr, bl)});
       }
   }
+  return e;
 }
 
-std::vector<float> MeshErrors::edge_halves(TileEdge edge) const {
-  std::vector<float> out(size_t(steps_) + 1);
-  for (int k = 0; k <= steps_; ++k) {
-    switch (edge) {
-      case TileEdge::kNorth:
-        out[k] = at(k, 0);
-        break;
-      case TileEdge::kSouth:
-        out[k] = at(k, steps_);
-        break;
-      case TileEdge::kWest:
-        out[k] = at(0, k);
-        break;
-      case TileEdge::kEast:
-        out[k] = at(steps_, k);
-        break;
-    }
+MeshErrors::MeshErrors(int steps, int diagonal, const std::array<const std::vector<float>*, 9>& own)
+    : steps_(steps), diagonal_(diagonal) {
+  // The 3 x 3 tiles' own errors on one grid; a shared edge's vertex takes
+  // the larger of its two halves (the corners, never split vertices here, 0).
+  const int n = steps, big = 3 * n;
+  const size_t stride = size_t(big) + 1;
+  std::vector<float> e(stride * stride, 0.0f);
+  for (int t = 0; t < 9; ++t) {
+    if (!own[t]) continue;
+    const int ox = (t % 3) * n, oy = (t / 3) * n;
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) {
+        float& dst = e[size_t(oy + j) * stride + size_t(ox + i)];
+        dst = std::max(dst, (*own[t])[size_t(j) * (n + 1) + size_t(i)]);
+      }
   }
-  return out;
-}
-
-void MeshErrors::join_neighbour(TileEdge edge, const std::vector<float>& halves) {
-  for (int k = 0; k <= steps_ && size_t(k) < halves.size(); ++k) {
-    float& e = edge == TileEdge::kNorth   ? ref(k, 0)
-               : edge == TileEdge::kSouth ? ref(k, steps_)
-               : edge == TileEdge::kWest  ? ref(0, k)
-                                          : ref(steps_, k);
-    e = std::max(e, halves[k]);
+  // Saturation bottom up, scale s = 2 .. n: first the midpoints of the edges
+  // of length s (children: the centres of scale s / 2 around them), then the
+  // centres of the squares of side s (children: their edges' midpoints).
+  auto at = [&](int i, int j) -> float& { return e[size_t(j) * stride + size_t(i)]; };
+  for (int s = 2; s <= n; s *= 2) {
+    const int h = s / 2, q = s / 4;
+    if (q > 0)
+      for (int j0 = 0; j0 <= big; j0 += h)
+        for (int i0 = 0; i0 <= big; i0 += h) {
+          const bool horizontal = (j0 % s == 0) && (i0 % s == h);
+          const bool vertical = (i0 % s == 0) && (j0 % s == h);
+          if (!horizontal && !vertical) continue;
+          float& v = at(i0, j0);
+          for (int a : {-q, q})
+            for (int b : {-q, q}) {
+              const int ci = i0 + a, cj = j0 + b;
+              if (ci >= 0 && cj >= 0 && ci <= big && cj <= big) v = std::max(v, at(ci, cj));
+            }
+        }
+    for (int j0 = 0; j0 < big; j0 += s)
+      for (int i0 = 0; i0 < big; i0 += s) {
+        float& v = at(i0 + h, j0 + h);
+        v = std::max({v, at(i0 + h, j0), at(i0 + h, j0 + s), at(i0, j0 + h), at(i0 + s, j0 + h)});
+      }
   }
-}
-
-void MeshErrors::finish() {
-  saturate(false);
+  e_.resize(size_t(n + 1) * (n + 1));
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i)
+      e_[size_t(j) * (n + 1) + size_t(i)] = at(n + i, n + j);
 }
 
 std::vector<std::array<GridPoint, 3>> cut_mesh(const MeshErrors& errors, double threshold) {

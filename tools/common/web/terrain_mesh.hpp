@@ -2,9 +2,9 @@
 // "Quantized-mesh"): the right-triangle (4-8) hierarchy over the tile's
 // (steps+1)^2 samples, each split vertex carrying the largest vertical
 // distance between any sample and the plane of the hierarchy triangle over
-// it, for every triangle of the vertex's diamond and below. A tile keeps the
-// triangles whose split vertex errs by at most the threshold, so every kept
-// triangle is within it of every sample under it.
+// it, for every triangle of the vertex's diamond and of its descendants'. A
+// tile keeps the triangles whose split vertex errs by at most the threshold,
+// so every kept triangle is within it of every sample under it.
 //
 // A flat triangle also leaves the curved Earth: each triangle's error is at
 // least the sagitta of its hypotenuse, d^2 / (8 R), with d measured at the
@@ -12,13 +12,16 @@
 // a zoom so that neighbours agree) -- without it a tile of a coarse level,
 // whose geometric error exceeds any relief, would be two flat triangles.
 //
-// Neighbouring tiles must agree on the vertices of their shared edge: an
-// edge vertex's diamond lies half in each tile, so its error is the larger of
-// the two tiles' half errors (edge_halves of one, join_neighbour of the
-// other), after which the tile's inner vertices are saturated again. With
-// the errors of one global 4-8 hierarchy (square diagonals alternate with the
-// parity of their global cell index) both tiles then cut the same edge
-// vertices: no cracks, with or without skirts.
+// Neighbouring tiles must cut the same vertices along their shared edge, so
+// the errors are those of one hierarchy over the whole zoom (square
+// diagonals alternate with the parity of their global cell index). A
+// vertex's descendants reach at most its own scale away from it, so the
+// errors of a tile's vertices depend on the tile and the eight around it
+// only: each tile's own triangle errors (`own_errors`, computed once per tile)
+// are assembled for the 3 x 3 tiles and saturated there (`MeshErrors`). Both
+// tiles of an edge then see the same errors on it: no cracks, with or
+// without skirts, and no state shared between tiles (a server can cut any
+// tile alone).
 //
 // Grid coordinates: i east (column), j south (row), 0..steps; heights in
 // metres, NaN where the package has none (only in the apron).
@@ -42,36 +45,24 @@ struct TileGrid {
       : steps(steps_), diagonal(diagonal_), h(size_t(steps_ + 3) * (steps_ + 3), NAN) {}
 };
 
-enum class TileEdge { kNorth = 0, kEast = 1, kSouth = 2, kWest = 3 };
+// Per split vertex of a tile ((steps+1)^2, row-major; 0 where none), the
+// largest error of the triangles of its diamond that lie inside the tile
+// (both for inner vertices, one for edge vertices), the sagitta included.
+std::vector<float> own_errors(const TileGrid& grid, double sample_metres);
 
-// Errors (metres) of the split vertices of one tile, at their grid positions.
+// The saturated errors of one tile's vertices, from the own errors of the
+// tile and its eight neighbours (row-major from the north-west, the tile at
+// index 4; nullptr for a neighbour that does not exist).
 class MeshErrors {
  public:
-  // The tile's own half: every triangle inside the tile (NaN samples must not
-  // occur inside the tile). `sample_metres`: ground length of a sample step.
-  MeshErrors(const TileGrid& grid, double sample_metres);
-
-  // The half errors of the vertices on one edge, indexed by the position along
-  // the edge (i for north/south, j for east/west), steps + 1 values.
-  std::vector<float> edge_halves(TileEdge edge) const;
-  // Raises the vertices of `edge` to the neighbour's half errors there (its
-  // edge_halves of the opposite edge, same indexing). Call finish() after.
-  void join_neighbour(TileEdge edge, const std::vector<float>& neighbour_halves);
-  // Saturates the inner vertices again over the joined edges.
-  void finish();
-
+  MeshErrors(int steps, int diagonal, const std::array<const std::vector<float>*, 9>& own);
   float at(int i, int j) const { return e_[size_t(j) * (steps_ + 1) + size_t(i)]; }
   int steps() const { return steps_; }
   int diagonal() const { return diagonal_; }
 
  private:
-  float& ref(int i, int j) { return e_[size_t(j) * (steps_ + 1) + size_t(i)]; }
-  void saturate(bool with_own);
-
   int steps_, diagonal_;
-  double sample_metres_;
-  const TileGrid* grid_;
-  std::vector<float> e_;
+  std::vector<float> e_;  // the centre tile's (steps+1)^2
 };
 
 struct GridPoint {

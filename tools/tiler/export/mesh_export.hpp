@@ -1,10 +1,10 @@
 // `globe-tiler export TERRAIN --format quantized-mesh` (docs/web.md
 // "Quantized-mesh"): a geodetic or webmercator terrain package as CesiumJS
 // terrain, DIR/layer.json + DIR/{z}/{x}/{y}.terrain (TMS rows) or one
-// MBTiles file holding the .terrain tiles and layer.json. Two passes over the
-// tiles: the first keeps each tile's half errors of its edge vertices (4
-// floats per edge sample), the second cuts each tile's TIN with its
-// neighbours' halves joined, so neighbours share their border vertices.
+// MBTiles file holding the .terrain tiles and layer.json. One pass over the
+// tiles in PMTiles order (neighbours close together): each tile is cut alone
+// from the blocks of it and its eight neighbours (web/mesh_tiles.hpp), each
+// worker keeping the own errors of the last 64 tiles it saw.
 #pragma once
 
 #include <string>
