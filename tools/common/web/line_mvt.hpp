@@ -1,0 +1,69 @@
+// Line-cluster tiles (lines, bundles) as Mapbox Vector Tiles (docs/web.md
+// "Vector tiles"), one tile at a time, for the export and the server: one MVT
+// layer per layer of the package's features table, each run a LINESTRING with
+// the feature's id, its class ("class") and its attributes; lines of zero
+// length as points tagged zero_length. Also the MapLibre style that draws the
+// classes as the viewer does.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <set>
+#include <span>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "line_package.hpp"
+#include "mvt_encoder.hpp"
+#include "tileformat/feature_table.hpp"
+#include "tileformat/tile_id.hpp"
+
+namespace globe::web {
+
+class LineMvtEncoder {
+ public:
+  // Reads the package's features table (an older package without one keeps
+  // ids and classes only). Not thread-safe: one per thread, or a lock.
+  explicit LineMvtEncoder(LinePackage& package);
+  ~LineMvtEncoder();
+
+  // The MVT bytes (not gzipped; empty if the tile holds nothing) of a
+  // tile's blob. Throws InputError naming the package and tile for a blob
+  // that does not decode.
+  std::vector<uint8_t> encode(tileformat::TileId id, std::span<const uint8_t> blob);
+
+  // What the tiles encoded so far held, for TileJSON and the style.
+  uint64_t features() const { return features_; }
+  uint64_t zero_length() const { return zero_length_; }
+  const std::map<std::string, std::set<uint32_t>>& classes_in() const { return classes_in_; }
+  const std::map<std::string, std::map<std::string, std::string>>& fields() const {
+    return fields_;
+  }
+
+ private:
+  using Tags = std::vector<std::pair<std::string, MvtValue>>;
+  struct FeatureInfo {
+    std::string layer;
+    Tags tags;
+  };
+  const FeatureInfo& feature(uint64_t id);
+
+  LinePackage& package_;
+  std::unique_ptr<tileformat::FeatureTableReader> table_;
+  std::unordered_map<uint64_t, FeatureInfo> features_cache_;  // cleared when large
+  uint64_t features_ = 0, zero_length_ = 0;
+  std::map<std::string, std::set<uint32_t>> classes_in_;              // MVT layer -> classes
+  std::map<std::string, std::map<std::string, std::string>> fields_;  // layer -> key -> type
+};
+
+// A MapLibre style (version 8) drawing the classes of `classes_in` as the
+// viewer does (casings under fills, higher class ids on top) from the vector
+// source at `source_url`.
+std::string line_style_json(const LinePackage& package,
+                            const std::map<std::string, std::set<uint32_t>>& classes_in,
+                            const std::string& source_url);
+
+}  // namespace globe::web
