@@ -11,7 +11,7 @@
 
 #include "errors.hpp"
 #include "parallel_batches.hpp"
-#include "png_codec.hpp"
+#include "raster_dem_tile.hpp"
 #include "terrain_package.hpp"
 #include "terrain_sampler.hpp"
 #include "tile_output.hpp"
@@ -21,10 +21,6 @@ namespace globe {
 namespace {
 
 constexpr double kMaxMercatorLat = 85.0511287798066;
-// libpng adaptive filters at deflate 6: on the 4096² synthetic DEM 28.0 MB in 8.1 s,
-// against 31.6 MB in 5.1 s at 4 and 37.7 MB in 3.3 s at 1 (bench/export.sh).
-constexpr int kPngEffort = 6;
-
 struct ExportTile {
   uint64_t id = 0;  // PMTiles order
   int z = 0, source_zoom = 0;
@@ -83,8 +79,7 @@ ExportSummary export_raster_dem(const DemExportSettings& s, Progress& progress) 
     min_zoom = 0;
     max_zoom = std::clamp(static_cast<int>(std::floor(pkg.max_zoom + finer + 1e-9)), 0, 24);
     for (int m = min_zoom; m <= max_zoom; ++m) {
-      const int source =
-          std::clamp(static_cast<int>(std::ceil(m - finer - 1e-9)), pkg.min_zoom, pkg.max_zoom);
+      const int source = web::raster_dem_source_zoom(pkg, m, s.tile_size);
       tiles_over(b.min_x, b.min_y, b.max_x, b.max_y, m, source, plan);
     }
   }
@@ -104,24 +99,9 @@ ExportSummary export_raster_dem(const DemExportSettings& s, Progress& progress) 
       plan.size(), s.threads, 64, [](size_t, size_t) { return NoInputs{}; },
       [&](size_t i, int worker, const NoInputs&) {
         const ExportTile& t = plan[i];
-        web::TerrainSampler& sampler = *samplers[size_t(worker)];
         EncodedTile e;
-        std::vector<uint8_t> rgb(size_t(size) * size * 3);
-        bool any = false;
-        for (int j = 0; j < size; ++j)
-          for (int k = 0; k < size; ++k) {
-            const web::MercatorPoint p = web::pixel_centre(t.z, t.x, t.y, size, k, j);
-            double cx = p.x, cy = p.y;
-            if (!mercator) web::mercator_to_lonlat(p, cx, cy);
-            const std::optional<double> h = sampler.height(cx, cy, t.source_zoom);
-            any = any || h.has_value();
-            e.without_data += !h;
-            web::encode_dem_pixel(h.value_or(0.0), s.encoding, &rgb[(size_t(j) * size + k) * 3]);
-          }
-        if (any)
-          e.png = encode_png(rgb.data(), size, size, 3, kPngEffort);
-        else
-          e.without_data = 0;  // a tile with no data at all is left out
+        e.png = web::raster_dem_tile(*samplers[size_t(worker)], pkg.tiling, t.z, t.x, t.y, size,
+                                     t.source_zoom, s.encoding, &e.without_data);
         return e;
       },
       [&](size_t i, EncodedTile&& e) {
