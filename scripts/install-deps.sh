@@ -11,6 +11,8 @@ packages=(
   clang libclang-rt-14-dev
   # libraries (see README "Dependencies")
   libgdal-dev libproj-dev libtiff-dev libzstd-dev libsqlite3-dev libpng-dev zlib1g-dev
+  # globe-serve: HTTP from cpp-httplib
+  libcpp-httplib-dev
   # viewer image tile decoding without GDAL
   libjpeg62-turbo-dev libwebp-dev
   googletest libgtest-dev

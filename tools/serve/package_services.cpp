@@ -1,0 +1,423 @@
+// The services of the package kinds (see package_services.hpp).
+#include "package_services.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <mutex>
+#include <set>
+#include <unordered_set>
+#include <vector>
+
+#include "errors.hpp"
+#include "image_package.hpp"
+#include "line_mvt.hpp"
+#include "line_package.hpp"
+#include "mesh_tiles.hpp"
+#include "mvt_encoder.hpp"
+#include "package_open.hpp"
+#include "point_mvt.hpp"
+#include "point_package.hpp"
+#include "raster_dem.hpp"
+#include "raster_dem_tile.hpp"
+#include "terrain_package.hpp"
+#include "terrain_sampler.hpp"
+#include "tileformat/image_tile.hpp"
+#include "tileformat/json.hpp"
+
+namespace globe::serve {
+namespace {
+
+using tileformat::TileId;
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+
+HttpResponse json_response(std::string body) {
+  HttpResponse r;
+  r.content_type = "application/json";
+  r.body = std::move(body);
+  r.compressible = true;
+  return r;
+}
+
+HttpResponse bytes_response(std::vector<uint8_t> bytes, std::string type, bool compressible) {
+  HttpResponse r;
+  if (bytes.empty()) return text_response(204, "");
+  r.content_type = std::move(type);
+  r.body.assign(bytes.begin(), bytes.end());
+  r.compressible = compressible;
+  return r;
+}
+
+// TileJSON 3.0.0 of a tile set under `base`.
+std::string tilejson_text(const PackageService& s, const std::string& name,
+                          const std::string& tiles_url, const std::string& extra,
+                          bool tms = false) {
+  return "{\"tilejson\":\"3.0.0\",\"name\":\"" + tileformat::json_escape(name) +
+         "\",\"tiles\":[\"" + tileformat::json_escape(tiles_url) + "\"],\"scheme\":\"" +
+         (tms ? "tms" : "xyz") + "\",\"minzoom\":" + std::to_string(s.min_zoom) +
+         ",\"maxzoom\":" + std::to_string(s.max_zoom) + ",\"bounds\":[" + number(s.west) + "," +
+         number(s.south) + "," + number(s.east) + "," + number(s.north) + "]" +
+         (extra.empty() ? "" : "," + extra) + "}";
+}
+
+uint64_t key(int z, uint32_t x, uint32_t y) {
+  return uint64_t(z) << 58 | uint64_t(x) << 29 | y;
+}
+
+// A pool of per-thread helpers (samplers keep caches that are not shared).
+template <typename T>
+class Pool {
+ public:
+  template <typename Make>
+  std::unique_ptr<T> take(Make make) {
+    std::lock_guard lock(mutex_);
+    if (free_.empty()) return make();
+    std::unique_ptr<T> t = std::move(free_.back());
+    free_.pop_back();
+    return t;
+  }
+  void give(std::unique_ptr<T> t) {
+    std::lock_guard lock(mutex_);
+    free_.push_back(std::move(t));
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<std::unique_ptr<T>> free_;
+};
+
+class TerrainService : public PackageService {
+ public:
+  TerrainService(const std::string& path, const std::string& name)
+      : pkg_(open_terrain_package(path)), name_(name) {
+    const tileformat::Bounds& b = pkg_.meta.common.lonlat;
+    west = b.min_x, south = b.min_y, east = b.max_x, north = b.max_y;
+    min_zoom = 0, max_zoom = pkg_.max_zoom;
+    if (pkg_.tiling.scheme == tileformat::Scheme::kLocal) return;
+    plan_ = web::mesh_tile_plan(pkg_);
+    for (const auto& level : plan_)
+      for (const TileId& id : level)
+        planned_.insert(key(id.z, id.x, id.y));
+    layer_json_ =
+        web::layer_json(pkg_, plan_, name, "Heights of " + name + " served by globe-serve", true);
+    const double finer = std::log2(2.0 * (pkg_.block_size - 1) / 256);
+    dem_max_zoom_ = pkg_.tiling.scheme == tileformat::Scheme::kWebMercator
+                        ? pkg_.max_zoom
+                        : std::clamp(int(std::floor(pkg_.max_zoom + finer + 1e-9)), 0, 24);
+  }
+  std::string kind() const override { return "terrain"; }
+
+  HttpResponse tilejson(const std::string& base) override {
+    return json_response(tilejson_text(*this, name_, base + "/{z}/{x}/{y}.terrain",
+                                       "\"format\":\"quantized-mesh-1.0\",\"raster_dem\":\"" +
+                                           base + "/{z}/{x}/{y}.png?encoding=terrarium\"",
+                                       true));
+  }
+
+  HttpResponse answer(const Route& r, const HttpRequest& req, const std::string&) override {
+    if (pkg_.tiling.scheme == tileformat::Scheme::kLocal)
+      return text_response(404, name_ + " is in a local tiling, which web clients cannot place");
+    if (r.kind == Route::Kind::kLayerJson) return json_response(layer_json_);
+    if (r.kind != Route::Kind::kTile)
+      return text_response(404, "a terrain package has no " + std::string("style.json"));
+    if (r.extension == "terrain") return mesh_tile(r, req);
+    if (r.extension == "png") return dem_tile(r, req);
+    return text_response(404, "terrain tiles are .terrain (quantized-mesh) and .png (raster-DEM)");
+  }
+
+ private:
+  HttpResponse mesh_tile(const Route& r, const HttpRequest& req) {
+    const tileformat::Tiling& t = pkg_.tiling;
+    if (r.z > pkg_.max_zoom)
+      return text_response(404, "zoom " + std::to_string(r.z) + " is beyond the package's " +
+                                    std::to_string(pkg_.max_zoom));
+    if (r.x >= t.tiles_x(r.z) || r.y >= t.tiles_y(r.z))
+      return text_response(404, "tile " + std::to_string(r.x) + "/" + std::to_string(r.y) +
+                                    " is outside zoom " + std::to_string(r.z));
+    const TileId id{r.z, r.x, uint32_t(t.tiles_y(r.z) - 1 - r.y)};  // TMS row to ours
+    if (!planned_.count(key(id.z, id.x, id.y))) return text_response(204, "");
+    const auto ext = req.query.find("extensions");
+    web::MeshTileOptions options;
+    options.finest_zoom = pkg_.max_zoom;
+    options.normals =
+        req.header("accept").find("octvertexnormals") != std::string::npos ||
+        (ext != req.query.end() && ext->second.find("octvertexnormals") != std::string::npos);
+    std::unique_ptr<web::MeshTileSource> source =
+        meshes_.take([&] { return std::make_unique<web::MeshTileSource>(pkg_, read_mutex_); });
+    std::vector<uint8_t> bytes;
+    try {
+      const web::TileGrid grid = source->grid(id);
+      const web::MeshErrors errors = source->errors(id);
+      bytes = web::encode_mesh_tile(t, id, grid, errors, options);
+    } catch (...) {
+      meshes_.give(std::move(source));
+      throw;
+    }
+    meshes_.give(std::move(source));
+    HttpResponse out = bytes_response(std::move(bytes), "application/vnd.quantized-mesh", true);
+    return out;
+  }
+
+  HttpResponse dem_tile(const Route& r, const HttpRequest& req) {
+    const auto enc = req.query.find("encoding");
+    web::DemEncoding encoding = web::DemEncoding::kTerrarium;
+    if (enc != req.query.end()) {
+      if (enc->second == "terrain-rgb" || enc->second == "mapbox")
+        encoding = web::DemEncoding::kTerrainRgb;
+      else if (enc->second != "terrarium")
+        return text_response(400, "encoding: terrarium or terrain-rgb");
+    }
+    if (r.z > dem_max_zoom_)
+      return text_response(404, "raster-DEM zoom " + std::to_string(r.z) + " is beyond " +
+                                    std::to_string(dem_max_zoom_));
+    if (r.x >= (uint64_t{1} << r.z) || r.y >= (uint64_t{1} << r.z))
+      return text_response(404, "tile outside zoom " + std::to_string(r.z));
+    std::unique_ptr<web::TerrainSampler> sampler =
+        samplers_.take([&] { return std::make_unique<web::TerrainSampler>(pkg_, read_mutex_); });
+    std::vector<uint8_t> png;
+    try {
+      png = web::raster_dem_tile(*sampler, pkg_.tiling, r.z, r.x, r.y, 256,
+                                 web::raster_dem_source_zoom(pkg_, r.z, 256), encoding);
+    } catch (...) {
+      samplers_.give(std::move(sampler));
+      throw;
+    }
+    samplers_.give(std::move(sampler));
+    return bytes_response(std::move(png), "image/png", false);
+  }
+
+  TerrainPackage pkg_;
+  std::string name_, layer_json_;
+  std::vector<std::vector<TileId>> plan_;
+  std::unordered_set<uint64_t> planned_;
+  int dem_max_zoom_ = 0;
+  std::mutex read_mutex_;
+  Pool<web::MeshTileSource> meshes_;
+  Pool<web::TerrainSampler> samplers_;
+};
+
+// Web mercator packages only: their rows are XYZ rows.
+HttpResponse check_xyz(const tileformat::Tiling& t, const std::string& name, const Route& r,
+                       int min_zoom, int max_zoom) {
+  if (t.scheme != tileformat::Scheme::kWebMercator)
+    return text_response(404, name + " is not in the webmercator tiling; web maps read only that");
+  if (r.z < min_zoom || r.z > max_zoom)
+    return text_response(404, "zoom " + std::to_string(r.z) + " is outside the package's " +
+                                  std::to_string(min_zoom) + ".." + std::to_string(max_zoom));
+  if (r.x >= t.tiles_x(r.z) || r.y >= t.tiles_y(r.z))
+    return text_response(404, "tile outside zoom " + std::to_string(r.z));
+  return HttpResponse{};
+}
+
+class ImageService : public PackageService {
+ public:
+  ImageService(const std::string& path, const std::string& name)
+      : pkg_(open_image_package(path)), name_(name) {
+    const tileformat::Bounds& b = pkg_.meta.common.lonlat;
+    west = b.min_x, south = b.min_y, east = b.max_x, north = b.max_y;
+    min_zoom = pkg_.min_zoom, max_zoom = pkg_.max_zoom;
+    ext_ = tileformat::image_format_name(pkg_.format);
+  }
+  std::string kind() const override { return "images"; }
+  HttpResponse tilejson(const std::string& base) override {
+    return json_response(tilejson_text(
+        *this, name_, base + "/{z}/{x}/{y}." + ext_,
+        "\"format\":\"" + ext_ + "\",\"tileSize\":" + std::to_string(pkg_.tile_size)));
+  }
+  HttpResponse answer(const Route& r, const HttpRequest&, const std::string&) override {
+    if (r.kind != Route::Kind::kTile) return text_response(404, "an image package has tiles only");
+    if (r.extension != ext_)
+      return text_response(404, name_ + " holds ." + ext_ + " tiles, not ." + r.extension);
+    HttpResponse bad = check_xyz(pkg_.tiling, name_, r, min_zoom, max_zoom);
+    if (bad.status != 200) return bad;
+    std::optional<std::vector<uint8_t>> tile;
+    {
+      std::lock_guard lock(mutex_);
+      tile = pkg_.reader->tile({r.z, r.x, r.y});
+    }
+    if (!tile) return text_response(204, "");
+    return bytes_response(std::move(*tile), ext_ == "jpg" ? "image/jpeg" : "image/" + ext_, false);
+  }
+
+ private:
+  ImagePackage pkg_;
+  std::string name_, ext_;
+  std::mutex mutex_;
+};
+
+// Vector tiles: gzip where the client accepts it (the HTTP layer).
+class LineService : public PackageService {
+ public:
+  LineService(const std::string& path, const std::string& name)
+      : pkg_(open_line_package(path)), name_(name), encoder_(pkg_) {
+    const tileformat::Bounds& b = pkg_.meta.common.lonlat;
+    west = b.min_x, south = b.min_y, east = b.max_x, north = b.max_y;
+    min_zoom = pkg_.min_zoom, max_zoom = pkg_.max_zoom;
+    // Every class in every layer of the features table.
+    std::set<uint32_t> all;
+    for (uint32_t c = 0; c < pkg_.classes.size(); ++c)
+      all.insert(c);
+    for (const tileformat::LineLayerInfo& l : pkg_.meta.layers)
+      classes_in_[l.name.empty() ? "lines" : l.name] = all;
+    if (classes_in_.empty()) classes_in_["lines"] = all;
+  }
+  std::string kind() const override { return "lines"; }
+  HttpResponse tilejson(const std::string& base) override {
+    std::map<std::string, std::map<std::string, std::string>> layers;
+    for (const auto& [layer, _] : classes_in_)
+      layers[layer]["class"] = "String";
+    return json_response(
+        tilejson_text(*this, name_, base + "/{z}/{x}/{y}.pbf",
+                      "\"format\":\"pbf\",\"vector_layers\":" + web::vector_layers_json(layers)));
+  }
+  HttpResponse answer(const Route& r, const HttpRequest&, const std::string& base) override {
+    if (r.kind == Route::Kind::kStyleJson)
+      return json_response(web::line_style_json(pkg_, classes_in_, base + ".json"));
+    if (r.kind != Route::Kind::kTile || (r.extension != "pbf" && r.extension != "mvt"))
+      return text_response(404, "a line package has style.json and .pbf tiles");
+    HttpResponse bad = check_xyz(pkg_.tiling, name_, r, min_zoom, max_zoom);
+    if (bad.status != 200) return bad;
+    std::lock_guard lock(mutex_);  // one SQLite connection, one features cache
+    const auto blob = pkg_.reader->tile({r.z, r.x, r.y});
+    if (!blob) return text_response(204, "");
+    return bytes_response(encoder_.encode({r.z, r.x, r.y}, *blob),
+                          "application/vnd.mapbox-vector-tile", true);
+  }
+
+ private:
+  LinePackage pkg_;
+  std::string name_;
+  web::LineMvtEncoder encoder_;
+  std::map<std::string, std::set<uint32_t>> classes_in_;
+  std::mutex mutex_;
+};
+
+class PointService : public PackageService {
+ public:
+  PointService(const std::string& path, const std::string& name)
+      : pkg_(open_point_package(path)), name_(name) {
+    const tileformat::Bounds& b = pkg_.meta.common.lonlat;
+    west = b.min_x, south = b.min_y, east = b.max_x, north = b.max_y;
+    min_zoom = pkg_.meta.common.min_zoom, max_zoom = pkg_.meta.common.max_zoom;
+  }
+  std::string kind() const override { return "points"; }
+  HttpResponse tilejson(const std::string& base) override {
+    return json_response(tilejson_text(*this, name_, base + "/{z}/{x}/{y}.pbf",
+                                       "\"format\":\"pbf\",\"vector_layers\":" +
+                                           web::vector_layers_json(web::point_mvt_fields(pkg_))));
+  }
+  HttpResponse answer(const Route& r, const HttpRequest&, const std::string& base) override {
+    if (r.kind == Route::Kind::kStyleJson)
+      return json_response(web::point_style_json(pkg_, base + ".json"));
+    if (r.kind != Route::Kind::kTile || (r.extension != "pbf" && r.extension != "mvt"))
+      return text_response(404, "a point package has style.json and .pbf tiles");
+    HttpResponse bad = check_xyz(pkg_.meta.common.tiling, name_, r, min_zoom, max_zoom);
+    if (bad.status != 200) return bad;
+    std::optional<std::vector<uint8_t>> blob;
+    {
+      std::lock_guard lock(mutex_);
+      blob = pkg_.reader->tile({r.z, r.x, r.y});
+    }
+    if (!blob) return text_response(204, "");
+    return bytes_response(web::point_tile_mvt(pkg_, {r.z, r.x, r.y}, *blob),
+                          "application/vnd.mapbox-vector-tile", true);
+  }
+
+ private:
+  PointPackage pkg_;
+  std::string name_;
+  std::mutex mutex_;
+};
+
+// A PMTiles v3 archive: its bytes, read on demand (ranges by the HTTP layer).
+class PmtilesService : public PackageService {
+ public:
+  PmtilesService(const std::string& path, const std::string& name) : path_(path), name_(name) {
+    fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd_ < 0) throw InputError(path + ": cannot open (" + std::strerror(errno) + ")");
+    unsigned char h[127];
+    if (::pread(fd_, h, sizeof h, 0) != ssize_t(sizeof h) || std::memcmp(h, "PMTiles", 7) != 0 ||
+        h[7] != 3) {
+      ::close(fd_);
+      throw InputError(path + ": not a PMTiles v3 archive (the header's magic or version)");
+    }
+    size_ = uint64_t(::lseek(fd_, 0, SEEK_END));
+    auto i32 = [&](int at) {
+      return int32_t(uint32_t(h[at]) | uint32_t(h[at + 1]) << 8 | uint32_t(h[at + 2]) << 16 |
+                     uint32_t(h[at + 3]) << 24);
+    };
+    min_zoom = h[100], max_zoom = h[101];
+    west = i32(102) / 1e7, south = i32(106) / 1e7, east = i32(110) / 1e7, north = i32(114) / 1e7;
+  }
+  ~PmtilesService() override { ::close(fd_); }
+  std::string kind() const override { return "pmtiles"; }
+  HttpResponse tilejson(const std::string&) override {
+    return text_response(404, name_ +
+                                  ".pmtiles holds its own metadata; read it with a PMTiles "
+                                  "client from /" +
+                                  name_ + ".pmtiles");
+  }
+  HttpResponse answer(const Route& r, const HttpRequest&, const std::string&) override {
+    if (r.kind != Route::Kind::kPmtiles)
+      return text_response(404, name_ + " is a PMTiles archive: /" + name_ + ".pmtiles");
+    HttpResponse out;
+    out.content_type = "application/vnd.pmtiles";
+    out.stream_size = size_;
+    const int fd = fd_;
+    out.stream = [fd](uint64_t offset, uint64_t length, std::string& chunk) {
+      chunk.resize(length);
+      const ssize_t n = ::pread(fd, chunk.data(), length, off_t(offset));
+      if (n <= 0) return false;
+      chunk.resize(size_t(n));
+      return true;
+    };
+    return out;
+  }
+
+ private:
+  std::string path_, name_;
+  int fd_ = -1;
+  uint64_t size_ = 0;
+};
+
+}  // namespace
+
+HttpResponse text_response(int status, const std::string& text) {
+  HttpResponse r;
+  r.status = status;
+  r.body = text.empty() ? text : text + "\n";
+  return r;
+}
+
+std::unique_ptr<PackageService> open_service(const std::string& path, const std::string& name,
+                                             int) {
+  if (path.size() > 8 && path.compare(path.size() - 8, 8, ".pmtiles") == 0)
+    return std::make_unique<PmtilesService>(path, name);
+  const std::optional<tileformat::PackageKind> kind = package_kind(path);
+  if (!kind) throw InputError(path + ": not a package of this project nor a .pmtiles file");
+  switch (*kind) {
+    case tileformat::PackageKind::kTerrain:
+      return std::make_unique<TerrainService>(path, name);
+    case tileformat::PackageKind::kImage:
+      return std::make_unique<ImageService>(path, name);
+    case tileformat::PackageKind::kLines:
+      return std::make_unique<LineService>(path, name);
+    case tileformat::PackageKind::kPoints:
+      return std::make_unique<PointService>(path, name);
+    default:
+      throw InputError(path +
+                       ": analysis packages have no web format yet; serve the terrain package");
+  }
+}
+
+}  // namespace globe::serve

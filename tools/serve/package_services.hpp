@@ -1,0 +1,41 @@
+// What globe-serve answers for one package (docs/serve.md): one service per
+// package kind, each answering its routes from the package opened read-only.
+// Terrain: quantized-mesh (layer.json, .terrain, TMS rows) and raster-DEM PNG
+// (?encoding=terrarium|terrain-rgb) cut on the fly; images: tiles as stored;
+// lines, bundles and points: MVT and a MapLibre style; a .pmtiles file: its
+// bytes (ranges applied by the HTTP layer). Every service is safe to call
+// from several threads.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "http_server.hpp"
+#include "url_route.hpp"
+
+namespace globe::serve {
+
+class PackageService {
+ public:
+  virtual ~PackageService() = default;
+  // "terrain", "images", "lines", "points", "pmtiles".
+  virtual std::string kind() const = 0;
+  // TileJSON 3.0.0 with tile URLs under `base` (http://host:port/NAME).
+  virtual HttpResponse tilejson(const std::string& base) = 0;
+  // kTile, kLayerJson, kStyleJson, kPmtiles; 404 for routes the kind lacks.
+  virtual HttpResponse answer(const Route& route, const HttpRequest& request,
+                              const std::string& base) = 0;
+  // For the preview page: lon/lat bounds and zooms.
+  double west = -180, south = -85, east = 180, north = 85;
+  int min_zoom = 0, max_zoom = 0;
+};
+
+// Opens a package (or a .pmtiles file) as its service; `name` is its stem.
+// Throws InputError naming the file if it cannot be read.
+std::unique_ptr<PackageService> open_service(const std::string& path, const std::string& name,
+                                             int threads);
+
+// A response with status, plain-text reason.
+HttpResponse text_response(int status, const std::string& text);
+
+}  // namespace globe::serve

@@ -1,0 +1,36 @@
+// Every request globe-serve answers (docs/serve.md): the route, then the
+// package service or page; and what every answer carries: CORS, ETag (with
+// 304 for If-None-Match), Cache-Control, gzip for clients that accept it.
+#pragma once
+
+#include <string>
+
+#include "http_server.hpp"
+#include "package_registry.hpp"
+
+namespace globe::serve {
+
+struct HandlerOptions {
+  std::string lib_dir;           // the npm packages served under /lib ("" = none)
+  std::string lib_url = "/lib";  // where the preview pages load MapLibre, CesiumJS, pmtiles
+  std::string fallback_host;     // host:port when a request has no usable Host header
+  bool log = true;               // one line per request on stderr
+};
+
+class RequestHandler {
+ public:
+  RequestHandler(PackageRegistry& registry, HandlerOptions options);
+  HttpResponse operator()(const HttpRequest& request);
+  // Set once the port is known, before the first request.
+  void set_fallback_host(const std::string& host) { options_.fallback_host = host; }
+
+ private:
+  HttpResponse route(const HttpRequest& request);
+  HttpResponse library_file(const std::string& file);
+
+  PackageRegistry& registry_;
+  HandlerOptions options_;
+  std::string lib_root_;  // canonical lib_dir
+};
+
+}  // namespace globe::serve
