@@ -4,8 +4,9 @@
 // JSON on stdout. The page's console goes to stderr.
 //
 // usage: node run_page.mjs [options] PAGE
-//   PAGE               a local .html file (its folder is served at /page/) or a
-//                      URL path on the server, e.g. /data/view.html
+//   PAGE               a local .html file (its folder is served at /page/), a
+//                      URL path on the server, e.g. /data/view.html, or a whole
+//                      http:// URL (another server, e.g. globe-serve)
 //   --mount /P=DIR     serve DIR at /P (repeatable); /lib is always the npm cache's
 //                      node_modules (GLOBE_WEB_CACHE, default ~/.cache/globe-web)
 //   --query STR        query string appended to the page URL (without '?')
@@ -62,7 +63,8 @@ opt.mounts['/lib'] ??= path.join(cache, 'node_modules');
 const t0 = Date.now();
 const elapsed = () => ((Date.now() - t0) / 1000).toFixed(1) + 's';
 const server = await startServer({ mounts: opt.mounts });
-const url = `${server.url}${pagePath}${opt.query ? '?' + opt.query : ''}`;
+const url = (/^https?:\/\//.test(pagePath) ? pagePath : `${server.url}${pagePath}`) +
+  (opt.query ? (pagePath.includes('?') ? '&' : '?') + opt.query : '');
 const [w, h] = opt.viewport.split('x').map(Number);
 let browser;
 try {
