@@ -47,7 +47,8 @@ HttpServer::HttpServer(const HttpServerOptions& options, Handler handler)
       out.status = 500;
       out.body = std::string("internal error: ") + e.what() + "\n";
     }
-    res.status = out.status;
+    // 200 is left to the library, which makes it 206 for a range request.
+    if (out.status != 200) res.status = out.status;
     for (const auto& [k, v] : out.headers)
       res.set_header(k, v);
     if (out.stream) {

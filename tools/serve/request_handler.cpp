@@ -45,6 +45,34 @@ std::string host_of(const HttpRequest& req, const std::string& fallback) {
   return h;
 }
 
+// Whether a Range header can be satisfied from `size` bytes (RFC 9110
+// 14.1.2: some range starts before the end, or a suffix range is not
+// empty). The HTTP library slices the body but, for bodies read on demand,
+// does not refuse ranges past the end.
+bool satisfiable(const std::string& range, uint64_t size) {
+  if (range.rfind("bytes=", 0) != 0) return true;  // not a byte range: ignored
+  size_t at = 6;
+  while (at <= range.size()) {
+    const size_t comma = range.find(',', at);
+    std::string part =
+        range.substr(at, comma == std::string::npos ? std::string::npos : comma - at);
+    part.erase(0, part.find_first_not_of(' '));
+    const size_t dash = part.find('-');
+    if (dash != std::string::npos) {
+      const std::string first = part.substr(0, dash), last = part.substr(dash + 1);
+      const bool digits = first.find_first_not_of("0123456789") == std::string::npos &&
+                          last.find_first_not_of("0123456789") == std::string::npos &&
+                          first.size() <= 19 && last.size() <= 19;
+      if (digits && first.empty() && !last.empty() && std::stoull(last) > 0 && size > 0)
+        return true;
+      if (digits && !first.empty() && std::stoull(first) < size) return true;
+    }
+    if (comma == std::string::npos) break;
+    at = comma + 1;
+  }
+  return false;
+}
+
 }  // namespace
 
 RequestHandler::RequestHandler(PackageRegistry& registry, HandlerOptions options)
@@ -132,6 +160,12 @@ HttpResponse RequestHandler::operator()(const HttpRequest& req) {
     out.headers.push_back({"Allow", "GET, HEAD, OPTIONS"});
   } else {
     out = route(req);
+  }
+  if (out.stream && !req.header("range").empty() &&
+      !satisfiable(req.header("range"), out.stream_size)) {
+    const uint64_t size = out.stream_size;
+    out = text_response(416, "");
+    out.headers.push_back({"Content-Range", "bytes */" + std::to_string(size)});
   }
   out.headers.push_back({"Access-Control-Allow-Origin", "*"});
   out.headers.push_back({"Access-Control-Expose-Headers", "ETag, Content-Range, Content-Length"});
