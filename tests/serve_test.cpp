@@ -1,0 +1,351 @@
+// globe-serve (docs/serve.md) as users run it, over a raw HTTP client
+// written in the test (serve_fixtures.hpp): the tiles it cuts on the fly are
+// the exports' bytes (themselves checked against the spec readers and
+// analytic surfaces in web_quantized_mesh_test.cpp and web_export_test.cpp),
+// the HTTP contract (status codes, ETag, CORS, gzip, ranges), a hostile
+// request corpus after which it still serves, and packages replaced on disk.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <set>
+
+#include "serve_fixtures.hpp"
+#include "spec_readers/gunzip.hpp"
+#include "spec_readers/pmtiles_reader.hpp"
+#include "spec_readers/quantized_mesh_reader.hpp"
+#include "test_support.hpp"
+#include "tileformat/json.hpp"
+#include "web_surfaces.hpp"
+
+namespace {
+
+using namespace globe_test;
+namespace pmr = spec_readers::pmtiles;
+
+// A line package and a point package of a few European features, built once.
+const fs::path& vector_packages() {
+  static const fs::path dir = shared_folder("serve-vectors", [](const fs::path& d) {
+    std::ofstream(d / "roads.geojson")
+        << R"({"type":"FeatureCollection","features":[)"
+        << R"({"type":"Feature","properties":{"kind":"road","name":"A1"},"geometry":{"type":"LineString","coordinates":[[6.1,46.2],[6.6,46.5],[7.4,46.9],[8.5,47.4],[9.4,47.4]]}},)"
+        << R"({"type":"Feature","properties":{"kind":"river","name":"Aare"},"geometry":{"type":"LineString","coordinates":[[7.0,46.9],[7.4,46.95],[7.9,47.3],[8.2,47.6]]}}]})";
+    std::ofstream(d / "towns.csv") << "lon,lat,people\n7.45,46.95,134000\n8.54,47.37,421000\n"
+                                      "6.14,46.2,203000\n7.59,47.56,173000\n";
+    return run_all(
+        {vectorize() + " lines -q " + (d / "roads.geojson").string() +
+             " --class-field kind --max-zoom 8 -o " + (d / "roads.mbtiles").string(),
+         vectorize() + " points -q " + (d / "towns.csv").string() +
+             " --xy lon,lat --fields people --max-zoom 8 -o " + (d / "towns.mbtiles").string()},
+        d);
+  });
+  return dir;
+}
+
+std::string gunzip(const std::string& bytes) {
+  return spec_readers::gunzip(bytes, "test: ", size_t(1) << 30);
+}
+
+}  // namespace
+
+// Quantized-mesh and raster-DEM tiles cut on the fly equal the exports';
+// layer.json lists the same tiles; 204 inside the pyramid, 404 past it, 400
+// for malformed paths.
+TEST(Serve, TerrainTilesAreTheExportsBytes) {
+  TempDir dir("serve-terrain");
+  const fs::path pkg = dir / "surf.mbtiles";
+  fs::copy_file(surface_dem() / "geodetic.mbtiles", pkg);
+  ASSERT_TRUE(run_all({tiler() + " export -q " + pkg.string() + " --format quantized-mesh -o " +
+                           (dir / "qm").string(),
+                       tiler() + " export -q " + pkg.string() + " --format terrarium -o " +
+                           (dir / "t.pmtiles").string()},
+                      dir.path()));
+  ServeProcess server({pkg.string()}, dir.path());
+  ASSERT_GT(server.port(), 0) << server.log();
+  const int port = server.port();
+
+  const HttpReply layer = http_get(port, "/surf/layer.json");
+  ASSERT_EQ(layer.status, 200);
+  const auto served = tileformat::JsonValue::parse(layer.body);
+  const auto exported = tileformat::JsonValue::parse(read_file(dir / "qm" / "layer.json"));
+  EXPECT_EQ(served.find("available")->text(), exported.find("available")->text());
+  EXPECT_EQ(served.find("tiles")->text(), exported.find("tiles")->text());
+
+  size_t tiles = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir / "qm")) {
+    if (e.path().extension() != ".terrain") continue;
+    const std::string rel = fs::relative(e.path(), dir / "qm").string();
+    const HttpReply r = http_get(port, "/surf/" + rel + "?v=1.0.0&extensions=octvertexnormals");
+    ASSERT_EQ(r.status, 200) << rel << ": " << r.body;
+    EXPECT_EQ(r.header("content-type"), "application/vnd.quantized-mesh");
+    EXPECT_TRUE(r.body == read_file(e.path())) << rel << " differs from the export";
+    ++tiles;
+  }
+  EXPECT_GT(tiles, 10u);
+  // Negotiated extensions: without them no normals; gzip when accepted.
+  const HttpReply plain = http_get(port, "/surf/0/1/0.terrain");
+  ASSERT_EQ(plain.status, 200);
+  EXPECT_FALSE(spec_readers::quantized_mesh::decode(plain.body).has_normals());
+  const HttpReply zipped =
+      http_get(port, "/surf/0/1/0.terrain",
+               "Accept: application/vnd.quantized-mesh;extensions=octvertexnormals\r\n"
+               "Accept-Encoding: gzip, deflate\r\n");
+  ASSERT_EQ(zipped.status, 200);
+  EXPECT_EQ(zipped.header("content-encoding"), "gzip");
+  EXPECT_TRUE(spec_readers::quantized_mesh::decode(gunzip(zipped.body)).has_normals());
+
+  // Raster-DEM PNG: the Terrarium PMTiles export's tiles.
+  const std::string archive = read_file(dir / "t.pmtiles");
+  const pmr::Header h = pmr::read_header(archive);
+  size_t pngs = 0;
+  for (const pmr::Entry& entry : pmr::validate_archive(archive)) {
+    const pmr::TileCoord t = pmr::tile_id_to_zxy(entry.tile_id);
+    if (pngs >= 12) break;
+    const HttpReply r = http_get(port, "/surf/" + std::to_string(t.z) + "/" + std::to_string(t.x) +
+                                           "/" + std::to_string(t.y) + ".png?encoding=terrarium");
+    ASSERT_EQ(r.status, 200) << int(t.z) << "/" << t.x << "/" << t.y;
+    EXPECT_EQ(r.header("content-type"), "image/png");
+    EXPECT_TRUE(r.body == archive.substr(h.tile_data_offset + entry.offset, entry.length));
+    ++pngs;
+  }
+  EXPECT_GT(pngs, 5u);
+
+  // The pyramid's edges.
+  EXPECT_EQ(http_get(port, "/surf/7/0/0.terrain").status, 204);  // zoom 7, no data there
+  EXPECT_EQ(http_get(port, "/surf/8/0/0.terrain").status, 404);  // past the finest zoom
+  EXPECT_EQ(http_get(port, "/surf/99/0/0.terrain").status, 404);
+  EXPECT_EQ(http_get(port, "/surf/2/99/0.terrain").status, 404);  // outside zoom 2
+  EXPECT_EQ(http_get(port, "/surf/2/a/0.terrain").status, 400);
+  EXPECT_EQ(http_get(port, "/surf/02/0/0.terrain").status, 400);
+  EXPECT_EQ(http_get(port, "/surf/2/0/0.gif").status, 400);
+  EXPECT_EQ(http_get(port, "/nope/2/0/0.terrain").status, 404);
+  EXPECT_EQ(http_get(port, "/surf/1/0/0.png?encoding=lerc").status, 400);
+  EXPECT_EQ(server.stop(), 0) << "SIGTERM should end it cleanly";
+}
+
+// MVT of line and point packages equal the exports' tiles; style.json and
+// TileJSON point at this server.
+TEST(Serve, VectorTilesAndStylesPointAtTheServer) {
+  TempDir dir("serve-vectors");
+  const fs::path& v = vector_packages();
+  ASSERT_TRUE(run_all({vectorize() + " export -q " + (v / "roads.mbtiles").string() + " -o " +
+                           (dir / "roads").string(),
+                       vectorize() + " export -q " + (v / "towns.mbtiles").string() + " -o " +
+                           (dir / "towns").string()},
+                      dir.path()));
+  ServeProcess server({(v / "roads.mbtiles").string(), (v / "towns.mbtiles").string()}, dir.path());
+  ASSERT_GT(server.port(), 0) << server.log();
+  const int port = server.port();
+  const std::string base = "http://127.0.0.1:" + std::to_string(port);
+  for (const std::string name : {"roads", "towns"}) {
+    size_t tiles = 0;
+    for (const auto& e : fs::recursive_directory_iterator(dir / name)) {
+      if (e.path().extension() != ".pbf") continue;
+      const std::string rel = fs::relative(e.path(), dir / name).string();
+      const HttpReply r = http_get(port, "/" + name + "/" + rel, "Accept-Encoding: gzip\r\n");
+      ASSERT_EQ(r.status, 200) << name << "/" << rel;
+      EXPECT_EQ(r.header("content-type"), "application/vnd.mapbox-vector-tile");
+      EXPECT_EQ(r.header("content-encoding"), "gzip");
+      EXPECT_TRUE(gunzip(r.body) == gunzip(read_file(e.path()))) << name << "/" << rel;
+      ++tiles;
+    }
+    EXPECT_GT(tiles, 3u) << name;
+    const auto tj = tileformat::JsonValue::parse(http_get(port, "/" + name + ".json").body);
+    EXPECT_EQ(tj.find("tilejson")->string(), "3.0.0");
+    EXPECT_EQ(tj.find("tiles")->array().at(0).string(), base + "/" + name + "/{z}/{x}/{y}.pbf");
+    const auto style =
+        tileformat::JsonValue::parse(http_get(port, "/" + name + "/style.json").body);
+    EXPECT_EQ(style.find("version")->number(), 8);
+    const auto& sources = style.find("sources")->members();
+    ASSERT_EQ(sources.size(), 1u);
+    EXPECT_EQ(sources[0].second.find("url")->string(), base + "/" + name + ".json");
+  }
+  // A tile inside the pyramid with nothing in it: 204.
+  EXPECT_EQ(http_get(port, "/roads/8/0/0.pbf").status, 204);
+}
+
+// The HTTP contract: ETag and 304, CORS and preflight, methods, PMTiles
+// ranges (206, 416), the preview pages and the libraries under /lib.
+TEST(Serve, HttpContractEtagCorsRangesPages) {
+  TempDir dir("serve-http");
+  const fs::path pkg = dir / "surf.mbtiles";
+  fs::copy_file(surface_dem() / "geodetic.mbtiles", pkg);
+  ASSERT_TRUE(run_all({tiler() + " export -q " + pkg.string() + " --format terrarium -o " +
+                       (dir / "dem.pmtiles").string()},
+                      dir.path()));
+  fs::create_directories(dir / "libs" / "demo");
+  std::ofstream(dir / "libs" / "demo" / "lib.js") << "export const x = 1;\n";
+  std::ofstream(dir / "secret.txt") << "not to be served\n";
+  fs::create_symlink(dir / "secret.txt", dir / "libs" / "demo" / "escape.js");
+  ServeProcess server(
+      {pkg.string(), (dir / "dem.pmtiles").string(), "--web-libs", (dir / "libs").string()},
+      dir.path());
+  ASSERT_GT(server.port(), 0) << server.log();
+  const int port = server.port();
+
+  const HttpReply tile = http_get(port, "/surf/0/1/0.terrain");
+  ASSERT_EQ(tile.status, 200);
+  EXPECT_EQ(tile.header("access-control-allow-origin"), "*");
+  const std::string etag = tile.header("etag");
+  ASSERT_FALSE(etag.empty());
+  EXPECT_FALSE(tile.header("cache-control").empty());
+  const HttpReply again = http_get(port, "/surf/0/1/0.terrain", "If-None-Match: " + etag + "\r\n");
+  EXPECT_EQ(again.status, 304);
+  EXPECT_TRUE(again.body.empty());
+  const HttpReply pre = http_get(port, "/surf/0/1/0.terrain", "", "OPTIONS");
+  EXPECT_EQ(pre.status, 204);
+  EXPECT_NE(pre.header("access-control-allow-methods").find("GET"), std::string::npos);
+  EXPECT_EQ(http_get(port, "/surf/0/1/0.terrain", "", "POST").status, 405);
+  const HttpReply head = http_get(port, "/surf/0/1/0.terrain", "", "HEAD");
+  EXPECT_EQ(head.status, 200);
+  EXPECT_EQ(head.header("content-length"), std::to_string(tile.body.size()));
+
+  const std::string archive = read_file(dir / "dem.pmtiles");
+  const HttpReply whole = http_get(port, "/dem.pmtiles");
+  ASSERT_EQ(whole.status, 200);
+  EXPECT_TRUE(whole.body == archive);
+  const HttpReply part = http_get(port, "/dem.pmtiles", "Range: bytes=0-126\r\n");
+  EXPECT_EQ(part.status, 206);
+  EXPECT_EQ(part.header("content-range"), "bytes 0-126/" + std::to_string(archive.size()));
+  EXPECT_TRUE(part.body == archive.substr(0, 127));
+  const HttpReply tail = http_get(port, "/dem.pmtiles", "Range: bytes=-10\r\n");
+  EXPECT_EQ(tail.status, 206);
+  EXPECT_TRUE(tail.body == archive.substr(archive.size() - 10));
+  EXPECT_EQ(http_get(port, "/dem.pmtiles",
+                     "Range: bytes=" + std::to_string(archive.size() + 10) + "-\r\n")
+                .status,
+            416);
+
+  const HttpReply index = http_get(port, "/");
+  EXPECT_EQ(index.status, 200);
+  EXPECT_NE(index.body.find("/view/cesium.html?pkg=surf"), std::string::npos);
+  EXPECT_NE(index.body.find("/dem.pmtiles"), std::string::npos);
+  EXPECT_EQ(http_get(port, "/view/maplibre.html").status, 200);
+  EXPECT_EQ(http_get(port, "/lib/demo/lib.js").body, "export const x = 1;\n");
+  EXPECT_EQ(http_get(port, "/lib/demo/lib.js").header("content-type"),
+            "text/javascript; charset=utf-8");
+  EXPECT_EQ(http_get(port, "/lib/demo/escape.js").status, 404) << "a symlink out of the libraries";
+}
+
+// A hostile corpus against a running server: traversal in every spelling,
+// overlong request lines and headers, bad ranges, huge and non-numeric
+// coordinates, junk bytes, half-closed and silent connections. Nothing
+// outside the packages is served, every answer is an error, the server
+// stays up and still serves a valid tile.
+TEST(Serve, HostileRequestsNeverTakeItDown) {
+  TempDir dir("serve-hostile");
+  const fs::path pkg = dir / "surf.mbtiles";
+  fs::copy_file(surface_dem() / "geodetic.mbtiles", pkg);
+  fs::create_directories(dir / "libs" / "x");
+  std::ofstream(dir / "libs" / "x" / "a.js") << "1;\n";
+  ServeProcess server(
+      {pkg.string(), "--timeout", "1", "-j", "2", "--web-libs", (dir / "libs").string()},
+      dir.path());
+  ASSERT_GT(server.port(), 0) << server.log();
+  const int port = server.port();
+  const std::string host = "Host: 127.0.0.1\r\nConnection: close\r\n";
+  const std::vector<std::string> targets = {"/lib/../../../../etc/passwd",
+                                            "/lib/%2e%2e/%2e%2e/%2e%2e/etc/passwd",
+                                            "/lib/x/%2e%2e%2f%2e%2e%2fetc%2fpasswd",
+                                            "/..%2f..%2fetc%2fpasswd",
+                                            "//etc/passwd",
+                                            "/lib//etc/passwd",
+                                            "/lib/x/..%5c..%5cetc%5cpasswd",
+                                            "/surf/../../etc/passwd",
+                                            "/%00/x",
+                                            "/lib/x/a.js%00.png",
+                                            "/etc/passwd",
+                                            "/surf/1/0/0.terrain/../../../etc/passwd",
+                                            "/surf/99999999999999999999/0/0.terrain",
+                                            "/surf/-1/0/0.terrain",
+                                            "/surf/1/0/-0.terrain",
+                                            "/surf/1/0x1/0.terrain",
+                                            "/surf/1/0/0.terrain.exe",
+                                            "/surf.json/../surf.json",
+                                            "/" + std::string(9000, 'a'),
+                                            "http://evil.example/surf.json",
+                                            "*"};
+  for (const std::string& t : targets) {
+    const std::string in = raw_exchange(port, "GET " + t + " HTTP/1.1\r\n" + host + "\r\n");
+    const HttpReply r = parse_reply(in);
+    EXPECT_TRUE(r.status == 0 || r.status >= 400) << t << " answered " << r.status;
+    EXPECT_EQ(in.find("root:"), std::string::npos) << t << " served /etc/passwd";
+  }
+  const std::vector<std::string> raw = {
+      "GET /surf/0/1/0.terrain?extensions=" + std::string(3000, 'x') + " HTTP/1.1\r\n" + host +
+          "\r\n",
+      "GET /surf/0/1/0.terrain HTTP/1.1\r\nHost: x\r\nX-Big: " + std::string(20000, 'b') +
+          "\r\n\r\n",
+      "GET /surf/0/1/0.terrain HTTP/1.1\r\nHost: x\r\nRange: bytes=99999999999999999999-\r\n"
+      "Connection: close\r\n\r\n",
+      "GET /surf/0/1/0.terrain HTTP/1.1\r\nHost: x\r\nRange: bytes=5-2,junk\r\nConnection: "
+      "close\r\n\r\n",
+      "\x16\x03\x01\x02\x00\x01\x00\x01\xfc\x03\x03garbage that looks like TLS\r\n\r\n",
+      "GET /surf/0/1/0.terrain HTTP/9.9\r\n\r\n",
+      "BREW /surf HTTP/1.1\r\nHost: x\r\n\r\n",
+      "GET /surf/0/1/0.terrain HTTP/1.1\r\nHost: x\r\nContent-Length: 99999999999\r\n\r\nabc",
+      std::string(100000, 'G'),
+  };
+  for (const std::string& r : raw) {
+    const std::string in = raw_exchange(port, r, 4000);
+    const HttpReply reply = parse_reply(in);
+    EXPECT_NE(reply.status, 500) << r.substr(0, 60);
+  }
+  // Half-closed mid-request, and a client that never sends: both end.
+  raw_exchange(port, "GET /surf/1/1/0.terr", 3000, true);
+  const auto t0 = std::chrono::steady_clock::now();
+  raw_exchange(port, "", 8000);
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(7))
+      << "a silent client was not timed out (--timeout 1)";
+  // Still alive, still serving.
+  ASSERT_TRUE(server.alive()) << server.log();
+  const HttpReply ok = http_get(port, "/surf/0/1/0.terrain");
+  EXPECT_EQ(ok.status, 200);
+  EXPECT_NO_THROW(spec_readers::quantized_mesh::decode(ok.body));
+}
+
+// A package replaced on disk (a rebuild renamed over it) is served from the
+// new file; one that disappears is refused clearly (503) until it is back.
+TEST(Serve, ReplacedPackagesArePickedUp) {
+  TempDir dir("serve-replace");
+  const fs::path pkg = dir / "surf.mbtiles";
+  fs::copy_file(surface_dem() / "geodetic.mbtiles", pkg);
+  ServeProcess server({pkg.string()}, dir.path());
+  ASSERT_GT(server.port(), 0) << server.log();
+  const int port = server.port();
+  const HttpReply before = http_get(port, "/surf.json");
+  ASSERT_EQ(before.status, 200);
+  fs::copy_file(surface_dem() / "mercator.mbtiles", dir / "new.tmp");
+  fs::rename(dir / "new.tmp", pkg);
+  const HttpReply after = http_get(port, "/surf.json");
+  ASSERT_EQ(after.status, 200);
+  EXPECT_NE(after.body, before.body) << "still the old package";
+  fs::rename(pkg, dir / "away.mbtiles");
+  const HttpReply gone = http_get(port, "/surf.json");
+  EXPECT_EQ(gone.status, 503);
+  EXPECT_NE(gone.body.find("gone"), std::string::npos) << gone.body;
+  fs::rename(dir / "away.mbtiles", pkg);
+  EXPECT_EQ(http_get(port, "/surf.json").status, 200);
+}
+
+// Start-up errors: two inputs with one name, a missing file, a port in use.
+TEST(Serve, RefusesDuplicateNamesMissingFilesAndBusyPorts) {
+  TempDir dir("serve-cli");
+  fs::create_directories(dir / "a");
+  fs::copy_file(surface_dem() / "geodetic.mbtiles", dir / "surf.mbtiles");
+  fs::copy_file(surface_dem() / "geodetic.mbtiles", dir / "a" / "surf.mbtiles");
+  const RunResult dup = run(serve_path() + " " + (dir / "surf.mbtiles").string() + " " +
+                                (dir / "a" / "surf.mbtiles").string(),
+                            dir.path());
+  EXPECT_EQ(dup.exit_code, 2) << dup.err;
+  EXPECT_NE(dup.err.find("/surf"), std::string::npos) << dup.err;
+  const RunResult missing = run(serve_path() + " " + (dir / "none.mbtiles").string(), dir.path());
+  EXPECT_EQ(missing.exit_code, 1) << missing.err;
+  EXPECT_NE(missing.err.find("none.mbtiles"), std::string::npos) << missing.err;
+  ServeProcess first({(dir / "surf.mbtiles").string()}, dir.path());
+  ASSERT_GT(first.port(), 0);
+  const RunResult busy = run(serve_path() + " " + (dir / "surf.mbtiles").string() + " --port " +
+                                 std::to_string(first.port()),
+                             dir.path());
+  EXPECT_EQ(busy.exit_code, 3) << busy.err;
+  EXPECT_NE(busy.err.find("cannot listen"), std::string::npos) << busy.err;
+}
