@@ -13,7 +13,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(mblock image_tile line_tile point_tile analysis_block package)
+[ ${#targets[@]} -eq 0 ] && targets=(mblock image_tile line_tile point_tile analysis_block package url_route)
 
 # (Both stages run as functions under `stage`, where `set -e` does not
 # apply: each step's failure is returned explicitly.)
@@ -26,7 +26,7 @@ build_fuzz() {
 # One target per core at a time; each writes its own log.
 fuzz_one() {
   local t=$1
-  mkdir -p "build-fuzz/corpus/$t" "build-fuzz/crashes/$t"
+  mkdir -p "build-fuzz/corpus/$t" "build-fuzz/crashes/$t" "build-fuzz/seeds/$t"
   local dirs=("build-fuzz/corpus/$t" "build-fuzz/seeds/$t")
   [ -d "tests/data/fuzz/$t" ] && dirs+=("tests/data/fuzz/$t")
   UBSAN_OPTIONS=print_stacktrace=1 "build-fuzz/tests/fuzz/fuzz_$t" \

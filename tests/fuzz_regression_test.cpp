@@ -62,6 +62,13 @@ TEST(FuzzRegression, AnalysisBlockInputs) {
     globe_fuzz::analysis_block(bytes);
 }
 
+TEST(FuzzRegression, UrlRouteInputs) {
+  const auto all = inputs("url_route");
+  EXPECT_FALSE(all.empty());
+  for (const auto& bytes : all)
+    globe_fuzz::url_route(bytes);
+}
+
 TEST(FuzzRegression, PackageInputs) {
   globe_test::TempDir dir;
   const auto all = inputs("package");

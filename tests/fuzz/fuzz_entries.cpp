@@ -2,6 +2,7 @@
 #include "fuzz_entries.hpp"
 
 #include <bit>
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -14,6 +15,7 @@
 #include "tileformat/metadata.hpp"
 #include "tileformat/package.hpp"
 #include "tileformat/point_tile.hpp"
+#include "url_route.hpp"
 
 namespace globe_fuzz {
 namespace {
@@ -155,6 +157,25 @@ void package(std::span<const uint8_t> data, const std::string& scratch_path) {
     });
   });
   std::remove(scratch_path.c_str());
+}
+
+void url_route(std::span<const uint8_t> data) {
+  const std::string path(reinterpret_cast<const char*>(data.data()), data.size());
+  const globe::serve::Route r = globe::serve::parse_route(path);
+  using Kind = globe::serve::Route::Kind;
+  if (r.kind == Kind::kTile && (r.z < 0 || r.z > globe::serve::kMaxZoom || r.name.empty()))
+    fail("url_route: a tile route out of range");
+  if (r.kind == Kind::kLibrary) {
+    const std::string f = "/" + r.file + "/";
+    if (f.find("/../") != std::string::npos || f.find("/./") != std::string::npos ||
+        f.find("//") != std::string::npos || f.find('\\') != std::string::npos)
+      fail("url_route: a library path that leaves its folder");
+  }
+  if (r.kind != Kind::kBadRequest && r.kind != Kind::kNotFound && r.kind != Kind::kIndex &&
+      r.kind != Kind::kLibrary && r.kind != Kind::kViewer)
+    for (char c : r.name)
+      if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-'))
+        fail("url_route: a package name with a character outside [A-Za-z0-9._-]");
 }
 
 }  // namespace globe_fuzz

@@ -25,6 +25,10 @@ void point_tile(std::span<const uint8_t> data);
 // decode_analysis_block; what decodes must re-encode and decode to the
 // same block.
 void analysis_block(std::span<const uint8_t> data);
+// The bytes as a request path for globe-serve's parse_route: never throws;
+// a tile route has a zoom <= 30 and a valid name; a library path has no
+// "." or ".." segment; anything else is a 400 or 404.
+void url_route(std::span<const uint8_t> data);
 // The bytes as a package file at `scratch_path`: open, read the metadata,
 // summaries, and every tile, decoding it by the package's format.
 void package(std::span<const uint8_t> data, const std::string& scratch_path);
