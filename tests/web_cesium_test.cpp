@@ -10,6 +10,7 @@
 
 #include "quantized_mesh_fixtures.hpp"
 #include "render_fixtures.hpp"
+#include "serve_fixtures.hpp"
 #include "tileformat/json.hpp"
 #include "web_fixtures.hpp"
 #include "web_surfaces.hpp"
@@ -110,4 +111,47 @@ TEST(WebCesium, RealReliefLitByTheVertexNormals) {
   EXPECT_TRUE(result.find("hasVertexNormals")->boolean());
   EXPECT_TRUE(result.find("rendered")->find("tilesLoaded")->boolean());
   expect_image(shot.string(), "cesium_jacksboro_lit");
+}
+
+// globe-serve in the real clients: CesiumJS samples the same heights from the
+// tiles the server cuts on the fly as from the static export (the same
+// tiles), and the server's own MapLibre preview of the terrain (raster-DEM
+// cut on the fly, the library served from its /lib) loads without an error.
+TEST(WebCesium, GlobeServeTerrainInCesiumAndItsMapLibrePreview) {
+  const fs::path& d = surface_dem();
+  TempDir dir("web-serve");
+  fs::copy_file(d / "geodetic.mbtiles", dir / "surf.mbtiles");
+  ASSERT_TRUE(run_all({tiler() + " export -q " + (dir / "surf.mbtiles").string() +
+                       " --format quantized-mesh -o " + (dir / "terrain").string()},
+                      dir.path()));
+  // The web cache, as run_web_page installs it, is what the server serves at /lib.
+  const RunResult cache =
+      run(std::string(GLOBE_TEST_DATA_DIR) + "/../../scripts/web-deps.sh", dir.path());
+  ASSERT_EQ(cache.exit_code, 0) << cache.err;
+  const std::string libs =
+      cache.out.substr(0, cache.out.find_last_not_of('\n') + 1) + "/node_modules";
+  ServeProcess server({(dir / "surf.mbtiles").string(), "--web-libs", libs}, dir.path());
+  ASSERT_GT(server.port(), 0) << server.log();
+  const std::string url = "http://127.0.0.1:" + std::to_string(server.port());
+  const std::string points = "points=11.3,46.2;12.7,47.1;13.5,45.6;10.9,47.7;12.02,46.55";
+  const RunResult served =
+      run_web_page("cesium_terrain.html", dir.path(), "terrain=" + url + "/surf/&" + points,
+                   dir / "served.png", dir.path());
+  ASSERT_EQ(served.exit_code, 0) << served.err << server.log();
+  const RunResult exported =
+      run_web_page("cesium_terrain.html", dir.path(), "terrain=/data/terrain&" + points,
+                   dir / "exported.png", dir.path());
+  ASSERT_EQ(exported.exit_code, 0) << exported.err;
+  const auto a = tileformat::JsonValue::parse(served.out).find("heights")->array();
+  const auto b = tileformat::JsonValue::parse(exported.out).find("heights")->array();
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t k = 0; k < a.size(); ++k)
+    EXPECT_NEAR(a[k].number(), b[k].number(), 1e-6) << "point " << k;
+  EXPECT_TRUE(tileformat::JsonValue::parse(served.out).find("hasVertexNormals")->boolean());
+
+  const RunResult preview = run_web_page(url + "/view/maplibre.html", dir.path(),
+                                         "pkg=surf&kind=terrain", dir / "preview.png", dir.path());
+  ASSERT_EQ(preview.exit_code, 0) << preview.err << server.log();
+  EXPECT_TRUE(tileformat::JsonValue::parse(preview.out).find("loaded")->boolean());
+  EXPECT_NE(server.log().find("GET /surf/"), std::string::npos) << "MapLibre asked for no tile";
 }

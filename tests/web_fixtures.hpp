@@ -37,8 +37,9 @@ inline std::vector<uint8_t> png_rgb(const std::string& bytes, int& w, int& h) {
   return rgb;
 }
 
-// Runs tests/web/pages/PAGE with /data serving `data` and the query string;
-// installs the browser and the npm packages first if missing.
+// Runs tests/web/pages/PAGE (or PAGE itself if it is an http:// URL) with
+// /data serving `data` and the query string; installs the browser and the
+// npm packages first if missing.
 inline RunResult run_web_page(const std::string& page, const fs::path& data,
                               const std::string& query, const fs::path& screenshot,
                               const fs::path& scratch, const std::string& viewport = "800x600") {
@@ -49,7 +50,8 @@ inline RunResult run_web_page(const std::string& page, const fs::path& data,
   const std::string dir = cache.out.substr(0, cache.out.find_last_not_of('\n') + 1);
   return run("GLOBE_WEB_CACHE=" + dir + " node " + web + "/run_page.mjs --timeout 90 --viewport " +
                  viewport + " --mount /data=" + data.string() + " --query '" + query +
-                 "' --screenshot " + screenshot.string() + " " + web + "/pages/" + page,
+                 "' --screenshot " + screenshot.string() + " " +
+                 (page.rfind("http://", 0) == 0 ? page : web + "/pages/" + page),
              scratch);
 }
 
