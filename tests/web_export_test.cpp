@@ -197,9 +197,9 @@ TEST(ExportDem, BadInputIsRefusedAndLeavesNothing) {
     }
   };
   const std::string out = (dir / "out.pmtiles").string();
-  refused(pkg + " -o " + out, 2, "give --format terrarium or terrain-rgb", out);
-  refused(pkg + " --format png -o " + out, 2, "--format: 'png' is not terrarium or terrain-rgb",
-          out);
+  refused(pkg + " -o " + out, 2, "give --format terrarium, terrain-rgb or quantized-mesh", out);
+  refused(pkg + " --format png -o " + out, 2,
+          "--format: 'png' is not terrarium, terrain-rgb or quantized-mesh", out);
   refused(pkg + " --format terrarium --tile-size 300 -o " + out, 2, "--tile-size: 256 or 512", out);
   refused((dir / "missing.mbtiles").string() + " --format terrarium -o " + out, 1,
           "missing.mbtiles", out);
