@@ -2,6 +2,7 @@
 #include "http_server.hpp"
 
 #include <httplib.h>
+#include <sys/socket.h>
 
 #include <algorithm>
 #include <cctype>
@@ -11,6 +12,7 @@ namespace globe::serve {
 
 struct HttpServer::Impl {
   HttpServerOptions options;
+  int socket = -1;  // the listening socket, once bound
   Handler handler;
   httplib::Server server;
 };
@@ -27,6 +29,13 @@ HttpServer::HttpServer(const HttpServerOptions& options, Handler handler)
   s.set_keep_alive_timeout(std::min(options.timeout_s, 5));
   s.set_keep_alive_max_count(100);
   s.set_payload_max_length(64 * 1024);  // requests carry no body worth reading
+  // SO_REUSEADDR but not the library's default SO_REUSEPORT, with which a
+  // second server on a busy port would share it instead of failing.
+  s.set_socket_options([this](socket_t sock) {
+    int yes = 1;
+    ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+    impl_->socket = sock;
+  });
   s.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
     HttpRequest in;
     in.method = req.method;
@@ -77,6 +86,10 @@ int HttpServer::bind() {
   } else if (!impl_->server.bind_to_port(o.bind.c_str(), o.port)) {
     port = -1;
   }
+  // The library listens with a backlog of 5: under a burst of connections
+  // the rest would wait for SYN retries (seconds). Listening again only
+  // raises the backlog.
+  if (port >= 0 && impl_->socket >= 0) ::listen(impl_->socket, SOMAXCONN);
   if (port < 0)
     throw std::runtime_error("cannot listen on " + o.bind + ":" + std::to_string(o.port) +
                              " (in use, or not an address of this machine); pick another "
