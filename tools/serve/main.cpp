@@ -33,6 +33,7 @@ int serve(const std::vector<std::string>& args) {
   using namespace globe;
   serve::HttpServerOptions http;
   serve::HandlerOptions handler;
+  serve::ServiceOptions services;
   handler.lib_dir = default_web_libs();
   http.threads = int(std::max(2u, std::thread::hardware_concurrency()));
   CliArgs cli("globe-serve",
@@ -66,6 +67,11 @@ int serve(const std::vector<std::string>& args) {
   cli.option("--lib-url", "URL",
              "where the preview pages load the libraries from instead of /lib (e.g. a CDN)",
              [&](const std::string& v) { handler.lib_url = v; });
+  cli.option("--cache-mb", "MB",
+             "memory for tiles cut on the fly, per terrain package (default 128)",
+             [&](const std::string& v) {
+               services.cache_bytes = size_t(CliArgs::to_int("--cache-mb", v, 0, 1 << 20)) << 20;
+             });
   cli.flag("-q,--quiet", "no line per request on stderr", [&] { handler.log = false; });
   const auto inputs = cli.parse_command(args, 1, 10000, "PACKAGE");
   if (!inputs) return kExitOk;
@@ -78,7 +84,7 @@ int serve(const std::vector<std::string>& args) {
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
   std::signal(SIGPIPE, SIG_IGN);
 
-  serve::PackageRegistry registry(*inputs, http.threads);
+  serve::PackageRegistry registry(*inputs, services);
   serve::HttpServer* server_ptr = nullptr;
   serve::RequestHandler handle(registry, handler);
   serve::HttpServer server(http, [&](const serve::HttpRequest& r) { return handle(r); });

@@ -17,8 +17,9 @@ bool PackageRegistry::stamp_of(const std::string& path, Stamp& out) {
   return true;
 }
 
-PackageRegistry::PackageRegistry(const std::vector<std::string>& paths, int threads)
-    : threads_(threads) {
+PackageRegistry::PackageRegistry(const std::vector<std::string>& paths,
+                                 const ServiceOptions& options)
+    : options_(options) {
   for (const std::string& path : paths) {
     auto slot = std::make_unique<Slot>();
     slot->path = path;
@@ -28,7 +29,7 @@ PackageRegistry::PackageRegistry(const std::vector<std::string>& paths, int thre
         throw UsageError(path + " and " + other->path + " would both be served as /" + slot->name +
                          "; rename one");
     if (!stamp_of(path, slot->stamp)) throw InputError(path + ": no such file");
-    slot->service = std::shared_ptr<PackageService>(open_service(path, slot->name, threads));
+    slot->service = std::shared_ptr<PackageService>(open_service(path, slot->name, options_));
     slots_.push_back(std::move(slot));
   }
 }
@@ -40,7 +41,7 @@ PackageRegistry::Found PackageRegistry::refreshed(Slot& slot) {
     return {nullptr, 503, slot.path + " is gone from the disk; it is served again once it is back"};
   if (!(now == slot.stamp)) {
     try {
-      slot.service = std::shared_ptr<PackageService>(open_service(slot.path, slot.name, threads_));
+      slot.service = std::shared_ptr<PackageService>(open_service(slot.path, slot.name, options_));
       slot.stamp = now;
     } catch (const std::exception& e) {
       return {nullptr, 503,

@@ -19,7 +19,7 @@ class PackageRegistry {
  public:
   // Opens every path; throws UsageError for two paths with the same stem and
   // InputError for one that cannot be served.
-  PackageRegistry(const std::vector<std::string>& paths, int threads);
+  PackageRegistry(const std::vector<std::string>& paths, const ServiceOptions& options);
 
   struct Found {
     std::shared_ptr<PackageService> service;  // nullptr: see `status` and `error`
@@ -51,7 +51,7 @@ class PackageRegistry {
   static bool stamp_of(const std::string& path, Stamp& out);
   Found refreshed(Slot& slot);
 
-  int threads_;
+  ServiceOptions options_;
   std::vector<std::unique_ptr<Slot>> slots_;
 };
 

@@ -27,6 +27,7 @@
 #include "raster_dem_tile.hpp"
 #include "terrain_package.hpp"
 #include "terrain_sampler.hpp"
+#include "tile_cache.hpp"
 #include "tileformat/image_tile.hpp"
 #include "tileformat/json.hpp"
 
@@ -98,8 +99,8 @@ class Pool {
 
 class TerrainService : public PackageService {
  public:
-  TerrainService(const std::string& path, const std::string& name)
-      : pkg_(open_terrain_package(path)), name_(name) {
+  TerrainService(const std::string& path, const std::string& name, size_t cache_bytes)
+      : pkg_(open_terrain_package(path)), name_(name), cache_(cache_bytes) {
     const tileformat::Bounds& b = pkg_.meta.common.lonlat;
     west = b.min_x, south = b.min_y, east = b.max_x, north = b.max_y;
     min_zoom = 0, max_zoom = pkg_.max_zoom;
@@ -152,6 +153,10 @@ class TerrainService : public PackageService {
     options.normals =
         req.header("accept").find("octvertexnormals") != std::string::npos ||
         (ext != req.query.end() && ext->second.find("octvertexnormals") != std::string::npos);
+    const std::string cache_key = "q" + std::to_string(r.z) + "/" + std::to_string(r.x) + "/" +
+                                  std::to_string(r.y) + (options.normals ? "n" : "");
+    if (auto hit = cache_.get(cache_key))
+      return bytes_response({hit->begin(), hit->end()}, "application/vnd.quantized-mesh", true);
     std::unique_ptr<web::MeshTileSource> source =
         meshes_.take([&] { return std::make_unique<web::MeshTileSource>(pkg_, read_mutex_); });
     std::vector<uint8_t> bytes;
@@ -164,8 +169,8 @@ class TerrainService : public PackageService {
       throw;
     }
     meshes_.give(std::move(source));
-    HttpResponse out = bytes_response(std::move(bytes), "application/vnd.quantized-mesh", true);
-    return out;
+    cache_.put(cache_key, std::make_shared<const std::string>(bytes.begin(), bytes.end()));
+    return bytes_response(std::move(bytes), "application/vnd.quantized-mesh", true);
   }
 
   HttpResponse dem_tile(const Route& r, const HttpRequest& req) {
@@ -182,6 +187,10 @@ class TerrainService : public PackageService {
                                     std::to_string(dem_max_zoom_));
     if (r.x >= (uint64_t{1} << r.z) || r.y >= (uint64_t{1} << r.z))
       return text_response(404, "tile outside zoom " + std::to_string(r.z));
+    const std::string cache_key = "d" + std::to_string(int(encoding)) + "/" + std::to_string(r.z) +
+                                  "/" + std::to_string(r.x) + "/" + std::to_string(r.y);
+    if (auto hit = cache_.get(cache_key))
+      return bytes_response({hit->begin(), hit->end()}, "image/png", false);
     std::unique_ptr<web::TerrainSampler> sampler =
         samplers_.take([&] { return std::make_unique<web::TerrainSampler>(pkg_, read_mutex_); });
     std::vector<uint8_t> png;
@@ -193,6 +202,7 @@ class TerrainService : public PackageService {
       throw;
     }
     samplers_.give(std::move(sampler));
+    cache_.put(cache_key, std::make_shared<const std::string>(png.begin(), png.end()));
     return bytes_response(std::move(png), "image/png", false);
   }
 
@@ -204,6 +214,7 @@ class TerrainService : public PackageService {
   std::mutex read_mutex_;
   Pool<web::MeshTileSource> meshes_;
   Pool<web::TerrainSampler> samplers_;
+  TileCache cache_;  // tiles cut on the fly
 };
 
 // Web mercator packages only: their rows are XYZ rows.
@@ -400,14 +411,14 @@ HttpResponse text_response(int status, const std::string& text) {
 }
 
 std::unique_ptr<PackageService> open_service(const std::string& path, const std::string& name,
-                                             int) {
+                                             const ServiceOptions& options) {
   if (path.size() > 8 && path.compare(path.size() - 8, 8, ".pmtiles") == 0)
     return std::make_unique<PmtilesService>(path, name);
   const std::optional<tileformat::PackageKind> kind = package_kind(path);
   if (!kind) throw InputError(path + ": not a package of this project nor a .pmtiles file");
   switch (*kind) {
     case tileformat::PackageKind::kTerrain:
-      return std::make_unique<TerrainService>(path, name);
+      return std::make_unique<TerrainService>(path, name, options.cache_bytes);
     case tileformat::PackageKind::kImage:
       return std::make_unique<ImageService>(path, name);
     case tileformat::PackageKind::kLines:

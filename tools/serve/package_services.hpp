@@ -30,10 +30,14 @@ class PackageService {
   int min_zoom = 0, max_zoom = 0;
 };
 
+struct ServiceOptions {
+  size_t cache_bytes = size_t(128) << 20;  // per terrain package: tiles cut on the fly
+};
+
 // Opens a package (or a .pmtiles file) as its service; `name` is its stem.
 // Throws InputError naming the file if it cannot be read.
 std::unique_ptr<PackageService> open_service(const std::string& path, const std::string& name,
-                                             int threads);
+                                             const ServiceOptions& options);
 
 // A response with status, plain-text reason.
 HttpResponse text_response(int status, const std::string& text);
