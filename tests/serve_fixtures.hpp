@@ -172,10 +172,12 @@ inline HttpReply parse_reply(const std::string& in) {
 
 // GET (or another method) with extra header lines ("Name: value\r\n"...).
 inline HttpReply http_get(int port, const std::string& target, const std::string& headers = "",
-                          const std::string& method = "GET") {
-  return parse_reply(raw_exchange(port, method + " " + target +
-                                            " HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(port) +
-                                            "\r\n" + headers + "Connection: close\r\n\r\n"));
+                          const std::string& method = "GET", int timeout_ms = 5000) {
+  return parse_reply(raw_exchange(port,
+                                  method + " " + target +
+                                      " HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(port) +
+                                      "\r\n" + headers + "Connection: close\r\n\r\n",
+                                  timeout_ms));
 }
 
 }  // namespace globe_test

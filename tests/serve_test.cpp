@@ -6,8 +6,12 @@
 // request corpus after which it still serves, and packages replaced on disk.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
+#include <mutex>
+#include <random>
 #include <set>
+#include <thread>
 
 #include "serve_fixtures.hpp"
 #include "spec_readers/gunzip.hpp"
@@ -343,9 +347,82 @@ TEST(Serve, RefusesDuplicateNamesMissingFilesAndBusyPorts) {
   EXPECT_NE(missing.err.find("none.mbtiles"), std::string::npos) << missing.err;
   ServeProcess first({(dir / "surf.mbtiles").string()}, dir.path());
   ASSERT_GT(first.port(), 0);
-  const RunResult busy = run(serve_path() + " " + (dir / "surf.mbtiles").string() + " --port " +
-                                 std::to_string(first.port()),
+  // (`timeout`: a server that wrongly starts must not hang the test.)
+  const RunResult busy = run("timeout 20 " + serve_path() + " " + (dir / "surf.mbtiles").string() +
+                                 " --port " + std::to_string(first.port()),
                              dir.path());
   EXPECT_EQ(busy.exit_code, 3) << busy.err;
   EXPECT_NE(busy.err.find("cannot listen"), std::string::npos) << busy.err;
+}
+
+// A bounded load on 127.0.0.1: 200 clients at once, each fetching random
+// tiles (quantized-mesh cut on the fly, MVT, raster-DEM) on its own
+// connection, 1,000 requests in all; every answer is the right bytes.
+// Latency and throughput are printed, not asserted (bench/serve.sh measures).
+TEST(Serve, TwoHundredConcurrentClientsAllAnsweredCorrectly) {
+  TempDir dir("serve-load");
+  const fs::path pkg = dir / "surf.mbtiles";
+  fs::copy_file(surface_dem() / "geodetic.mbtiles", pkg);
+  const fs::path& v = vector_packages();
+  ASSERT_TRUE(run_all({tiler() + " export -q " + pkg.string() + " --format quantized-mesh -o " +
+                           (dir / "qm").string(),
+                       vectorize() + " export -q " + (v / "roads.mbtiles").string() + " -o " +
+                           (dir / "roads").string()},
+                      dir.path()));
+  struct Expected {
+    std::string target, body;
+    bool gzipped;
+  };
+  std::vector<Expected> tiles;
+  for (const auto& e : fs::recursive_directory_iterator(dir / "qm"))
+    if (e.path().extension() == ".terrain")
+      tiles.push_back(
+          {"/surf/" + fs::relative(e.path(), dir / "qm").string() + "?extensions=octvertexnormals",
+           read_file(e.path()), false});
+  for (const auto& e : fs::recursive_directory_iterator(dir / "roads"))
+    if (e.path().extension() == ".pbf")
+      tiles.push_back({"/roads/" + fs::relative(e.path(), dir / "roads").string(),
+                       gunzip(read_file(e.path())), false});
+  ASSERT_GT(tiles.size(), 20u);
+  ServeProcess server({pkg.string(), (v / "roads.mbtiles").string(), "-j", "4", "--timeout", "30"},
+                      dir.path());
+  ASSERT_GT(server.port(), 0) << server.log();
+  const int port = server.port();
+
+  constexpr int kClients = 200, kRequests = 5;  // per client
+  std::mutex mutex;
+  std::vector<double> latency_ms;
+  int wrong = 0;
+  std::string first_wrong;
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<std::thread> clients;
+  for (int c = 0; c < kClients; ++c)
+    clients.emplace_back([&, c] {
+      std::mt19937 rng{uint32_t(c)};
+      for (int k = 0; k < kRequests; ++k) {
+        const Expected& t = tiles[rng() % tiles.size()];
+        const auto t0 = std::chrono::steady_clock::now();
+        const HttpReply r = http_get(port, t.target, "", "GET", 60000);
+        const double ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                .count();
+        std::lock_guard lock(mutex);
+        latency_ms.push_back(ms);
+        if (r.status != 200 || r.body != t.body) {
+          if (!wrong) first_wrong = t.target + ": " + std::to_string(r.status);
+          ++wrong;
+        }
+      }
+    });
+  for (std::thread& t : clients)
+    t.join();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(wrong, 0) << "first wrong answer: " << first_wrong;
+  EXPECT_EQ(latency_ms.size(), size_t(kClients * kRequests));
+  std::sort(latency_ms.begin(), latency_ms.end());
+  std::cerr << kClients << " clients, " << latency_ms.size() << " tiles in " << seconds << " s ("
+            << latency_ms.size() / seconds << " tiles/s): p50 " << latency_ms[latency_ms.size() / 2]
+            << " ms, p99 " << latency_ms[latency_ms.size() * 99 / 100] << " ms\n";
+  EXPECT_TRUE(server.alive());
 }
