@@ -9,9 +9,15 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "progress.hpp"
+#include "tile_output.hpp"
+#include "tileformat/metadata.hpp"
+#include "tileformat/package.hpp"
 
 namespace globe {
 
@@ -28,6 +34,18 @@ struct MvtExportSummary {
 };
 
 MvtExportSummary export_mvt(const MvtExportSettings& s, Progress& progress);
+
+// What both vector exports do around their tile encoder: refuse a tiling
+// other than web mercator, encode every tile of the package's zooms in
+// output order (`encode`: MVT bytes, empty for none), gzip each into the
+// output, let `describe` fill the description and vector_layers, finish the
+// output, and write `style(source_url)` to --style-json if asked.
+MvtExportSummary write_vector_tiles(
+    const MvtExportSettings& s, Progress& progress, tileformat::PackageReader& reader,
+    const tileformat::CommonMetadata& common,
+    const std::function<std::vector<uint8_t>(tileformat::TileId, std::span<const uint8_t>)>& encode,
+    const std::function<void(ExportInfo&)>& describe,
+    const std::function<std::string(const std::string&)>& style);
 
 // The URL a generated style gives its source, relative to the style's folder:
 // pmtiles://NAME.pmtiles, NAME.mbtiles, or DIR/metadata.json.
