@@ -75,21 +75,32 @@ uint64_t key(int z, uint32_t x, uint32_t y) {
   return uint64_t(z) << 58 | uint64_t(x) << 29 | y;
 }
 
-// A pool of per-thread helpers (samplers keep caches that are not shared).
+// A pool of helpers that keep caches of their own (samplers): a request
+// borrows one (made on demand) and the lease returns it, even on an exception.
 template <typename T>
 class Pool {
  public:
+  class Lease {
+   public:
+    Lease(Pool& pool, std::unique_ptr<T> item) : pool_(pool), item_(std::move(item)) {}
+    ~Lease() {
+      std::lock_guard lock(pool_.mutex_);
+      pool_.free_.push_back(std::move(item_));
+    }
+    T& operator*() { return *item_; }
+    T* operator->() { return item_.get(); }
+
+   private:
+    Pool& pool_;
+    std::unique_ptr<T> item_;
+  };
   template <typename Make>
-  std::unique_ptr<T> take(Make make) {
+  Lease take(Make make) {
     std::lock_guard lock(mutex_);
-    if (free_.empty()) return make();
+    if (free_.empty()) return Lease(*this, make());
     std::unique_ptr<T> t = std::move(free_.back());
     free_.pop_back();
-    return t;
-  }
-  void give(std::unique_ptr<T> t) {
-    std::lock_guard lock(mutex_);
-    free_.push_back(std::move(t));
+    return Lease(*this, std::move(t));
   }
 
  private:
@@ -157,18 +168,14 @@ class TerrainService : public PackageService {
                                   std::to_string(r.y) + (options.normals ? "n" : "");
     if (auto hit = cache_.get(cache_key))
       return bytes_response({hit->begin(), hit->end()}, "application/vnd.quantized-mesh", true);
-    std::unique_ptr<web::MeshTileSource> source =
-        meshes_.take([&] { return std::make_unique<web::MeshTileSource>(pkg_, read_mutex_); });
     std::vector<uint8_t> bytes;
-    try {
+    {
+      auto source =
+          meshes_.take([&] { return std::make_unique<web::MeshTileSource>(pkg_, read_mutex_); });
       const web::TileGrid grid = source->grid(id);
       const web::MeshErrors errors = source->errors(id);
       bytes = web::encode_mesh_tile(t, id, grid, errors, options);
-    } catch (...) {
-      meshes_.give(std::move(source));
-      throw;
     }
-    meshes_.give(std::move(source));
     cache_.put(cache_key, std::make_shared<const std::string>(bytes.begin(), bytes.end()));
     return bytes_response(std::move(bytes), "application/vnd.quantized-mesh", true);
   }
@@ -191,17 +198,13 @@ class TerrainService : public PackageService {
                                   "/" + std::to_string(r.x) + "/" + std::to_string(r.y);
     if (auto hit = cache_.get(cache_key))
       return bytes_response({hit->begin(), hit->end()}, "image/png", false);
-    std::unique_ptr<web::TerrainSampler> sampler =
-        samplers_.take([&] { return std::make_unique<web::TerrainSampler>(pkg_, read_mutex_); });
     std::vector<uint8_t> png;
-    try {
+    {
+      auto sampler =
+          samplers_.take([&] { return std::make_unique<web::TerrainSampler>(pkg_, read_mutex_); });
       png = web::raster_dem_tile(*sampler, pkg_.tiling, r.z, r.x, r.y, 256,
                                  web::raster_dem_source_zoom(pkg_, r.z, 256), encoding);
-    } catch (...) {
-      samplers_.give(std::move(sampler));
-      throw;
     }
-    samplers_.give(std::move(sampler));
     cache_.put(cache_key, std::make_shared<const std::string>(png.begin(), png.end()));
     return bytes_response(std::move(png), "image/png", false);
   }
