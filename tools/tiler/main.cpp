@@ -4,7 +4,8 @@
 // This executable links no GDAL. Loading GDAL and the hundred libraries it
 // needs costs about 0.1 CPU s at every start (on the CI machines), as much as
 // analyzing a 513^2 DEM; `analyze` reads and writes packages only, so it runs
-// here (as do --help and --version). Every other command runs in
+// here (as do --help and --version; `export --watermask` reads polygons with
+// OGR and does not). Every other command runs in
 // globe-tiler-gdal, the executable next to this one: exec'd in this process
 // with the same arguments, so its pid, signals, output and exit code are the
 // command's own (docs/architecture.md).
@@ -48,8 +49,16 @@ bool runs_here(const std::string& command) {
 
 }  // namespace
 
+// `export --watermask` reads polygons with OGR.
+bool needs_gdal(int argc, char** argv) {
+  for (int i = 2; i < argc; ++i)
+    if (std::string(argv[i]).rfind("--watermask", 0) == 0) return true;
+  return false;
+}
+
 int main(int argc, char** argv) {
-  if (argc > 1 && !runs_here(argv[1])) return run_in_gdal_executable(argc, argv);
+  if (argc > 1 && (!runs_here(argv[1]) || needs_gdal(argc, argv)))
+    return run_in_gdal_executable(argc, argv);
   globe::keep_tile_buffers_in_heap();
   return globe::run_command_tool("globe-tiler", GLOBE_VERSION, globe::kTilerUsage,
                                  {{"analyze", globe::run_analyze}, {"export", globe::run_export}},

@@ -250,6 +250,18 @@ std::vector<uint8_t> encode_mesh_tile(const tileformat::Tiling& tiling, TileId i
   std::sort(t.south.begin(), t.south.end(), by_u);
   std::sort(t.north.begin(), t.north.end(), by_u);
 
+  // Water mask: one byte for a tile all land or all water.
+  if (options.water_mask) {
+    double west, east, lat;
+    geo.lonlat(gx0, gy0, west, lat);
+    geo.lonlat(gx0 + n, gy0, east, lat);
+    if (east <= west) east += 360;  // the tile ending on the antimeridian
+    t.water_mask = options.water_mask(west, south_lat, east, north_lat);
+    if (!t.water_mask.empty() && std::all_of(t.water_mask.begin(), t.water_mask.end(),
+                                             [&](uint8_t b) { return b == t.water_mask[0]; }))
+      t.water_mask.resize(1);
+  }
+
   // Bounding sphere: the box's centre, the farthest vertex.
   Vec3 lo3{INFINITY, INFINITY, INFINITY}, hi3{-INFINITY, -INFINITY, -INFINITY};
   for (const Vec3& p : positions)
@@ -300,7 +312,8 @@ std::vector<std::vector<TileId>> mesh_tile_plan(TerrainPackage& package) {
 }
 
 std::string layer_json(const TerrainPackage& package, const std::vector<std::vector<TileId>>& plan,
-                       const std::string& name, const std::string& description, bool normals) {
+                       const std::string& name, const std::string& description, bool normals,
+                       bool water_mask) {
   const tileformat::Tiling& t = package.tiling;
   const tileformat::Bounds& b = package.meta.common.lonlat;
   auto number = [](double v) {
@@ -317,7 +330,8 @@ std::string layer_json(const TerrainPackage& package, const std::vector<std::vec
                   "\",\n  \"bounds\": [" + number(b.min_x) + ", " + number(b.min_y) + ", " +
                   number(b.max_x) + ", " + number(b.max_y) + "],\n  \"minzoom\": 0,\n" +
                   "  \"maxzoom\": " + std::to_string(plan.size() - 1) + ",\n  \"extensions\": [" +
-                  (normals ? "\"octvertexnormals\"" : "") + "],\n  \"available\": [";
+                  (normals ? "\"octvertexnormals\"" : "") + (normals && water_mask ? ", " : "") +
+                  (water_mask ? "\"watermask\"" : "") + "],\n  \"available\": [";
   // Per zoom, rectangles of TMS rows: runs of x in each row, merged over
   // consecutive rows with the same run.
   for (size_t z = 0; z < plan.size(); ++z) {

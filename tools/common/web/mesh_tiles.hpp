@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <list>
 #include <mutex>
 #include <optional>
@@ -59,6 +60,9 @@ struct MeshTileOptions {
   int finest_zoom = -1;
   double finest_error = 2.0;
   bool normals = true;  // extension octvertexnormals
+  // Extension watermask: 256 x 256 bytes of a longitude/latitude box (west,
+  // south, east, north), rows north to south, 255 water; none if empty.
+  std::function<std::vector<uint8_t>(double, double, double, double)> water_mask;
   double threshold(int z, int roots_x) const;
 };
 
@@ -81,6 +85,7 @@ std::vector<std::vector<tileformat::TileId>> mesh_tile_plan(TerrainPackage& pack
 // {version}, TMS rows, projection, extensions, availability of `plan`.
 std::string layer_json(const TerrainPackage& package,
                        const std::vector<std::vector<tileformat::TileId>>& plan,
-                       const std::string& name, const std::string& description, bool normals);
+                       const std::string& name, const std::string& description, bool normals,
+                       bool water_mask = false);
 
 }  // namespace globe::web

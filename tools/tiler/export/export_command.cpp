@@ -20,6 +20,7 @@ int run_export(const std::vector<std::string>& args) {
   int tile_size = 256;
   bool gzip = false, normals = true;
   double mesh_error = 1.0, finest_error = 2.0;
+  std::string watermask;
   CliArgs cli(
       "globe-tiler export",
       "globe-tiler export PACKAGE --format FORMAT -o OUT.pmtiles|OUT.mbtiles|DIR\n\n"
@@ -51,6 +52,10 @@ int run_export(const std::vector<std::string>& args) {
            "quantized-mesh: gzip each tile (the server must then send them with "
            "Content-Encoding: gzip)",
            [&] { gzip = true; });
+  cli.option("--watermask", "POLYGONS",
+             "quantized-mesh: water polygons (any OGR source) as each tile's water mask "
+             "(extension watermask: CesiumJS draws water there)",
+             [&](const std::string& v) { watermask = v; });
   cli.flag("--no-normals", "quantized-mesh: leave out the vertex normals",
            [&] { normals = false; });
   cli.option("--mesh-error", "F",
@@ -90,12 +95,15 @@ int run_export(const std::vector<std::string>& args) {
       throw UsageError(input +
                        " is a terrain package: give --format terrarium, terrain-rgb or "
                        "quantized-mesh");
+    if (!watermask.empty() && format != "quantized-mesh")
+      throw UsageError("--watermask is for --format quantized-mesh");
     if (format == "quantized-mesh") {
       MeshExportSettings m;
       m.input = input, m.output = o.output, m.force = o.force;
       m.threads = o.worker_threads();
       m.gzip = gzip, m.normals = normals, m.error_scale = mesh_error;
       m.finest_error = finest_error;
+      m.watermask = watermask;
       sum = export_quantized_mesh(m, progress);
     } else {
       DemExportSettings s;

@@ -20,6 +20,11 @@ namespace globe {
 
 using tileformat::TileId;
 
+std::function<WaterMask(const std::string& path)>& water_mask_factory() {
+  static std::function<WaterMask(const std::string&)> factory;
+  return factory;
+}
+
 ExportSummary export_quantized_mesh(const MeshExportSettings& s, Progress& progress) {
   const auto start = std::chrono::steady_clock::now();
   TerrainPackage pkg = open_terrain_package(s.input);
@@ -57,6 +62,11 @@ ExportSummary export_quantized_mesh(const MeshExportSettings& s, Progress& progr
   options.error_scale = s.error_scale;
   options.finest_zoom = pkg.max_zoom;
   options.finest_error = s.finest_error;
+  if (!s.watermask.empty()) {
+    if (!water_mask_factory())
+      throw UsageError("--watermask needs globe-tiler-gdal (run the export through globe-tiler)");
+    options.water_mask = water_mask_factory()(s.watermask);
+  }
   progress.begin("encode tiles", tiles.size());
   parallel_batches<NoInputs, std::vector<uint8_t>>(
       tiles.size(), s.threads, 16, [](size_t, size_t) { return NoInputs{}; },
@@ -85,8 +95,8 @@ ExportSummary export_quantized_mesh(const MeshExportSettings& s, Progress& progr
   info.min_zoom = 0, info.max_zoom = int(plan.size()) - 1;
   info.west = b.min_x, info.east = b.max_x, info.south = b.min_y, info.north = b.max_y;
   info.tms_rows = true;
-  info.side_files.push_back(
-      {"layer.json", web::layer_json(pkg, plan, info.name, info.description, s.normals)});
+  info.side_files.push_back({"layer.json", web::layer_json(pkg, plan, info.name, info.description,
+                                                           s.normals, !s.watermask.empty())});
   if (s.gzip) info.extra_json = "\"content_encoding\":\"gzip\"";
   ExportSummary sum;
   sum.tiles = out->tiles();

@@ -7,7 +7,10 @@
 // worker keeping the own errors of the last 64 tiles it saw.
 #pragma once
 
+#include <cstdint>
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "dem_export.hpp"
 #include "progress.hpp"
@@ -22,8 +25,16 @@ struct MeshExportSettings {
   bool normals = true;        // extension octvertexnormals
   double error_scale = 1.0;   // of CesiumJS's geometric error per level
   double finest_error = 2.0;  // metres, at the package's finest zoom
+  std::string watermask;      // OGR polygons of water ("" = no water mask)
 };
 
 ExportSummary export_quantized_mesh(const MeshExportSettings& s, Progress& progress);
+
+// --watermask: a water mask of polygons (256 x 256 bytes of a lon/lat box,
+// web/mesh_tiles.hpp). Reading them needs GDAL: globe-tiler-gdal installs the
+// factory (gdal_main.cpp), and globe-tiler hands exports with --watermask to
+// it. Unset: --watermask is refused.
+using WaterMask = std::function<std::vector<uint8_t>(double, double, double, double)>;
+std::function<WaterMask(const std::string& path)>& water_mask_factory();
 
 }  // namespace globe
