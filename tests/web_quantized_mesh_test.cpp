@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <random>
 #include <set>
 #include <sstream>
@@ -343,4 +344,44 @@ TEST(QuantizedMesh, RefusesLocalTilingsAndPmtiles) {
   EXPECT_EQ(local.exit_code, 2) << local.err;
   EXPECT_NE(local.err.find("local tiling"), std::string::npos) << local.err;
   EXPECT_FALSE(fs::exists(dir.path() / "out"));
+}
+
+// --watermask: water polygons (a box over the surface's west part) become
+// each tile's water mask (extension watermask, listed in layer.json): every
+// pixel of every tile, at its centre, water inside the box and land outside
+// (pixels within half a pixel of the box's edges may be either); tiles all
+// land or all water hold one byte.
+TEST(QuantizedMesh, WaterMaskFromPolygons) {
+  TempDir dir("qm-water");
+  std::ofstream(dir / "water.geojson")
+      << R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
+      << R"("geometry":{"type":"Polygon","coordinates":[[[9,44],[12,44],[12,47.3],[9,47.3],[9,44]]]}}]})";
+  const fs::path out = dir / "qm";
+  const RunResult r = run(tiler() + " export -q " + (surface_dem() / "geodetic.mbtiles").string() +
+                              " --format quantized-mesh -o " + out.string() + " --watermask " +
+                              (dir / "water.geojson").string(),
+                          dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(read_file(out / "layer.json").find("\"watermask\""), std::string::npos);
+  const MeshTiles tiles = read_mesh_folder(out, false);
+  size_t one_byte = 0, full = 0, wrong = 0;
+  for (const auto& [k, t] : tiles) {
+    ASSERT_TRUE(t.mesh.water_mask.has_value()) << t.z << "/" << t.x << "/" << t.y;
+    const std::vector<uint8_t>& mask = *t.mesh.water_mask;
+    (mask.size() == 1 ? one_byte : full)++;
+    const double w = t.rect.east - t.rect.west, h = t.rect.north - t.rect.south;
+    for (int row = 0; row < 256; ++row)
+      for (int col = 0; col < 256; ++col) {
+        const double lon = t.rect.west + (col + 0.5) / 256 * w;
+        const double lat = t.rect.north - (row + 0.5) / 256 * h;
+        const double dx = w / 256 / 2 + 1e-9, dy = h / 256 / 2 + 1e-9;
+        const bool in = lon > 9 + dx && lon < 12 - dx && lat > 44 + dy && lat < 47.3 - dy;
+        const bool out_ = lon < 9 - dx || lon > 12 + dx || lat < 44 - dy || lat > 47.3 + dy;
+        const uint8_t got = mask.size() == 1 ? mask[0] : mask[size_t(row) * 256 + col];
+        if ((in && got != 255) || (out_ && got != 0)) ++wrong;
+      }
+  }
+  EXPECT_EQ(wrong, 0u);
+  EXPECT_GT(one_byte, 0u);
+  EXPECT_GT(full, 0u);
 }
