@@ -12,6 +12,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "render_fixtures.hpp"
 #include "spec_readers/pmtiles_reader.hpp"
 #include "spec_readers/raster_dem.hpp"
 #include "tileformat/json.hpp"
@@ -172,7 +173,7 @@ TEST(WebMapLibre, BundlesAsMvtPmtilesDrawWithTheGeneratedStyle) {
   const RunResult page =
       run_web_page("maplibre_mvt.html", dir.path(),
                    "style=/data/style.json&pmtiles=/data/flights.pmtiles&center=-97,39&zoom=3.5",
-                   dir / "mvt.png", dir.path());
+                   dir / "mvt.png", dir.path(), "480x320");
   ASSERT_EQ(page.exit_code, 0) << page.err;
   const auto result = tileformat::JsonValue::parse(page.out);
   const RunResult rows = run("sqlite3 " + pkg +
@@ -194,4 +195,5 @@ TEST(WebMapLibre, BundlesAsMvtPmtilesDrawWithTheGeneratedStyle) {
   for (const char* heavy : {"bundles/weight-1", "bundles/weight-6"})
     EXPECT_TRUE(drawn.count(heavy)) << heavy << " not drawn; drawn: " << page.out.substr(0, 300);
   std::printf("MapLibre drew %zu features of %zu style layers\n", ids.size(), drawn.size());
+  expect_image((dir / "mvt.png").string(), "maplibre_us_flights_mvt");
 }

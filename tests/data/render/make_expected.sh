@@ -95,3 +95,11 @@ GLOBE_WEB_CACHE=$(scripts/web-deps.sh) node tests/web/run_page.mjs --viewport 48
   --mount /data="$tmp" --screenshot $out/cesium_jacksboro_lit.png \
   --query 'terrain=/data/qm&exaggeration=1.5&camera=-84.25,36.45,6000,0,-30&points=-84.2,36.55' \
   tests/web/pages/cesium_terrain.html > /dev/null
+# MapLibre GL JS (tests/web_maplibre_test.cpp): the bundled flights above as MVT
+# PMTiles drawn with the generated style.
+build/tools/vectorize/globe-vectorize export -q "$tmp/bundles.mbtiles" -o "$tmp/flights.pmtiles" \
+  --style-json "$tmp/style.json"
+GLOBE_WEB_CACHE=$(scripts/web-deps.sh) node tests/web/run_page.mjs --viewport 480x320 \
+  --mount /data="$tmp" --screenshot $out/maplibre_us_flights_mvt.png \
+  --query 'style=/data/style.json&pmtiles=/data/flights.pmtiles&center=-97,39&zoom=3.5' \
+  tests/web/pages/maplibre_mvt.html > /dev/null
