@@ -42,7 +42,9 @@ struct HttpResponse {
 struct HttpServerOptions {
   std::string bind = "127.0.0.1";
   int port = 8080;  // 0: any free port
-  int threads = 4;
+  // The library gives each connection a thread for its whole keep-alive
+  // life: threads bound the connections served at once, not the cores used.
+  int threads = 64;
   int timeout_s = 10;  // read and write timeouts
 };
 

@@ -35,7 +35,7 @@ int serve(const std::vector<std::string>& args) {
   serve::HandlerOptions handler;
   serve::ServiceOptions services;
   handler.lib_dir = default_web_libs();
-  http.threads = int(std::max(2u, std::thread::hardware_concurrency()));
+  http.threads = int(std::max(64u, 16 * std::thread::hardware_concurrency()));
   CliArgs cli("globe-serve",
               "globe-serve PACKAGE... [--bind ADDR] [--port N] [-j N]\n\n"
               "Serves packages over HTTP, each under its file stem NAME (docs/serve.md):\n"
@@ -53,8 +53,10 @@ int serve(const std::vector<std::string>& args) {
              [&](const std::string& v) { http.bind = v; });
   cli.option("--port", "N", "port (default 8080; 0: any free port, printed on stdout)",
              [&](const std::string& v) { http.port = CliArgs::to_int("--port", v, 0, 65535); });
-  cli.option("-j,--threads", "N", "worker threads (default: all cores, at least 2)",
-             [&](const std::string& v) { http.threads = CliArgs::to_int("-j", v, 1, 256); });
+  cli.option("-j,--threads", "N",
+             "connections served at once, a thread each while it is kept alive (default: 16 per "
+             "core, at least 64)",
+             [&](const std::string& v) { http.threads = CliArgs::to_int("-j", v, 1, 4096); });
   cli.option(
       "--timeout", "S",
       "seconds a client may take to send a request or read the answer "
