@@ -40,9 +40,10 @@ std::string number(double v) {
   return buf;
 }
 
+}  // namespace
+
 // A MapLibre style (version 8) drawing the classes as the viewer does:
 // casings under fills, class ids in order (higher on top).
-}  // namespace
 
 std::string line_style_json(const LinePackage& pkg,
                             const std::map<std::string, std::set<uint32_t>>& classes_in,
