@@ -139,7 +139,9 @@ inline bool run_all(const std::vector<std::string>& commands, const fs::path& di
 // A folder of inputs that the tests of one binary read and never change,
 // built once per build tree: ctest runs each TEST in a process of its own, so
 // a per-process fixture would be rebuilt for every test. The folder lives
-// under <build>/tests/shared/NAME; the first process builds it while the
+// under <build>/tests/shared/NAME.BINARY (one per test binary: two binaries'
+// stamps differ, so a shared folder would be rebuilt under the other's
+// readers); the first process builds it while the
 // others wait on a lock, and it is built again whenever the test binary, the
 // tools (both tiler executables) or the samples folder changed (their sizes
 // and times are the stamp).
@@ -148,7 +150,8 @@ inline bool run_all(const std::vector<std::string>& commands, const fs::path& di
 // build reads (a script of tests/data, say) that go into the stamp.
 template <class Build>
 fs::path shared_folder(const std::string& name, Build build, std::vector<fs::path> also = {}) {
-  const fs::path dir = fs::path(GLOBE_TEST_SHARED_DIR) / name;
+  const fs::path dir = fs::path(GLOBE_TEST_SHARED_DIR) /
+                       (name + "." + fs::read_symlink("/proc/self/exe").filename().string());
   fs::create_directories(dir.parent_path());
   const std::string lock_path = dir.string() + ".lock";
   const int lock = ::open(lock_path.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644);
