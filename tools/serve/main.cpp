@@ -70,7 +70,8 @@ int serve(const std::vector<std::string>& args) {
              "where the preview pages load the libraries from instead of /lib (e.g. a CDN)",
              [&](const std::string& v) { handler.lib_url = v; });
   cli.option("--cache-mb", "MB",
-             "memory for tiles cut on the fly, per terrain package (default 128)",
+             "memory per terrain package for decoded blocks, triangle errors and tiles cut on "
+             "the fly (default 512)",
              [&](const std::string& v) {
                services.cache_bytes = size_t(CliArgs::to_int("--cache-mb", v, 0, 1 << 20)) << 20;
              });

@@ -18,6 +18,7 @@
 #include "image_package.hpp"
 #include "line_mvt.hpp"
 #include "line_package.hpp"
+#include "lru_cache.hpp"
 #include "mesh_tiles.hpp"
 #include "mvt_encoder.hpp"
 #include "package_open.hpp"
@@ -27,7 +28,6 @@
 #include "raster_dem_tile.hpp"
 #include "terrain_package.hpp"
 #include "terrain_sampler.hpp"
-#include "tile_cache.hpp"
 #include "tileformat/image_tile.hpp"
 #include "tileformat/json.hpp"
 
@@ -75,43 +75,17 @@ uint64_t key(int z, uint32_t x, uint32_t y) {
   return uint64_t(z) << 58 | uint64_t(x) << 29 | y;
 }
 
-// A pool of helpers that keep caches of their own (samplers): a request
-// borrows one (made on demand) and the lease returns it, even on an exception.
-template <typename T>
-class Pool {
- public:
-  class Lease {
-   public:
-    Lease(Pool& pool, std::unique_ptr<T> item) : pool_(pool), item_(std::move(item)) {}
-    ~Lease() {
-      std::lock_guard lock(pool_.mutex_);
-      pool_.free_.push_back(std::move(item_));
-    }
-    T& operator*() { return *item_; }
-    T* operator->() { return item_.get(); }
-
-   private:
-    Pool& pool_;
-    std::unique_ptr<T> item_;
-  };
-  template <typename Make>
-  Lease take(Make make) {
-    std::lock_guard lock(mutex_);
-    if (free_.empty()) return Lease(*this, make());
-    std::unique_ptr<T> t = std::move(free_.back());
-    free_.pop_back();
-    return Lease(*this, std::move(t));
-  }
-
- private:
-  std::mutex mutex_;
-  std::vector<std::unique_ptr<T>> free_;
-};
-
 class TerrainService : public PackageService {
  public:
+  // The memory budget: most for triangle errors (264 KB a tile of 257²
+  // samples, needed by its eight neighbours too), a quarter for decoded
+  // blocks, an eighth for cut tiles.
   TerrainService(const std::string& path, const std::string& name, size_t cache_bytes)
-      : pkg_(open_terrain_package(path)), name_(name), cache_(cache_bytes) {
+      : pkg_(open_terrain_package(path)),
+        name_(name),
+        blocks_(pkg_, cache_bytes / 4),
+        own_errors_(cache_bytes * 5 / 8),
+        tiles_(cache_bytes / 8) {
     const tileformat::Bounds& b = pkg_.meta.common.lonlat;
     west = b.min_x, south = b.min_y, east = b.max_x, north = b.max_y;
     min_zoom = 0, max_zoom = pkg_.max_zoom;
@@ -166,17 +140,14 @@ class TerrainService : public PackageService {
         (ext != req.query.end() && ext->second.find("octvertexnormals") != std::string::npos);
     const std::string cache_key = "q" + std::to_string(r.z) + "/" + std::to_string(r.x) + "/" +
                                   std::to_string(r.y) + (options.normals ? "n" : "");
-    if (auto hit = cache_.get(cache_key))
+    if (auto hit = tiles_.get(cache_key))
       return bytes_response({hit->begin(), hit->end()}, "application/vnd.quantized-mesh", true);
-    std::vector<uint8_t> bytes;
-    {
-      auto source =
-          meshes_.take([&] { return std::make_unique<web::MeshTileSource>(pkg_, read_mutex_); });
-      const web::TileGrid grid = source->grid(id);
-      const web::MeshErrors errors = source->errors(id);
-      bytes = web::encode_mesh_tile(t, id, grid, errors, options);
-    }
-    cache_.put(cache_key, std::make_shared<const std::string>(bytes.begin(), bytes.end()));
+    web::MeshTileSource source(blocks_, own_errors_);
+    const web::TileGrid grid = source.grid(id);
+    const web::MeshErrors errors = source.errors(id);
+    std::vector<uint8_t> bytes = web::encode_mesh_tile(t, id, grid, errors, options);
+    tiles_.put(cache_key, std::make_shared<const std::string>(bytes.begin(), bytes.end()),
+               cache_key.size() + bytes.size());
     return bytes_response(std::move(bytes), "application/vnd.quantized-mesh", true);
   }
 
@@ -196,16 +167,14 @@ class TerrainService : public PackageService {
       return text_response(404, "tile outside zoom " + std::to_string(r.z));
     const std::string cache_key = "d" + std::to_string(int(encoding)) + "/" + std::to_string(r.z) +
                                   "/" + std::to_string(r.x) + "/" + std::to_string(r.y);
-    if (auto hit = cache_.get(cache_key))
+    if (auto hit = tiles_.get(cache_key))
       return bytes_response({hit->begin(), hit->end()}, "image/png", false);
-    std::vector<uint8_t> png;
-    {
-      auto sampler =
-          samplers_.take([&] { return std::make_unique<web::TerrainSampler>(pkg_, read_mutex_); });
-      png = web::raster_dem_tile(*sampler, pkg_.tiling, r.z, r.x, r.y, 256,
-                                 web::raster_dem_source_zoom(pkg_, r.z, 256), encoding);
-    }
-    cache_.put(cache_key, std::make_shared<const std::string>(png.begin(), png.end()));
+    web::TerrainSampler sampler(blocks_);
+    std::vector<uint8_t> png = web::raster_dem_tile(sampler, pkg_.tiling, r.z, r.x, r.y, 256,
+                                                    web::raster_dem_source_zoom(pkg_, r.z, 256),
+                                                    encoding, nullptr, web::kPngFast);
+    tiles_.put(cache_key, std::make_shared<const std::string>(png.begin(), png.end()),
+               cache_key.size() + png.size());
     return bytes_response(std::move(png), "image/png", false);
   }
 
@@ -214,10 +183,9 @@ class TerrainService : public PackageService {
   std::vector<std::vector<TileId>> plan_;
   std::unordered_set<uint64_t> planned_;
   int dem_max_zoom_ = 0;
-  std::mutex read_mutex_;
-  Pool<web::MeshTileSource> meshes_;
-  Pool<web::TerrainSampler> samplers_;
-  TileCache cache_;  // tiles cut on the fly
+  web::TerrainBlocks blocks_;
+  web::OwnErrorCache own_errors_;
+  web::LruCache<std::string, std::string> tiles_;  // tiles cut on the fly
 };
 
 // Web mercator packages only: their rows are XYZ rows.

@@ -31,7 +31,8 @@ class PackageService {
 };
 
 struct ServiceOptions {
-  size_t cache_bytes = size_t(128) << 20;  // per terrain package: tiles cut on the fly
+  // Per terrain package: decoded blocks, triangle errors and tiles cut on the fly.
+  size_t cache_bytes = size_t(512) << 20;
 };
 
 // Opens a package (or a .pmtiles file) as its service; `name` is its stem.

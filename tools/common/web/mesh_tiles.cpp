@@ -76,8 +76,8 @@ Vec3 vertex_normal(const TileGrid& g, const SampleGeometry& geo, int64_t gx0, in
 
 }  // namespace
 
-MeshTileSource::MeshTileSource(TerrainPackage& package, std::mutex& read_mutex)
-    : package_(package), sampler_(package, read_mutex, 64) {}
+MeshTileSource::MeshTileSource(TerrainBlocks& blocks, OwnErrorCache& own_errors)
+    : package_(blocks.package()), sampler_(blocks), own_errors_(own_errors) {}
 
 std::optional<double> MeshTileSource::sample(int z, int64_t gx, int64_t gy) {
   const tileformat::Tiling& t = package_.tiling;
@@ -107,30 +107,30 @@ bool MeshTileSource::has_tile(TileId id) {
   return id.z == 0 || id.z < package_.min_zoom || sampler_.block(id) != nullptr;
 }
 
-const std::vector<float>* MeshTileSource::own(TileId id) {
-  const uint64_t key = uint64_t(id.z) << 58 | uint64_t(id.x) << 29 | id.y;
-  for (auto it = own_.begin(); it != own_.end(); ++it)
-    if (it->first == key) {
-      own_.splice(own_.begin(), own_, it);
-      return &own_.front().second;
-    }
-  if (!has_tile(id)) return nullptr;
-  const TileGrid g = grid(id);
-  if (own_.size() >= 64) own_.pop_back();
-  own_.emplace_front(key, own_errors(g, mesh_sample_metres(package_.tiling, id.z, g.steps)));
-  return &own_.front().second;
+std::shared_ptr<const std::vector<float>> MeshTileSource::own(TileId id) {
+  const uint64_t key = tile_key(id);
+  std::shared_ptr<const std::vector<float>> e;
+  if (own_errors_.get(key, e)) return e;
+  if (has_tile(id)) {
+    const TileGrid g = grid(id);
+    e = std::make_shared<const std::vector<float>>(
+        own_errors(g, mesh_sample_metres(package_.tiling, id.z, g.steps)));
+  }
+  own_errors_.put(key, e, 64 + (e ? e->size() * sizeof(float) : 0));
+  return e;
 }
 
 MeshErrors MeshTileSource::errors(TileId id) {
   const tileformat::Tiling& t = package_.tiling;
   const int64_t cols = int64_t(t.tiles_x(id.z)), rows = int64_t(t.tiles_y(id.z));
+  std::array<std::shared_ptr<const std::vector<float>>, 9> held;
   std::array<const std::vector<float>*, 9> around{};
-  // Fetch all nine first (the cache keeps 64, so none is dropped meanwhile).
   for (int k = 0; k < 9; ++k) {
     int64_t x = int64_t(id.x) + k % 3 - 1, y = int64_t(id.y) + k / 3 - 1;
     if (t.wraps_x()) x = (x % cols + cols) % cols;
     if (x < 0 || y < 0 || x >= cols || y >= rows) continue;
-    around[k] = own({id.z, uint32_t(x), uint32_t(y)});
+    held[size_t(k)] = own({id.z, uint32_t(x), uint32_t(y)});
+    around[size_t(k)] = held[size_t(k)].get();
   }
   return MeshErrors(package_.block_size - 1, int((id.x + id.y) & 1), around);
 }

@@ -12,12 +12,13 @@
 
 #include <cstdint>
 #include <functional>
-#include <list>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "lru_cache.hpp"
 #include "terrain_mesh.hpp"
 #include "terrain_package.hpp"
 #include "terrain_sampler.hpp"
@@ -25,10 +26,15 @@
 
 namespace globe::web {
 
-// Samples of one package for mesh tiles; one per thread, sharing read_mutex.
+// Each tile's own triangle errors (terrain_mesh.hpp), shared by the threads
+// cutting one package's tiles.
+using OwnErrorCache = LruCache<uint64_t, std::vector<float>>;
+
+// Samples of one package for mesh tiles: one per thread (cheap to make), all
+// sharing the package's decoded blocks and own errors.
 class MeshTileSource {
  public:
-  MeshTileSource(TerrainPackage& package, std::mutex& read_mutex);
+  MeshTileSource(TerrainBlocks& blocks, OwnErrorCache& own_errors);
 
   // The tile's samples with a one-sample apron: NaN beyond the poles and,
   // from zoom 1 on at the package's zooms, where no block is; 0 m elsewhere
@@ -41,16 +47,17 @@ class MeshTileSource {
   // every tile of the Earth, elsewhere those with a block.
   bool has_tile(tileformat::TileId id);
   // The tile's saturated errors, from its own and its eight neighbours' own
-  // errors (kept for the last 64 tiles asked).
+  // errors (each computed once while the cache keeps it).
   MeshErrors errors(tileformat::TileId id);
   const TerrainPackage& package() const { return package_; }
 
  private:
-  const std::vector<float>* own(tileformat::TileId id);  // nullptr: no such tile
+  // nullptr: no such tile.
+  std::shared_ptr<const std::vector<float>> own(tileformat::TileId id);
 
   TerrainPackage& package_;
   TerrainSampler sampler_;
-  std::list<std::pair<uint64_t, std::vector<float>>> own_;  // most recent first
+  OwnErrorCache& own_errors_;
 };
 
 struct MeshTileOptions {

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
-#include <mutex>
 #include <vector>
 
 #include "errors.hpp"
@@ -89,10 +88,10 @@ ExportSummary export_raster_dem(const DemExportSettings& s, Progress& progress) 
   const std::string ext = "png";
   std::unique_ptr<TileOutput> out = TileOutput::open(s.output, s.force, ext, false);
   const int size = s.tile_size;
-  std::mutex read_mutex;
+  web::TerrainBlocks blocks(pkg, size_t(256) << 20);
   std::vector<std::unique_ptr<web::TerrainSampler>> samplers;
   for (int t = 0; t < s.threads; ++t)
-    samplers.push_back(std::make_unique<web::TerrainSampler>(pkg, read_mutex));
+    samplers.push_back(std::make_unique<web::TerrainSampler>(blocks));
   ExportSummary sum;
   progress.begin("encode tiles", plan.size());
   parallel_batches<NoInputs, EncodedTile>(

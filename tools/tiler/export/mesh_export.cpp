@@ -5,7 +5,6 @@
 #include <chrono>
 #include <filesystem>
 #include <memory>
-#include <mutex>
 #include <vector>
 
 #include "errors.hpp"
@@ -50,10 +49,13 @@ ExportSummary export_quantized_mesh(const MeshExportSettings& s, Progress& progr
   std::sort(tiles.begin(), tiles.end(),
             [&](const TileId& a, const TileId& b) { return order(a) < order(b); });
 
-  std::mutex read_mutex;
+  // The workers share the decoded blocks and each tile's own errors (a tile's
+  // are needed by its eight neighbours too).
+  web::TerrainBlocks blocks(pkg, size_t(256) << 20);
+  web::OwnErrorCache own_errors(size_t(256) << 20);
   std::vector<std::unique_ptr<web::MeshTileSource>> sources;
   for (int t = 0; t < s.threads; ++t)
-    sources.push_back(std::make_unique<web::MeshTileSource>(pkg, read_mutex));
+    sources.push_back(std::make_unique<web::MeshTileSource>(blocks, own_errors));
 
   // Each tile alone: its errors from the blocks of it and its neighbours.
   std::unique_ptr<TileOutput> out = TileOutput::open(s.output, s.force, "terrain", true);
