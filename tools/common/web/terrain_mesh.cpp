@@ -2,32 +2,141 @@
 #include "terrain_mesh.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
 
 namespace globe::web {
 namespace {
 
-// Largest |height - plane| over the samples of triangle a b c (inclusive),
-// the plane through the heights at its corners.
-float triangle_error(const TileGrid& g, GridPoint a, GridPoint b, GridPoint c) {
-  const double ha = g.at(a.i, a.j), hb = g.at(b.i, b.j), hc = g.at(c.i, c.j);
-  const long area = long(b.i - a.i) * (c.j - a.j) - long(b.j - a.j) * (c.i - a.i);
-  if (area == 0) return 0;
-  const int i0 = std::min({a.i, b.i, c.i}), i1 = std::max({a.i, b.i, c.i});
-  const int j0 = std::min({a.j, b.j, c.j}), j1 = std::max({a.j, b.j, c.j});
-  double worst = 0;
-  for (int j = j0; j <= j1; ++j)
+// The samples of a triangle of the hierarchy relative to its right-angle
+// corner a, as runs along rows. Every triangle of one scale and orientation
+// is a translate of the others, so these are made once per shape and grid
+// width and kept for the process.
+struct StencilRow {
+  int32_t offset;  // of the run's first sample in TileGrid::h, from a's index
+  int16_t di, dj;  // that sample's grid position, from a
+  int32_t count;
+};
+// Small triangles (short rows) as single samples with their plane weights:
+// plane = ha + wb (hb - ha) + wc (hc - ha), no loop per row.
+struct StencilPoint {
+  int32_t offset;
+  double wb, wc;
+};
+struct Stencil {
+  GridPoint db, dc;                  // b - a, c - a
+  double inv_area = 0;               // 1 / ((b - a) x (c - a))
+  bool corners_only = false;         // no sample but a, b and c: the plane holds them all
+  std::vector<StencilRow> rows;      // for large triangles
+  std::vector<StencilPoint> points;  // for small ones (rows empty)
+};
+
+// The samples (edges included) of triangle a, a + db, a + dc in a grid of
+// rows `stride` samples apart.
+Stencil make_stencil(int stride, GridPoint db, GridPoint dc) {
+  const long area = long(db.i) * dc.j - long(db.j) * dc.i;
+  Stencil out{db, dc, 1.0 / double(area), false, {}};
+  int samples = 0;
+  const int i0 = std::min({0, db.i, dc.i}), i1 = std::max({0, db.i, dc.i});
+  const int j0 = std::min({0, db.j, dc.j}), j1 = std::max({0, db.j, dc.j});
+  for (int j = j0; j <= j1; ++j) {
+    int first = INT32_MAX, last = INT32_MIN;
     for (int i = i0; i <= i1; ++i) {
       // Barycentric weights times `area`; all of one sign inside.
-      const long wa = long(b.i - i) * (c.j - j) - long(b.j - j) * (c.i - i);
-      const long wb = long(c.i - i) * (a.j - j) - long(c.j - j) * (a.i - i);
-      const long wc = area - wa - wb;
+      const long wb = long(i) * dc.j - long(j) * dc.i;
+      const long wc = long(db.i) * j - long(db.j) * i;
+      const long wa = area - wb - wc;
       if (area > 0 ? (wa < 0 || wb < 0 || wc < 0) : (wa > 0 || wb > 0 || wc > 0)) continue;
-      const double plane = (wa * ha + wb * hb + wc * hc) / double(area);
-      worst = std::max(worst, std::fabs(g.at(i, j) - plane));
+      first = std::min(first, i), last = std::max(last, i);
+      ++samples;
     }
-  return float(worst);
+    if (first <= last)  // a triangle's row inside it is one run
+      out.rows.push_back(
+          {int32_t(j * stride + first), int16_t(first), int16_t(j), last - first + 1});
+  }
+  out.corners_only = samples == 3;
+  if (samples < 16 * int(out.rows.size())) {  // short rows: single samples are faster
+    for (const StencilRow& r : out.rows)
+      for (int k = 0; k < r.count; ++k) {
+        const long i = r.di + k, j = r.dj;
+        const double wb = double(i * dc.j - j * dc.i) * out.inv_area;
+        const double wc = double(db.i * j - db.j * i) * out.inv_area;
+        out.points.push_back({r.offset + k, wb, wc});
+      }
+    out.rows.clear();
+  }
+  return out;
+}
+
+// The eight triangle shapes of scale s (own_errors's loops): for edge
+// midpoints, the triangles towards the centre on each side of a horizontal
+// and of a vertical edge; for squares, the two halves in either orientation.
+struct ScaleStencils {
+  Stencil edge[2][2];    // [vertical][side > 0]
+  Stencil square[2][2];  // [orientation][half]
+};
+
+const ScaleStencils& scale_stencils(int stride, int s) {
+  static std::mutex mutex;
+  static std::map<std::pair<int, int>, std::unique_ptr<ScaleStencils>> made;
+  std::lock_guard lock(mutex);
+  std::unique_ptr<ScaleStencils>& slot = made[{stride, s}];
+  if (slot) return *slot;
+  slot = std::make_unique<ScaleStencils>();
+  const int h = s / 2;
+  for (int vertical = 0; vertical < 2; ++vertical)
+    for (int side = 0; side < 2; ++side) {
+      const int d = side ? h : -h;
+      // Right angle at the centre c; hypotenuse p1 (before) to p2 (after).
+      const GridPoint p1 = vertical ? GridPoint{-d, -h} : GridPoint{-h, -d};
+      const GridPoint p2 = vertical ? GridPoint{-d, h} : GridPoint{h, -d};
+      slot->edge[vertical][side] = make_stencil(stride, p1, p2);
+    }
+  // Relative to the right-angle corner: orientation 0 halves (tr; tl, br)
+  // and (bl; tl, br), orientation 1 (tl; tr, bl) and (br; tr, bl).
+  slot->square[0][0] = make_stencil(stride, {-s, 0}, {0, s});
+  slot->square[0][1] = make_stencil(stride, {0, -s}, {s, 0});
+  slot->square[1][0] = make_stencil(stride, {s, 0}, {0, s});
+  slot->square[1][1] = make_stencil(stride, {0, -s}, {-s, 0});
+  return *slot;
+}
+
+// Largest |height - plane| over the samples of triangle a b c (inclusive),
+// the plane through the heights at its corners; `st` is its shape.
+float triangle_error(const TileGrid& g, GridPoint a, GridPoint b, GridPoint c, const Stencil& st) {
+  if (st.corners_only) return 0;
+  const double ha = g.at(a.i, a.j), db = g.at(b.i, b.j) - ha, dc = g.at(c.i, c.j) - ha;
+  // The plane's gradient: (b - a) . grad = db, (c - a) . grad = dc.
+  const double gi = (db * st.dc.j - dc * st.db.j) * st.inv_area;
+  const double gj = (dc * st.db.i - db * st.dc.i) * st.inv_area;
+  const double* at_a = &g.h[size_t(a.j + 1) * size_t(g.steps + 3) + size_t(a.i + 1)];
+  double w0 = 0, w1 = 0;  // two chains: the loop is bound by max's latency
+  size_t p = 0;
+  for (; p + 1 < st.points.size(); p += 2) {
+    const StencilPoint& u = st.points[p];
+    const StencilPoint& v = st.points[p + 1];
+    w0 = std::max(w0, std::fabs(at_a[u.offset] - (ha + u.wb * db + u.wc * dc)));
+    w1 = std::max(w1, std::fabs(at_a[v.offset] - (ha + v.wb * db + v.wc * dc)));
+  }
+  if (p < st.points.size()) {
+    const StencilPoint& u = st.points[p];
+    w0 = std::max(w0, std::fabs(at_a[u.offset] - (ha + u.wb * db + u.wc * dc)));
+  }
+  for (const StencilRow& r : st.rows) {
+    const double* h = at_a + r.offset;
+    const double base = ha + r.di * gi + r.dj * gj;
+    int k = 0;
+    for (; k + 1 < r.count; k += 2) {
+      w0 = std::max(w0, std::fabs(h[k] - (base + k * gi)));
+      w1 = std::max(w1, std::fabs(h[k + 1] - (base + (k + 1) * gi)));
+    }
+    if (k < r.count) w0 = std::max(w0, std::fabs(h[k] - (base + k * gi)));
+  }
+  return float(std::max(w0, w1));
 }
 
 }  // namespace
@@ -39,6 +148,7 @@ std::vector<float> own_errors(const TileGrid& grid, double sample_metres) {
   constexpr double kEarthRadius = 6378137.0;
   for (int s = 2; s <= n; s *= 2) {
     const int h = s / 2;
+    const ScaleStencils& st = scale_stencils(n + 3, s);
     // Sagittas of the hypotenuses: s for an edge's triangles, s sqrt 2 for a square's.
     const double d = s * sample_metres;
     const float edge_sagitta = float(d * d / (8 * kEarthRadius));
@@ -57,7 +167,8 @@ std::vector<float> own_errors(const TileGrid& grid, double sample_metres) {
           if (c.i < 0 || c.i > n || c.j < 0 || c.j > n) continue;
           const GridPoint p1 = horizontal ? GridPoint{i0 - h, j0} : GridPoint{i0, j0 - h};
           const GridPoint p2 = horizontal ? GridPoint{i0 + h, j0} : GridPoint{i0, j0 + h};
-          err = std::max({err, edge_sagitta, triangle_error(grid, c, p1, p2)});
+          err = std::max(
+              {err, edge_sagitta, triangle_error(grid, c, p1, p2, st.edge[vertical][side > 0])});
         }
         ref(i0, j0) = err;
       }
@@ -66,11 +177,12 @@ std::vector<float> own_errors(const TileGrid& grid, double sample_metres) {
       for (int i0 = 0; i0 < n; i0 += s) {
         const int orient = s == n ? grid.diagonal : ((i0 / s + j0 / s) & 1);
         const GridPoint tl{i0, j0}, tr{i0 + s, j0}, bl{i0, j0 + s}, br{i0 + s, j0 + s};
-        ref(i0 + h, j0 + h) = orient == 0
-                                  ? std::max({square_sagitta, triangle_error(grid, tr, tl, br),
-                                              triangle_error(grid, bl, tl, br)})
-                                  : std::max({square_sagitta, triangle_error(grid, tl, tr, bl),
-                                              triangle_error(grid, br, tr, bl)});
+        ref(i0 + h, j0 + h) =
+            orient == 0
+                ? std::max({square_sagitta, triangle_error(grid, tr, tl, br, st.square[0][0]),
+                            triangle_error(grid, bl, tl, br, st.square[0][1])})
+                : std::max({square_sagitta, triangle_error(grid, tl, tr, bl, st.square[1][0]),
+                            triangle_error(grid, br, tr, bl, st.square[1][1])});
       }
   }
   return e;
