@@ -120,6 +120,17 @@ TEST(Serve, TerrainTilesAreTheExportsBytes) {
     ++pngs;
   }
   EXPECT_GT(pngs, 5u);
+  // Their TileJSON for MapLibre's raster-dem source: the export's zooms.
+  const HttpReply dem = http_get(port, "/surf.json?encoding=terrarium");
+  ASSERT_EQ(dem.status, 200) << dem.body;
+  const auto dj = tileformat::JsonValue::parse(dem.body);
+  EXPECT_EQ(
+      dj.find("tiles")->array().at(0).string(),
+      "http://127.0.0.1:" + std::to_string(port) + "/surf/{z}/{x}/{y}.png?encoding=terrarium");
+  EXPECT_EQ(dj.find("encoding")->string(), "terrarium");
+  EXPECT_EQ(int(dj.find("minzoom")->number()), int(h.min_zoom));
+  EXPECT_EQ(int(dj.find("maxzoom")->number()), int(h.max_zoom));
+  EXPECT_EQ(http_get(port, "/surf.json?encoding=lerc").status, 400);
 
   // The pyramid's edges.
   EXPECT_EQ(http_get(port, "/surf/7/0/0.terrain").status, 204);  // zoom 7, no data there

@@ -91,26 +91,49 @@ TEST(WebCesium, SampledHeightsAreTheExportedMesh) {
             << " m from the plain source, max " << plain.back() << " m\n";
 }
 
-// The jacksboro DEM as a user's page shows it: geodetic terrain, lit by the
-// tiles' vertex normals, oblique, against its expected image.
-TEST(WebCesium, RealReliefLitByTheVertexNormals) {
-  TempDir dir("web-cesium-view");
-  const std::string pkg = (dir.path() / "j.mbtiles").string();
-  ASSERT_TRUE(run_all(
-      {tiler() + " terrain -q --tiling geodetic " + sample("jacksboro.tif").string() + " -o " + pkg,
-       tiler() + " export -q " + pkg + " --format quantized-mesh -o " +
-           (dir.path() / "terrain").string()},
-      dir.path()));
+// The jacksboro DEM as a geodetic package and its quantized-mesh export, once
+// per test binary.
+const fs::path& jacksboro_mesh() {
+  static const fs::path dir = shared_folder("cesium-jacksboro", [](const fs::path& d) {
+    const std::string pkg = (d / "j.mbtiles").string();
+    return run_all(
+        {tiler() + " terrain -q --tiling geodetic " + sample("jacksboro.tif").string() + " -o " +
+             pkg,
+         tiler() + " export -q " + pkg + " --format quantized-mesh -o " + (d / "terrain").string()},
+        d);
+  });
+  return dir;
+}
+
+// The jacksboro DEM as a user's page shows it from `terrain` (a path under
+// the page's server or a URL): lit by the tiles' vertex normals, oblique,
+// against its expected image.
+void expect_jacksboro_lit(const std::string& terrain, const TempDir& dir) {
   const fs::path shot = dir.path() / "cesium.png";
   const RunResult page = run_web_page(
-      "cesium_terrain.html", dir.path(),
-      "terrain=/data/terrain&exaggeration=1.5&camera=-84.25,36.45,6000,0,-30&points=-84.2,36.55",
+      "cesium_terrain.html", jacksboro_mesh(),
+      "terrain=" + terrain + "&exaggeration=1.5&camera=-84.25,36.45,6000,0,-30&points=-84.2,36.55",
       shot, dir.path(), "480x320");
   ASSERT_EQ(page.exit_code, 0) << page.err;
   const tileformat::JsonValue result = tileformat::JsonValue::parse(page.out);
   EXPECT_TRUE(result.find("hasVertexNormals")->boolean());
   EXPECT_TRUE(result.find("rendered")->find("tilesLoaded")->boolean());
   expect_image(shot.string(), "cesium_jacksboro_lit");
+}
+
+// The static export.
+TEST(WebCesium, RealReliefLitByTheVertexNormals) {
+  TempDir dir("web-cesium-view");
+  expect_jacksboro_lit("/data/terrain", dir);
+}
+
+// globe-serve cutting the same tiles on the fly: the same picture.
+TEST(WebCesium, GlobeServeRealReliefLitByTheVertexNormals) {
+  TempDir dir("web-cesium-serve-view");
+  ServeProcess server({(jacksboro_mesh() / "j.mbtiles").string()}, dir.path());
+  ASSERT_GT(server.port(), 0) << server.log();
+  expect_jacksboro_lit("http://127.0.0.1:" + std::to_string(server.port()) + "/j/", dir);
+  EXPECT_NE(server.log().find("GET /j/"), std::string::npos) << "Cesium asked for no tile";
 }
 
 // globe-serve in the real clients: CesiumJS samples the same heights from the

@@ -13,6 +13,7 @@
 #include <tuple>
 
 #include "render_fixtures.hpp"
+#include "serve_fixtures.hpp"
 #include "spec_readers/pmtiles_reader.hpp"
 #include "spec_readers/raster_dem.hpp"
 #include "tileformat/json.hpp"
@@ -27,25 +28,28 @@ constexpr double kPi = 3.14159265358979323846;
 
 }  // namespace
 
-// MapLibre GL JS, as a user's page: the jacksboro DEM exported to Terrarium
-// PMTiles, served over HTTP with ranges, 3D terrain; queryTerrainElevation at
-// 30 points equals the bilinear interpolation of the pixel centres (decoded
-// here) of the tile MapLibre drew there, the finest for most (a parent, or
-// the tile's own edge pixels across a border whose neighbour has not loaded,
-// are MapLibre's own fallbacks), and p90 is within 10 m of the plain source
-// DEM.
-TEST(WebMapLibre, TerrariumPmtilesElevationsAreTheTilesPixels) {
-  TempDir dir;
-  const std::string pkg = (dir / "jb.mbtiles").string();
-  const std::string out = (dir / "jb.pmtiles").string();
-  ASSERT_EQ(
-      run(tiler() + " terrain -q " + sample("jacksboro.tif").string() + " -o " + pkg, dir.path())
-          .exit_code,
-      0);
-  ASSERT_EQ(
-      run(tiler() + " export -q " + pkg + " --format terrarium -o " + out, dir.path()).exit_code,
-      0);
-  const std::string file = read_file(out);
+// The jacksboro DEM as a package and its Terrarium PMTiles export, once per
+// test binary.
+const fs::path& jacksboro_terrarium() {
+  static const fs::path dir = shared_folder("maplibre-jacksboro", [](const fs::path& d) {
+    const std::string pkg = (d / "jb.mbtiles").string();
+    return run_all(
+        {tiler() + " terrain -q " + sample("jacksboro.tif").string() + " -o " + pkg,
+         tiler() + " export -q " + pkg + " --format terrarium -o " + (d / "jb.pmtiles").string()},
+        d);
+  });
+  return dir;
+}
+
+// MapLibre GL JS, as a user's page, with the jacksboro DEM's Terrarium tiles
+// from `tiles_query` (the page's query: a PMTiles path or a TileJSON URL), 3D
+// terrain: queryTerrainElevation at 30 points equals the bilinear
+// interpolation of the pixel centres of the exported tiles (decoded here) of
+// the tile MapLibre drew there, the finest for most (a parent, or the tile's
+// own edge pixels across a border whose neighbour has not loaded, are
+// MapLibre's own fallbacks), and p90 is within 10 m of the plain source DEM.
+void expect_terrarium_elevations(const std::string& tiles_query, const TempDir& dir) {
+  const std::string file = read_file(jacksboro_terrarium() / "jb.pmtiles");
   const int zmax = pmr::read_header(file).max_zoom;
   const double lon0 = -84.2458, lat0 = 36.5896;
   // The finest tiles' pixels, decoded on demand.
@@ -110,8 +114,8 @@ TEST(WebMapLibre, TerrariumPmtilesElevationsAreTheTilesPixels) {
     points += p;
   }
   const RunResult page = run_web_page(
-      "maplibre_dem.html", dir.path(),
-      "pmtiles=/data/jb.pmtiles&encoding=terrarium&center=" + std::to_string(lon0) + "," +
+      "maplibre_dem.html", jacksboro_terrarium(),
+      tiles_query + "&encoding=terrarium&center=" + std::to_string(lon0) + "," +
           std::to_string(lat0) + "&zoom=" + std::to_string(zmax + 1) + "&points=" + points,
       dir / "maplibre.png", dir.path());
   ASSERT_EQ(page.exit_code, 0) << page.err;
@@ -151,32 +155,69 @@ TEST(WebMapLibre, TerrariumPmtilesElevationsAreTheTilesPixels) {
       result.find("maplibre")->string().c_str(), finest, worst, p90, off_source.back());
 }
 
-// The US flights bundled over the airways, exported to MVT PMTiles with the
-// generated style: MapLibre draws the weight classes the view holds with the
-// style's layers, and every feature it renders is a bundle or unrouted line
-// of the package's features table (read with the sqlite3 program).
-TEST(WebMapLibre, BundlesAsMvtPmtilesDrawWithTheGeneratedStyle) {
+// URL-encoded for a query parameter.
+std::string query_escape(const std::string& s) {
+  std::string out;
+  for (const unsigned char c : s) {
+    if (std::isalnum(c) || c == '-' || c == '_' || c == '.' || c == '~' || c == '/' || c == ':') {
+      out += char(c);
+    } else {
+      char hex[4];
+      std::snprintf(hex, sizeof hex, "%%%02X", c);
+      out += hex;
+    }
+  }
+  return out;
+}
+
+// The exported PMTiles file, served over HTTP with ranges.
+TEST(WebMapLibre, TerrariumPmtilesElevationsAreTheTilesPixels) {
   TempDir dir;
-  const std::string pkg = (dir / "flights.mbtiles").string();
-  ASSERT_EQ(run(vectorize() + " bundle -q " + sample("us_flights_airport.csv").string() +
-                    " --from-id origin --to-id destination --weight count --locations " +
-                    sample("us_airports.csv").string() + " --id-field iata --network " +
-                    sample("airways.geojson").string() + " -o " + pkg,
-                dir.path())
-                .exit_code,
-            0);
-  const RunResult r =
-      run(vectorize() + " export -q " + pkg + " -o " + (dir / "flights.pmtiles").string() +
-              " --style-json " + (dir / "style.json").string(),
-          dir.path());
-  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_terrarium_elevations("pmtiles=/data/jb.pmtiles", dir);
+}
+
+// globe-serve cutting the same tiles on the fly from the package, found
+// through its raster-DEM TileJSON: the same elevations.
+TEST(WebMapLibre, GlobeServeTerrariumElevationsAreTheTilesPixels) {
+  TempDir dir;
+  ServeProcess server({(jacksboro_terrarium() / "jb.mbtiles").string()}, dir.path());
+  ASSERT_GT(server.port(), 0) << server.log();
+  expect_terrarium_elevations(
+      "tilejson=" + query_escape("http://127.0.0.1:" + std::to_string(server.port()) +
+                                 "/jb.json?encoding=terrarium"),
+      dir);
+  EXPECT_NE(server.log().find("GET /jb/"), std::string::npos) << "MapLibre asked for no tile";
+}
+
+// The US flights bundled over the airways as a package, its MVT PMTiles
+// export and the generated style, once per test binary.
+const fs::path& flights_mvt() {
+  static const fs::path dir = shared_folder("maplibre-flights", [](const fs::path& d) {
+    const std::string pkg = (d / "flights.mbtiles").string();
+    return run_all({vectorize() + " bundle -q " + sample("us_flights_airport.csv").string() +
+                        " --from-id origin --to-id destination --weight count --locations " +
+                        sample("us_airports.csv").string() + " --id-field iata --network " +
+                        sample("airways.geojson").string() + " -o " + pkg,
+                    vectorize() + " export -q " + pkg + " -o " + (d / "flights.pmtiles").string() +
+                        " --style-json " + (d / "style.json").string()},
+                   d);
+  });
+  return dir;
+}
+
+// MapLibre draws the flights from `source` (the page's query: the style and
+// where its tiles are) with the generated style: the weight classes the view
+// holds with the style's layers, every feature it renders a bundle or
+// unrouted line of the package's features table (read with the sqlite3
+// program), the picture the expected one.
+void expect_flights_drawn(const std::string& source, const TempDir& dir) {
+  const fs::path pkg = flights_mvt() / "flights.mbtiles";
   const RunResult page =
-      run_web_page("maplibre_mvt.html", dir.path(),
-                   "style=/data/style.json&pmtiles=/data/flights.pmtiles&center=-97,39&zoom=3.5",
+      run_web_page("maplibre_mvt.html", flights_mvt(), source + "&center=-97,39&zoom=3.5",
                    dir / "mvt.png", dir.path(), "480x320");
   ASSERT_EQ(page.exit_code, 0) << page.err;
   const auto result = tileformat::JsonValue::parse(page.out);
-  const RunResult rows = run("sqlite3 " + pkg +
+  const RunResult rows = run("sqlite3 " + pkg.string() +
                                  " \"SELECT id FROM features WHERE layer IN ('bundles', "
                                  "'unrouted')\"",
                              dir.path());
@@ -196,4 +237,22 @@ TEST(WebMapLibre, BundlesAsMvtPmtilesDrawWithTheGeneratedStyle) {
     EXPECT_TRUE(drawn.count(heavy)) << heavy << " not drawn; drawn: " << page.out.substr(0, 300);
   std::printf("MapLibre drew %zu features of %zu style layers\n", ids.size(), drawn.size());
   expect_image((dir / "mvt.png").string(), "maplibre_us_flights_mvt");
+}
+
+// The MVT PMTiles export with the style export --style-json wrote.
+TEST(WebMapLibre, BundlesAsMvtPmtilesDrawWithTheGeneratedStyle) {
+  TempDir dir;
+  expect_flights_drawn("style=/data/style.json&pmtiles=/data/flights.pmtiles", dir);
+}
+
+// globe-serve encoding the same tiles per request, with its own style (its
+// source the server's TileJSON): the same picture.
+TEST(WebMapLibre, GlobeServeBundlesDrawWithItsStyle) {
+  TempDir dir;
+  ServeProcess server({(flights_mvt() / "flights.mbtiles").string()}, dir.path());
+  ASSERT_GT(server.port(), 0) << server.log();
+  expect_flights_drawn("style=" + query_escape("http://127.0.0.1:" + std::to_string(server.port()) +
+                                               "/flights/style.json"),
+                       dir);
+  EXPECT_NE(server.log().find("GET /flights/"), std::string::npos) << "MapLibre asked for no tile";
 }

@@ -60,7 +60,7 @@ HttpResponse bytes_response(std::vector<uint8_t> bytes, std::string type, bool c
 }
 
 // TileJSON 3.0.0 of a tile set under `base`.
-std::string tilejson_text(const PackageService& s, const std::string& name,
+std::string tilejson_text(const TileSetExtent& s, const std::string& name,
                           const std::string& tiles_url, const std::string& extra,
                           bool tms = false) {
   return "{\"tilejson\":\"3.0.0\",\"name\":\"" + tileformat::json_escape(name) +
@@ -103,11 +103,26 @@ class TerrainService : public PackageService {
   }
   std::string kind() const override { return "terrain"; }
 
-  HttpResponse tilejson(const std::string& base) override {
-    return json_response(tilejson_text(*this, name_, base + "/{z}/{x}/{y}.terrain",
-                                       "\"format\":\"quantized-mesh-1.0\",\"raster_dem\":\"" +
-                                           base + "/{z}/{x}/{y}.png?encoding=terrarium\"",
-                                       true));
+  // The quantized-mesh tiles (TMS rows), or with ?encoding=terrarium|terrain-rgb
+  // the raster-DEM PNGs (XYZ rows, web mercator zooms), as MapLibre's
+  // raster-dem source reads them.
+  HttpResponse tilejson(const std::string& base, const HttpRequest& req) override {
+    const auto enc = req.query.find("encoding");
+    if (enc == req.query.end())
+      return json_response(tilejson_text(*this, name_, base + "/{z}/{x}/{y}.terrain",
+                                         "\"format\":\"quantized-mesh-1.0\",\"raster_dem\":\"" +
+                                             base + "/{z}/{x}/{y}.png?encoding=terrarium\"",
+                                         true));
+    const std::string encoding = enc->second == "mapbox" ? "terrain-rgb" : enc->second;
+    if (encoding != "terrarium" && encoding != "terrain-rgb")
+      return text_response(400, "encoding: terrarium or terrain-rgb");
+    TileSetExtent dem = *this;
+    dem.min_zoom = 0, dem.max_zoom = dem_max_zoom_;
+    dem.south = std::max(south, -85.0511287798), dem.north = std::min(north, 85.0511287798);
+    return json_response(tilejson_text(
+        dem, name_, base + "/{z}/{x}/{y}.png?encoding=" + encoding,
+        "\"format\":\"png\",\"encoding\":\"" +
+            std::string(encoding == "terrarium" ? "terrarium" : "mapbox") + "\",\"tileSize\":256"));
   }
 
   HttpResponse answer(const Route& r, const HttpRequest& req, const std::string&) override {
@@ -211,7 +226,7 @@ class ImageService : public PackageService {
     ext_ = tileformat::image_format_name(pkg_.format);
   }
   std::string kind() const override { return "images"; }
-  HttpResponse tilejson(const std::string& base) override {
+  HttpResponse tilejson(const std::string& base, const HttpRequest&) override {
     return json_response(tilejson_text(
         *this, name_, base + "/{z}/{x}/{y}." + ext_,
         "\"format\":\"" + ext_ + "\",\"tileSize\":" + std::to_string(pkg_.tile_size)));
@@ -254,7 +269,7 @@ class LineService : public PackageService {
     if (classes_in_.empty()) classes_in_["lines"] = all;
   }
   std::string kind() const override { return "lines"; }
-  HttpResponse tilejson(const std::string& base) override {
+  HttpResponse tilejson(const std::string& base, const HttpRequest&) override {
     std::map<std::string, std::map<std::string, std::string>> layers;
     for (const auto& [layer, _] : classes_in_)
       layers[layer]["class"] = "String";
@@ -293,7 +308,7 @@ class PointService : public PackageService {
     min_zoom = pkg_.meta.common.min_zoom, max_zoom = pkg_.meta.common.max_zoom;
   }
   std::string kind() const override { return "points"; }
-  HttpResponse tilejson(const std::string& base) override {
+  HttpResponse tilejson(const std::string& base, const HttpRequest&) override {
     return json_response(tilejson_text(*this, name_, base + "/{z}/{x}/{y}.pbf",
                                        "\"format\":\"pbf\",\"vector_layers\":" +
                                            web::vector_layers_json(web::point_mvt_fields(pkg_))));
@@ -343,7 +358,7 @@ class PmtilesService : public PackageService {
   }
   ~PmtilesService() override { ::close(fd_); }
   std::string kind() const override { return "pmtiles"; }
-  HttpResponse tilejson(const std::string&) override {
+  HttpResponse tilejson(const std::string&, const HttpRequest&) override {
     return text_response(404, name_ +
                                   ".pmtiles holds its own metadata; read it with a PMTiles "
                                   "client from /" +

@@ -15,19 +15,24 @@
 
 namespace globe::serve {
 
-class PackageService {
+// Where a tile set lies: lon/lat bounds and zooms (TileJSON, the preview).
+struct TileSetExtent {
+  double west = -180, south = -85, east = 180, north = 85;
+  int min_zoom = 0, max_zoom = 0;
+};
+
+class PackageService : public TileSetExtent {
  public:
   virtual ~PackageService() = default;
   // "terrain", "images", "lines", "points", "pmtiles".
   virtual std::string kind() const = 0;
-  // TileJSON 3.0.0 with tile URLs under `base` (http://host:port/NAME).
-  virtual HttpResponse tilejson(const std::string& base) = 0;
+  // TileJSON 3.0.0 with tile URLs under `base` (http://host:port/NAME); the
+  // request's query may choose among a kind's tile sets (terrain: ?encoding=
+  // gives the raster-DEM PNGs').
+  virtual HttpResponse tilejson(const std::string& base, const HttpRequest& request) = 0;
   // kTile, kLayerJson, kStyleJson, kPmtiles; 404 for routes the kind lacks.
   virtual HttpResponse answer(const Route& route, const HttpRequest& request,
                               const std::string& base) = 0;
-  // For the preview page: lon/lat bounds and zooms.
-  double west = -180, south = -85, east = 180, north = 85;
-  int min_zoom = 0, max_zoom = 0;
 };
 
 struct ServiceOptions {

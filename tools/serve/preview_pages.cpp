@@ -59,7 +59,7 @@ std::string maplibre_page(const std::string& lib) {
          "  const tj = await (await fetch('/' + name + '.json')).json();\n"
          "  let style;\n"
          "  if (kind === 'terrain') style = { version: 8, sources: { dem: { type: 'raster-dem',\n"
-         "      tiles: [tj.raster_dem], tileSize: 256, encoding: 'terrarium' } },\n"
+         "      url: '/' + name + '.json?encoding=terrarium', encoding: 'terrarium' } },\n"
          "    layers: [{ id: 'bg', type: 'background', paint: { 'background-color': '#dde6d5' } "
          "},\n"
          "      { id: 'shade', type: 'hillshade', source: 'dem' }], terrain: { source: 'dem' } };\n"

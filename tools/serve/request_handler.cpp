@@ -143,7 +143,7 @@ HttpResponse RequestHandler::route(const HttpRequest& req) {
   const PackageRegistry::Found found = registry_.find(r.name);
   if (!found.service) return text_response(found.status, found.error);
   const std::string base = "http://" + host + "/" + r.name;
-  if (r.kind == Route::Kind::kTileJson) return found.service->tilejson(base);
+  if (r.kind == Route::Kind::kTileJson) return found.service->tilejson(base, req);
   return found.service->answer(r, req, base);
 }
 
