@@ -30,11 +30,8 @@ AnalysisOverlay open_analysis_overlay(const std::string& path, const TerrainPack
 std::string shading_needs(const ShadingSettings& s, const std::optional<std::string>& path,
                           const std::vector<AnalysisLayer>& layers) {
   std::vector<std::pair<AnalysisLayer, std::string>> need;
-  if (s.mode == Shading::kSkyview) need.emplace_back(AnalysisLayer::kSkyview, "--shading skyview");
-  if (s.mode == Shading::kEdges)
-    need.emplace_back(AnalysisLayer::kPlanCurvature, "--shading edges");
-  if (s.mode == Shading::kFlow)
-    need.emplace_back(AnalysisLayer::kFlowAccumulation, "--shading flow");
+  const ShadingMode& mode = shading_mode(s.mode);
+  if (mode.needs) need.emplace_back(*mode.needs, std::string("--shading ") + mode.name);
   if (s.ambient_occlusion) need.emplace_back(AnalysisLayer::kSkyview, "--ambient-occlusion");
   for (const auto& [layer, what] : need) {
     const std::string name = tileformat::analysis_layer_info(layer).name;

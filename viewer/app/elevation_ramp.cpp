@@ -34,14 +34,12 @@ void ElevationRamp::finish() {
 }
 
 RampTable ElevationRamp::table(Shading mode, float flow_top) const {
+  const ShadingMode& m = shading_mode(mode);
   double lo = lo_, hi = hi_;
-  if (mode == Shading::kSlope) lo = 0, hi = 90;
-  if (mode == Shading::kSkyview) lo = 0, hi = 1;
-  if (mode == Shading::kAspect) lo = 0, hi = 360;
-  if (mode == Shading::kEdges) lo = -1, hi = 1;
-  if (mode == Shading::kFlow) lo = flow_top - 16.0, hi = flow_top;
+  if (m.ramp == RampDomain::kFixed) lo = m.lo, hi = m.hi;
+  if (m.ramp == RampDomain::kFlowLog2) lo = flow_top - 16.0, hi = flow_top;
   ColorRamp ramp = file_ ? file_->ramp : builtin_ramp(settings_.colormap, lo, hi);
-  if (file_ && mode == Shading::kFlow)  // the file's areas in m^2, the table in log2
+  if (file_ && m.ramp == RampDomain::kFlowLog2)  // the file's areas in m^2, the table in log2
     for (RampStop& stop : ramp.stops)
       if (!stop.percent) stop.value = stop.value > 0 ? std::log2(stop.value) : lo;
   RampTable t = tabulate(ramp, lo, hi);

@@ -8,6 +8,34 @@
 
 namespace globe::viewer {
 
+namespace {
+
+// --shading's help, from the modes' table.
+std::string shading_help() {
+  std::string help;
+  for (const ShadingMode& m : shading_modes()) {
+    help += std::string(m.name) + " (" + m.help + "), ";
+    if (m.id == Shading::kHillshade) help += "imagery (imagery unlit), ";
+  }
+  help.resize(help.size() - 2);
+  help += "; ";
+  std::string need;
+  for (const ShadingMode& m : shading_modes())
+    if (m.needs) need += std::string(need.empty() ? "" : ", ") + m.name;
+  return help + need + " need an analysis package (globe-tiler analyze)";
+}
+
+// "1-7 hillshade/elevation/...": the modes' window keys.
+std::string shading_keys_help() {
+  const auto modes = shading_modes();
+  std::string names;
+  for (const ShadingMode& m : modes)
+    names += std::string(names.empty() ? "" : "/") + m.name;
+  return std::string(1, modes.front().key) + "-" + modes.back().key + " " + names;
+}
+
+}  // namespace
+
 std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::string>& args) {
   ViewerSettings s;
   CliArgs cli("globe-view",
@@ -21,7 +49,9 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
   cli.epilogue(
       "window: drag to orbit, right-drag to pan, wheel or W/S to zoom, arrows to pan,\n"
       "  R home view, P screenshot (globe-view-N.png), Esc quit;\n"
-      "  1-6 hillshade/elevation/slope/aspect/skyview/edges, O ambient occlusion on/off,\n"
+      "  " +
+      shading_keys_help() +
+      ", O ambient occlusion on/off,\n"
       "  +/- exaggeration;\n"
       "  , and . shift the elevation ramp down/up, ; and ' narrow/widen it, 0 reset;\n"
       "  I select the next image layer, V show/hide it, [ and ] its opacity -/+ 0.1,\n"
@@ -95,32 +125,14 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
       "memory budget for resident terrain blocks and line tiles (default 512; a quarter goes "
       "to line tiles when there are lines)",
       [&](const std::string& v) { s.cache_mb = CliArgs::to_int("--cache-mb", v, 4, 1 << 20); });
-  cli.option("--shading", "MODE",
-             "hillshade (default; imagery is lit by it), imagery (imagery unlit), elevation, "
-             "slope, aspect (from an analysis package when given, else from the heights), "
-             "skyview (sky-view factor), edges (ridges and valleys from plan curvature) or "
-             "flow (rivers by upstream area, log scale); skyview, edges and flow need an "
-             "analysis package (globe-tiler analyze)",
-             [&](const std::string& v) {
-               if (v == "hillshade")
-                 s.shading.mode = Shading::kHillshade;
-               else if (v == "elevation")
-                 s.shading.mode = Shading::kElevation;
-               else if (v == "slope")
-                 s.shading.mode = Shading::kSlope;
-               else if (v == "aspect")
-                 s.shading.mode = Shading::kAspect;
-               else if (v == "skyview")
-                 s.shading.mode = Shading::kSkyview;
-               else if (v == "edges")
-                 s.shading.mode = Shading::kEdges;
-               else if (v == "flow")
-                 s.shading.mode = Shading::kFlow;
-               else if (v == "imagery")
-                 s.imagery_unlit = true;
-               else
-                 throw UsageError("--shading: unknown mode '" + v + "'");
-             });
+  cli.option("--shading", "MODE", shading_help(), [&](const std::string& v) {
+    if (const ShadingMode* m = find_shading_mode(v))
+      s.shading.mode = m->id;
+    else if (v == "imagery")
+      s.imagery_unlit = true;
+    else
+      throw UsageError("--shading: unknown mode '" + v + "'");
+  });
   cli.flag("--flow-animate",
            "flow shading: pulses run downstream along the rivers, 8 samples apart (the window "
            "animates them, a cycle every 2 s; a snapshot draws them at --flow-phase)",

@@ -1,6 +1,6 @@
 // Interactive session (see window_run.hpp).
 //   left drag: orbit   right drag / arrows: pan   wheel / W,S: zoom
-//   1-4: hillshade, elevation, slope, aspect   +/-: exaggeration
+//   1-7: the shading modes (render/shading_modes.cpp)   +/-: exaggeration
 //   , . shift the elevation ramp, ; ' narrow / widen it, 0 resets it
 //   R: reset view   P: screenshot (globe-view-N.png)   Esc: quit
 #define GLFW_INCLUDE_NONE
@@ -90,29 +90,9 @@ int run_window(const ViewerSettings& settings) {
       case GLFW_KEY_P:
         screenshot_pending = true;
         break;
-      case GLFW_KEY_1:
-        s.mode = Shading::kHillshade;
-        break;
-      case GLFW_KEY_2:
-        s.mode = Shading::kElevation;
-        break;
-      case GLFW_KEY_3:
-        s.mode = Shading::kSlope;
-        break;
-      case GLFW_KEY_4:
-        s.mode = Shading::kAspect;
-        break;
-      case GLFW_KEY_5:
-      case GLFW_KEY_6:
-      case GLFW_KEY_7:
-      case GLFW_KEY_O: {  // only with the analysis layers they draw
+      case GLFW_KEY_O: {  // only with the analysis layers it draws
         ShadingSettings next = s;
-        if (key == GLFW_KEY_O)
-          next.ambient_occlusion = !s.ambient_occlusion;
-        else
-          next.mode = key == GLFW_KEY_5   ? Shading::kSkyview
-                      : key == GLFW_KEY_6 ? Shading::kEdges
-                                          : Shading::kFlow;
+        next.ambient_occlusion = !s.ambient_occlusion;
         if (const std::string e = scene->shading_problem(next); !e.empty())
           std::fprintf(stderr, "globe-view: %s\n", e.c_str());
         else
@@ -205,6 +185,14 @@ int run_window(const ViewerSettings& settings) {
         orbit.pan(0, 40, px, scene->world());
         break;
       default:
+        if (const ShadingMode* m = shading_mode_for_key(key)) {  // a mode's key
+          ShadingSettings next = s;
+          next.mode = m->id;
+          if (const std::string e = scene->shading_problem(next); !e.empty())
+            std::fprintf(stderr, "globe-view: %s\n", e.c_str());
+          else
+            s = next;
+        }
         break;
     }
   };

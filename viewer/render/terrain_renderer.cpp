@@ -28,7 +28,7 @@ TerrainRenderer::TerrainRenderer(int block_size, int lattice, int slots, int wid
   edge_scales_.fill(0.05f);
   const std::string vertex = std::string(shaders::kTerrainVertexHead) + shaders::kFrameWorldGlsl +
                              shaders::kTerrainVertexMain;
-  draw_program_ = GlProgram("terrain", vertex, shaders::kTerrainFragment);
+  draw_program_ = GlProgram("terrain", vertex, with_shading_defines(shaders::kTerrainFragment));
   capture_program_ = GlProgram("terrain capture", vertex, "", {"v_world", "v_key", "v_height"});
 
   // The lattice: vertices (i, j) with i + j <= L; each cell split along the

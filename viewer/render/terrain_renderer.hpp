@@ -17,20 +17,9 @@
 #include "render/color_ramp.hpp"
 #include "render/gl_program.hpp"
 #include "render/patch_selection.hpp"
+#include "render/shading_modes.hpp"
 
 namespace globe::viewer {
-
-// Slope and aspect come from an analysis package when one is drawn (else
-// from the drawn heights, per pixel); sky view and edges need one.
-enum class Shading {
-  kHillshade = 0,
-  kElevation = 1,
-  kSlope = 2,
-  kAspect = 3,
-  kSkyview = 4,  // the sky-view factor, white on open ground
-  kEdges = 5,    // hillshade with ridges warm and valleys blue (plan curvature)
-  kFlow = 6,     // hillshade with rivers blue by upstream area, on a log scale
-};
 
 struct ShadingSettings {
   Shading mode = Shading::kHillshade;
