@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <string>
 
+#include "cell_lists.hpp"
 #include "tileformat/blob_header.hpp"
 #include "tileformat/byte_io.hpp"
 #include "tileformat/error.hpp"
@@ -134,13 +135,7 @@ std::vector<uint8_t> encode_line_tile(const LineTile& t, int zstd_level) {
   const size_t cells = size_t{t.grid} * t.grid;
   if (t.cell_offsets.size() != cells + 1 || t.cell_offsets.back() != t.cell_segments.size())
     fail("7.3", "cluster grid not built (call build_cluster_grid)");
-  for (size_t c = 0; c < cells; ++c)
-    p.varint(t.cell_offsets[c + 1] - t.cell_offsets[c]);
-  for (size_t c = 0; c < cells; ++c) {
-    for (uint32_t k = t.cell_offsets[c]; k < t.cell_offsets[c + 1]; ++k)
-      p.varint(k == t.cell_offsets[c] ? t.cell_segments[k]
-                                      : t.cell_segments[k] - t.cell_segments[k - 1] - 1);
-  }
+  write_cell_lists(p, t.cell_offsets, t.cell_segments);
   const std::vector<uint8_t> raw = p.take();
   const std::vector<uint8_t> packed = zstd_compress(raw, zstd_level);
   Header h{t.extent,
@@ -216,26 +211,8 @@ LineTile decode_line_tile(std::span<const uint8_t> blob) {
     pt.at.y = checked_coord(r, py, e);
   }
   r.set_section("7.3");
-  const size_t cells = size_t{h.grid} * h.grid;
-  t.cell_offsets.assign(cells + 1, 0);
-  for (size_t c = 0; c < cells; ++c) {
-    const uint64_t n = checked_u32(r, uint64_t{h.cell_entries} + 1, "cell count");
-    if (t.cell_offsets[c] + n > h.cell_entries) r.fail("cell counts exceed the entry count");
-    t.cell_offsets[c + 1] = static_cast<uint32_t>(t.cell_offsets[c] + n);
-  }
-  if (t.cell_offsets[cells] != h.cell_entries) r.fail("cell counts do not sum to the entry count");
-  t.cell_segments.resize(h.cell_entries);
-  for (size_t c = 0; c < cells; ++c) {
-    uint64_t s = 0;
-    for (uint32_t k = t.cell_offsets[c]; k < t.cell_offsets[c + 1]; ++k) {
-      const uint64_t d = r.varint();
-      if (d >= h.segments) r.fail("cell entry out of range");
-      s = k == t.cell_offsets[c] ? d : s + 1 + d;
-      if (s >= h.segments)
-        r.fail("cell lists segment " + std::to_string(s) + " of " + std::to_string(h.segments));
-      t.cell_segments[k] = static_cast<uint32_t>(s);
-    }
-  }
+  read_cell_lists(r, size_t{h.grid} * h.grid, h.cell_entries, h.segments, "segment", t.cell_offsets,
+                  t.cell_segments);
   r.expect_end();
   return t;
 }

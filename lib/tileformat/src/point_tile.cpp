@@ -5,6 +5,7 @@
 #include <bit>
 #include <string>
 
+#include "cell_lists.hpp"
 #include "tileformat/blob_header.hpp"
 #include "tileformat/byte_io.hpp"
 #include "tileformat/error.hpp"
@@ -105,12 +106,7 @@ std::vector<uint8_t> encode_point_tile(const PointTile& t, int zstd_level) {
   const size_t cells = size_t{t.grid} * t.grid;
   if (t.cell_offsets.size() != cells + 1 || t.cell_offsets.back() != t.cell_places.size())
     fail("11.3", "cluster grid not built (call build_point_grid)");
-  for (size_t c = 0; c < cells; ++c)
-    p.varint(t.cell_offsets[c + 1] - t.cell_offsets[c]);
-  for (size_t c = 0; c < cells; ++c)
-    for (uint32_t k = t.cell_offsets[c]; k < t.cell_offsets[c + 1]; ++k)
-      p.varint(k == t.cell_offsets[c] ? t.cell_places[k]
-                                      : t.cell_places[k] - t.cell_places[k - 1] - 1);
+  write_cell_lists(p, t.cell_offsets, t.cell_places);
   const std::vector<uint8_t> raw = p.take();
   const std::vector<uint8_t> packed = zstd_compress(raw, zstd_level);
   const Header h{t.extent,
@@ -179,27 +175,8 @@ PointTile decode_point_tile(std::span<const uint8_t> blob) {
     for (uint32_t i = 0; i < h.places; ++i)
       t.values[size_t{i} * h.fields + f] = std::bit_cast<float>(r.u32());
   r.set_section("11.3");
-  const size_t cells = size_t{h.grid} * h.grid;
-  t.cell_offsets.assign(cells + 1, 0);
-  for (size_t c = 0; c < cells; ++c) {
-    const uint64_t n = r.varint();
-    if (n > h.cell_entries || t.cell_offsets[c] + n > h.cell_entries)
-      r.fail("cell counts exceed the entry count");
-    t.cell_offsets[c + 1] = static_cast<uint32_t>(t.cell_offsets[c] + n);
-  }
-  if (t.cell_offsets[cells] != h.cell_entries) r.fail("cell counts do not sum to the entry count");
-  t.cell_places.resize(h.cell_entries);
-  for (size_t c = 0; c < cells; ++c) {
-    uint64_t s = 0;
-    for (uint32_t k = t.cell_offsets[c]; k < t.cell_offsets[c + 1]; ++k) {
-      const uint64_t d = r.varint();
-      if (d >= h.places) r.fail("cell entry out of range");
-      s = k == t.cell_offsets[c] ? d : s + 1 + d;
-      if (s >= h.places)
-        r.fail("cell lists place " + std::to_string(s) + " of " + std::to_string(h.places));
-      t.cell_places[k] = static_cast<uint32_t>(s);
-    }
-  }
+  read_cell_lists(r, size_t{h.grid} * h.grid, h.cell_entries, h.places, "place", t.cell_offsets,
+                  t.cell_places);
   r.expect_end();
   return t;
 }
