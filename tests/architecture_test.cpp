@@ -68,11 +68,19 @@ TEST(Architecture, ViewerIncludesNoGdal) {
   EXPECT_EQ(joined(matches("lib", gdal)), "");
 }
 
+// lib includes its public headers (tileformat/) and, from its sources, its
+// private ones (src/internal/, never installed beside the public ones).
 TEST(Architecture, LibraryIncludesNothingAbove) {
   auto above = [](const std::string& l) {
-    return l.starts_with("#include \"") && !l.starts_with("#include \"tileformat/");
+    return l.starts_with("#include \"") && !l.starts_with("#include \"tileformat/") &&
+           !l.starts_with("#include \"internal/");
   };
   EXPECT_EQ(joined(matches("lib", above)), "");
+  auto private_in_public = [](const std::string& l) {
+    return l.starts_with("#include \"internal/");
+  };
+  EXPECT_EQ(joined(matches("lib/tileformat/include", private_in_public)), "")
+      << "a public header includes a private one";
 }
 
 // Whether `line` calls a C function named PREFIX + [A-Z_]... (e.g. GDALOpen,

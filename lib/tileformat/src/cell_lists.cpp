@@ -1,5 +1,5 @@
 // The cluster grid's cell lists (see cell_lists.hpp).
-#include "cell_lists.hpp"
+#include "internal/cell_lists.hpp"
 
 #include <string>
 

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <string>
 
-#include "cell_lists.hpp"
+#include "internal/cell_lists.hpp"
 #include "tileformat/blob_header.hpp"
 #include "tileformat/byte_io.hpp"
 #include "tileformat/error.hpp"
