@@ -52,7 +52,7 @@ class Builder {
     if (frame_.frame == TargetFrame::kProjected && !frame_.target)
       frame_.target = *reader.layers().front().crs;  // local tiling in the first input's CRS
     std::unique_ptr<tileformat::PackageWriter> writer = create_package(s_, progress_);
-    try {
+    write_package_tiles(s_.output, [&] {
       // A resumed build reads and cuts the input again (that state is not
       // kept) but keeps the committed features table and tiles. The table
       // (and a shard's table of subtrees) is created and filled in one
@@ -79,11 +79,7 @@ class Builder {
       sum_.points = stats.points;
       sum_.spilled_runs = sorter.spilled_runs();
       sum_.spilled_bytes = sorter.spilled_bytes();
-    } catch (const tileformat::PackageError& e) {
-      throw build_write_error(s_.output, e);
-    } catch (const OutputError& e) {  // scratch files
-      throw build_write_error(s_.output, e);
-    }
+    });
     if (writer->tiles_written() == 0 && !shard_)
       throw InputError(s_.inputs[0] + ": no line or point falls in the requested area" +
                        (s_.bbox ? " (check --bbox)" : "") + "; nothing written");

@@ -19,22 +19,22 @@ LinesSummary merge_lines(ShardSet& shards, const BuildOptions& o, Progress& prog
   LinesSummary sum;
   std::unique_ptr<tileformat::PackageWriter> writer = create_package(o, progress);
   try {
-    // As in a build: the features table in the first transaction, committed
-    // before any tile (a resumed merge finds it complete).
-    tileformat::FeatureTableWriter features(*writer);
-    if (!features.complete()) {
-      tileformat::FeatureTableReader from(shards.reader(0));
-      progress.begin("copy features", static_cast<uint64_t>(from.count()));
-      from.for_each([&](int64_t id, const tileformat::FeatureRecord& f) {
-        features.add(id, f.layer, f.properties);
-        progress.advance();
-      });
-      progress.end();
-    }
-    writer->checkpoint();
-    shards.copy_tiles(*writer, shard.min_zoom, meta.common.max_zoom, progress);
-  } catch (const tileformat::PackageError& e) {
-    throw build_write_error(o.output, e);
+    write_package_tiles(o.output, [&] {
+      // As in a build: the features table in the first transaction, committed
+      // before any tile (a resumed merge finds it complete).
+      tileformat::FeatureTableWriter features(*writer);
+      if (!features.complete()) {
+        tileformat::FeatureTableReader from(shards.reader(0));
+        progress.begin("copy features", static_cast<uint64_t>(from.count()));
+        from.for_each([&](int64_t id, const tileformat::FeatureRecord& f) {
+          features.add(id, f.layer, f.properties);
+          progress.advance();
+        });
+        progress.end();
+      }
+      writer->checkpoint();
+      shards.copy_tiles(*writer, shard.min_zoom, meta.common.max_zoom, progress);
+    });
   } catch (const tileformat::FormatError& e) {
     throw InputError(shards.path(0) + ": " + e.what());
   }

@@ -72,7 +72,7 @@ class Builder {
     if (frame_.frame == TargetFrame::kProjected && !frame_.target)
       frame_.target = *reader.layers().front().crs;  // local tiling in the first input's CRS
     std::unique_ptr<tileformat::PackageWriter> writer = create_package(s_, progress_);
-    try {
+    write_package_tiles(s_.output, [&] {
       // A resumed build reads and aggregates again but keeps the committed
       // features table (filled in the first transaction) and tiles.
       tileformat::FeatureTableWriter features(*writer);
@@ -92,11 +92,7 @@ class Builder {
         level = merge(level, z - 1);
       }
       sum_.coarsest_places = level.size();
-    } catch (const tileformat::PackageError& e) {
-      throw build_write_error(s_.output, e);
-    } catch (const OutputError& e) {
-      throw build_write_error(s_.output, e);
-    }
+    });
     writer->set_metadata(tileformat::to_metadata(metadata()));
     sum_.tiles = writer->tiles_written();
     sum_.unique_blobs = writer->unique_blobs();

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "errors.hpp"
+#include "tileformat/error.hpp"
 #include "tileformat/package.hpp"
 
 namespace globe {
@@ -23,6 +24,21 @@ std::unique_ptr<tileformat::PackageWriter> create_package(const BuildOptions& o,
 // full, folder removed): says what failed and that nothing was written under
 // the final name (the temporary files are removed as the build unwinds).
 OutputError build_write_error(const std::string& output, const std::exception& e);
+
+// Runs `write` (a build's or merge's tile writing), turning a failed write of
+// the package or of scratch files (PackageError, OutputError) into
+// build_write_error(output): only outputs are written there, so a failure
+// is an output problem (disk full, folder removed), not bad input.
+template <class Write>
+void write_package_tiles(const std::string& output, Write&& write) {
+  try {
+    write();
+  } catch (const tileformat::PackageError& e) {
+    throw build_write_error(output, e);
+  } catch (const OutputError& e) {
+    throw build_write_error(output, e);
+  }
+}
 
 // Commits (renames to the final name) and returns the final file's size.
 uint64_t commit_package(tileformat::PackageWriter& writer, const std::string& path);

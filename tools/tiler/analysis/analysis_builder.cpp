@@ -194,8 +194,8 @@ AnalysisSummary build_analysis(const AnalysisSettings& s, Progress& progress) {
                   (s.shard->index == 0 ? ", and the zooms above" : ""));
   }
   AnalysisSummary sum;
-  try {
-    std::unique_ptr<tileformat::PackageWriter> writer = create_package(s, progress);
+  std::unique_ptr<tileformat::PackageWriter> writer = create_package(s, progress);
+  write_package_tiles(s.output, [&] {
     if (shard)  // the roots in the first transaction (see ShardTableWriter)
       tileformat::ShardTableWriter(*writer).put_roots(shard->roots);
     // Tiles are written in item order and committed in that order: a
@@ -252,12 +252,10 @@ AnalysisSummary build_analysis(const AnalysisSettings& s, Progress& progress) {
     if (shard)
       writer->set_metadata(tileformat::to_metadata(
           shard_metadata(s, *shard, meta.common.min_zoom, meta.common.center_zoom)));
-    sum.tiles = items.size();
-    sum.unique_blobs = writer->unique_blobs();
-    sum.file_bytes = commit_package(*writer, s.output);
-  } catch (const tileformat::PackageError& e) {
-    throw build_write_error(s.output, e);
-  }
+  });
+  sum.tiles = items.size();
+  sum.unique_blobs = writer->unique_blobs();
+  sum.file_bytes = commit_package(*writer, s.output);
   sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return sum;
 }

@@ -17,11 +17,9 @@ AnalysisSummary merge_analysis(ShardSet& shards, const BuildOptions& o, Progress
   const tileformat::ShardMetadata shard = *tileformat::read_shard_metadata(shards.metadata());
   AnalysisSummary sum;
   std::unique_ptr<tileformat::PackageWriter> writer = create_package(o, progress);
-  try {
+  write_package_tiles(o.output, [&] {
     shards.copy_tiles(*writer, shard.min_zoom, meta.common.max_zoom, progress);
-  } catch (const tileformat::PackageError& e) {
-    throw build_write_error(o.output, e);
-  }
+  });
   if (writer->tiles_written() == 0)
     throw InputError("the shards hold no tiles; nothing written to " + o.output);
   writer->set_metadata(shards.merged_metadata(o.output, shard.min_zoom, o.command_line));

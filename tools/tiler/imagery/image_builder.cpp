@@ -49,7 +49,7 @@ class Builder {
   ImageSummary run() {
     const auto start = std::chrono::steady_clock::now();
     std::unique_ptr<tileformat::PackageWriter> writer = create_package(s_, progress_);
-    try {
+    write_package_tiles(s_.output, [&] {
       StagingStore stage(
           s_.output + ".staging", writer->key_hash(),
           writer->resumed() ? tileformat::Resume::kContinue : tileformat::Resume::kStartAfresh);
@@ -62,9 +62,7 @@ class Builder {
       }
       levels(*writer, stage, plan_.max_zoom, shard_ ? shard_->split_zoom : plan_.min_zoom);
       parts_ = nullptr;
-    } catch (const tileformat::PackageError& e) {
-      throw build_write_error(s_.output, e);
-    }
+    });
     if (writer->tiles_written() == 0 && !shard_)  // a shard may hold no data
       throw InputError(plan_.sources[0].path +
                        ": every pixel in the requested area is transparent (nodata, mask or "

@@ -47,7 +47,7 @@ ImageSummary merge_imagery(ShardSet& shards, const BuildOptions& o, Progress& pr
   };
   std::unique_ptr<tileformat::PackageWriter> writer = create_package(o, progress);
   int coarsest = shards.split_zoom();
-  try {
+  write_package_tiles(o.output, [&] {
     StagingStore stage(
         o.output + ".staging", writer->key_hash(),
         writer->resumed() ? tileformat::Resume::kContinue : tileformat::Resume::kStartAfresh);
@@ -99,9 +99,7 @@ ImageSummary merge_imagery(ShardSet& shards, const BuildOptions& o, Progress& pr
       sum.jpeg += above.formats.jpeg;
       sum.webp += above.formats.webp;
     }
-  } catch (const tileformat::PackageError& e) {
-    throw build_write_error(o.output, e);
-  }
+  });
   if (writer->tiles_written() == 0)
     throw InputError("the shards hold no tiles; nothing written to " + o.output);
   tileformat::MetadataMap m = shards.merged_metadata(o.output, coarsest, o.command_line);

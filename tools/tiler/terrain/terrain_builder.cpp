@@ -63,7 +63,7 @@ class Builder {
   BuildSummary run() {
     const auto start = std::chrono::steady_clock::now();
     std::unique_ptr<tileformat::PackageWriter> writer = create_package(s_, progress_);
-    try {
+    write_package_tiles(s_.output, [&] {
       StagingStore stage(
           s_.output + ".staging", writer->key_hash(),
           writer->resumed() ? tileformat::Resume::kContinue : tileformat::Resume::kStartAfresh);
@@ -76,11 +76,7 @@ class Builder {
       }
       levels(*writer, stage, plan_.max_zoom, shard_ ? shard_->split_zoom : plan_.min_zoom);
       parts_ = nullptr;
-    } catch (const tileformat::PackageError& e) {
-      // Only the output and scratch databases are written here: a failure is
-      // an output problem (disk full, folder removed), not bad input.
-      throw build_write_error(s_.output, e);
-    }
+    });
     if (writer->tiles_written() == 0 && !shard_)  // a shard may hold no data
       throw InputError(plan_.sources[0].path + ": no tile holds valid data in the requested area" +
                        (s_.bbox ? " (check --bbox)" : "") + "; nothing written");

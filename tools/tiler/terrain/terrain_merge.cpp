@@ -43,7 +43,7 @@ class Merger {
     const auto start = std::chrono::steady_clock::now();
     std::unique_ptr<tileformat::PackageWriter> writer = create_package(o_, progress_);
     int coarsest = shards_.split_zoom();
-    try {
+    write_package_tiles(o_.output, [&] {
       StagingStore stage(
           o_.output + ".staging", writer->key_hash(),
           writer->resumed() ? tileformat::Resume::kContinue : tileformat::Resume::kStartAfresh);
@@ -55,9 +55,7 @@ class Merger {
         coarsest = build_terrain_levels(plan(), settings(), *writer, stage,
                                         shards_.split_zoom() - 1, progress_);
       }
-    } catch (const tileformat::PackageError& e) {
-      throw build_write_error(o_.output, e);
-    }
+    });
     if (writer->tiles_written() == 0)
       throw InputError("the shards hold no tiles; nothing written to " + o_.output);
     writer->set_metadata(shards_.merged_metadata(o_.output, coarsest, o_.command_line));

@@ -117,7 +117,7 @@ class Builder {
       bundles_ = make_bundles(reduced_, routes_, weights);
     });
     std::unique_ptr<tileformat::PackageWriter> writer = create_package(s_, progress_);
-    try {
+    write_package_tiles(s_.output, [&] {
       GeometryScratch scratch(s_.output + ".scratch-geometry");
       stage("smooth", [&] {
         plan();
@@ -139,11 +139,7 @@ class Builder {
         cut_line_tiles(scratch, scratch_features_, plan_, tiles, sorter, stats, progress_);
         encode_line_tiles(sorter, plan_, tiles, *writer, stats, progress_);
       });
-    } catch (const tileformat::PackageError& e) {
-      throw build_write_error(s_.output, e);
-    } catch (const OutputError& e) {  // scratch files
-      throw build_write_error(s_.output, e);
-    }
+    });
     if (writer->tiles_written() == 0)
       throw InputError(s_.flows + ": no bundle or line falls in the requested area" +
                        (s_.bbox ? " (check --bbox)" : "") + "; nothing written");
