@@ -68,19 +68,38 @@ TEST(Architecture, ViewerIncludesNoGdal) {
   EXPECT_EQ(joined(matches("lib", gdal)), "");
 }
 
-// lib includes its public headers (tileformat/) and, from its sources, its
-// private ones (src/internal/, never installed beside the public ones).
+// tileformat includes its public headers (tileformat/) and, from its
+// sources, its private ones (src/internal/, never beside the public ones).
 TEST(Architecture, LibraryIncludesNothingAbove) {
   auto above = [](const std::string& l) {
     return l.starts_with("#include \"") && !l.starts_with("#include \"tileformat/") &&
            !l.starts_with("#include \"internal/");
   };
-  EXPECT_EQ(joined(matches("lib", above)), "");
+  EXPECT_EQ(joined(matches("lib/tileformat", above)), "");
   auto private_in_public = [](const std::string& l) {
     return l.starts_with("#include \"internal/");
   };
   EXPECT_EQ(joined(matches("lib/tileformat/include", private_in_public)), "")
       << "a public header includes a private one";
+}
+
+// The viewer stands on lib: its own folders, lib/runtime and lib/tileformat,
+// nothing from tools/ (whose headers are found by bare names). And runtime
+// stands on tileformat only.
+TEST(Architecture, ViewerIncludesNothingFromTools) {
+  auto foreign = [](const std::string& l) {
+    if (!l.starts_with("#include \"")) return false;
+    for (const char* ok :
+         {"app/", "camera/", "data/", "render/", "platform/", "runtime/", "tileformat/"})
+      if (l.starts_with(std::string("#include \"") + ok)) return false;
+    return true;
+  };
+  EXPECT_EQ(joined(matches("viewer", foreign)), "") << "the viewer includes from tools/";
+  auto above_runtime = [](const std::string& l) {
+    return l.starts_with("#include \"") && !l.starts_with("#include \"runtime/") &&
+           !l.starts_with("#include \"tileformat/");
+  };
+  EXPECT_EQ(joined(matches("lib/runtime", above_runtime)), "");
 }
 
 // Whether `line` calls a C function named PREFIX + [A-Z_]... (e.g. GDALOpen,
@@ -134,10 +153,12 @@ TEST(Architecture, EachCApiIsCalledOnlyFromItsWrapper) {
   auto zstd = [](const std::string& l) { return calls_c_api(l, {"ZSTD_"}); };
   EXPECT_EQ(joined(outside(matches("lib", zstd), {"lib/tileformat/src/zstd_codec."})), "");
   auto png = [](const std::string& l) { return calls_c_api(l, {"png_"}); };
-  EXPECT_EQ(joined(outside(matches("tools", png), {"tools/common/kit/png_codec."})), "");
   auto jpeg_webp = [](const std::string& l) { return calls_c_api(l, {"jpeg_", "WebP"}); };
-  EXPECT_EQ(joined(outside(matches("tools", jpeg_webp), {"tools/common/kit/jpeg_webp_decoders."})),
-            "");
+  for (const char* dir : {"lib", "tools", "viewer"}) {
+    EXPECT_EQ(joined(outside(matches(dir, png), {"lib/runtime/src/png_codec."})), "") << dir;
+    EXPECT_EQ(joined(outside(matches(dir, jpeg_webp), {"lib/runtime/src/jpeg_webp_decoders."})), "")
+        << dir;
+  }
   for (const char* dir : {"tools", "viewer"}) {
     EXPECT_EQ(joined(matches(dir, sqlite)), "") << dir;
     EXPECT_EQ(joined(matches(dir, zstd)), "") << dir;

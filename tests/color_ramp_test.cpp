@@ -7,9 +7,9 @@
 #include <fstream>
 
 #include "app/color_relief_file.hpp"
-#include "errors.hpp"
 #include "raster_fixtures.hpp"
 #include "render/color_ramp.hpp"
+#include "runtime/errors.hpp"
 #include "test_support.hpp"
 
 namespace {

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "data/image_cache.hpp"
-#include "image_package.hpp"
+#include "runtime/image_package.hpp"
 #include "test_support.hpp"
 
 namespace {

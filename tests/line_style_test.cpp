@@ -2,8 +2,8 @@
 // files over it (the viewer's --style).
 #include <gtest/gtest.h>
 
-#include "errors.hpp"
-#include "line_style.hpp"
+#include "runtime/errors.hpp"
+#include "runtime/line_style.hpp"
 
 namespace {
 

@@ -6,7 +6,7 @@
 #include <cstring>
 #include <filesystem>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 #include "scratch_array_file.hpp"
 #include "scratch_file.hpp"
 #include "test_support.hpp"

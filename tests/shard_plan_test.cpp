@@ -9,7 +9,7 @@
 #include <random>
 #include <set>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 #include "shard_plan.hpp"
 
 using globe::ShardPlan;

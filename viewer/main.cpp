@@ -6,8 +6,8 @@
 #include "app/headless_run.hpp"
 #include "app/viewer_settings.hpp"
 #include "app/window_run.hpp"
-#include "error_report.hpp"
-#include "errors.hpp"
+#include "runtime/error_report.hpp"
+#include "runtime/errors.hpp"
 
 int main(int argc, char** argv) {
   const std::vector<std::string> args(argv + 1, argv + argc);

@@ -12,12 +12,12 @@
 #include <thread>
 #include <vector>
 
-#include "cli_args.hpp"
-#include "error_report.hpp"
-#include "errors.hpp"
 #include "http_server.hpp"
 #include "package_registry.hpp"
 #include "request_handler.hpp"
+#include "runtime/cli_args.hpp"
+#include "runtime/error_report.hpp"
+#include "runtime/errors.hpp"
 
 namespace {
 

@@ -5,7 +5,7 @@
 
 #include <filesystem>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe::serve {
 

@@ -20,8 +20,8 @@
 
 #include "command_tool.hpp"
 #include "commands.hpp"
-#include "errors.hpp"
 #include "heap_tuning.hpp"
+#include "runtime/errors.hpp"
 
 namespace {
 

@@ -3,10 +3,10 @@
 #include <sstream>
 
 #include "bundle/bundle_builder.hpp"
-#include "cli_args.hpp"
 #include "commands.hpp"
-#include "errors.hpp"
 #include "lines_options.hpp"
+#include "runtime/cli_args.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe {
 

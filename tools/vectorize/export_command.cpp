@@ -3,12 +3,12 @@
 #include <sstream>
 
 #include "build_options.hpp"
-#include "cli_args.hpp"
 #include "commands.hpp"
-#include "errors.hpp"
 #include "mvt_export.hpp"
-#include "package_open.hpp"
 #include "point_mvt_export.hpp"
+#include "runtime/cli_args.hpp"
+#include "runtime/errors.hpp"
+#include "runtime/package_open.hpp"
 
 namespace globe {
 

@@ -5,13 +5,13 @@
 #include <cstdio>
 #include <map>
 
-#include "cli_args.hpp"
 #include "commands.hpp"
-#include "errors.hpp"
-#include "line_package.hpp"
-#include "package_open.hpp"
-#include "point_package.hpp"
 #include "points_inspect.hpp"
+#include "runtime/cli_args.hpp"
+#include "runtime/errors.hpp"
+#include "runtime/line_package.hpp"
+#include "runtime/package_open.hpp"
+#include "runtime/point_package.hpp"
 #include "tileformat/feature_table.hpp"
 #include "tileformat/line_tile.hpp"
 #include "vector_writer.hpp"

@@ -3,13 +3,13 @@
 #include <cstdio>
 #include <map>
 
-#include "cli_args.hpp"
 #include "commands.hpp"
-#include "errors.hpp"
-#include "line_package.hpp"
 #include "package_info.hpp"
-#include "package_open.hpp"
 #include "points_inspect.hpp"
+#include "runtime/cli_args.hpp"
+#include "runtime/errors.hpp"
+#include "runtime/line_package.hpp"
+#include "runtime/package_open.hpp"
 #include "tileformat/feature_table.hpp"
 #include "tileformat/json.hpp"
 #include "tileformat/line_tile.hpp"

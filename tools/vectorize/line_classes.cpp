@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <sstream>
 
-#include "cli_args.hpp"
-#include "errors.hpp"
+#include "runtime/cli_args.hpp"
+#include "runtime/errors.hpp"
 #include "tileformat/json.hpp"
 
 namespace globe {

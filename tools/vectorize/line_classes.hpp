@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "line_style.hpp"
+#include "runtime/line_style.hpp"
 
 namespace globe {
 

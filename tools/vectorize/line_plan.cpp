@@ -6,7 +6,7 @@
 #include <numbers>
 #include <string>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe {
 namespace {

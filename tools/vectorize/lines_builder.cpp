@@ -7,7 +7,6 @@
 #include <memory>
 #include <optional>
 
-#include "errors.hpp"
 #include "geometry_scratch.hpp"
 #include "line_classes.hpp"
 #include "line_metadata.hpp"
@@ -16,6 +15,7 @@
 #include "line_shard.hpp"
 #include "line_tiles.hpp"
 #include "package_output.hpp"
+#include "runtime/errors.hpp"
 #include "tile_sorter.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/feature_table.hpp"

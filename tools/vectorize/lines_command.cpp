@@ -2,11 +2,11 @@
 // prints the summary.
 #include <sstream>
 
-#include "cli_args.hpp"
 #include "commands.hpp"
-#include "errors.hpp"
 #include "lines_builder.hpp"
 #include "lines_options.hpp"
+#include "runtime/cli_args.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe {
 

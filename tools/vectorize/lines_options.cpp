@@ -1,7 +1,7 @@
 // Line tile options (see lines_options.hpp).
 #include "lines_options.hpp"
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe {
 

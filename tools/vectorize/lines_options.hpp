@@ -2,8 +2,8 @@
 // bundle): --style, --cluster-grid, --simplify, --memory-mb.
 #pragma once
 
-#include "cli_args.hpp"
 #include "lines_settings.hpp"
+#include "runtime/cli_args.hpp"
 
 namespace globe {
 

@@ -3,10 +3,10 @@
 // one machine would build (docs/scale-out.md).
 #include <sstream>
 
-#include "cli_args.hpp"
 #include "commands.hpp"
-#include "errors.hpp"
 #include "lines_merge.hpp"
+#include "runtime/cli_args.hpp"
+#include "runtime/errors.hpp"
 #include "shard_set.hpp"
 
 namespace globe {

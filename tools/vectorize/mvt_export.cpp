@@ -5,11 +5,11 @@
 #include <filesystem>
 #include <fstream>
 
-#include "errors.hpp"
 #include "gzip.hpp"
 #include "line_mvt.hpp"
-#include "line_package.hpp"
 #include "mvt_encoder.hpp"
+#include "runtime/errors.hpp"
+#include "runtime/line_package.hpp"
 #include "tile_output.hpp"
 #include "tileformat/pmtiles.hpp"
 

@@ -3,7 +3,7 @@
 
 #include "mvt_encoder.hpp"
 #include "point_mvt.hpp"
-#include "point_package.hpp"
+#include "runtime/point_package.hpp"
 #include "tile_output.hpp"
 
 namespace globe {

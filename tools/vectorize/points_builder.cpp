@@ -7,11 +7,11 @@
 #include <memory>
 #include <sstream>
 
-#include "errors.hpp"
 #include "line_projector.hpp"
 #include "package_output.hpp"
 #include "parallel_batches.hpp"
 #include "point_aggregation.hpp"
+#include "runtime/errors.hpp"
 #include "tile_cutter.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/feature_table.hpp"

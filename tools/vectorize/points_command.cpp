@@ -2,10 +2,10 @@
 // prints the summary.
 #include <sstream>
 
-#include "cli_args.hpp"
 #include "commands.hpp"
-#include "errors.hpp"
 #include "points_builder.hpp"
+#include "runtime/cli_args.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe {
 int run_points(const std::vector<std::string>& args) {

@@ -18,9 +18,9 @@
 #include <cstdio>
 #include <map>
 
-#include "errors.hpp"
 #include "package_info.hpp"
-#include "point_package.hpp"
+#include "runtime/errors.hpp"
+#include "runtime/point_package.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/feature_table.hpp"
 #include "tileformat/point_tile.hpp"

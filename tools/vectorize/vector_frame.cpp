@@ -5,7 +5,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 #include "tileformat/package.hpp"
 
 namespace globe {

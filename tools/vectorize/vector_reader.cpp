@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 #include "tileformat/json.hpp"
 
 namespace globe {

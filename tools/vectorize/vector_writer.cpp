@@ -6,7 +6,7 @@
 
 #include <filesystem>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 #include "spatial_ref.hpp"
 
 namespace globe {

@@ -3,9 +3,9 @@
 
 #include <algorithm>
 
-#include "analysis_package.hpp"
 #include "app/package_set.hpp"
-#include "errors.hpp"
+#include "runtime/analysis_package.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe::viewer {
 

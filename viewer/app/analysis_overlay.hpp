@@ -10,7 +10,7 @@
 
 #include "data/block_cache.hpp"
 #include "render/terrain_renderer.hpp"
-#include "terrain_package.hpp"
+#include "runtime/terrain_package.hpp"
 #include "tileformat/analysis_block.hpp"
 
 namespace globe::viewer {

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "line_style.hpp"
 #include "render/text_overlay.hpp"
+#include "runtime/line_style.hpp"
 
 namespace globe::viewer {
 

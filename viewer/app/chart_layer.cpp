@@ -9,9 +9,9 @@
 
 #include <glm/glm.hpp>
 
-#include "errors.hpp"
 #include "render/color.hpp"
 #include "render/point_tile_selection.hpp"
+#include "runtime/errors.hpp"
 #include "tileformat/feature_table.hpp"
 #include "tileformat/json.hpp"
 

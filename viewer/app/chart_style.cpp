@@ -4,8 +4,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "errors.hpp"
-#include "line_style.hpp"
+#include "runtime/errors.hpp"
+#include "runtime/line_style.hpp"
 #include "tileformat/json.hpp"
 
 namespace globe::viewer {

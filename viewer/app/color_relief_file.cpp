@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe::viewer {
 namespace {

@@ -9,9 +9,9 @@
 #include "app/image_file.hpp"
 #include "app/mesh_file.hpp"
 #include "app/terrain_scene.hpp"
-#include "errors.hpp"
 #include "platform/gl.hpp"
 #include "platform/headless_context.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe::viewer {
 

@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "errors.hpp"
-#include "png_codec.hpp"
+#include "runtime/errors.hpp"
+#include "runtime/png_codec.hpp"
 
 namespace globe::viewer {
 namespace {

@@ -8,8 +8,8 @@
 #include <numbers>
 
 #include "camera/proj_crs.hpp"
-#include "errors.hpp"
 #include "render/image_shaders.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe::viewer {
 

@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 #include "tileformat/feature_table.hpp"
 #include "tileformat/json.hpp"
 

@@ -16,8 +16,8 @@
 
 #include "app/bundle_legend.hpp"
 #include "data/line_cache.hpp"
-#include "line_style.hpp"
 #include "render/line_renderer.hpp"
+#include "runtime/line_style.hpp"
 
 namespace globe::viewer {
 

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <map>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe::viewer {
 

@@ -4,9 +4,9 @@
 #include <cmath>
 
 #include "camera/proj_crs.hpp"
-#include "errors.hpp"
-#include "image_package.hpp"
-#include "package_open.hpp"
+#include "runtime/errors.hpp"
+#include "runtime/image_package.hpp"
+#include "runtime/package_open.hpp"
 #include "tileformat/line_tile.hpp"
 #include "tileformat/package.hpp"
 

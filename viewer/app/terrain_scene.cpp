@@ -9,11 +9,11 @@
 
 #include "app/analysis_overlay.hpp"
 #include "app/package_set.hpp"
-#include "errors.hpp"
-#include "line_package.hpp"
-#include "point_package.hpp"
 #include "render/readback.hpp"
-#include "terrain_package.hpp"
+#include "runtime/errors.hpp"
+#include "runtime/line_package.hpp"
+#include "runtime/point_package.hpp"
+#include "runtime/terrain_package.hpp"
 #include "tileformat/package.hpp"
 
 namespace globe::viewer {

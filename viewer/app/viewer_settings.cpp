@@ -3,8 +3,8 @@
 
 #include <fstream>
 
-#include "cli_args.hpp"
-#include "errors.hpp"
+#include "runtime/cli_args.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe::viewer {
 

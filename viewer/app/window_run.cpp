@@ -18,9 +18,9 @@
 #include "app/image_file.hpp"
 #include "app/terrain_scene.hpp"
 #include "camera/orbit.hpp"
-#include "errors.hpp"
 #include "platform/glfw_window.hpp"
 #include "render/readback.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe::viewer {
 

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe::viewer {
 namespace {

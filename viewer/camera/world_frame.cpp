@@ -8,7 +8,7 @@
 
 #include "camera/ellipsoid.hpp"
 #include "camera/proj_crs.hpp"
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe::viewer {
 

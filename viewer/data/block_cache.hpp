@@ -23,7 +23,7 @@
 
 #include "data/analysis_texels.hpp"
 #include "data/tile_loader.hpp"
-#include "terrain_package.hpp"
+#include "runtime/terrain_package.hpp"
 #include "tileformat/tile_id.hpp"
 
 namespace globe::viewer {

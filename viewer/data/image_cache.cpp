@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "rgba_decode.hpp"
+#include "runtime/rgba_decode.hpp"
 
 namespace globe::viewer {
 

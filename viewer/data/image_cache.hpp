@@ -19,7 +19,7 @@
 
 #include "data/block_cache.hpp"
 #include "data/tile_loader.hpp"
-#include "image_package.hpp"
+#include "runtime/image_package.hpp"
 
 namespace globe::viewer {
 

@@ -30,7 +30,7 @@
 #include "data/arena_allocator.hpp"
 #include "data/block_cache.hpp"
 #include "data/tile_loader.hpp"
-#include "line_package.hpp"
+#include "runtime/line_package.hpp"
 #include "tileformat/line_tile.hpp"
 
 namespace globe::viewer {

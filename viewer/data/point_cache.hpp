@@ -15,7 +15,7 @@
 
 #include "data/block_cache.hpp"
 #include "data/tile_loader.hpp"
-#include "point_package.hpp"
+#include "runtime/point_package.hpp"
 #include "tileformat/point_tile.hpp"
 
 namespace globe::viewer {

@@ -16,9 +16,9 @@
 
 #include "camera/camera.hpp"
 #include "data/line_cache.hpp"
-#include "line_style.hpp"
 #include "render/gl_program.hpp"
 #include "render/terrain_renderer.hpp"
+#include "runtime/line_style.hpp"
 
 namespace globe::viewer {
 

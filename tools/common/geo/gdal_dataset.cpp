@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <mutex>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 #include "spatial_ref.hpp"
 
 namespace globe {

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "gdal_dataset.hpp"
-#include "png_codec.hpp"
+#include "runtime/png_codec.hpp"
 #include "tileformat/error.hpp"
 
 namespace globe {

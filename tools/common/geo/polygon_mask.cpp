@@ -6,8 +6,8 @@
 
 #include <algorithm>
 
-#include "errors.hpp"
 #include "gdal_dataset.hpp"
+#include "runtime/errors.hpp"
 #include "spatial_ref.hpp"
 
 namespace globe {

@@ -8,8 +8,8 @@
 
 #include <cpl_conv.h>
 
-#include "errors.hpp"
 #include "gdal_dataset.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe {
 

@@ -3,7 +3,7 @@
 
 #include <filesystem>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe {
 

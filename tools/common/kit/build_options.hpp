@@ -9,8 +9,8 @@
 #include <thread>
 #include <vector>
 
-#include "cli_args.hpp"
 #include "progress.hpp"
+#include "runtime/cli_args.hpp"
 #include "shard_plan.hpp"
 #include "tileformat/tiling.hpp"
 

@@ -3,8 +3,8 @@
 
 #include <cstdio>
 
-#include "error_report.hpp"
-#include "errors.hpp"
+#include "runtime/error_report.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe {
 

@@ -4,8 +4,8 @@
 #include <filesystem>
 
 #include "build_options.hpp"
-#include "errors.hpp"
 #include "progress.hpp"
+#include "runtime/errors.hpp"
 #include "tileformat/error.hpp"
 
 namespace globe {

@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/package.hpp"
 

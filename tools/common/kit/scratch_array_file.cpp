@@ -9,7 +9,7 @@
 #include <cstring>
 #include <filesystem>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe {
 

@@ -5,7 +5,7 @@
 #include <cstring>
 #include <filesystem>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 #include "tileformat/byte_io.hpp"
 
 namespace globe {

@@ -7,8 +7,8 @@
 #include <map>
 
 #include "build_options.hpp"
-#include "cli_args.hpp"
-#include "errors.hpp"
+#include "runtime/cli_args.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe {
 

@@ -5,9 +5,9 @@
 #include <filesystem>
 
 #include "build_options.hpp"
-#include "errors.hpp"
-#include "package_open.hpp"
 #include "progress.hpp"
+#include "runtime/errors.hpp"
+#include "runtime/package_open.hpp"
 #include "tileformat/metadata.hpp"
 
 namespace globe {

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <string>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe {
 

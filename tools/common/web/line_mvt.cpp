@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/json.hpp"
 #include "tileformat/line_tile.hpp"

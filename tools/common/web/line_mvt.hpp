@@ -16,8 +16,8 @@
 #include <utility>
 #include <vector>
 
-#include "line_package.hpp"
 #include "mvt_encoder.hpp"
+#include "runtime/line_package.hpp"
 #include "tileformat/feature_table.hpp"
 #include "tileformat/tile_id.hpp"
 

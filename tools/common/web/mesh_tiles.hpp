@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "lru_cache.hpp"
+#include "runtime/terrain_package.hpp"
 #include "terrain_mesh.hpp"
-#include "terrain_package.hpp"
 #include "terrain_sampler.hpp"
 #include "tileformat/tile_id.hpp"
 

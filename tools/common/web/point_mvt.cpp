@@ -1,8 +1,8 @@
 // Point tiles as Mapbox Vector Tiles (see point_mvt.hpp).
 #include "point_mvt.hpp"
 
-#include "errors.hpp"
 #include "mvt_encoder.hpp"
+#include "runtime/errors.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/json.hpp"
 #include "tileformat/point_tile.hpp"

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "point_package.hpp"
+#include "runtime/point_package.hpp"
 #include "tileformat/tile_id.hpp"
 
 namespace globe::web {

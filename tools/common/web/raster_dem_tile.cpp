@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "png_codec.hpp"
+#include "runtime/png_codec.hpp"
 
 namespace globe::web {
 int raster_dem_source_zoom(const TerrainPackage& package, int z, int tile_size) {

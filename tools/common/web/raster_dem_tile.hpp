@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "raster_dem.hpp"
-#include "terrain_package.hpp"
+#include "runtime/terrain_package.hpp"
 #include "terrain_sampler.hpp"
 
 namespace globe::web {

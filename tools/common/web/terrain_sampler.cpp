@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 #include "tileformat/error.hpp"
 
 namespace globe::web {

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "lru_cache.hpp"
-#include "terrain_package.hpp"
+#include "runtime/terrain_package.hpp"
 #include "tileformat/mblock.hpp"
 #include "tileformat/tile_id.hpp"
 

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <utility>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/json.hpp"
 #include "tileformat/package.hpp"

@@ -10,15 +10,15 @@
 #include <optional>
 
 #include "batch_blocks.hpp"
-#include "errors.hpp"
 #include "flow/flow_solver.hpp"
 #include "height_window.hpp"
 #include "package_output.hpp"
 #include "parallel_batches.hpp"
+#include "runtime/errors.hpp"
+#include "runtime/terrain_package.hpp"
 #include "shard_plan.hpp"
 #include "sky_view.hpp"
 #include "terrain_derivatives.hpp"
-#include "terrain_package.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/mblock.hpp"
 #include "tileformat/metadata.hpp"

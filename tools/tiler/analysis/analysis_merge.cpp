@@ -3,8 +3,8 @@
 
 #include <chrono>
 
-#include "package_open.hpp"
 #include "package_output.hpp"
+#include "runtime/package_open.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/metadata.hpp"
 

@@ -6,10 +6,10 @@
 #include <sstream>
 
 #include "analysis_builder.hpp"
-#include "cli_args.hpp"
 #include "commands.hpp"
-#include "errors.hpp"
 #include "heap_tuning.hpp"
+#include "runtime/cli_args.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe {
 namespace {

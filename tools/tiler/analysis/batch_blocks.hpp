@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/mblock.hpp"
 #include "tileformat/tile_id.hpp"

@@ -8,10 +8,10 @@
 #include <memory>
 #include <vector>
 
-#include "errors.hpp"
 #include "parallel_batches.hpp"
 #include "raster_dem_tile.hpp"
-#include "terrain_package.hpp"
+#include "runtime/errors.hpp"
+#include "runtime/terrain_package.hpp"
 #include "terrain_sampler.hpp"
 #include "tile_output.hpp"
 #include "tileformat/pmtiles.hpp"

@@ -4,13 +4,13 @@
 #include <sstream>
 
 #include "build_options.hpp"
-#include "cli_args.hpp"
 #include "commands.hpp"
 #include "dem_export.hpp"
-#include "errors.hpp"
 #include "image_export.hpp"
 #include "mesh_export.hpp"
-#include "package_open.hpp"
+#include "runtime/cli_args.hpp"
+#include "runtime/errors.hpp"
+#include "runtime/package_open.hpp"
 
 namespace globe {
 

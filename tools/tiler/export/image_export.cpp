@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <vector>
 
-#include "errors.hpp"
-#include "image_package.hpp"
+#include "runtime/errors.hpp"
+#include "runtime/image_package.hpp"
 #include "tile_output.hpp"
 #include "tileformat/pmtiles.hpp"
 

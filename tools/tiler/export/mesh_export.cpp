@@ -7,11 +7,11 @@
 #include <memory>
 #include <vector>
 
-#include "errors.hpp"
 #include "gzip.hpp"
 #include "mesh_tiles.hpp"
 #include "parallel_batches.hpp"
-#include "terrain_package.hpp"
+#include "runtime/errors.hpp"
+#include "runtime/terrain_package.hpp"
 #include "tile_output.hpp"
 #include "tileformat/pmtiles.hpp"
 

@@ -12,7 +12,6 @@
 #include <thread>
 
 #include "data_probe.hpp"
-#include "errors.hpp"
 #include "image_codec.hpp"
 #include "image_pyramid.hpp"
 #include "image_warper.hpp"
@@ -20,6 +19,7 @@
 #include "parallel_batches.hpp"
 #include "raster_metadata.hpp"
 #include "raster_stages.hpp"
+#include "runtime/errors.hpp"
 #include "shard_plan.hpp"
 #include "tile_groups.hpp"
 #include "tileformat/error.hpp"

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <limits>
 
-#include "errors.hpp"
 #include "gdal_dataset.hpp"
 #include "raster_warper.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <cstdio>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 #include "spatial_ref.hpp"
 
 namespace globe {

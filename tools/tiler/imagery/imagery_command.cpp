@@ -3,12 +3,12 @@
 #include <cstdio>
 #include <sstream>
 
-#include "cli_args.hpp"
 #include "commands.hpp"
-#include "errors.hpp"
 #include "image_builder.hpp"
 #include "image_plan.hpp"
 #include "raster_warper.hpp"
+#include "runtime/cli_args.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe {
 namespace {

@@ -4,10 +4,10 @@
 #include <limits>
 #include <map>
 
-#include "analysis_package.hpp"
-#include "errors.hpp"
 #include "inspect_commands.hpp"
 #include "package_info.hpp"
+#include "runtime/analysis_package.hpp"
+#include "runtime/errors.hpp"
 #include "tileformat/error.hpp"
 #include "validation_report.hpp"
 

@@ -4,11 +4,11 @@
 
 #include <cstdio>
 
-#include "errors.hpp"
 #include "gdal_dataset.hpp"
 #include "image_codec.hpp"
-#include "image_package.hpp"
 #include "inspect_commands.hpp"
+#include "runtime/errors.hpp"
+#include "runtime/image_package.hpp"
 #include "tileformat/error.hpp"
 
 namespace globe {

@@ -12,9 +12,9 @@
 #include <optional>
 
 #include "image_codec.hpp"
-#include "image_package.hpp"
 #include "image_pyramid.hpp"
 #include "inspect_commands.hpp"
+#include "runtime/image_package.hpp"
 #include "tileformat/error.hpp"
 #include "validation_report.hpp"
 

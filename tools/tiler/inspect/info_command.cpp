@@ -2,14 +2,14 @@
 // stdout, for terrain and image packages.
 #include <cstdio>
 
-#include "cli_args.hpp"
 #include "commands.hpp"
-#include "errors.hpp"
-#include "image_package.hpp"
 #include "inspect_commands.hpp"
 #include "package_info.hpp"
-#include "package_open.hpp"
-#include "terrain_package.hpp"
+#include "runtime/cli_args.hpp"
+#include "runtime/errors.hpp"
+#include "runtime/image_package.hpp"
+#include "runtime/package_open.hpp"
+#include "runtime/terrain_package.hpp"
 #include "tileformat/error.hpp"
 
 namespace globe {

@@ -8,13 +8,13 @@
 #include <map>
 #include <optional>
 
-#include "cli_args.hpp"
 #include "commands.hpp"
-#include "errors.hpp"
-#include "image_package.hpp"
 #include "inspect_commands.hpp"
-#include "package_open.hpp"
-#include "terrain_package.hpp"
+#include "runtime/cli_args.hpp"
+#include "runtime/errors.hpp"
+#include "runtime/image_package.hpp"
+#include "runtime/package_open.hpp"
+#include "runtime/terrain_package.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/kpatch.hpp"
 #include "tileformat/mblock.hpp"

@@ -4,10 +4,10 @@
 #include <sstream>
 
 #include "analysis_merge.hpp"
-#include "cli_args.hpp"
 #include "commands.hpp"
-#include "errors.hpp"
 #include "image_merge.hpp"
+#include "runtime/cli_args.hpp"
+#include "runtime/errors.hpp"
 #include "shard_set.hpp"
 #include "terrain_merge.hpp"
 

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/package.hpp"
 

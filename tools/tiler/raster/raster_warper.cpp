@@ -10,7 +10,7 @@
 #include <numeric>
 #include <optional>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 #include "spatial_ref.hpp"
 #include "window_coordinates.hpp"
 

@@ -8,9 +8,9 @@
 #include <optional>
 #include <vector>
 
-#include "errors.hpp"
 #include "gdal_dataset.hpp"
 #include "raster_warper.hpp"
+#include "runtime/errors.hpp"
 #include "spatial_ref.hpp"
 #include "tileformat/mblock.hpp"
 

@@ -4,10 +4,10 @@
 #include <sstream>
 #include <thread>
 
-#include "cli_args.hpp"
 #include "commands.hpp"
 #include "dem_plan.hpp"
-#include "errors.hpp"
+#include "runtime/cli_args.hpp"
+#include "runtime/errors.hpp"
 #include "terrain_builder.hpp"
 
 namespace globe {

@@ -7,9 +7,9 @@
 #include <map>
 
 #include "error_tree.hpp"
-#include "package_open.hpp"
 #include "package_output.hpp"
 #include "parallel_batches.hpp"
+#include "runtime/package_open.hpp"
 #include "terrain_stages.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/kpatch.hpp"

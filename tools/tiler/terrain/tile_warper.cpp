@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 #include "spatial_ref.hpp"
 
 namespace globe {

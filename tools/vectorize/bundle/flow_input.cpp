@@ -8,7 +8,7 @@
 #include <memory>
 #include <unordered_map>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 #include "spatial_ref.hpp"
 #include "vector_reader.hpp"
 

@@ -6,8 +6,8 @@
 #include <numbers>
 #include <numeric>
 
-#include "errors.hpp"
 #include "geodesic.hpp"
+#include "runtime/errors.hpp"
 #include "spatial_ref.hpp"
 #include "vector_reader.hpp"
 

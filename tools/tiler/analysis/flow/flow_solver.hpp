@@ -25,7 +25,7 @@
 #include "flow_grid.hpp"
 #include "flow_pyramid.hpp"
 #include "progress.hpp"
-#include "terrain_package.hpp"
+#include "runtime/terrain_package.hpp"
 
 namespace globe::flow {
 

@@ -1,8 +1,8 @@
 // Opening image packages (see image_package.hpp).
-#include "image_package.hpp"
+#include "runtime/image_package.hpp"
 
-#include "errors.hpp"
-#include "package_open.hpp"
+#include "runtime/errors.hpp"
+#include "runtime/package_open.hpp"
 #include "tileformat/error.hpp"
 
 namespace globe {

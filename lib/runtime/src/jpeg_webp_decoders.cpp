@@ -1,5 +1,5 @@
 // JPEG and WebP decoding (see jpeg_webp_decoders.hpp).
-#include "jpeg_webp_decoders.hpp"
+#include "runtime/jpeg_webp_decoders.hpp"
 
 #include <csetjmp>
 #include <cstdio>

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "line_style.hpp"
+#include "runtime/line_style.hpp"
 #include "tileformat/package.hpp"
 #include "tileformat/tiling.hpp"
 

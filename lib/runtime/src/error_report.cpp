@@ -1,10 +1,10 @@
 // Errors -> messages and exit codes (see error_report.hpp).
-#include "error_report.hpp"
+#include "runtime/error_report.hpp"
 
 #include <cstdio>
 #include <exception>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 #include "tileformat/error.hpp"
 
 namespace globe {

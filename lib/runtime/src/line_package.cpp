@@ -1,8 +1,8 @@
 // Opening line-cluster packages (see line_package.hpp).
-#include "line_package.hpp"
+#include "runtime/line_package.hpp"
 
-#include "errors.hpp"
-#include "package_open.hpp"
+#include "runtime/errors.hpp"
+#include "runtime/package_open.hpp"
 #include "tileformat/line_tile.hpp"
 
 namespace globe {

@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/metadata.hpp"
 #include "tileformat/package.hpp"

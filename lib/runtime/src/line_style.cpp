@@ -1,10 +1,10 @@
 // Line class styles in JSON (see line_style.hpp).
-#include "line_style.hpp"
+#include "runtime/line_style.hpp"
 
 #include <cctype>
 #include <iterator>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 #include "tileformat/json.hpp"
 
 namespace globe {

@@ -1,7 +1,7 @@
 // Opening point packages (see point_package.hpp).
-#include "point_package.hpp"
+#include "runtime/point_package.hpp"
 
-#include "package_open.hpp"
+#include "runtime/package_open.hpp"
 
 namespace globe {
 

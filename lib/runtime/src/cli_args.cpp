@@ -1,11 +1,11 @@
 // Command-line parsing (see cli_args.hpp).
-#include "cli_args.hpp"
+#include "runtime/cli_args.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 
-#include "errors.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe {
 

@@ -1,7 +1,7 @@
 // Opening terrain packages (see terrain_package.hpp).
-#include "terrain_package.hpp"
+#include "runtime/terrain_package.hpp"
 
-#include "package_open.hpp"
+#include "runtime/package_open.hpp"
 
 namespace globe {
 

@@ -1,11 +1,11 @@
 // Image tile decoding to RGBA (see rgba_decode.hpp).
-#include "rgba_decode.hpp"
+#include "runtime/rgba_decode.hpp"
 
 #include <cstring>
 #include <stdexcept>
 
-#include "jpeg_webp_decoders.hpp"
-#include "png_codec.hpp"
+#include "runtime/jpeg_webp_decoders.hpp"
+#include "runtime/png_codec.hpp"
 
 namespace globe {
 

@@ -1,7 +1,7 @@
 // Opening analysis packages (see analysis_package.hpp).
-#include "analysis_package.hpp"
+#include "runtime/analysis_package.hpp"
 
-#include "package_open.hpp"
+#include "runtime/package_open.hpp"
 
 namespace globe {
 

@@ -1,5 +1,5 @@
 // Opening packages for inspection (see package_open.hpp).
-#include "package_open.hpp"
+#include "runtime/package_open.hpp"
 
 namespace globe {
 

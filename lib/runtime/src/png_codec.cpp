@@ -1,5 +1,5 @@
 // PNG encoding and decoding through libpng (see png_codec.hpp).
-#include "png_codec.hpp"
+#include "runtime/png_codec.hpp"
 
 #include <png.h>
 #include <zlib.h>
