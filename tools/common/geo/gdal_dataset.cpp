@@ -5,6 +5,7 @@
 #include <cpl_error.h>
 #include <cpl_string.h>
 #include <gdal_utils.h>
+#include <gdal_vrt.h>
 #include <ogr_srs_api.h>
 
 #include <cctype>
@@ -207,6 +208,47 @@ GdalDataset GdalDataset::vrt_copy(GDALDatasetH in, const std::string& name) {
       GDALCreateCopy(GDALGetDriverByName("VRT"), "", in, FALSE, nullptr, nullptr, nullptr);
   if (!h) throw InputError(name + ": cannot wrap the raster (" + gdal_last_error() + ")");
   return GdalDataset(h, name);
+}
+
+GdalDataset GdalDataset::periodic_columns_vrt(GDALDatasetH in, int first, int period, int width,
+                                              const std::string& name) {
+  const int w = period, h = GDALGetRasterYSize(in);
+  if (period < 1 || period > GDALGetRasterXSize(in) || first < 0 || first >= w || width < 1)
+    throw std::logic_error("periodic_columns_vrt: columns out of range");
+  CPLErrorReset();
+  VRTDatasetH vrt = VRTCreate(width, h);
+  if (!vrt) throw InputError(name + ": cannot wrap the raster (" + gdal_last_error() + ")");
+  GdalDataset out(static_cast<GDALDatasetH>(vrt), name);
+  for (int b = 1; b <= GDALGetRasterCount(in); ++b) {
+    GDALRasterBandH src = GDALGetRasterBand(in, b);
+    auto fail = [&] {
+      return InputError(name + ": cannot wrap band " + std::to_string(b) + " (" +
+                        gdal_last_error() + ")");
+    };
+    if (VRTAddBand(vrt, GDALGetRasterDataType(src), nullptr) != CE_None) throw fail();
+    GDALRasterBandH dst = GDALGetRasterBand(out.get(), b);
+    GDALSetRasterColorInterpretation(dst, GDALGetRasterColorInterpretation(src));
+    int has_nodata = 0;
+    const double nodata = GDALGetRasterNoDataValue(src, &has_nodata);
+    if (has_nodata) GDALSetRasterNoDataValue(dst, nodata);
+    // Runs of consecutive source columns, wrapping at the last.
+    for (int x = 0, from = first; x < width; from = 0) {
+      const int run = std::min(w - from, width - x);
+      if (VRTAddSimpleSource(static_cast<VRTSourcedRasterBandH>(dst), src, from, 0, run, h, x, 0,
+                             run, h, "near", VRT_NODATA_UNSET) != CE_None)
+        throw fail();
+      x += run;
+    }
+  }
+  return out;
+}
+
+bool GdalDataset::has_mask_band(GDALDatasetH in) {
+  for (int b = 1; b <= GDALGetRasterCount(in); ++b) {
+    const int flags = GDALGetMaskFlags(GDALGetRasterBand(in, b));
+    if (!(flags & (GMF_ALL_VALID | GMF_NODATA | GMF_ALPHA))) return true;
+  }
+  return false;
 }
 
 GdalDataset GdalDataset::translate_to_vrt(const std::vector<std::string>& args) const {

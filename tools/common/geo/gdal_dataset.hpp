@@ -62,6 +62,19 @@ class GdalDataset {
   // An in-memory VRT copy of `in` whose georeferencing and band settings can
   // be changed without touching the file; `name` is used in messages.
   static GdalDataset vrt_copy(GDALDatasetH in, const std::string& name);
+  // An in-memory VRT of `width` columns whose column k is `in`'s column
+  // (first + k) mod `period` (its first `period` columns repeat): a grid that
+  // goes once around the Earth,
+  // extended periodically (so that a kernel across the antimeridian finds
+  // both neighbours). Georeferencing is left to the caller; band types,
+  // colour interpretations and nodata are kept.
+  // (A mask band of `in`'s own, not alpha or nodata, is not carried: the
+  // caller checks has_mask_band first.)
+  static GdalDataset periodic_columns_vrt(GDALDatasetH in, int first, int period, int width,
+                                          const std::string& name);
+  // Whether `in` has a mask band of its own (a .msk file, an internal mask),
+  // not one derived from alpha or nodata.
+  static bool has_mask_band(GDALDatasetH in);
   // gdal_translate into an in-memory VRT, `args` as the program's options.
   GdalDataset translate_to_vrt(const std::vector<std::string>& args) const;
 

@@ -109,13 +109,10 @@ double source_resolution(const RasterSource& src, const SpatialRef& crs, const S
   return finest;
 }
 
-}  // namespace
-
-GdalDataset georeferenced_copy(GDALDatasetH in, const RasterSource& src, double shift,
-                               std::optional<double> nodata, const std::vector<int>& nodata_bands) {
-  GdalDataset wrapped = GdalDataset::vrt_copy(in, src.path);
-  auto gt = src.geotransform;
-  gt[0] += shift;
+// `wrapped` with the source's resolved CRS, geotransform `gt` and nodata.
+GdalDataset with_georeferencing(GdalDataset wrapped, const RasterSource& src,
+                                const std::array<double, 6>& gt, std::optional<double> nodata,
+                                const std::vector<int>& nodata_bands) {
   wrapped.set_geotransform(gt);
   wrapped.set_crs(SpatialRef::from_wkt(src.crs_wkt, src.path));
   if (nodata)
@@ -124,9 +121,42 @@ GdalDataset georeferenced_copy(GDALDatasetH in, const RasterSource& src, double 
   return wrapped;
 }
 
+}  // namespace
+
+int periodic_columns(const RasterSource& src) {
+  if (src.has_mask_band || !(src.geotransform[1] > 0) ||
+      !SpatialRef::from_wkt(src.crs_wkt, src.path).is_geographic())
+    return 0;
+  const double distinct = 360.0 / src.geotransform[1];
+  const int n = int(std::lround(distinct));
+  if (std::abs(distinct - n) > 1e-6 || n < 2 * kWrapColumns) return 0;
+  return src.width == n || src.width == n + 1 ? n : 0;
+}
+
+GdalDataset georeferenced_copy(GDALDatasetH in, const RasterSource& src, double shift,
+                               std::optional<double> nodata, const std::vector<int>& nodata_bands) {
+  auto gt = src.geotransform;
+  gt[0] += shift;
+  // A grid once around the Earth (its last column perhaps repeating the
+  // first) is extended periodically, its columns rotated to start
+  // kWrapColumns west of -180 and running as far past +180, every longitude
+  // lies between two of its pixel centres, well inside (docs/terrain.md
+  // "Longitude wrap").
+  if (const int n = periodic_columns(src); n > 0 && shift == 0) {
+    const double step = gt[1], west = -180.0 - kWrapColumns * step;
+    const int64_t c = int64_t(std::ceil((west - gt[0]) / step - 1e-9));
+    const int first = int(((c % n) + n) % n);
+    gt[0] += double(c) * step;
+    GdalDataset wrapped =
+        GdalDataset::periodic_columns_vrt(in, first, n, n + 2 * kWrapColumns, src.path);
+    return with_georeferencing(std::move(wrapped), src, gt, nodata, nodata_bands);
+  }
+  return with_georeferencing(GdalDataset::vrt_copy(in, src.path), src, gt, nodata, nodata_bands);
+}
+
 std::vector<double> warp_shifts(const RasterSource& src) {
   const double span = std::abs(src.width * src.geotransform[1]);
-  if (src.x_shifts.size() <= 1 || span <= 360.0) return {0.0};
+  if (src.x_shifts.size() <= 1 || span <= 360.0 || periodic_columns(src) > 0) return {0.0};
   std::vector<double> shifts;
   for (double s : src.x_shifts)
     if (s != 0) shifts.push_back(s);
@@ -156,6 +186,7 @@ RasterSource describe_raster(const GdalDataset& ds, const std::string& path,
   if ((*gt)[2] != 0 || (*gt)[4] != 0)
     throw InputError(path + ": rotated rasters are not supported; run gdalwarp on it first");
   src.geotransform = *gt;
+  src.has_mask_band = GdalDataset::has_mask_band(ds.get());
   src.crs_wkt = s_srs ? s_srs->wkt2() : ds.crs_wkt();
   if (src.crs_wkt.empty()) throw InputError(path + ": no CRS found; pass --s_srs EPSG:xxxx");
   std::error_code ec;

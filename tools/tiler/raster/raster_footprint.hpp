@@ -24,6 +24,7 @@ struct RasterSource {
   std::array<double, 6> geotransform{};
   int width = 0, height = 0;
   std::vector<double> x_shifts;  // 0, and +-360 copies for geographic data past +-180
+  bool has_mask_band = false;    // a mask of its own (not alpha or nodata)
   unsigned long long file_bytes = 0;
 };
 
@@ -35,8 +36,19 @@ struct RasterSource {
 // they overlap the source's own pixels win, as in gdalwarp of the source.
 std::vector<double> warp_shifts(const RasterSource& src);
 
+// A geographic source whose columns go once around the Earth: its number of
+// distinct columns n (360 / step), when it has n (e.g. ETOPO5's 4,320 from
+// -180.0417) or n + 1, the last repeating the first (grid-registered, e.g.
+// etopo20's 1,081); else 0 (also for a source with a mask band of its own,
+// which the periodic VRT would not carry). Such a source is warped as its
+// periodic extension, drawn once.
+int periodic_columns(const RasterSource& src);
+// Columns added on each side of such a source (more than any kernel's reach).
+constexpr int kWrapColumns = 8;
+
 // A VRT copy of `in` (the opened `src`)
-// that carries the source's resolved georeferencing with its longitudes shifted by `shift`, and
+// that carries the source's resolved georeferencing with its longitudes shifted by `shift`
+// (a source once around the Earth extended by kWrapColumns wrapped columns each side), and
 // `nodata` on `nodata_bands` — never written back to the file. What each warp source is built from.
 // Throws InputError (cannot wrap) or OutputError (GDAL refused a setting).
 GdalDataset georeferenced_copy(GDALDatasetH in, const RasterSource& src, double shift,
