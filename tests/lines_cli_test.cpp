@@ -97,6 +97,28 @@ TEST_F(LinesCli, BuildsAValidPackageAndCountsWhatItSkips) {
   EXPECT_FALSE(fs::exists(pkg("a.mbtiles.scratch-geometry")));
 }
 
+// A GeoPackage QGIS has touched: beside its layers a layer_styles table
+// without geometry (made here with ogr2ogr, as QGIS stores it). The table is
+// left out with a note; naming it with --layer is an error naming it.
+TEST_F(LinesCli, GeoPackageTablesWithoutGeometryAreLeftOut) {
+  const std::string gpkg = pkg("qgis.gpkg");
+  write_text((dir_ / "styles.csv").string(),
+             "f_table_name,styleName,styleQML\nroads,default,<qml/>\n");
+  ASSERT_TRUE(run_all({"ogr2ogr -f GPKG " + gpkg + " " + input_ + " -nln roads",
+                       "ogr2ogr -update -f GPKG " + gpkg + " " + (dir_ / "styles.csv").string() +
+                           " -nln layer_styles"},
+                      dir_.path()));
+  auto r = vectorize("lines " + gpkg + " -o " + pkg("q.mbtiles") + " --max-zoom 8");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("layer 'layer_styles': no geometry"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("6 features"), std::string::npos) << r.err;
+  r = vectorize("lines " + gpkg + " --layer layer_styles -o " + pkg("t.mbtiles"));
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("layer 'layer_styles': a table without geometry"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(pkg("t.mbtiles")));
+}
+
 // Extracted finest-zoom lines match the projected input within the
 // quantization step plus the simplification tolerance, both ways.
 TEST_F(LinesCli, ExtractedLinesMatchTheInputWithinTolerance) {

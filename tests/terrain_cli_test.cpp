@@ -2,6 +2,7 @@
 // documented exit code (docs/cli.md), and no output file left behind.
 #include <gtest/gtest.h>
 
+#include "line_fixtures.hpp"
 #include "raster_fixtures.hpp"
 #include "test_support.hpp"
 
@@ -40,6 +41,34 @@ TEST(TerrainCli, GoodInputBuildsAValidPackage) {
   auto info = run(tiler() + " info " + out.string(), dir.path());
   EXPECT_EQ(info.exit_code, 0);
   EXPECT_NE(info.out.find("application/vnd.globe.mblock"), std::string::npos);
+}
+
+// An output in a folder that does not exist (or is a file): every builder
+// and export says which folder and what to do, exit 3 (output), not
+// SQLite's "unable to open database file".
+TEST(TerrainCli, OutputFolderMissingIsNamed) {
+  TempDir dir;
+  const auto dem = good_dem(dir);
+  const std::string missing = (dir / "no" / "such").string();
+  auto r = run(tiler() + " terrain -q " + dem + " -o " + missing + "/t.mbtiles", dir.path());
+  expect_failure(r, 3, "the folder " + missing + " does not exist; create it",
+                 dir / "no" / "such" / "t.mbtiles");
+  r = run(tiler() + " imagery -q " + dem + " -o " + dem + "/i.mbtiles", dir.path());
+  expect_failure(r, 3, dem + " is not a folder", dir / "i.mbtiles");
+  ASSERT_EQ(run(tiler() + " terrain -q " + dem + " -o " + (dir / "t.mbtiles").string(), dir.path())
+                .exit_code,
+            0);
+  r = run(tiler() + " export -q " + (dir / "t.mbtiles").string() +
+              " --format terrarium -o " + missing + "/t.pmtiles",
+          dir.path());
+  expect_failure(r, 3, "the folder " + missing + " does not exist", dir / "no");
+  write_text((dir / "l.geojson").string(),
+             R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
+             R"("geometry":{"type":"LineString","coordinates":[[0,0],[1,1]]}}]})");
+  r = run(vectorize() + " lines -q " + (dir / "l.geojson").string() + " -o " + missing +
+              "/l.mbtiles",
+          dir.path());
+  expect_failure(r, 3, "the folder " + missing + " does not exist", dir / "no");
 }
 
 TEST(TerrainCli, MissingFile) {

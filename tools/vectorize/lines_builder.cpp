@@ -49,6 +49,8 @@ class Builder {
     ro.properties = keeps_features;
     if (s_.bbox) ro.filter = Bounds{(*s_.bbox)[0], (*s_.bbox)[1], (*s_.bbox)[2], (*s_.bbox)[3]};
     VectorReader reader(s_.inputs, ro);
+    for (const std::string& table : reader.skipped_tables())
+      progress_.note(table + ": no geometry (a table, e.g. QGIS's styles), left out");
     if (frame_.frame == TargetFrame::kProjected && !frame_.target)
       frame_.target = *reader.layers().front().crs;  // local tiling in the first input's CRS
     std::unique_ptr<tileformat::PackageWriter> writer = create_package(s_, progress_);

@@ -68,6 +68,8 @@ class Builder {
     ro.xy = s_.xy;
     if (s_.bbox) ro.filter = Bounds{(*s_.bbox)[0], (*s_.bbox)[1], (*s_.bbox)[2], (*s_.bbox)[3]};
     VectorReader reader(s_.inputs, ro);
+    for (const std::string& table : reader.skipped_tables())
+      progress_.note(table + ": no geometry (a table, e.g. QGIS's styles), left out");
     check_layers(reader);
     if (frame_.frame == TargetFrame::kProjected && !frame_.target)
       frame_.target = *reader.layers().front().crs;  // local tiling in the first input's CRS

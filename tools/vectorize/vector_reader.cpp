@@ -129,6 +129,17 @@ VectorReader::VectorReader(const std::vector<std::string>& inputs, const VectorR
         if (!wanted) continue;
       }
       const std::string where = path + " layer '" + name + "'";
+      // A table without geometry (QGIS keeps styles in one in most
+      // GeoPackages): left out, unless asked for by name.
+      if (!opt.xy && opt.crs == VectorReaderOptions::Crs::kNeeded &&
+          OGR_L_GetGeomType(layer) == wkbNone) {
+        if (!opt.layers.empty())
+          throw InputError(where +
+                           ": a table without geometry (no lines, points or polygons); "
+                           "name a layer that has them");
+        skipped_.push_back(where);
+        continue;
+      }
       VectorLayerInfo info;
       info.name = name;
       info.source = path;
@@ -212,6 +223,9 @@ VectorReader::VectorReader(const std::vector<std::string>& inputs, const VectorR
     if (!layer_found[k])
       throw UsageError("--layer '" + opt.layers[k] +
                        "': no such layer; the inputs have: " + available);
+  if (layers_.empty())
+    throw InputError(inputs.front() + (inputs.size() > 1 ? " (and the other inputs)" : "") +
+                     ": no layer with geometry; the inputs have: " + available);
 }
 
 VectorReader::~VectorReader() = default;

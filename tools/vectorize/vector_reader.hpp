@@ -73,6 +73,10 @@ class VectorReader {
   ~VectorReader();
 
   const std::vector<VectorLayerInfo>& layers() const { return layers_; }
+  // Layers left out because they hold no geometry (e.g. the layer_styles
+  // table QGIS adds to GeoPackages), as "FILE layer 'NAME'": for a note.
+  // Only where geometry is needed (Crs::kNeeded) and no --layer named them.
+  const std::vector<std::string>& skipped_tables() const { return skipped_; }
   // Next feature of the current layer, then of the next layers, in file
   // order. False at the end.
   bool next(VectorFeature& out);
@@ -81,6 +85,7 @@ class VectorReader {
   struct LayerHandle;
   std::vector<GdalDataset> datasets_;
   std::vector<VectorLayerInfo> layers_;
+  std::vector<std::string> skipped_;
   std::vector<std::unique_ptr<LayerHandle>> handles_;
   size_t current_ = 0;
   bool properties_ = true;

@@ -10,8 +10,21 @@
 
 namespace globe {
 
+void check_output_folder(const std::string& output) {
+  const std::filesystem::path folder = std::filesystem::path(output).parent_path();
+  if (folder.empty()) return;  // the current folder
+  std::error_code ec;
+  if (!std::filesystem::exists(folder, ec))
+    throw OutputError(output + ": the folder " + folder.string() +
+                      " does not exist; create it (mkdir -p " + folder.string() +
+                      ") or choose another -o");
+  if (!std::filesystem::is_directory(folder, ec))
+    throw OutputError(output + ": " + folder.string() + " is not a folder; choose another -o");
+}
+
 std::unique_ptr<tileformat::PackageWriter> create_package(const BuildOptions& o,
                                                           Progress& progress) {
+  check_output_folder(o.output);
   std::error_code ec;
   const bool stale = std::filesystem::exists(o.output + ".tmp", ec);
   std::unique_ptr<tileformat::PackageWriter> w;

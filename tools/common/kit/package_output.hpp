@@ -15,6 +15,11 @@ namespace globe {
 struct BuildOptions;
 class Progress;
 
+// Throws OutputError naming `output` when the folder it goes in does not
+// exist or is not a folder (SQLite would only say "unable to open database
+// file").
+void check_output_folder(const std::string& output);
+
 // The writer for o.output. Throws OutputError if it exists and !o.force, or
 // cannot be created, or o.resume finds an unfinished build it cannot
 // continue. Notes on `progress` when it continues one or removes a stale one.

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <utility>
 
+#include "package_output.hpp"
 #include "runtime/errors.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/json.hpp"
@@ -224,6 +225,7 @@ OutputKind output_kind(const std::string& path) {
 
 std::unique_ptr<TileOutput> TileOutput::open(const std::string& path, bool force,
                                              const std::string& extension, bool tms_rows) {
+  if (output_kind(path) != OutputKind::kDirectory) check_output_folder(path);
   switch (output_kind(path)) {
     case OutputKind::kPmtiles:
       return std::make_unique<PmtilesOutput>(path, force);
