@@ -58,16 +58,16 @@ TEST(TerrainCli, OutputFolderMissingIsNamed) {
   ASSERT_EQ(run(tiler() + " terrain -q " + dem + " -o " + (dir / "t.mbtiles").string(), dir.path())
                 .exit_code,
             0);
-  r = run(tiler() + " export -q " + (dir / "t.mbtiles").string() +
-              " --format terrarium -o " + missing + "/t.pmtiles",
+  r = run(tiler() + " export -q " + (dir / "t.mbtiles").string() + " --format terrarium -o " +
+              missing + "/t.pmtiles",
           dir.path());
   expect_failure(r, 3, "the folder " + missing + " does not exist", dir / "no");
   write_text((dir / "l.geojson").string(),
              R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
              R"("geometry":{"type":"LineString","coordinates":[[0,0],[1,1]]}}]})");
-  r = run(vectorize() + " lines -q " + (dir / "l.geojson").string() + " -o " + missing +
-              "/l.mbtiles",
-          dir.path());
+  r = run(
+      vectorize() + " lines -q " + (dir / "l.geojson").string() + " -o " + missing + "/l.mbtiles",
+      dir.path());
   expect_failure(r, 3, "the folder " + missing + " does not exist", dir / "no");
 }
 
