@@ -39,7 +39,7 @@ struct Stencil {
 // rows `stride` samples apart.
 Stencil make_stencil(int stride, GridPoint db, GridPoint dc) {
   const long area = long(db.i) * dc.j - long(db.j) * dc.i;
-  Stencil out{db, dc, 1.0 / double(area), false, {}};
+  Stencil out{db, dc, 1.0 / double(area), false, {}, {}};
   int samples = 0;
   const int i0 = std::min({0, db.i, dc.i}), i1 = std::max({0, db.i, dc.i});
   const int j0 = std::min({0, db.j, dc.j}), j1 = std::max({0, db.j, dc.j});
