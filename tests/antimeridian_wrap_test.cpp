@@ -64,7 +64,9 @@ double expected(const Layout& l, double lon, double lat) {
 class AntimeridianWrap : public ::testing::TestWithParam<std::tuple<Layout, std::string>> {};
 
 TEST_P(AntimeridianWrap, EverySampleIsTheWrappedBilinear) {
-  const auto& [layout, tiling] = GetParam();
+  // (Not a structured binding: clang 14 cannot capture one in a lambda.)
+  const Layout& layout = std::get<0>(GetParam());
+  const std::string& tiling = std::get<1>(GetParam());
   TempDir dir;
   const double gt[6] = {layout.west, kStepDeg, 0, 90, 0, -180.0 / kRows};
   const std::string dem = (dir / "g.tif").string();
