@@ -71,10 +71,6 @@ std::string tilejson_text(const TileSetExtent& s, const std::string& name,
          (extra.empty() ? "" : "," + extra) + "}";
 }
 
-uint64_t key(int z, uint32_t x, uint32_t y) {
-  return uint64_t(z) << 58 | uint64_t(x) << 29 | y;
-}
-
 class TerrainService : public PackageService {
  public:
   // The memory budget: most for triangle errors (264 KB a tile of 257²
@@ -93,7 +89,7 @@ class TerrainService : public PackageService {
     plan_ = web::mesh_tile_plan(pkg_);
     for (const auto& level : plan_)
       for (const TileId& id : level)
-        planned_.insert(key(id.z, id.x, id.y));
+        planned_.insert(web::tile_key(id));
     layer_json_ =
         web::layer_json(pkg_, plan_, name, "Heights of " + name + " served by globe-serve", true);
     const double finer = std::log2(2.0 * (pkg_.block_size - 1) / 256);
@@ -146,7 +142,7 @@ class TerrainService : public PackageService {
       return text_response(404, "tile " + std::to_string(r.x) + "/" + std::to_string(r.y) +
                                     " is outside zoom " + std::to_string(r.z));
     const TileId id{r.z, r.x, uint32_t(t.tiles_y(r.z) - 1 - r.y)};  // TMS row to ours
-    if (!planned_.count(key(id.z, id.x, id.y))) return text_response(204, "");
+    if (!planned_.count(web::tile_key(id))) return text_response(204, "");
     const auto ext = req.query.find("extensions");
     web::MeshTileOptions options;
     options.finest_zoom = pkg_.max_zoom;
