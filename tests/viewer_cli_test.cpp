@@ -189,6 +189,30 @@ TEST(ViewerCli, BadInputGetsAClearError) {
   EXPECT_FALSE(fs::exists(dir / "out.png"));
 }
 
+// Every program and command answers --version on stdout, and a usage error
+// points to --help once.
+TEST(ViewerCli, EveryProgramTellsItsVersion) {
+  TempDir dir;
+  const std::string version = GLOBE_PROJECT_VERSION;
+  const std::pair<std::string, std::string> programs[] = {
+      {viewer(), "globe-view"},
+      {GLOBE_SERVE_PATH, "globe-serve"},
+      {tiler(), "globe-tiler"},
+      {tiler() + " terrain", "globe-tiler"},
+      {vectorize() + " lines", "globe-vectorize"}};
+  for (const auto& [command, name] : programs) {
+    const RunResult r = run(command + " --version", dir.path());
+    EXPECT_EQ(r.exit_code, 0) << command << ": " << r.err;
+    EXPECT_EQ(r.out, name + " " + version + "\n") << command;
+    if (command == tiler()) continue;  // a command is expected first
+    const RunResult bad = run(command + " x --no-such-option", dir.path());
+    EXPECT_EQ(bad.exit_code, 2) << command;
+    const size_t hint = bad.err.find("--help");
+    EXPECT_NE(hint, std::string::npos) << bad.err;
+    EXPECT_EQ(bad.err.find("--help", hint + 1), std::string::npos) << "hint twice: " << bad.err;
+  }
+}
+
 TEST(ViewerCli, CorruptTileWarnsAndDrawsCoarser) {
   TempDir dir;
   const std::string pkg = (dir / "broken.mbtiles").string();

@@ -11,12 +11,10 @@
 
 int main(int argc, char** argv) {
   const std::vector<std::string> args(argv + 1, argv + argc);
-  return globe::run_reporting_errors("globe-view", "globe-view", " (see globe-view --help)",
-                                     [&]() -> int {
-                                       auto settings = globe::viewer::parse_viewer_settings(args);
-                                       if (!settings) return globe::kExitOk;
-                                       if (settings->headless())
-                                         return globe::viewer::run_headless(*settings);
-                                       return globe::viewer::run_window(*settings);
-                                     });
+  return globe::run_reporting_errors("globe-view", "globe-view", "", [&]() -> int {
+    auto settings = globe::viewer::parse_viewer_settings(args);
+    if (!settings) return globe::kExitOk;
+    if (settings->headless()) return globe::viewer::run_headless(*settings);
+    return globe::viewer::run_window(*settings);
+  });
 }

@@ -118,6 +118,5 @@ int serve(const std::vector<std::string>& args) {
 
 int main(int argc, char** argv) {
   const std::vector<std::string> args(argv + 1, argv + argc);
-  return globe::run_reporting_errors("globe-serve", "globe-serve", " (see globe-serve --help)",
-                                     [&] { return serve(args); });
+  return globe::run_reporting_errors("globe-serve", "globe-serve", "", [&] { return serve(args); });
 }

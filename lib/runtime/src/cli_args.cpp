@@ -44,6 +44,10 @@ std::optional<std::vector<std::string>> CliArgs::parse(const std::vector<std::st
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (a == "-h" || a == "--help") return std::nullopt;
+    if (a == "--version") {
+      version_asked_ = true;
+      return std::nullopt;
+    }
     if (a == "--") {
       positional.insert(positional.end(), args.begin() + i + 1, args.end());
       break;
@@ -88,7 +92,10 @@ std::optional<std::vector<std::string>> CliArgs::parse_command(const std::vector
                                                                const std::string& what) {
   auto positional = parse(args);
   if (!positional) {
-    std::fputs(help().c_str(), stdout);
+    if (version_asked_)
+      std::printf("%s %s\n", program_.substr(0, program_.find(' ')).c_str(), GLOBE_VERSION);
+    else
+      std::fputs(help().c_str(), stdout);
     return std::nullopt;
   }
   if (positional->size() < min)
@@ -114,6 +121,7 @@ std::string CliArgs::help() const {
     out << left << o.help << "\n";
   }
   out << "  -h, --help                  show this help\n";
+  out << "  --version                   print the program's version\n";
   if (!epilogue_.empty()) out << "\n" << epilogue_;
   return out.str();
 }

@@ -22,12 +22,14 @@ class CliArgs {
   // Declares a flag without a value.
   void flag(const std::string& names, const std::string& help, std::function<void()> on_flag);
   // Parses argv (excluding the program and command names); returns the
-  // positional arguments. Throws UsageError. Returns nullopt after --help.
+  // positional arguments. Throws UsageError. Returns nullopt after --help or
+  // --version.
   std::optional<std::vector<std::string>> parse(const std::vector<std::string>& args);
   // Text printed after the options by --help (e.g. window keys).
   void epilogue(std::string text) { epilogue_ = std::move(text); }
   std::string help() const;
-  // parse(), printing the help on stdout for --help (then nullopt), and
+  // parse(), printing the help (or "PROGRAM VERSION") on stdout for --help
+  // (--version), then nullopt, and
   // requiring between min and max positional `what` arguments.
   std::optional<std::vector<std::string>> parse_command(const std::vector<std::string>& args,
                                                         size_t min, size_t max,
@@ -57,6 +59,7 @@ class CliArgs {
   };
   const Opt* find(const std::string& name) const;
   std::string program_, usage_, epilogue_;
+  bool version_asked_ = false;
   std::vector<Opt> opts_;
 };
 
