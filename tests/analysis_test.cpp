@@ -327,7 +327,8 @@ TEST(Analyze, BadInputIsAClearError) {
   ASSERT_EQ(run(tiler() + " analyze -q " + pkg + " -o " + ana, dir.path()).exit_code, 0);
   r = run(tiler() + " analyze " + ana + " -o " + (dir / "b.mbtiles").string(), dir.path());
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.err.find("not a terrain package"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("an analysis package, where a terrain package is needed"), std::string::npos)
+      << r.err;
   r = run(tiler() + " extract " + ana + " --zoom 0 -o " + (dir / "x.tif").string(), dir.path());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--layer is required"), std::string::npos) << r.err;

@@ -180,11 +180,26 @@ TEST(ViewerCli, BadInputGetsAClearError) {
       {jacksboro_package() + snap + " --shading sepia", "--shading", 2},
       {jacksboro_package() + " --snapshot " + (dir / "no/such/dir/x.png").string(), "x.png", 3},
   };
-  for (const Case& c : cases) {
-    const RunResult r = run(viewer() + " " + c.args, dir.path());
-    EXPECT_EQ(r.exit_code, c.code) << c.args << "\n" << r.err;
-    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << "\n" << r.err;
+  std::vector<std::pair<std::string, Case>> runs;
+  for (const Case& c : cases)
+    runs.push_back({viewer() + " " + c.args, c});
+  // In plain words: what the file is and what is needed, no SQL or MIME types.
+  runs.push_back({viewer() + " " + (dir / "text.mbtiles").string() + snap,
+                  {"", "text.mbtiles: not a tile package: not an SQLite file", 1}});
+  runs.push_back({tiler() + " analyze " + (dir / "png.mbtiles").string() + " -o " +
+                      (dir / "a.mbtiles").string(),
+                  {"", "png.mbtiles: an image package, where a terrain package is needed", 1}});
+  // A window without a display is a usage error.
+  runs.push_back({"env -u DISPLAY -u WAYLAND_DISPLAY " + viewer() + " " + jacksboro_package(),
+                  {"", "no display to open a window on", 2}});
+  for (const auto& [command, c] : runs) {
+    const RunResult r = run(command, dir.path());
+    EXPECT_EQ(r.exit_code, c.code) << command << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << command << "\n" << r.err;
     EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("[SQL"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("PRAGMA"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("application/"), std::string::npos) << r.err;
   }
   EXPECT_FALSE(fs::exists(dir / "out.png"));
 }

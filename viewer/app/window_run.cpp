@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <numbers>
 
@@ -197,11 +198,17 @@ int run_window(const ViewerSettings& settings) {
     }
   };
 
+  // No display at all is a usage error (exit 2): the user asked for a window
+  // where none can open.
+  if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
+    throw UsageError(
+        "no display to open a window on (DISPLAY is not set): pass --snapshot OUT.png to render "
+        "headless, or run under a display (e.g. xvfb-run)");
   std::unique_ptr<GlfwWindow> window;
   try {
     window = std::make_unique<GlfwWindow>(settings.width, settings.height, "globe-view", cb);
   } catch (const std::exception& e) {
-    throw OutputError(std::string(e.what()) + "; for headless use pass --snapshot OUT.png");
+    throw OutputError(std::string(e.what()) + "; pass --snapshot OUT.png to render headless");
   }
   window_ptr = window.get();
   TerrainScene s(settings);

@@ -18,7 +18,7 @@ WindowCallbacks& callbacks_of(GLFWwindow* w) {
 
 GlfwWindow::GlfwWindow(int width, int height, const std::string& title, WindowCallbacks callbacks)
     : callbacks_(std::move(callbacks)) {
-  if (!glfwInit()) throw std::runtime_error("GLFW: cannot initialise (no display? use --snapshot)");
+  if (!glfwInit()) throw std::runtime_error("GLFW cannot open the display");
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);

@@ -2,6 +2,30 @@
 #include "runtime/package_open.hpp"
 
 namespace globe {
+namespace {
+
+std::string article(const std::string& noun) {
+  return (std::string("aeiou").find(noun[0]) != std::string::npos ? "an " : "a ") + noun;
+}
+
+// The command that makes packages of `kind`.
+const char* maker(tileformat::PackageKind kind) {
+  switch (kind) {
+    case tileformat::PackageKind::kTerrain:
+      return "globe-tiler terrain";
+    case tileformat::PackageKind::kImage:
+      return "globe-tiler imagery";
+    case tileformat::PackageKind::kAnalysis:
+      return "globe-tiler analyze";
+    case tileformat::PackageKind::kLines:
+      return "globe-vectorize lines or bundle";
+    case tileformat::PackageKind::kPoints:
+      return "globe-vectorize points";
+  }
+  return "?";
+}
+
+}  // namespace
 
 std::unique_ptr<tileformat::PackageReader> open_package(const std::string& path) {
   try {
@@ -25,20 +49,12 @@ std::unique_ptr<tileformat::PackageReader> open_package_of_kind(const std::strin
                                                                 tileformat::PackageKind kind) {
   std::unique_ptr<tileformat::PackageReader> reader = open_package(path);
   const std::string fmt = package_format(*reader, path);
-  if (tileformat::package_kind_of_format(fmt) != kind) {
-    const std::string expected =
-        kind == tileformat::PackageKind::kTerrain    ? tileformat::kMBlockFormat
-        : kind == tileformat::PackageKind::kLines    ? std::string(tileformat::kLineClustersFormat)
-        : kind == tileformat::PackageKind::kAnalysis ? std::string(tileformat::kAnalysisFormat)
-        : kind == tileformat::PackageKind::kPoints   ? std::string(tileformat::kPointsFormat)
-                                                     : std::string("png, jpg, webp");
-    const std::string name = tileformat::package_kind_name(kind);
-    throw InputError(
-        path + ": a '" + fmt + "' package, not " +
-        (kind == tileformat::PackageKind::kImage || kind == tileformat::PackageKind::kAnalysis
-             ? "an "
-             : "a ") +
-        name + " package (" + expected + ")");
+  const std::optional<tileformat::PackageKind> actual = tileformat::package_kind_of_format(fmt);
+  if (actual != kind) {
+    const std::string is = actual ? article(tileformat::package_kind_name(*actual)) + " package"
+                                  : "a package of format '" + fmt + "', not made by these tools";
+    throw InputError(path + ": " + is + ", where " + article(tileformat::package_kind_name(kind)) +
+                     " package is needed (made by " + maker(kind) + ")");
   }
   return reader;
 }

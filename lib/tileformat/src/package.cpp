@@ -268,6 +268,24 @@ void PackageWriter::commit() {
   committed_ = true;
 }
 
+namespace {
+
+// Why a file that failed to open as a package is not one, in plain words
+// (SQLite's own message for anything else, e.g. "database is locked").
+std::string why_not_a_package(const std::string& path, const std::string& error) {
+  char head[16] = {};
+  std::ifstream in(path, std::ios::binary);
+  in.read(head, sizeof head);
+  if (in.gcount() < 16 || std::memcmp(head, "SQLite format 3", 16) != 0)
+    return "not an SQLite file";
+  if (error.find("no such table") != std::string::npos)
+    return "an SQLite database without the MBTiles tables (metadata, tiles)";
+  const std::string prefix = path + ": ";
+  return error.rfind(prefix, 0) == 0 ? error.substr(prefix.size()) : error;
+}
+
+}  // namespace
+
 PackageReader::PackageReader(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -284,8 +302,8 @@ PackageReader::PackageReader(const std::string& path) {
         *db_,
         "SELECT tile_data FROM tiles WHERE zoom_level = ? AND tile_column = ? AND tile_row = ?");
   } catch (const PackageError& e) {
-    throw PackageError(path +
-                       ": not a tile package (MBTiles tables missing or unreadable): " + e.what());
+    throw PackageError(path + ": not a tile package: " + why_not_a_package(path, e.what()) +
+                       " (packages are made by globe-tiler and globe-vectorize)");
   }
 }
 

@@ -1,11 +1,24 @@
-// SQLite wrapper: checked calls, errors with file name and SQL.
+// SQLite wrapper: checked calls, errors with the file name and SQLite's
+// words (the SQL itself only with GLOBE_DEBUG_SQL=1: users see no SQL).
 #include "tileformat/sqlite_db.hpp"
 
 #include <sqlite3.h>
 
+#include <cstdlib>
+
 #include "tileformat/error.hpp"
 
 namespace tileformat {
+namespace {
+
+// " [SQL: ...]" for developers who ask for it, else nothing.
+std::string sql_for_debugging(const std::string& sql) {
+  const char* debug = std::getenv("GLOBE_DEBUG_SQL");
+  if (sql.empty() || !debug || std::string(debug) != "1") return "";
+  return " [SQL: " + sql.substr(0, 200) + "]";
+}
+
+}  // namespace
 
 SqliteDb::SqliteDb(const std::string& path, Mode mode) : path_(path) {
   // Readers are serialized (one mutex per connection) so that the viewer's
@@ -41,9 +54,8 @@ int64_t SqliteDb::last_insert_rowid() const {
 }
 
 void SqliteDb::fail(const std::string& what, const std::string& sql) const {
-  std::string msg = path_ + ": " + what + " failed: " + (db_ ? sqlite3_errmsg(db_) : "closed");
-  if (!sql.empty()) msg += " [SQL: " + sql.substr(0, 200) + "]";
-  throw PackageError(msg);
+  const std::string reason = db_ ? sqlite3_errmsg(db_) : "closed";
+  throw PackageError(path_ + ": " + reason + sql_for_debugging(what + ": " + sql));
 }
 
 void SqliteDb::exec(const std::string& sql) {
@@ -51,7 +63,7 @@ void SqliteDb::exec(const std::string& sql) {
   if (sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &err) != SQLITE_OK) {
     std::string msg = err ? err : "unknown error";
     sqlite3_free(err);
-    throw PackageError(path_ + ": " + msg + " [SQL: " + sql.substr(0, 200) + "]");
+    throw PackageError(path_ + ": " + msg + sql_for_debugging(sql));
   }
 }
 
