@@ -329,6 +329,8 @@ TEST_F(LinesCli, BadInputGetsAClearErrorAndLeavesNothing) {
       {"bad tiling", input_ + " --tiling mars", 2, "--tiling"},
       {"bad bbox", input_ + " --bbox 8,47,7,48", 2, "--bbox"},
       {"bad zoom range", input_ + " --min-zoom 9 --max-zoom 3", 2, "--min-zoom"},
+      {"style of no class", input_ + " --style nosuchclass:color=#ff0000", 2,
+       "no feature has class 'nosuchclass'"},
   };
   for (const BadCase& c : cases) {
     auto r = vectorize("lines " + c.args + " -o " + pkg("out.mbtiles"));

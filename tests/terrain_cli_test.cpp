@@ -2,6 +2,8 @@
 // documented exit code (docs/cli.md), and no output file left behind.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "line_fixtures.hpp"
 #include "raster_fixtures.hpp"
 #include "test_support.hpp"
@@ -160,6 +162,9 @@ TEST(TerrainCli, ExistingOutputNeedsForce) {
   auto r = run(tiler() + " terrain " + dem + " -o " + out.string(), dir.path());
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_NE(r.err.find("pass --force"), std::string::npos) << r.err;
+  // Refused before any plan or work is announced: the one line is the error.
+  EXPECT_EQ(r.err.find("input(s)"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_EQ(read_file(out), "keep me");
   auto forced = run(tiler() + " terrain -q --force " + dem + " -o " + out.string(), dir.path());
   EXPECT_EQ(forced.exit_code, 0) << forced.err;

@@ -119,6 +119,19 @@ uint32_t LineClasses::class_for(const std::string& layer, const std::string& val
   return id;
 }
 
+std::string LineClasses::unused_style() const {
+  for (const auto& [name, style] : styles_) {
+    if (ids_.count(name)) continue;
+    std::string names;
+    for (const LineClass& c : classes_)
+      names += (names.empty() ? "" : ", ") + c.name;
+    return "--style " + name + ": no feature has class '" + name +
+           "' (classes: " + (names.empty() ? "none" : names) +
+           "; a class is the layer's name, or the --class-field value after --class-map)";
+  }
+  return "";
+}
+
 double LineClasses::max_half_px() const {
   double m = 0;
   for (const LineClass& c : classes_)

@@ -35,6 +35,10 @@ class LineClasses {
   double max_half_px() const;
   double max_half_m() const;
   std::string json() const;  // metadata globe:classes
+  // The message for the first --style class no feature has ("" if none):
+  // a typo would otherwise leave the class unstyled without a word. Call
+  // after reading.
+  std::string unused_style() const;
 
  private:
   std::map<std::string, std::string> rename_;

@@ -63,6 +63,11 @@ class Builder {
       tileformat::FeatureTableWriter features(*writer);
       GeometryScratch scratch(s_.output + ".scratch-geometry");
       pass_read(reader, keeps_features ? &features : nullptr, scratch);
+      // Within --bbox a class may be absent for good reason: a note then.
+      if (const std::string unused = classes_.unused_style(); !unused.empty()) {
+        if (!s_.bbox) throw UsageError(unused);
+        progress_.note(unused + " in --bbox");
+      }
       plan_ = plan_lines(s_, frame_, facts_.extent, lengths_, classes_);
       sum_.min_zoom = plan_.min_zoom;
       sum_.max_zoom = plan_.max_zoom;

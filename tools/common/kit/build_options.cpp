@@ -68,6 +68,10 @@ bool parse_build_command(CliArgs& cli, BuildOptions& o, const std::vector<std::s
   if (!positional) return false;
   o.inputs = *positional;
   if (o.output.empty()) throw UsageError("no output given; add -o OUT.mbtiles");
+  // Before any plan or work: an existing output is refused at once.
+  std::error_code ec;
+  if (!o.force && std::filesystem::exists(o.output, ec))
+    throw OutputError(o.output + ": output exists; pass --force to replace it");
   if (o.bbox) {
     const auto& b = *o.bbox;
     if (!(b[0] < b[2] && b[1] < b[3]) || b[0] < -540 || b[2] > 540 || b[1] < -90 || b[3] > 90)
