@@ -161,11 +161,12 @@ TEST_F(Hostile, PackagesOfRandomTilesAreReportedNotFollowed) {
     EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
     EXPECT_NE(r.out.find("bad magic"), std::string::npos) << r.out;
   }
-  // The viewer warns and draws what it can.
+  // The viewer warns and draws what it can: here nothing, which it says (exit 6).
   const RunResult v = limited(viewer() + " " + in("random_terrain.mbtiles") + " --snapshot " +
                               out("r.png") + " --size 160x90");
-  EXPECT_EQ(v.exit_code, 0) << v.err;
+  EXPECT_EQ(v.exit_code, 6) << v.err;
   EXPECT_NE(v.err.find("warning"), std::string::npos) << v.err;
+  EXPECT_NE(v.err.find("its tiles could not be read"), std::string::npos) << v.err;
   const RunResult vl = limited(viewer() + " " + terrain() + " " + in("random_lines.mbtiles") +
                                " --snapshot " + out("rl.png") + " --size 160x90");
   EXPECT_EQ(vl.exit_code, 0) << vl.err;

@@ -13,6 +13,7 @@
 #include "raster_fixtures.hpp"
 #include "render_fixtures.hpp"
 #include "test_support.hpp"
+#include "tileformat/json.hpp"
 
 namespace {
 
@@ -76,6 +77,52 @@ TEST(ViewerCli, StatsAreJsonOnStdout) {
                           "\"resident_blocks\"", "\"bytes_read\""})
     EXPECT_NE(r.out.find(key), std::string::npos) << key << " missing in " << r.out;
   EXPECT_EQ(r.out.front(), '{');
+}
+
+// --camera heights are above the ellipsoid; a pose below the ground is drawn
+// from 20 m above it. The reference ground: gdallocationinfo on the source
+// DEM (its pixel, not our blocks).
+TEST(ViewerCli, CameraBelowTheGroundIsRaisedAboveIt) {
+  TempDir dir;
+  const RunResult g =
+      run("gdallocationinfo -valonly -wgs84 " + sample("jacksboro.tif").string() + " -84.30 36.55",
+          dir.path());
+  ASSERT_EQ(g.exit_code, 0) << g.err;
+  const double ground = std::stod(g.out);
+  for (const char* height : {"-100", "300"}) {
+    const RunResult r = run(viewer() + " " + jacksboro_package() +
+                                " --stats --frames 1 --size 160x90 --camera=-84.30,36.55," +
+                                height + ",30,65 --snapshot " + (dir / "below.png").string(),
+                            dir.path());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("below the ground"), std::string::npos) << r.err;
+    const auto stats = tileformat::JsonValue::parse(r.out);
+    const std::string pose = stats.find("camera")->string();
+    const double drawn = std::stod(pose.substr(pose.find(',', pose.find(',') + 1) + 1));
+    EXPECT_NEAR(drawn, ground + 20, 6) << pose;
+    EXPECT_GT(stats.find("ground_fraction")->number(), 0.5) << r.out;
+  }
+  // Above the ground: drawn as asked, no note.
+  const RunResult above =
+      run(viewer() + " " + jacksboro_package() + " --stats --frames 1 --size 160x90 " + kCamera,
+          dir.path());
+  ASSERT_EQ(above.exit_code, 0) << above.err;
+  EXPECT_EQ(above.err.find("below the ground"), std::string::npos) << above.err;
+  EXPECT_NE(above.out.find("36.5500000,2500.00,30.00,65.00"), std::string::npos) << above.out;
+}
+
+// A frame without terrain is written, said on stderr and exits 6.
+TEST(ViewerCli, AFrameWithoutTerrainSaysSo) {
+  TempDir dir;
+  const RunResult r = run(viewer() + " " + jacksboro_package() +
+                              " --stats --frames 1 --size 160x90 --camera=10,10,5000,0,0 "
+                              "--snapshot " +
+                              (dir / "off.png").string(),
+                          dir.path());
+  EXPECT_EQ(r.exit_code, 6) << r.err;
+  EXPECT_NE(r.err.find("the frame shows no terrain"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("\"ground_fraction\": 0.0000"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(dir / "off.png"));
 }
 
 TEST(ViewerCli, MemoryBudgetHoldsDuringAFlight) {

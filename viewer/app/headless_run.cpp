@@ -62,6 +62,8 @@ int run_headless(const ViewerSettings& settings) {
   const double first_frame_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_start).count();
 
+  // Whether any pose's frame showed terrain (read outside the timed frames).
+  double ground = 0, most_ground = 0;
   std::vector<double> frame_ms, terrain_ms, select_ms, lines_ms, images_ms, charts_ms;
   uint64_t max_resident = scene.cache().stats().resident_bytes;
   for (size_t i = 0; i < poses.size(); ++i) {
@@ -79,6 +81,8 @@ int run_headless(const ViewerSettings& settings) {
       select_ms.push_back(f.select_ms);
       max_resident = std::max(max_resident, scene.cache().stats().resident_bytes);
     }
+    ground = scene.ground_fraction();
+    most_ground = std::max(most_ground, ground);
   }
   if (!settings.picks.empty()) {
     if (!scene.charts() && !scene.lines())
@@ -133,7 +137,8 @@ int run_headless(const ViewerSettings& settings) {
         static_cast<unsigned long long>(cs.budget_bytes),
         static_cast<unsigned long long>(cs.blocks_loaded),
         static_cast<unsigned long long>(cs.evictions), static_cast<unsigned long long>(cs.broken),
-        static_cast<unsigned long long>(cs.bytes_read), poses.back().str().c_str());
+        static_cast<unsigned long long>(cs.bytes_read), f.pose.str().c_str());
+    std::printf(", \"ground_fraction\": %.4f", ground);
     const auto [ramp_lo, ramp_hi] = scene.ramp().data_range();
     std::printf(", \"height_range\": [%.2f, %.2f]", ramp_lo, ramp_hi);
     if (LineLayer* lines = scene.lines()) {
@@ -183,6 +188,21 @@ int run_headless(const ViewerSettings& settings) {
           static_cast<unsigned long long>(cs.cache.broken));
     }
     std::printf("}\n");
+  }
+  if (most_ground == 0 && scene.cache().stats().broken > 0) {
+    std::fprintf(stderr,
+                 "globe-view: the frame shows no terrain: its tiles could not be read (see the "
+                 "warnings above)%s\n",
+                 settings.snapshot ? "; the image was written" : "");
+    return kExitBlankFrame;
+  }
+  if (most_ground == 0) {
+    std::fprintf(stderr,
+                 "globe-view: the frame%s no terrain: the camera (%s) looks away from the data "
+                 "or off it; try --fit, or a --camera over the package's bounds%s\n",
+                 poses.size() > 1 ? "s of the camera path show" : " shows", f.pose.str().c_str(),
+                 settings.snapshot ? " (the image was written)" : "");
+    return kExitBlankFrame;
   }
   return kExitOk;
 }

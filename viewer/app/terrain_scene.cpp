@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <sstream>
 
@@ -98,6 +99,7 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
     analysis = std::move(o.source);
   }
   if (const std::string e = shading_problem(settings_.shading); !e.empty()) throw UsageError(e);
+  ground_ = std::make_unique<GroundProbe>(path);
   cache_ = std::make_unique<BlockCache>(path, std::move(package),
                                         budget - line_budget - image_budget - point_budget,
                                         std::move(analysis));
@@ -241,8 +243,36 @@ View TerrainScene::make(const CameraPose& pose) {
                    selector_->top_height_m(*cache_) * zs, selector_->bottom_height_m(*cache_) * zs);
 }
 
-FrameResult TerrainScene::frame(const CameraPose& pose, Loading loading, Output output) {
+CameraPose TerrainScene::above_ground(const CameraPose& pose) {
+  // The eye stays this far above the drawn ground (metres).
+  constexpr double kClearanceM = 20;
+  glm::dvec2 crs;
+  try {
+    crs = world_->lonlat_to_crs(pose.lon, pose.lat);
+  } catch (const std::exception&) {
+    return pose;  // outside the tiling (e.g. past web mercator's latitudes)
+  }
+  const std::optional<double> ground = ground_->height_at(crs.x, crs.y);
+  const double lowest =
+      ground ? *ground * settings_.shading.exaggeration + kClearanceM : pose.height_m;
+  const bool raise = pose.height_m < lowest;
+  if (raise && !raised_)
+    std::fprintf(stderr,
+                 "globe-view: the camera at %.0f m is below the ground under it (%.0f m above the "
+                 "ellipsoid%s); drawn from %.0f m\n",
+                 pose.height_m, *ground * settings_.shading.exaggeration,
+                 settings_.shading.exaggeration != 1 ? ", exaggerated" : "", lowest);
+  raised_ = raise;
+  if (!raise) return pose;
+  CameraPose p = pose;
+  p.height_m = lowest;
+  return p;
+}
+
+FrameResult TerrainScene::frame(const CameraPose& asked, Loading loading, Output output) {
   FrameResult f;
+  f.pose = above_ground(asked);
+  const CameraPose& pose = f.pose;
   SelectionSettings sel{settings_.max_error_px, settings_.shading.exaggeration, settings_.cull};
   for (int round = 0;; ++round) {
     cache_->begin_frame();

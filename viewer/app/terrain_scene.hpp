@@ -18,13 +18,16 @@
 #include "camera/camera.hpp"
 #include "camera/world_frame.hpp"
 #include "data/block_cache.hpp"
+#include "data/ground_probe.hpp"
 #include "render/patch_selection.hpp"
 #include "render/polar_caps.hpp"
+#include "render/readback.hpp"
 #include "render/terrain_renderer.hpp"
 
 namespace globe::viewer {
 
 struct FrameResult {
+  CameraPose pose;  // the pose drawn: the one asked for, raised above the ground if below it
   View view;
   std::vector<Patch> patches;
   SelectionStats selection;
@@ -45,7 +48,9 @@ class TerrainScene {
 
   enum class Output { kDraw, kSelectOnly };
   // One frame (Loading: whether it waits for what the view needs);
-  // kSelectOnly stops after the patch selection.
+  // kSelectOnly stops after the patch selection. A pose below the ground
+  // under it (times the exaggeration) is raised above it, with a note on
+  // stderr when that starts (docs/viewer.md "Camera").
   FrameResult frame(const CameraPose& pose, Loading loading, Output output);
   std::vector<CapturedVertex> capture(const FrameResult& f) {
     return renderer_->capture_triangles(f.patches, f.view, *world_, settings_.shading.exaggeration);
@@ -58,6 +63,11 @@ class TerrainScene {
   // The finished image (terrain, imagery and lines): framebuffer and pixels.
   GLuint output_fbo() const;
   std::vector<uint8_t> read_pixels() const;
+  // The fraction of the last frame's pixels that show terrain.
+  double ground_fraction() const {
+    return viewer::ground_fraction(renderer_->gbuffer().fbo, renderer_->width(),
+                                   renderer_->height());
+  }
   BlockCache& cache() { return *cache_; }
   WorldFrame& world() { return *world_; }
   const TerrainPackage& package() const { return cache_->package(); }
@@ -79,6 +89,7 @@ class TerrainScene {
   void load_now(const std::vector<tileformat::TileId>& tiles);  // waits for them
   void sample_heights();  // fixes the elevation ramp's data range
   View make(const CameraPose& pose);
+  CameraPose above_ground(const CameraPose& pose);
 
   ViewerSettings settings_;
   std::unique_ptr<BlockCache> cache_;
@@ -90,8 +101,10 @@ class TerrainScene {
   std::unique_ptr<LineLayer> lines_;
   std::unique_ptr<ChartLayer> charts_;
   std::unique_ptr<ElevationRamp> ramp_;
-  EdgeScale edges_;                                         // the edges shading's stretch per zoom
-  std::optional<std::string> analysis_path_;                // the analysis package, if any
+  std::unique_ptr<GroundProbe> ground_;
+  bool raised_ = false;                       // the last frame's pose was raised above the ground
+  EdgeScale edges_;                           // the edges shading's stretch per zoom
+  std::optional<std::string> analysis_path_;  // the analysis package, if any
   std::vector<tileformat::AnalysisLayer> analysis_layers_;  // and its layers
   float flow_largest_ = kNoFlow;                            // log2 m^2: the flow shading's top
   Shading ramp_mode_ = Shading::kElevation;                 // the mode the ramp was tabulated for

@@ -71,7 +71,8 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
                s.height = CliArgs::to_int("--size", v.substr(x + 1), 16, 16384);
              });
   cli.option("--camera", "LON,LAT,H,HEADING,PITCH",
-             "eye at lon/lat (degrees) and height H (metres); heading 0 = north; pitch 0 looks "
+             "eye at lon/lat (degrees) and height H (metres above the ellipsoid, not the ground; "
+             "below the ground it is raised 20 m above it); heading 0 = north; pitch 0 looks "
              "straight down, 90 horizontal",
              [&](const std::string& v) {
                try {

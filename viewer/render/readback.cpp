@@ -2,6 +2,7 @@
 #include "render/readback.hpp"
 
 #include <cstring>
+#include <vector>
 
 namespace globe::viewer {
 
@@ -30,6 +31,21 @@ glm::vec4 read_position(GLuint fbo, int x, int y, int height) {
   gl::NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
   gl::check("reading a G-buffer position");
   return p;
+}
+
+double ground_fraction(GLuint fbo, int width, int height) {
+  std::vector<float> p(size_t(width) * height * 4);
+  gl::NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT1);
+  gl::BindFramebuffer(GL_FRAMEBUFFER, fbo);
+  gl::PixelStorei(GL_PACK_ALIGNMENT, 4);
+  gl::ReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, p.data());
+  gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
+  gl::NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
+  gl::check("reading the G-buffer's positions");
+  size_t ground = 0;
+  for (size_t i = 3; i < p.size(); i += 4)
+    ground += p[i] > 0.5f;
+  return p.empty() ? 0 : double(ground) / double(width * height);
 }
 
 uint32_t read_u32(GLuint fbo, int attachment, int x, int y, int height) {

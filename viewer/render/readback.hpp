@@ -16,6 +16,9 @@ std::vector<uint8_t> read_rgba(GLuint fbo, int width, int height);
 // The world point (w = 1) the terrain pass wrote at pixel (x, y) of the
 // G-buffer, y counted from the top; w = 0 where no terrain is.
 glm::vec4 read_position(GLuint gbuffer_fbo, int x, int y, int height);
+// The fraction of the G-buffer's pixels where the terrain (or the globe's
+// polar caps) was drawn: position w = 1.
+double ground_fraction(GLuint gbuffer_fbo, int width, int height);
 // The R32UI value of colour attachment `attachment` (0-based) of `fbo` at
 // pixel (x, y), y counted from the top.
 uint32_t read_u32(GLuint fbo, int attachment, int x, int y, int height);

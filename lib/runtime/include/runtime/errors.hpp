@@ -14,6 +14,7 @@ enum ExitCode : int {
   kExitOutputError = 3,  // output cannot be written (exists, unwritable, disk full)
   kExitInternal = 4,     // a bug
   kExitWarnings = 5,     // validate: package usable but with warnings
+  kExitBlankFrame = 6,   // globe-view: the frame shows no terrain (written all the same)
 };
 
 struct UsageError : std::runtime_error {
