@@ -19,14 +19,18 @@ namespace globe {
 namespace {
 
 // A bundled-flow package's summary (metadata globe:bundle, tileformat §7.5).
-void print_bundle_info(const std::string& json, const std::string& path) {
-  tileformat::JsonValue b;
+// The parsed globe:bundle; throws InputError if it is not JSON.
+tileformat::JsonValue bundle_json(const std::string& json, const std::string& path) {
   try {
-    b = tileformat::JsonValue::parse(json);
+    return tileformat::JsonValue::parse(json);
   } catch (const std::exception& e) {
     throw InputError(path + ": metadata globe:bundle is not JSON (" + e.what() +
                      "); rebuild the package (tileformat §7.5)");
   }
+}
+
+void print_bundle_info(const std::string& json, const std::string& path) {
+  const tileformat::JsonValue b = bundle_json(json, path);
   auto num = [&](const char* key) {
     const tileformat::JsonValue* v = b.find(key);
     return v && v->is_number() ? v->number() : 0.0;
@@ -67,21 +71,18 @@ void print_bundle_info(const std::string& json, const std::string& path) {
 }  // namespace
 
 int run_lines_info(const std::vector<std::string>& args) {
+  bool json = false;
   CliArgs cli("globe-vectorize info",
-              "globe-vectorize info PACKAGE\n\nPrints a line package's metadata, classes, zoom "
-              "range, tiles, segments and points; of a point package, its fields and places.");
+              "globe-vectorize info PACKAGE [--json]\n\nPrints a line package's metadata, "
+              "classes, zoom range, tiles, segments and points; of a point package, its fields "
+              "and places.");
+  cli.flag("--json", "one JSON object on stdout instead (docs/cli.md \"info --json\")",
+           [&] { json = true; });
   auto positional = cli.parse_command(args, 1, 1, "PACKAGE");
   if (!positional) return kExitOk;
   const std::string& path = (*positional)[0];
-  if (package_kind(path) == tileformat::PackageKind::kPoints) return points_info(path);
+  if (package_kind(path) == tileformat::PackageKind::kPoints) return points_info(path, json);
   LinePackage p = open_line_package(path);
-  print_package_info(*p.reader, path);
-  std::printf("classes:\n");
-  for (size_t i = 0; i < p.classes.size(); ++i)
-    std::printf("  %4zu %s\n", i, p.classes[i].name.c_str());
-  std::printf("features: %lld\n",
-              static_cast<long long>(tileformat::FeatureTableReader(*p.reader).count()));
-  if (!p.meta.bundle_json.empty()) print_bundle_info(p.meta.bundle_json, path);
   std::map<int, tileformat::LineTileCounts> per_zoom;
   p.reader->for_each_tile([&](tileformat::TileId id, std::span<const uint8_t> blob) {
     const auto c = tileformat::peek_line_tile_counts(blob);
@@ -91,6 +92,36 @@ int run_lines_info(const std::vector<std::string>& args) {
     z.points += c.points;
     z.cell_entries += c.cell_entries;
   });
+  const int64_t features = tileformat::FeatureTableReader(*p.reader).count();
+  if (json) {
+    std::vector<std::string> classes;
+    for (const auto& c : p.classes)
+      classes.push_back(c.name);
+    std::vector<InfoJson> zooms;
+    for (const auto& [z, c] : per_zoom)
+      zooms.push_back(InfoJson()
+                          .integer("zoom", uint64_t(z))
+                          .integer("segments", c.segments)
+                          .integer("runs", c.runs)
+                          .integer("points", c.points)
+                          .integer("cell_entries", c.cell_entries));
+    InfoJson lines;
+    lines.texts("classes", classes)
+        .integer("features", uint64_t(features))
+        .objects("per_zoom", zooms);
+    if (!p.meta.bundle_json.empty()) {
+      bundle_json(p.meta.bundle_json, path);  // checked: it is JSON
+      lines.raw("bundle", p.meta.bundle_json);
+    }
+    print_info_json(package_info_json(*p.reader, path, "lines").object("lines", lines));
+    return kExitOk;
+  }
+  print_package_info(*p.reader, path);
+  std::printf("classes:\n");
+  for (size_t i = 0; i < p.classes.size(); ++i)
+    std::printf("  %4zu %s\n", i, p.classes[i].name.c_str());
+  std::printf("features: %lld\n", static_cast<long long>(features));
+  if (!p.meta.bundle_json.empty()) print_bundle_info(p.meta.bundle_json, path);
   std::printf("lines per zoom:\n  %4s %12s %12s %10s %14s %10s\n", "zoom", "segments", "runs",
               "points", "cell entries", "per cell");
   const double cells = double(p.cluster_grid) * p.cluster_grid;

@@ -37,20 +37,9 @@ struct ZoomTotals {
   std::vector<double> sums;  // per field
 };
 
-}  // namespace
-
-int points_info(const std::string& path) {
-  PointPackage p = open_point_package(path);
-  print_package_info(*p.reader, path);
-  const tileformat::PointMetadata& m = p.meta;
-  std::printf("fields:");
-  for (const std::string& f : m.fields)
-    std::printf(" %s", f.c_str());
-  std::printf("\naggregate: %s of places within %g px; values %s; label field: %s\n",
-              m.aggregate == tileformat::PointAggregate::kSum ? "sum" : "mean", m.merge_px,
-              m.signed_values ? "signed" : "non-negative",
-              m.label_field.empty() ? "(none)" : m.label_field.c_str());
-  std::printf("source places: %llu\n", static_cast<unsigned long long>(m.features));
+// Per zoom: tiles, places, merged places, the places they stand for and cell
+// entries, from every tile.
+std::map<int, ZoomTotals> zoom_totals(PointPackage& p) {
   std::map<int, ZoomTotals> zooms;
   p.reader->for_each_tile([&](tileformat::TileId id, std::span<const uint8_t> blob) {
     const tileformat::PointTile t = tileformat::decode_point_tile(blob);
@@ -63,6 +52,45 @@ int points_info(const std::string& path) {
       z.sources += pl.count;
     }
   });
+  return zooms;
+}
+
+}  // namespace
+
+int points_info(const std::string& path, bool json) {
+  PointPackage p = open_point_package(path);
+  const tileformat::PointMetadata& m = p.meta;
+  if (json) {
+    std::vector<InfoJson> per_zoom;
+    for (const auto& [z, t] : zoom_totals(p))
+      per_zoom.push_back(InfoJson()
+                             .integer("zoom", uint64_t(z))
+                             .integer("tiles", t.tiles)
+                             .integer("places", t.places)
+                             .integer("merged", t.aggregates)
+                             .integer("stand_for", t.sources)
+                             .integer("cell_entries", t.cell_entries));
+    InfoJson points;
+    points.texts("fields", m.fields)
+        .text("aggregate", m.aggregate == tileformat::PointAggregate::kSum ? "sum" : "mean")
+        .number("merge_px", m.merge_px)
+        .boolean("signed", m.signed_values)
+        .text("label_field", m.label_field)
+        .integer("places", m.features)
+        .objects("per_zoom", per_zoom);
+    print_info_json(package_info_json(*p.reader, path, "points").object("points", points));
+    return kExitOk;
+  }
+  print_package_info(*p.reader, path);
+  std::printf("fields:");
+  for (const std::string& f : m.fields)
+    std::printf(" %s", f.c_str());
+  std::printf("\naggregate: %s of places within %g px; values %s; label field: %s\n",
+              m.aggregate == tileformat::PointAggregate::kSum ? "sum" : "mean", m.merge_px,
+              m.signed_values ? "signed" : "non-negative",
+              m.label_field.empty() ? "(none)" : m.label_field.c_str());
+  std::printf("source places: %llu\n", static_cast<unsigned long long>(m.features));
+  const std::map<int, ZoomTotals> zooms = zoom_totals(p);
   std::printf("places per zoom:\n  %4s %8s %10s %10s %12s %14s\n", "zoom", "tiles", "places",
               "merged", "stand for", "cell entries");
   for (const auto& [z, t] : zooms)

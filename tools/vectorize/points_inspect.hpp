@@ -10,7 +10,7 @@
 namespace globe {
 
 // Prints metadata and per-zoom counts on stdout; returns the exit code.
-int points_info(const std::string& path);
+int points_info(const std::string& path, bool json);
 // Prints the report on stdout; returns 0 valid, 5 warnings only, 1 errors.
 int points_validate(const std::string& path);
 // Adds zoom `zoom`'s places to `out` (layer "places"); returns how many.

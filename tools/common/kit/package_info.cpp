@@ -36,4 +36,38 @@ void print_package_info(tileformat::PackageReader& reader, const std::string& pa
               static_cast<unsigned long long>(bytes));
 }
 
+InfoJson package_info_json(tileformat::PackageReader& reader, const std::string& path,
+                           const std::string& kind) {
+  InfoJson info;
+  std::error_code ec;
+  info.text("package", path)
+      .text("kind", kind)
+      .integer("file_bytes", std::filesystem::file_size(path, ec));
+  InfoJson meta;
+  for (const auto& [k, v] : reader.metadata())
+    meta.text(k, v);
+  info.object("metadata", meta);
+  std::vector<InfoJson> zooms;
+  uint64_t tiles = 0, bytes = 0;
+  for (const auto& z : reader.zoom_summaries()) {
+    InfoJson row;
+    row.integer("zoom", uint64_t(z.zoom))
+        .integer("tiles", z.tiles)
+        .integer("bytes", z.bytes)
+        .raw("x", "[" + std::to_string(z.min_x) + "," + std::to_string(z.max_x) + "]")
+        .raw("y", "[" + std::to_string(z.min_y) + "," + std::to_string(z.max_y) + "]");
+    zooms.push_back(row);
+    tiles += z.tiles;
+    bytes += z.bytes;
+  }
+  return info.objects("zooms", zooms)
+      .integer("tiles", tiles)
+      .integer("unique_blobs", reader.unique_blobs())
+      .integer("tile_bytes", bytes);
+}
+
+void print_info_json(const InfoJson& info) {
+  std::printf("%s\n", info.str().c_str());
+}
+
 }  // namespace globe

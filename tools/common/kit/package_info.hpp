@@ -1,13 +1,21 @@
 // The part of `info` every package kind shares: file size, metadata (long
-// values shortened) and the per-zoom tile table, printed on stdout.
+// values shortened) and the per-zoom tile table, printed on stdout; or the
+// same as a JSON object (`info --json`, full metadata values) to which each
+// kind adds its own section (docs/cli.md "info --json").
 #pragma once
 
 #include <string>
 
+#include "info_json.hpp"
 #include "tileformat/package.hpp"
 
 namespace globe {
 
 void print_package_info(tileformat::PackageReader& reader, const std::string& path);
+// kind: "terrain", "image", "analysis", "lines" or "points".
+InfoJson package_info_json(tileformat::PackageReader& reader, const std::string& path,
+                           const std::string& kind);
+// Writes `info` on stdout with a newline.
+void print_info_json(const InfoJson& info);
 
 }  // namespace globe

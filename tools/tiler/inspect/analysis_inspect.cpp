@@ -29,8 +29,19 @@ std::string layer_list(const std::vector<AnalysisLayer>& layers) {
 
 }  // namespace
 
-void print_analysis_info(const std::string& path) {
+void print_analysis_info(const std::string& path, bool json) {
   AnalysisPackage p = open_analysis_package(path);
+  if (json) {
+    std::vector<InfoJson> layers;
+    for (AnalysisLayer l : p.meta.layers) {
+      const auto& i = tileformat::analysis_layer_info(l);
+      layers.push_back(InfoJson().text("name", i.name).text("unit", i.unit));
+    }
+    InfoJson a;
+    a.objects("layers", layers).text("terrain", p.meta.terrain).integer("block_size", p.block_size);
+    print_info_json(package_info_json(*p.reader, path, "analysis").object("analysis", a));
+    return;
+  }
   print_package_info(*p.reader, path);
   std::printf("analysis: %s; from terrain %s; %d x %d samples per block\n",
               layer_list(p.meta.layers).c_str(), p.meta.terrain.c_str(), p.block_size,

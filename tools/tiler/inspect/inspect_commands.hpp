@@ -24,10 +24,10 @@ struct ExtractRequest {
 };
 
 int validate_image_package(const std::string& path);
-void print_image_info(const std::string& path);
+void print_image_info(const std::string& path, bool json);
 int extract_image(const ExtractRequest& request);
 int validate_analysis_package(const std::string& path);
-void print_analysis_info(const std::string& path);
+void print_analysis_info(const std::string& path, bool json);
 int extract_analysis(const ExtractRequest& request);
 
 // Shared by both extracts: the tiles of the zoom (inside --bbox) and the
