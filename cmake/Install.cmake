@@ -7,6 +7,16 @@ set(GLOBE_DOCDIR ${CMAKE_INSTALL_DATAROOTDIR}/doc/globe-tiles)
 install(TARGETS globe-tiler globe-tiler-gdal globe-vectorize globe-view globe-serve
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS tileformat ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+# GDAL looks for plugins in LIBDIR/gdalplugins of its own prefix (Debian:
+# /usr/lib/x86_64-linux-gnu/gdalplugins, where the .deb puts it); elsewhere
+# point GDAL_DRIVER_PATH at this folder (docs/gdal.md).
+get_target_property(GLOBE_GDAL_LIBRARY GDAL::GDAL LOCATION)
+get_filename_component(GLOBE_GDAL_LIBDIR "${GLOBE_GDAL_LIBRARY}" DIRECTORY)
+file(RELATIVE_PATH GLOBE_GDAL_PLUGINS /usr "${GLOBE_GDAL_LIBDIR}/gdalplugins")
+if(GLOBE_GDAL_PLUGINS MATCHES "^\\.\\.")  # GDAL is not under /usr
+  set(GLOBE_GDAL_PLUGINS ${CMAKE_INSTALL_LIBDIR}/gdalplugins)
+endif()
+install(TARGETS gdal_GlobeTiles LIBRARY DESTINATION ${GLOBE_GDAL_PLUGINS})
 install(DIRECTORY lib/tileformat/include/tileformat DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(FILES README.md LICENSE DESTINATION ${GLOBE_DOCDIR})
 install(DIRECTORY docs/ DESTINATION ${GLOBE_DOCDIR} FILES_MATCHING PATTERN "*.md")

@@ -1,7 +1,8 @@
 // `cmake --install` and `cpack -G DEB` as a packager runs them: the five
-// programs, the tile-format library and headers and the docs land under the
-// prefix, the installed globe-tiler finds its GDAL half there, a program
-// builds against the installed headers, and the .deb holds the same files.
+// programs, the tile-format library and headers, the GDAL plugin and the
+// docs land under the prefix, the installed globe-tiler finds its GDAL half
+// there, GDAL reads a package through the installed plugin, a program builds
+// against the installed headers, and the .deb holds the same files.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -29,6 +30,19 @@ TEST(Install, ProgramsLibraryHeadersAndDocsLandUnderThePrefix) {
               sample("jacksboro.tif").string() + " --max-zoom 8 -o " + (dir / "t.mbtiles").string(),
           dir.path());
   EXPECT_EQ(t.exit_code, 0) << t.err;
+  // The GDAL plugin, where GDAL of this prefix looks (LIBDIR/gdalplugins),
+  // reads the package through GDAL's own gdalinfo.
+  fs::path plugin;
+  for (const auto& e : fs::recursive_directory_iterator(prefix))
+    if (e.path().filename() == "gdal_GlobeTiles.so") plugin = e.path();
+  ASSERT_FALSE(plugin.empty());
+  EXPECT_EQ(plugin.parent_path().filename(), "gdalplugins");
+#ifndef GLOBE_ADDRESS_SANITIZER  // an ASan-built plugin cannot load into gdalinfo
+  const RunResult g = run("GDAL_DRIVER_PATH=" + plugin.parent_path().string() + " gdalinfo " +
+                              (dir / "t.mbtiles").string(),
+                          dir.path());
+  EXPECT_NE(g.out.find("Driver: GlobeTiles/"), std::string::npos) << g.out << g.err;
+#endif
   // A program of a user's, against the installed headers and library alone.
   std::ofstream(dir / "user.cpp")
       << "#include <tileformat/tiling.hpp>\n"
@@ -53,7 +67,7 @@ TEST(Install, CpackMakesADebianPackageWithItsDependencies) {
   EXPECT_NE(info.out.find("libgdal"), std::string::npos) << info.out;
   const RunResult files = run("dpkg-deb -c globe-tiles_*.deb", dir.path());
   for (const char* f : {"./usr/bin/globe-tiler-gdal", "./usr/bin/globe-view",
-                        "./usr/include/tileformat/package.hpp"})
+                        "./usr/include/tileformat/package.hpp", "gdalplugins/gdal_GlobeTiles.so"})
     EXPECT_NE(files.out.find(f), std::string::npos) << f;
 }
 
