@@ -275,6 +275,24 @@ TEST(ViewerCli, EveryProgramTellsItsVersion) {
   }
 }
 
+// An idle window draws on demand: once loaded and left alone it sleeps (was
+// a full core, drawing the same frame 60 times a second), and still answers
+// a key.
+TEST(ViewerIdleWindow, SleepsUntilSomethingHappens) {
+  TempDir dir;
+  const RunResult r =
+      run("xvfb-run -a -s '-screen 0 640x480x24' " + std::string(GLOBE_TEST_DATA_DIR) +
+              "/window/idle_cpu.sh " + dir.path().string() + " 3 " + viewer() +
+              " --platform glfw --size 320x180 " + jacksboro_package(),
+          dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err << read_file(dir / "viewer.stderr");
+  const size_t at = r.out.find("cpu_seconds ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const double cpu = std::stod(r.out.substr(at + 12));
+  std::printf("idle window: %.2f CPU s in 3 s\n", cpu);
+  EXPECT_LT(cpu, 0.3) << "an idle window should sleep (" << cpu << " CPU s in 3 s)";
+}
+
 TEST(ViewerCli, CorruptTileWarnsAndDrawsCoarser) {
   TempDir dir;
   const std::string pkg = (dir / "broken.mbtiles").string();

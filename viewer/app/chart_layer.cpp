@@ -90,17 +90,19 @@ void ChartLayer::next_kind() {
   dirty_ = true;
 }
 
-void ChartLayer::reload_style(Reload when) {
-  if (!settings_.style) return;
+bool ChartLayer::reload_style(Reload when) {
+  if (!settings_.style) return false;
   std::error_code ec;
   const auto t = std::filesystem::last_write_time(*settings_.style, ec);
-  if (ec || (when == Reload::kIfChanged && t == style_time_)) return;
+  if (ec || (when == Reload::kIfChanged && t == style_time_)) return false;
   style_time_ = t;
   try {
     style_ = read_chart_style(cache_.package().meta.fields, settings_.style);
     dirty_ = true;
+    return true;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "globe-view: %s (keeping the current chart style)\n", e.what());
+    return false;
   }
 }
 

@@ -64,8 +64,9 @@ class ChartLayer {
   enum class Reload { kIfChanged, kAlways };
   // Re-reads the style file if it changed (kAlways: even if not); a broken
   // file keeps the current style (the error goes to stderr).
-  void reload_style(Reload when);
+  bool reload_style(Reload when);  // true: the style changed
   ChartLayerStats stats() const;
+  bool loading() { return cache_.loader_busy(); }  // tiles still being read
 
  private:
   struct PlaceRef {

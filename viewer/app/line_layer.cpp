@@ -80,19 +80,21 @@ std::vector<NamedLineStyle> LineLayer::read_styles() const {
   return styles;
 }
 
-void LineLayer::reload_style(Reload when) {
-  if (!style_path_) return;
+bool LineLayer::reload_style(Reload when) {
+  if (!style_path_) return false;
   std::error_code ec;
   const auto t = std::filesystem::last_write_time(*style_path_, ec);
-  if (when == Reload::kIfChanged && (ec || t == style_time_)) return;
+  if (when == Reload::kIfChanged && (ec || t == style_time_)) return false;
   style_time_ = t;
   try {
     std::vector<NamedLineStyle> styles = read_styles();
     renderer_.set_styles(styles);
     styles_ = std::move(styles);
     std::fprintf(stderr, "globe-view: styles reloaded from %s\n", style_path_->c_str());
+    return true;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "globe-view: %s; keeping the previous styles\n", e.what());
+    return false;
   }
 }
 

@@ -50,10 +50,11 @@ class LineLayer {
   enum class Reload { kIfChanged, kAlways };
   // Re-reads the style file if it changed since the last read (kAlways: even
   // if not). A broken file keeps the current styles; the error goes to stderr.
-  void reload_style(Reload when);
+  bool reload_style(Reload when);  // true: the styles changed
   LineMode mode() const { return mode_; }
   void set_mode(LineMode m) { mode_ = m; }
   LineLayerStats stats() const { return {cache_.stats(), tiles_used_}; }
+  bool loading() { return cache_.loader_busy(); }  // tiles still being read
 
   // The line drawn on top at pixel (x, y) (from the top-left) in the last
   // frame: "" where there is none (deferred mode only). Otherwise its

@@ -63,6 +63,11 @@ class TerrainScene {
   // The finished image (terrain, imagery and lines): framebuffer and pixels.
   GLuint output_fbo() const;
   std::vector<uint8_t> read_pixels() const;
+  // Whether any layer is still reading tiles (the window keeps drawing).
+  bool loading() {
+    return cache_->loader_busy() || (lines_ && lines_->loading()) ||
+           (charts_ && charts_->loading());
+  }
   // The fraction of the last frame's pixels that show terrain.
   double ground_fraction() const {
     return viewer::ground_fraction(renderer_->gbuffer().fbo, renderer_->width(),

@@ -220,8 +220,34 @@ int run_window(const ViewerSettings& settings) {
 
   auto last_title = std::chrono::steady_clock::now();
   const auto opened = last_title;
+  // Drawn on demand: while anything moves, loads or animates, every frame;
+  // after that a few more (uploads, the title), then the window sleeps until
+  // an event (or every 0.5 s, to notice edited style and colour files).
+  constexpr int kSettleFrames = 3;
+  int frames_due = kSettleFrames;
+  uint64_t events_seen = window->events();
   while (!window->should_close()) {
-    window->poll();
+    if (frames_due > 0 || settings.flow_animate)
+      window->poll();
+    else
+      window->wait(0.5);
+    if (window->events() != events_seen) {
+      events_seen = window->events();
+      frames_due = kSettleFrames;
+    }
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_title > std::chrono::milliseconds(500)) {
+      // Edits of the style and colour files are picked up.
+      bool edited = s.lines() && s.lines()->reload_style(LineLayer::Reload::kIfChanged);
+      edited = (s.charts() && s.charts()->reload_style(ChartLayer::Reload::kIfChanged)) || edited;
+      if (s.ramp().reload(ElevationRamp::Reload::kIfChanged)) {
+        s.apply_ramp();
+        edited = true;
+      }
+      if (edited) frames_due = kSettleFrames;
+      if (frames_due == 0 && !settings.flow_animate) last_title = now;
+    }
+    if (frames_due == 0 && !settings.flow_animate) continue;
     if (settings.flow_animate)  // a cycle of the flow pulses every 2 s
       s.settings().shading.flow_phase = std::fmod(
           std::chrono::duration<double>(std::chrono::steady_clock::now() - opened).count() / 2,
@@ -235,6 +261,11 @@ int run_window(const ViewerSettings& settings) {
                                   TerrainScene::Output::kDraw);
     last_view = f.view;
     have_view = true;
+    size_t waiting = f.selection.waiting;  // blocks and image tiles not in yet
+    if (const ImageLayers* im = s.images())
+      for (const ImageCacheStats& st : im->stats())
+        waiting += st.loading;
+    frames_due = waiting > 0 || s.loading() ? kSettleFrames : std::max(0, frames_due - 1);
     if (screenshot_pending) {
       const std::string name = "globe-view-" + std::to_string(++screenshot) + ".png";
       write_png(name, s.read_pixels(), w, h);
@@ -243,17 +274,10 @@ int run_window(const ViewerSettings& settings) {
     }
     blit_to_window(s.output_fbo(), s.renderer().width(), s.renderer().height(), w, h);
     window->swap();
-    const auto now = std::chrono::steady_clock::now();
-    if (now - last_title > std::chrono::milliseconds(500)) {
-      if (s.lines())
-        s.lines()->reload_style(LineLayer::Reload::kIfChanged);  // picks up edits of the style file
-      if (s.charts()) s.charts()->reload_style(ChartLayer::Reload::kIfChanged);
-      if (s.ramp().reload(ElevationRamp::Reload::kIfChanged)) s.apply_ramp();  // and colour file
-      const double ms = std::chrono::duration<double, std::milli>(now - t0).count();
-      size_t waiting = f.selection.waiting;  // blocks and image tiles not in yet
-      if (const ImageLayers* im = s.images())
-        for (const ImageCacheStats& st : im->stats())
-          waiting += st.loading;
+    // The title every 0.5 s, and on the last frame before the window sleeps.
+    const auto drawn = std::chrono::steady_clock::now();
+    if (drawn - last_title > std::chrono::milliseconds(500) || frames_due == 0) {
+      const double ms = std::chrono::duration<double, std::milli>(drawn - t0).count();
       char title[320];
       std::snprintf(title, sizeof title,
                     "globe-view  %.1f ms (lines %.1f)  %zu patches  %zu k triangles  %zu blocks  "
@@ -278,7 +302,7 @@ int run_window(const ViewerSettings& settings) {
           std::snprintf(title, sizeof title, "globe-view  %s  waiting %zu", place.c_str(), waiting);
       }
       window->set_title(title);
-      last_title = now;
+      last_title = drawn;
     }
   }
   return kExitOk;

@@ -11,13 +11,16 @@
 namespace globe::viewer {
 
 namespace {
+GlfwWindowState& state_of(GLFWwindow* w) {
+  return *static_cast<GlfwWindowState*>(glfwGetWindowUserPointer(w));
+}
 WindowCallbacks& callbacks_of(GLFWwindow* w) {
-  return *static_cast<WindowCallbacks*>(glfwGetWindowUserPointer(w));
+  return state_of(w).callbacks;
 }
 }  // namespace
 
 GlfwWindow::GlfwWindow(int width, int height, const std::string& title, WindowCallbacks callbacks)
-    : callbacks_(std::move(callbacks)) {
+    : state_{std::move(callbacks), 0} {
   if (!glfwInit()) throw std::runtime_error("GLFW cannot open the display");
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
@@ -31,21 +34,28 @@ GlfwWindow::GlfwWindow(int width, int height, const std::string& title, WindowCa
   glfwMakeContextCurrent(window_);
   glfwSwapInterval(1);
   gl::load([](const char* name) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); });
-  glfwSetWindowUserPointer(window_, &callbacks_);
+  glfwSetWindowUserPointer(window_, &state_);
   glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int, int action, int mods) {
+    ++state_of(w).events;
     if (action != GLFW_RELEASE && callbacks_of(w).on_key) callbacks_of(w).on_key(key, mods);
   });
   glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int button, int action, int) {
+    ++state_of(w).events;
     double x = 0, y = 0;
     glfwGetCursorPos(w, &x, &y);
     if (callbacks_of(w).on_button) callbacks_of(w).on_button(button, action == GLFW_PRESS, x, y);
   });
   glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double x, double y) {
+    ++state_of(w).events;
     if (callbacks_of(w).on_cursor) callbacks_of(w).on_cursor(x, y);
   });
   glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double dy) {
+    ++state_of(w).events;
     if (callbacks_of(w).on_scroll) callbacks_of(w).on_scroll(dy);
   });
+  // Resized, uncovered, focused: draw again.
+  glfwSetFramebufferSizeCallback(window_, [](GLFWwindow* w, int, int) { ++state_of(w).events; });
+  glfwSetWindowRefreshCallback(window_, [](GLFWwindow* w) { ++state_of(w).events; });
 }
 
 GlfwWindow::~GlfwWindow() {
@@ -61,6 +71,9 @@ void GlfwWindow::close() {
 }
 void GlfwWindow::poll() {
   glfwPollEvents();
+}
+void GlfwWindow::wait(double seconds) {
+  glfwWaitEventsTimeout(seconds);
 }
 void GlfwWindow::swap() {
   glfwSwapBuffers(window_);

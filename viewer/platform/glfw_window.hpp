@@ -2,6 +2,7 @@
 // Wraps the GLFW C API; input arrives through the callbacks struct.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <string>
 
@@ -16,6 +17,12 @@ struct WindowCallbacks {
   std::function<void(double dy)> on_scroll;
 };
 
+// What GLFW's C callbacks reach through the window's user pointer.
+struct GlfwWindowState {
+  WindowCallbacks callbacks;
+  uint64_t events = 0;
+};
+
 class GlfwWindow {
  public:
   // Throws std::runtime_error (no display, no 4.5 core context).
@@ -27,13 +34,19 @@ class GlfwWindow {
   bool should_close() const;
   void close();
   void poll();
+  // Sleeps until an event arrives or `seconds` pass (the idle window draws
+  // nothing and uses no CPU), then handles the events.
+  void wait(double seconds);
+  // Events received so far (input, resizes, exposure): a change means the
+  // picture may have to be drawn again.
+  uint64_t events() const { return state_.events; }
   void swap();
   void set_title(const std::string& title);
   void framebuffer_size(int& width, int& height) const;
 
  private:
   GLFWwindow* window_ = nullptr;
-  WindowCallbacks callbacks_;
+  GlfwWindowState state_;
 };
 
 }  // namespace globe::viewer
