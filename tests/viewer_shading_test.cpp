@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <fstream>
 
+#include "raster_fixtures.hpp"
 #include "render_fixtures.hpp"
 #include "test_support.hpp"
 
@@ -54,6 +55,57 @@ bool pale(const uint8_t* p) {  // the top of the ramp: greys to white
 }
 bool brown(const uint8_t* p) {
   return p[0] > p[1] + 20 && p[1] > p[2] + 10;
+}
+
+// A tilted plane is lit the same everywhere: no row or column of its
+// hillshade stands out, also where the blocks meet (normals there come from
+// the neighbour's samples; before, a one-sided difference drew a faint line
+// on every block edge). The plane lies in the tiling's CRS (web mercator), so
+// its slope is the same in every block.
+TEST(ViewerShading, APlaneIsLitEvenlyAcrossBlockEdges) {
+  TempDir dir;
+  const double gt[6] = {1000000, 20, 0, 5000000, 0, -20};
+  write_dem((dir / "plane.tif").string(), 600, 600, gt, "EPSG:3857", GDT_Float32,
+            [](int x, int y) { return 1000.0 + 0.3 * 20 * x + 0.2 * 20 * y; });
+  const std::string pkg = (dir / "plane.mbtiles").string(), png = (dir / "plane.png").string();
+  ASSERT_TRUE(run_all({tiler() + " terrain -q " + (dir / "plane.tif").string() + " -o " + pkg},
+                      dir.path()));
+  // Straight down, east of the middle (9.045 E, 40.87 N), the plane filling the frame, at a
+  // height where the finest zoom is drawn: several block edges cross it.
+  const RunResult r = view(pkg + " --size 480x270 --camera=9.045,40.87,8000,0,0 --snapshot " + png +
+                               " --stats --frames 1",
+                           dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  int w = 0, h = 0;
+  const std::vector<uint8_t> rgb = read_rgb(png, w, h);
+  ASSERT_EQ(size_t(w) * h * 3, rgb.size());
+  // Every terrain pixel's grey against the frame's median grey (the sky, in a
+  // corner where the plane is lowest, is left out).
+  auto sky = [&](int x, int y) {
+    const uint8_t* p = &rgb[(size_t(std::clamp(y, 0, h - 1)) * w + std::clamp(x, 0, w - 1)) * 3];
+    return p[2] > p[0] + 20;
+  };
+  std::vector<int> grey;  // -1: sky, or the data's own edge next to it (4 px)
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      bool near_sky = false;
+      for (int dy = -4; dy <= 4; ++dy)
+        for (int dx = -4; dx <= 4; ++dx)
+          near_sky = near_sky || sky(x + dx, y + dy);
+      grey.push_back(near_sky ? -1 : rgb[(size_t(y) * w + x) * 3]);
+    }
+  std::vector<int> sorted;
+  for (int g : grey)
+    if (g >= 0) sorted.push_back(g);
+  ASSERT_GT(sorted.size(), grey.size() * 9 / 10);
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  const int median = sorted[sorted.size() / 2];
+  // A seam is a line of pixels lit differently: none may stand out by more
+  // than 2 grey levels (rounding).
+  size_t off = 0;
+  for (int g : grey)
+    off += g >= 0 && std::abs(g - median) > 2;
+  EXPECT_EQ(off, 0u) << "pixels lit unlike the plane (grey " << median << ")";
 }
 
 TEST(ViewerShading, ElevationOnAGlobalGridShowsSeaAndLand) {

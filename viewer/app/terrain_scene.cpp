@@ -243,6 +243,24 @@ View TerrainScene::make(const CameraPose& pose) {
                    selector_->top_height_m(*cache_) * zs, selector_->bottom_height_m(*cache_) * zs);
 }
 
+void TerrainScene::find_neighbours(std::vector<Patch>& patches) {
+  const tileformat::Tiling& t = package().tiling;
+  for (Patch& p : patches) {
+    const tileformat::TileId id = p.tile;
+    const int64_t nx = int64_t(t.tiles_x(id.z)), ny = int64_t(t.tiles_y(id.z));
+    const int64_t at[4][2] = {
+        {id.x - 1, id.y}, {id.x + 1, id.y}, {id.x, id.y - 1}, {id.x, id.y + 1}};
+    for (int k = 0; k < 4; ++k) {
+      int64_t x = at[k][0];
+      const int64_t y = at[k][1];
+      if (t.wraps_x()) x = (x + nx) % nx;  // across the antimeridian
+      if (x < 0 || x >= nx || y < 0 || y >= ny) continue;
+      const ResidentBlock* b = cache_->use({id.z, uint32_t(x), uint32_t(y)});
+      p.neighbours[k] = b ? b->slot : -1;
+    }
+  }
+}
+
 CameraPose TerrainScene::above_ground(const CameraPose& pose) {
   // The eye stays this far above the drawn ground (metres).
   constexpr double kClearanceM = 20;
@@ -280,6 +298,7 @@ FrameResult TerrainScene::frame(const CameraPose& asked, Loading loading, Output
     const auto t0 = std::chrono::steady_clock::now();
     f.view = make(pose);
     f.patches = selector_->select(f.view, *world_, *cache_, sel, &f.selection);
+    find_neighbours(f.patches);
     f.select_ms = ms_since(t0);
     cache_->flush_requests();
     if (loading == Loading::kAsReady || !cache_->loader_busy() || round > 1000) break;

@@ -95,6 +95,7 @@ class TerrainScene {
   void sample_heights();  // fixes the elevation ramp's data range
   View make(const CameraPose& pose);
   CameraPose above_ground(const CameraPose& pose);
+  void find_neighbours(std::vector<Patch>& patches);  // Patch::neighbours from the cache
 
   ViewerSettings settings_;
   std::unique_ptr<BlockCache> cache_;

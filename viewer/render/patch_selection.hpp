@@ -17,6 +17,8 @@
 // Pure CPU code over the BlockCache; the renderer draws the result.
 #pragma once
 
+#include <array>
+
 #include <cstdint>
 #include <unordered_map>
 #include <utility>
@@ -34,6 +36,9 @@ namespace globe::viewer {
 struct Patch {
   tileformat::TileId tile;
   int slot = -1;
+  // Slots of the resident blocks of the same zoom west, east, north and south
+  // (-1: none), for normals across block edges; filled after the selection.
+  std::array<int, 4> neighbours{-1, -1, -1, -1};
   int level = 0;  // global 4-8 level: 2 * zoom + depth
   tileformat::Point apex, u, v;
 };

@@ -18,6 +18,7 @@ struct Instance {  // matches the vertex shader's per-instance attributes
   int32_t origin_x, origin_y, apex_x, apex_y;
   int32_t ux, uy, vx, vy;
   int32_t layer, shift;
+  int32_t neighbours[4];  // W, E, N, S
 };
 
 }  // namespace
@@ -63,8 +64,8 @@ TerrainRenderer::TerrainRenderer(int block_size, int lattice, int slots, int wid
   gl::EnableVertexArrayAttrib(vao_, 0);
   gl::VertexArrayAttribIFormat(vao_, 0, 2, GL_INT, 0);
   gl::VertexArrayAttribBinding(vao_, 0, 0);
-  const GLuint offsets[3] = {0, 16, 32}, sizes[3] = {4, 4, 2};
-  for (GLuint a = 1; a <= 3; ++a) {
+  const GLuint offsets[4] = {0, 16, 32, 40}, sizes[4] = {4, 4, 2, 4};
+  for (GLuint a = 1; a <= 4; ++a) {
     gl::EnableVertexArrayAttrib(vao_, a);
     gl::VertexArrayAttribIFormat(vao_, a, sizes[a - 1], GL_INT, offsets[a - 1]);
     gl::VertexArrayAttribBinding(vao_, a, 1);
@@ -187,7 +188,8 @@ void TerrainRenderer::upload_instances(const std::vector<Patch>& patches, const 
                p.v.x,
                p.v.y,
                p.slot,
-               shift};
+               shift,
+               {p.neighbours[0], p.neighbours[1], p.neighbours[2], p.neighbours[3]}};
   }
   // A fresh store every frame: the driver orphans the old one if still in use.
   const Instance empty{};

@@ -127,6 +127,7 @@ layout(location = 0) in ivec2 a_lattice;
 layout(location = 1) in ivec4 i_origin_apex;  // block origin (key units, frame-relative), apex
 layout(location = 2) in ivec4 i_uv;           // lattice steps along the two legs (samples)
 layout(location = 3) in ivec2 i_layer_shift;  // texture layer, log2(key units per sample)
+layout(location = 4) in ivec4 i_neighbours;   // layers of the same zoom's blocks W, E, N, S (-1: none)
 uniform mat4 u_view_proj;
 uniform vec2 u_ground;  // ground units per key unit (x, y), flat frame at the view latitude
 uniform sampler2DArray u_heights;
@@ -134,6 +135,7 @@ out vec3 v_world;
 out vec2 v_ground;
 out vec2 v_sample;
 flat out int v_layer;
+flat out ivec4 v_neighbours;
 flat out int v_shift;     // log2(key units per sample): the block's zoom is key zoom - shift
 flat out vec2 v_spacing;  // metres per block sample (x, y)
 flat out ivec2 v_key;     // for mesh capture: key units from the frame origin
@@ -163,6 +165,7 @@ void main() {
   v_height = h;
   v_sample = vec2(local);
   v_layer = i_layer_shift.x;
+  v_neighbours = i_neighbours;
   v_shift = i_layer_shift.y;
   v_spacing = spacing * float(1 << i_layer_shift.y);
   gl_Position = u_view_proj * vec4(v_world, 1.0);
@@ -179,6 +182,7 @@ in vec3 v_world;
 in vec2 v_ground;
 in vec2 v_sample;
 flat in int v_layer;
+flat in ivec4 v_neighbours;
 flat in int v_shift;
 flat in vec2 v_spacing;
 uniform sampler2DArray u_heights;
@@ -205,8 +209,28 @@ layout(location = 2) out vec4 o_normal;    // G-buffer: plane of the drawn trian
 layout(location = 3) out vec4 o_ground;    // G-buffer: ground x, y and their d/dx
 layout(location = 4) out vec2 o_ground_dy; // G-buffer: d/dy of ground x, y
 
+// The height at block sample s (x east, y south), also just outside the
+// block: there from the neighbour of the same zoom (edges are shared, so its
+// sample last + d is ours at d), so normals at block edges are central
+// differences like everywhere else (no seam). Without that neighbour the
+// texture clamps to the edge.
 float height_at(vec2 s) {
-  return texture(u_heights, vec3((s + 0.5) / u_size, float(v_layer))).r;
+  float last = u_size - 1.0;
+  int layer = v_layer;
+  if (s.x < 0.0 && v_neighbours.x >= 0) {
+    s.x += last;
+    layer = v_neighbours.x;
+  } else if (s.x > last && v_neighbours.y >= 0) {
+    s.x -= last;
+    layer = v_neighbours.y;
+  } else if (s.y < 0.0 && v_neighbours.z >= 0) {
+    s.y += last;
+    layer = v_neighbours.z;
+  } else if (s.y > last && v_neighbours.w >= 0) {
+    s.y -= last;
+    layer = v_neighbours.w;
+  }
+  return texture(u_heights, vec3((s + 0.5) / u_size, float(layer))).r;
 }
 vec3 ramp(float h) {  // the entries sit on texel centres
   float n = float(textureSize(u_ramp, 0).x);
