@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 
 #include "raster_fixtures.hpp"
@@ -106,6 +107,43 @@ TEST(ViewerShading, APlaneIsLitEvenlyAcrossBlockEdges) {
   for (int g : grey)
     off += g >= 0 && std::abs(g - median) > 2;
   EXPECT_EQ(off, 0u) << "pixels lit unlike the plane (grey " << median << ")";
+}
+
+// The standard deviation of a frame's grey (R+G+B)/3.
+double grey_std(const std::string& png) {
+  int w = 0, h = 0;
+  const std::vector<uint8_t> rgb = read_rgb(png, w, h);
+  double sum = 0, sum2 = 0;
+  const size_t n = size_t(w) * h;
+  for (size_t i = 0; i < n; ++i) {
+    const double g = (rgb[3 * i] + rgb[3 * i + 1] + rgb[3 * i + 2]) / 3.0;
+    sum += g;
+    sum2 += g * g;
+  }
+  return n ? std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n))) : 0;
+}
+
+// Readable by default: mountains on a coarse global grid (etopo20, 37 km
+// samples, about nine across the frame) are shaded with contrast, not a grey
+// sheet (the relief stretch, app/relief_scale); --exaggeration given is the
+// user's own relief and turns the stretch off.
+TEST(ViewerShading, MountainsOnACoarseGridAreReadableByDefault) {
+  TempDir dir;
+  const std::pair<const char*, const char*> views[] = {{"himalaya", "86.9,27.9,400000,0,0"},
+                                                       {"alps", "10,46.3,300000,0,0"},
+                                                       {"andes", "-70,-32.65,400000,0,0"}};
+  for (const auto& [name, camera] : views) {
+    const std::string png = (dir / (std::string(name) + ".png")).string();
+    const std::string base = packages().global + " --size 320x180 --camera=" + camera;
+    ASSERT_EQ(view(base + " --snapshot " + png, dir.path()).exit_code, 0) << name;
+    const double stretched = grey_std(png);
+    ASSERT_EQ(view(base + " --exaggeration 1 --snapshot " + png, dir.path()).exit_code, 0);
+    const double plain = grey_std(png);
+    std::printf("%s: grey std %.1f by default, %.1f with --exaggeration 1\n", name, stretched,
+                plain);
+    EXPECT_GE(stretched, 8) << name;
+    EXPECT_LT(plain, stretched / 2) << name << ": --exaggeration turns the stretch off";
+  }
 }
 
 TEST(ViewerShading, ElevationOnAGlobalGridShowsSeaAndLand) {

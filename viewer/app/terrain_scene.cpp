@@ -100,6 +100,9 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
   }
   if (const std::string e = shading_problem(settings_.shading); !e.empty()) throw UsageError(e);
   ground_ = std::make_unique<GroundProbe>(path);
+  // The relief stretch is the default look; --exaggeration given is the
+  // user's own choice of relief.
+  auto_relief_ = !settings_.shading.exaggeration_given;
   cache_ = std::make_unique<BlockCache>(path, std::move(package),
                                         budget - line_budget - image_budget - point_budget,
                                         std::move(analysis));
@@ -175,6 +178,10 @@ void TerrainScene::upload_loaded() {
     if (edges_.add_samples(
             b, p.tiling.sample_spacing(b.id.z, p.block_size - 1) * world_->metres_per_crs_x()))
       renderer_->set_edge_scales(edges_.scales());
+    if (auto_relief_) {
+      const auto [sx, sy] = block_spacing_m(b.id);
+      if (relief_.add_samples(b, sx, sy)) renderer_->set_relief_stretches(relief_.stretches());
+    }
     // Flow: the largest river loaded so far (coarser zooms keep the largest
     // area of their footprint, so the first blocks already hold it) and eight
     // doublings below it.
@@ -241,6 +248,23 @@ View TerrainScene::make(const CameraPose& pose) {
   world_->set_view_latitude(pose.lat);
   return make_view(pose, *world_, renderer_->width(), renderer_->height(),
                    selector_->top_height_m(*cache_) * zs, selector_->bottom_height_m(*cache_) * zs);
+}
+
+std::pair<double, double> TerrainScene::block_spacing_m(tileformat::TileId id) const {
+  const TerrainPackage& p = package();
+  const double spacing = p.tiling.sample_spacing(id.z, p.block_size - 1);
+  const tileformat::Bounds b = p.tiling.tile_bounds(id);
+  const glm::dvec2 key = world_->crs_to_key((b.min_x + b.max_x) / 2, (b.min_y + b.max_y) / 2);
+  const double cos_lat = std::cos(world_->key_to_latlon(key.x, key.y).x);
+  switch (p.tiling.scheme) {
+    case tileformat::Scheme::kGeodetic:  // degrees
+      return {spacing * 111320 * cos_lat, spacing * 111320};
+    case tileformat::Scheme::kWebMercator:  // metres at the equator
+      return {spacing * cos_lat, spacing * cos_lat};
+    case tileformat::Scheme::kLocal:
+      break;
+  }
+  return {spacing, spacing};
 }
 
 void TerrainScene::find_neighbours(std::vector<Patch>& patches) {

@@ -14,6 +14,7 @@
 #include "app/elevation_ramp.hpp"
 #include "app/image_layers.hpp"
 #include "app/line_layer.hpp"
+#include "app/relief_scale.hpp"
 #include "app/viewer_settings.hpp"
 #include "camera/camera.hpp"
 #include "camera/world_frame.hpp"
@@ -96,6 +97,8 @@ class TerrainScene {
   View make(const CameraPose& pose);
   CameraPose above_ground(const CameraPose& pose);
   void find_neighbours(std::vector<Patch>& patches);  // Patch::neighbours from the cache
+  // Ground metres between a block's samples east and south (at its centre).
+  std::pair<double, double> block_spacing_m(tileformat::TileId id) const;
 
   ViewerSettings settings_;
   std::unique_ptr<BlockCache> cache_;
@@ -109,6 +112,8 @@ class TerrainScene {
   std::unique_ptr<ElevationRamp> ramp_;
   std::unique_ptr<GroundProbe> ground_;
   bool raised_ = false;                       // the last frame's pose was raised above the ground
+  ReliefScale relief_;                        // the hillshade's relief stretch per zoom
+  bool auto_relief_ = true;                   // off when --exaggeration is given
   EdgeScale edges_;                           // the edges shading's stretch per zoom
   std::optional<std::string> analysis_path_;  // the analysis package, if any
   std::vector<tileformat::AnalysisLayer> analysis_layers_;  // and its layers

@@ -202,11 +202,15 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
                s.shading.sun_azimuth_deg = d[0];
                s.shading.sun_altitude_deg = d[1];
              });
-  cli.option("--exaggeration", "K", "vertical exaggeration (default 1)", [&](const std::string& v) {
-    s.shading.exaggeration = CliArgs::to_double("--exaggeration", v);
-    if (s.shading.exaggeration <= 0 || s.shading.exaggeration > 100)
-      throw UsageError("--exaggeration: must be within (0, 100]");
-  });
+  cli.option("--exaggeration", "K",
+             "vertical exaggeration (default 1; without it the hillshade stretches the slopes of "
+             "coarse grids for the light, docs/viewer.md)",
+             [&](const std::string& v) {
+               s.shading.exaggeration = CliArgs::to_double("--exaggeration", v);
+               s.shading.exaggeration_given = true;
+               if (s.shading.exaggeration <= 0 || s.shading.exaggeration > 100)
+                 throw UsageError("--exaggeration: must be within (0, 100]");
+             });
   cli.option("--style", "FILE.json",
              "line styles by class name, over the package's own (docs/viewer.md); the window "
              "reloads the file when it changes, or on F5",

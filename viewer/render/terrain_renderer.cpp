@@ -27,6 +27,7 @@ TerrainRenderer::TerrainRenderer(int block_size, int lattice, int slots, int wid
                                  bool analysis)
     : size_(block_size), lattice_(lattice), slots_(slots) {
   edge_scales_.fill(0.05f);
+  relief_stretches_.fill(1.0f);
   const std::string vertex = std::string(shaders::kTerrainVertexHead) + shaders::kFrameWorldGlsl +
                              shaders::kTerrainVertexMain;
   draw_program_ = GlProgram("terrain", vertex, with_shading_defines(shaders::kTerrainFragment));
@@ -264,6 +265,7 @@ RenderTimes TerrainRenderer::draw(const std::vector<Patch>& patches, const View&
   gl::BindTextureUnit(2, ramp_);
   gl::Uniform1i(p.uniform("u_has_gradient"), layers_ && gradient_from_layers_ ? 1 : 0);
   gl::Uniform1fv(p.uniform("u_edge_scale"), 32, edge_scales_.data());
+  gl::Uniform1fv(p.uniform("u_relief"), 32, relief_stretches_.data());
   gl::Uniform1i(p.uniform("u_key_zoom"), frame.key_zoom());
   gl::Uniform1i(p.uniform("u_ao"), s.ambient_occlusion && layers_ ? 1 : 0);
   gl::Uniform1i(p.uniform("u_layers"), 3);

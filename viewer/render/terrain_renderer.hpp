@@ -25,7 +25,8 @@ struct ShadingSettings {
   Shading mode = Shading::kHillshade;
   double sun_azimuth_deg = 315, sun_altitude_deg = 45;
   double exaggeration = 1;
-  bool ambient_occlusion = false;  // multiply the sky-view factor onto the colour (and imagery)
+  bool exaggeration_given = false;  // --exaggeration: no automatic relief stretch
+  bool ambient_occlusion = false;   // multiply the sky-view factor onto the colour (and imagery)
   // The elevation ramp: a built-in name or a gdaldem color-relief file, over
   // the data's real heights (the coarsest blocks' samples, clipped to the
   // percentiles) unless height_range is given.
@@ -87,6 +88,8 @@ class TerrainRenderer {
   void set_gradient_from_layers(bool on) { gradient_from_layers_ = on; }
   // Per zoom: plan curvature x sample spacing where the edges shading saturates.
   void set_edge_scales(const std::array<float, 32>& scales) { edge_scales_ = scales; }
+  // The hillshade's slope stretch per zoom (lighting only; app/relief_scale).
+  void set_relief_stretches(const std::array<float, 32>& s) { relief_stretches_ = s; }
   // log2 of the upstream areas (m^2) where rivers start to show and where
   // they are darkest.
   void set_flow_range(float lo, float hi) { flow_lo_ = lo, flow_hi_ = hi; }
@@ -120,6 +123,7 @@ class TerrainRenderer {
   float flow_lo_ = 10, flow_hi_ = 20;
   double ramp_lo_ = 0, ramp_hi_ = 1;
   std::array<float, 32> edge_scales_;
+  std::array<float, 32> relief_stretches_;
   bool gradient_from_layers_ = false;
   GBuffer g_;
   GLuint timer_ = 0;

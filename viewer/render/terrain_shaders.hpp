@@ -197,6 +197,7 @@ uniform sampler2DArray u_layers;
 uniform int u_has_gradient;  // 1: u_layers holds the analysis package's slope and aspect
 uniform int u_ao;          // 1: multiply the sky-view factor onto the colour
 uniform float u_edge_scale[32]; // per zoom: plan curvature x spacing where edge colours saturate
+uniform float u_relief[32];     // per zoom: the hillshade's slope stretch (lighting only)
 uniform int u_key_zoom;
 uniform sampler2DArray u_flow;
 uniform vec2 u_flow_range;  // log2 upstream areas: rivers begin to show, darkest
@@ -253,7 +254,11 @@ void main() {
   float hy = height_at(v_sample + vec2(0, 1)) - height_at(v_sample - vec2(0, 1));
   // Sample y grows southwards, world y northwards.
   vec3 n = normalize(vec3(-hx * u_zscale / (2.0 * v_spacing.x), hy * u_zscale / (2.0 * v_spacing.y), 1.0));
-  float shade = max(dot(n, u_sun), 0.0);
+  // The light sees the slopes stretched on coarse grids (render/terrain_renderer.hpp);
+  // slope and aspect keep the true normal.
+  float relief = u_relief[clamp(u_key_zoom - v_shift, 0, 31)];
+  vec3 lit = normalize(vec3(n.xy * relief, n.z));
+  float shade = max(dot(lit, u_sun), 0.0);
   vec3 color;
   if (u_mode == MODE_HILLSHADE) {
     color = vec3(0.12 + 0.88 * shade);
