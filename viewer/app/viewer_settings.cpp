@@ -34,32 +34,8 @@ std::string shading_keys_help() {
   return std::string(1, modes.front().key) + "-" + modes.back().key + " " + names;
 }
 
-}  // namespace
-
-std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::string>& args) {
-  ViewerSettings s;
-  CliArgs cli("globe-view",
-              "globe-view TERRAIN.mbtiles [IMAGE.mbtiles ...] [LINES.mbtiles] [POINTS.mbtiles]\n"
-              "           [options]\n"
-              "Renders a terrain package with image packages draped over it (bottom first),\n"
-              "the lines of a line-cluster package shaded per pixel over both, and a chart per\n"
-              "place of a point package on top: in a window, or headless with --snapshot,\n"
-              "--stats or --export-mesh (OSMesa or EGL; no display needed). Packages are told\n"
-              "apart by their format.");
-  cli.epilogue(
-      "window: drag to orbit, right-drag to pan, wheel or W/S to zoom, arrows to pan,\n"
-      "  R home view, P screenshot (globe-view-N.png), Esc quit;\n"
-      "  " +
-      shading_keys_help() +
-      ", O ambient occlusion on/off,\n"
-      "  +/- exaggeration;\n"
-      "  , and . shift the elevation ramp down/up, ; and ' narrow/widen it, 0 reset;\n"
-      "  I select the next image layer, V show/hide it, [ and ] its opacity -/+ 0.1,\n"
-      "  U imagery unlit/lit; L line mode, F5 reload the style and colour files;\n"
-      "  C next chart kind; the title names the place under the cursor;\n"
-      "  PageUp/PageDown raise/lower lifted lines (--bundles 3d);\n"
-      "  click a line to highlight it (a bundle: every connection through it), click\n"
-      "  elsewhere to clear; the title names it.\n");
+// Where the camera is, what is drawn at which detail: --snapshot … --cache-mb.
+void declare_view_options(CliArgs& cli, ViewerSettings& s) {
   cli.option("--snapshot", "OUT.png", "render headless, write the image, exit",
              [&](const std::string& v) { s.snapshot = v; });
   cli.option("--size", "WxH", "image / window size in pixels (default 1280x720)",
@@ -126,6 +102,10 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
       "memory budget for resident terrain blocks and line tiles (default 512; a quarter goes "
       "to line tiles when there are lines)",
       [&](const std::string& v) { s.cache_mb = CliArgs::to_int("--cache-mb", v, 4, 1 << 20); });
+}
+
+// How the terrain is shaded: --shading … --exaggeration.
+void declare_shading_options(CliArgs& cli, ViewerSettings& s) {
   cli.option("--shading", "MODE", shading_help(), [&](const std::string& v) {
     if (const ShadingMode* m = find_shading_mode(v))
       s.shading.mode = m->id;
@@ -211,6 +191,10 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
                if (s.shading.exaggeration <= 0 || s.shading.exaggeration > 100)
                  throw UsageError("--exaggeration: must be within (0, 100]");
              });
+}
+
+// Line, bundle and chart layers: --style … --chart-thinning.
+void declare_layer_options(CliArgs& cli, ViewerSettings& s) {
   cli.option("--style", "FILE.json",
              "line styles by class name, over the package's own (docs/viewer.md); the window "
              "reloads the file when it changes, or on F5",
@@ -290,6 +274,10 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
              s.charts_given = true;
              s.charts.thinning = ChartThinning::kOn;
            });
+}
+
+// What a headless run writes or prints, and the platform.
+void declare_output_options(CliArgs& cli, ViewerSettings& s) {
   cli.flag("--stats", "print frame statistics as JSON on stdout (headless)",
            [&] { s.stats = true; });
   cli.option("--pick", "X,Y|@LON,LAT",
@@ -318,6 +306,38 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
                  throw UsageError("--platform: unknown '" + v + "' (auto, glfw, osmesa, egl)");
                s.platform = v;
              });
+}
+
+}  // namespace
+
+std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::string>& args) {
+  ViewerSettings s;
+  CliArgs cli("globe-view",
+              "globe-view TERRAIN.mbtiles [IMAGE.mbtiles ...] [LINES.mbtiles] [POINTS.mbtiles]\n"
+              "           [options]\n"
+              "Renders a terrain package with image packages draped over it (bottom first),\n"
+              "the lines of a line-cluster package shaded per pixel over both, and a chart per\n"
+              "place of a point package on top: in a window, or headless with --snapshot,\n"
+              "--stats or --export-mesh (OSMesa or EGL; no display needed). Packages are told\n"
+              "apart by their format.");
+  cli.epilogue(
+      "window: drag to orbit, right-drag to pan, wheel or W/S to zoom, arrows to pan,\n"
+      "  R home view, P screenshot (globe-view-N.png), Esc quit;\n"
+      "  " +
+      shading_keys_help() +
+      ", O ambient occlusion on/off,\n"
+      "  +/- exaggeration;\n"
+      "  , and . shift the elevation ramp down/up, ; and ' narrow/widen it, 0 reset;\n"
+      "  I select the next image layer, V show/hide it, [ and ] its opacity -/+ 0.1,\n"
+      "  U imagery unlit/lit; L line mode, F5 reload the style and colour files;\n"
+      "  C next chart kind; the title names the place under the cursor;\n"
+      "  PageUp/PageDown raise/lower lifted lines (--bundles 3d);\n"
+      "  click a line to highlight it (a bundle: every connection through it), click\n"
+      "  elsewhere to clear; the title names it.\n");
+  declare_view_options(cli, s);
+  declare_shading_options(cli, s);
+  declare_layer_options(cli, s);
+  declare_output_options(cli, s);
   auto positional = cli.parse_command(args, 1, 11, "package");
   if (!positional) return std::nullopt;
   s.packages = *positional;
