@@ -4,6 +4,8 @@
 #   * quantized-mesh cut on the fly: every tile of a package, twice (cold: the
 #     server cuts each tile; warm: its tile cache answers), and Terrarium PNG
 #     of the finest web mercator zoom, cold;
+#   * the issue's load test: 200 clients, 20,000 random tiles of the finest
+#     zoom (quantized-mesh, Terrarium) from a fresh server;
 #   * stored tiles (the image package's tiles, the line package's MVT);
 # each against the floor: the same tiles exported to a folder and served by
 # Debian's nginx (installed here if missing). Tiles per second, p50 / p99 /
@@ -29,11 +31,13 @@ synthetic="$scratch/synthetic-4096.tif"
 
 # load URLS_FILE -> "tiles/s, p50, p99, max, errors"
 load() {
-  local start end
+  local start end per
+  per=$(($(wc -l < "$1") / clients))  # URLs per curl: every client busy, at most 50
+  per=$((3 * (per < 1 ? 1 : per > 50 ? 50 : per)))  # three arguments each: -o /dev/null URL
   start=$(date +%s.%N)
   # (-o /dev/null before every URL: curl applies one -o to one URL only)
   sed 's|^|-o /dev/null |' "$1" |
-    xargs -P "$clients" -n 150 curl -s -w '%{http_code} %{time_total}\n' > "$scratch/times.txt"
+    xargs -P "$clients" -n "$per" curl -s -w '%{http_code} %{time_total}\n' > "$scratch/times.txt"
   end=$(date +%s.%N)
   sort -g -k2 "$scratch/times.txt" > "$scratch/sorted.txt"
   awk -v s="$start" -v e="$end" '{ n++; if ($1 != 200) bad++; t[n] = $2 * 1000 }
@@ -97,6 +101,25 @@ urls "$scratch/terrarium/$max" png "${url}synthetic/$max/" "?encoding=terrarium"
 echo "synthetic 4096², Terrarium PNG on the fly, zoom $max ($(wc -l < "$scratch/p.txt") tiles):"
 echo "  globe-serve cold   $(load "$scratch/p.txt")"
 stop_serve
+# The issue's load test: 200 clients asking 20,000 random tiles of the finest
+# zoom (repeats included, as a map's users ask), from a fresh server.
+zq=$(ls "$scratch/qm" | grep -v json | sort -n | tail -1)
+random_urls() { # LIST -> 20,000 lines drawn from it (seeded, reproducible)
+  awk 'BEGIN { srand(42) } { u[n++] = $0 } END { for (i = 0; i < 20000; i++) print u[int(rand() * n)] }' "$1"
+}
+urls "$scratch/qm/$zq" terrain "${url}synthetic/$zq/" "?extensions=octvertexnormals" > "$scratch/zq.txt"
+random_urls "$scratch/zq.txt" > "$scratch/rq.txt"
+urls "$scratch/terrarium/$max" png "${url}synthetic/$max/" "?encoding=terrarium" > "$scratch/zp.txt"
+random_urls "$scratch/zp.txt" > "$scratch/rp.txt"
+for kind in rq rp; do
+  start_serve "$pkg"
+  sed -i "s|^http://[^/]*/|$url|" "$scratch/$kind.txt"
+  [ $kind = rq ] && what="quantized-mesh, zoom $zq ($(wc -l < "$scratch/zq.txt") tiles)" ||
+    what="Terrarium, zoom $max ($(wc -l < "$scratch/zp.txt") tiles)"
+  echo "load test, 200 clients, 20,000 random tiles, fresh server: $what"
+  echo "  globe-serve        $(clients=200 load "$scratch/$kind.txt")"
+  stop_serve
+done
 start_nginx "$scratch/qm"
 urls "$scratch/qm" terrain "$nurl" "" > "$scratch/n.txt"
 echo "  nginx, exported .terrain files  $(load "$scratch/n.txt")"
