@@ -22,7 +22,7 @@ egl_test='ViewerRender.OsMesaAndEglGiveTheSameImage|ViewerIdleWindow|ViewerImage
 status=0
 # The web label runs browsers, none of the project's binaries: once, in build/.
 ASAN_OPTIONS=detect_leaks=1 stage "tests (build-asan/)" ctest --output-on-failure -j "$(nproc)" \
-  --timeout 1500 -E "$egl_test" -LE web "$@" || status=1
+  --timeout 1500 -E "$egl_test" -LE "web|tutorial" "$@" || status=1
 ASAN_OPTIONS=detect_leaks=0 stage "tests (build-asan/, EGL/GLX)" ctest --output-on-failure \
   --timeout 1500 -R "$egl_test" || status=1
 exit $status

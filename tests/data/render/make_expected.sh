@@ -103,3 +103,10 @@ GLOBE_WEB_CACHE=$(scripts/web-deps.sh) node tests/web/run_page.mjs --viewport 48
   --mount /data="$tmp" --screenshot $out/maplibre_us_flights_mvt.png \
   --query 'style=/data/style.json&pmtiles=/data/flights.pmtiles&center=-97,39&zoom=3.5' \
   tests/web/pages/maplibre_mvt.html > /dev/null
+# The tutorial's pictures (tests/tutorial_test.cpp runs docs/tutorial.md): without expected
+# images the test fails and keeps its folder, whose pictures become the expected ones.
+rm -f $out/tutorial_*.png
+GLOBE_TEST_KEEP=1 build/tests/tutorial_tests >/dev/null 2>&1 || true
+kept=$(ls -dt /tmp/globe-test-Tutorial-EveryStepRunsAndMakesItsPictures-* | head -1)
+cp "$kept"/tutorial_*.png $out/
+rm -rf "$kept"
