@@ -1,6 +1,7 @@
 // globe-view command-line parsing (see viewer_settings.hpp).
 #include "app/viewer_settings.hpp"
 
+#include <cstdio>
 #include <fstream>
 
 #include "runtime/cli_args.hpp"
@@ -133,6 +134,26 @@ void declare_shading_options(CliArgs& cli, ViewerSettings& s) {
            "darken by the sky-view factor of an analysis package (any shading, and imagery lit "
            "by it)",
            [&] { s.shading.ambient_occlusion = true; });
+  cli.option("--isolines", "M[,N]",
+             "isolines of the terrain every M metres, drawn per pixel (constant width), every "
+             "N-th one bold (e.g. 50,5); under image layers",
+             [&](const std::string& v) {
+               const size_t comma = v.find(',');
+               s.shading.isoline_interval = CliArgs::to_double("--isolines", v.substr(0, comma));
+               if (!(s.shading.isoline_interval > 0))
+                 throw UsageError("--isolines: the interval must be > 0 metres");
+               if (comma != std::string::npos)
+                 s.shading.isoline_index =
+                     CliArgs::to_int("--isolines", v.substr(comma + 1), 1, 1000);
+             });
+  cli.option("--isoline-color", "#RRGGBB", "the isolines' colour (default #5c3317)",
+             [&](const std::string& v) {
+               unsigned rgb = 0;
+               if (v.size() != 7 || v[0] != '#' || std::sscanf(v.c_str() + 1, "%6x", &rgb) != 1)
+                 throw UsageError("--isoline-color: expected #RRGGBB, got '" + v + "'");
+               s.shading.isoline_rgb = {float((rgb >> 16) & 255) / 255,
+                                        float((rgb >> 8) & 255) / 255, float(rgb & 255) / 255};
+             });
   cli.option("--colormap", "NAME|FILE",
              "the colour ramp: hypsometric (default: bathymetry below 0 m, land above), "
              "gray, or a gdaldem color-relief file (VALUE R G B [A] per line; VALUE in the "

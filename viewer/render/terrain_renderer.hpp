@@ -38,6 +38,12 @@ struct ShadingSettings {
   // this phase (cycles; the window advances it with --flow-animate); none
   // when unset.
   std::optional<double> flow_phase;
+  // Isolines per pixel (--isolines): every `isoline_interval` metres of the
+  // drawn heights (0: none), every `isoline_index`-th one bold (0: none), in
+  // `isoline_rgb`; widths in pixels, whatever the distance or slope.
+  double isoline_interval = 0;
+  int isoline_index = 0;
+  std::array<float, 3> isoline_rgb{0.36f, 0.2f, 0.09f};
 };
 
 // The terrain pass's output: shaded colour (RGBA8), world position (RGBA32F,

@@ -204,6 +204,9 @@ uniform vec2 u_flow_range;  // log2 upstream areas: rivers begin to show, darkes
 uniform int u_flow_pulses;  // 1: pulses run downstream on the rivers, at u_flow_phase (cycles)
 uniform float u_flow_phase;
 uniform int u_layer_ramp;   // 1: slope, sky view and flow through the colour ramp (--colormap)
+uniform float u_iso_interval;  // isolines every this many metres (0: none)
+uniform int u_iso_index;       // every n-th isoline bold (0: none)
+uniform vec3 u_iso_rgb;
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_position;  // G-buffer: world point, w = 1 on terrain
 layout(location = 2) out vec4 o_normal;    // G-buffer: plane of the drawn triangle
@@ -315,6 +318,22 @@ void main() {
     }
   }
   if (u_ao != 0) color *= 0.3 + 0.7 * sky_light(layers_at(v_sample).r);
+  if (u_iso_interval > 0.0) {
+    // Isolines of the drawn heights: the distance to the nearest level in
+    // pixels from the level's screen gradient, so a line keeps its width on
+    // any slope and at any distance; a 1-px box filter across it.
+    float f = height_at(v_sample) / u_iso_interval;
+    float level = floor(f + 0.5);
+    float grad = length(vec2(dFdx(f), dFdy(f)));
+    float px = abs(f - level) / max(grad, 1e-6);
+    bool bold = u_iso_index > 0 && int(mod(level, float(u_iso_index))) == 0;
+    float half_width = bold ? 0.9 : 0.45;
+    float cover = clamp(min(px + half_width, 0.5) - max(px - half_width, -0.5), 0.0, 1.0);
+    // Where the levels crowd (under a pixel apart) the lines would merge into
+    // a smear: they fade out there.
+    cover *= clamp(1.0 / max(grad, 1e-6) - 0.75, 0.0, 1.0);
+    color = mix(color, u_iso_rgb, cover);
+  }
   o_color = vec4(color, 1.0);
   o_position = vec4(v_world, 1.0);
   o_normal = vec4(normalize(cross(dFdx(v_world), dFdy(v_world))), 0.0);
