@@ -146,6 +146,42 @@ TEST(ViewerShading, MountainsOnACoarseGridAreReadableByDefault) {
   }
 }
 
+// The magic lens: outside its circle the frame is the frame without it, byte
+// for byte; inside, the frame drawn entirely in the lens's mode (a pixel's
+// width around the rim left out: the circle cuts those pixels).
+TEST(ViewerShading, TheLensShowsItsModeInsideAndChangesNothingOutside) {
+  TempDir dir;
+  const std::string base = packages().himalaya + " --size 320x180 --camera=86.9,27.9,400000,30,45";
+  auto shot = [&](const std::string& name, const std::string& options) {
+    const std::string png = (dir / (name + ".png")).string();
+    EXPECT_EQ(view(base + " " + options + " --snapshot " + png, dir.path()).exit_code, 0) << name;
+    int w = 0, h = 0;
+    return read_rgb(png, w, h);
+  };
+  const std::vector<uint8_t> plain = shot("plain", ""), slope = shot("slope", "--shading slope"),
+                             lens = shot("lens", "--lens 150,100,60:slope");
+  ASSERT_EQ(plain.size(), size_t(320) * 180 * 3);
+  size_t inside = 0, outside = 0, inside_equal = 0, outside_equal = 0;
+  for (int y = 0; y < 180; ++y)
+    for (int x = 0; x < 320; ++x) {
+      const double d = std::hypot(x + 0.5 - 150, y + 0.5 - 100);
+      if (std::abs(d - 60) <= 1) continue;
+      const size_t i = (size_t(y) * 320 + x) * 3;
+      const bool is_lens = std::equal(&lens[i], &lens[i] + 3, d < 60 ? &slope[i] : &plain[i]);
+      (d < 60 ? inside : outside)++;
+      (d < 60 ? inside_equal : outside_equal) += is_lens;
+    }
+  EXPECT_EQ(outside_equal, outside) << "pixels outside the lens changed";
+  EXPECT_EQ(inside_equal, inside) << "pixels inside the lens differ from the slope frame";
+  EXPECT_GT(inside, 10000u);
+  EXPECT_NE(plain, slope);
+  // A lens mode that needs an analysis package is refused without one.
+  EXPECT_EQ(
+      view(base + " --lens 10,10,5:skyview --snapshot " + (dir / "x.png").string(), dir.path())
+          .exit_code,
+      2);
+}
+
 TEST(ViewerShading, ElevationOnAGlobalGridShowsSeaAndLand) {
   TempDir dir;
   const std::string snap = (dir / "a.png").string();

@@ -32,6 +32,9 @@ std::string shading_needs(const ShadingSettings& s, const std::optional<std::str
   std::vector<std::pair<AnalysisLayer, std::string>> need;
   const ShadingMode& mode = shading_mode(s.mode);
   if (mode.needs) need.emplace_back(*mode.needs, std::string("--shading ") + mode.name);
+  if (s.lens_radius > 0)
+    if (const ShadingMode& lens = shading_mode(s.lens_mode); lens.needs)
+      need.emplace_back(*lens.needs, std::string("--lens ...:") + lens.name);
   if (s.ambient_occlusion) need.emplace_back(AnalysisLayer::kSkyview, "--ambient-occlusion");
   for (const auto& [layer, what] : need) {
     const std::string name = tileformat::analysis_layer_info(layer).name;

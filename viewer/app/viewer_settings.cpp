@@ -134,6 +134,22 @@ void declare_shading_options(CliArgs& cli, ViewerSettings& s) {
            "darken by the sky-view factor of an analysis package (any shading, and imagery lit "
            "by it)",
            [&] { s.shading.ambient_occlusion = true; });
+  cli.option("--lens", "X,Y,R[:MODE]",
+             "a magic lens: inside the circle of radius R pixels around X,Y (from the top-left) "
+             "the terrain is shaded in MODE (default: elevation, or hillshade when that is the "
+             "shading); the window's K key moves it with the mouse",
+             [&](const std::string& v) {
+               const size_t colon = v.find(':');
+               const auto d = CliArgs::to_doubles("--lens", v.substr(0, colon), 3);
+               if (!(d[2] > 0)) throw UsageError("--lens: the radius must be > 0 pixels");
+               s.shading.lens_x = d[0], s.shading.lens_y = d[1], s.shading.lens_radius = d[2];
+               if (colon != std::string::npos) {
+                 const ShadingMode* m = find_shading_mode(v.substr(colon + 1));
+                 if (!m) throw UsageError("--lens: unknown mode '" + v.substr(colon + 1) + "'");
+                 s.lens_mode_given = true;
+                 s.shading.lens_mode = m->id;
+               }
+             });
   cli.option("--isolines", "M[,N]",
              "isolines of the terrain every M metres, drawn per pixel (constant width), every "
              "N-th one bold (e.g. 50,5); under image layers",
@@ -347,6 +363,7 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
       "  " +
       shading_keys_help() +
       ", O ambient occlusion on/off,\n"
+      "  K the lens (--lens) on/off, following the mouse;\n"
       "  +/- exaggeration;\n"
       "  , and . shift the elevation ramp down/up, ; and ' narrow/widen it, 0 reset;\n"
       "  I select the next image layer, V show/hide it, [ and ] its opacity -/+ 0.1,\n"
@@ -366,6 +383,8 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
     throw UsageError(
         "--platform glfw opens a window; --snapshot/--stats/--export-mesh/--pick are headless");
   if (s.imagery_unlit) s.shading.mode = Shading::kHillshade;
+  if (!s.lens_mode_given && s.shading.mode == Shading::kElevation)
+    s.shading.lens_mode = Shading::kHillshade;
   for (CameraPose& p : s.camera_path)
     p.fov_y_deg = s.fov_y_deg;
   if (s.camera) s.camera->fov_y_deg = s.fov_y_deg;

@@ -48,6 +48,7 @@ struct ViewerSettings {
   std::vector<double> image_opacity;  // --image-opacity, per image layer (the last repeats)
   ChartSettings charts;               // --chart, --chart-style, --chart-depth, --chart-thinning
   bool charts_given = false;          // any of those options
+  bool lens_mode_given = false;       // --lens named its mode
 
   bool headless() const {
     return snapshot || export_mesh || stats || !picks.empty() || platform == "osmesa" ||

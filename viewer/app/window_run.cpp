@@ -71,7 +71,8 @@ class WindowSession {
   size_t layer_ = 0;  // the image layer that V, [ and ] act on
   View last_view_;    // the last frame's view: G-buffer points are relative to its origin
   bool have_view_ = false;
-  std::string picked_;  // the line the last click picked
+  std::string picked_;         // the line the last click picked
+  bool lens_follows_ = false;  // K: the lens is on and follows the pointer
   int frames_due_ = kSettleFrames;
   std::chrono::steady_clock::time_point opened_ = std::chrono::steady_clock::now(),
                                         last_title_ = opened_;
@@ -104,6 +105,10 @@ void WindowSession::on_button(int button, bool down, double x, double y) {
 void WindowSession::on_cursor(double x, double y) {
   const double dx = x - last_x_, dy = y - last_y_;
   last_x_ = x, last_y_ = y;
+  if (lens_follows_ && scene_) {  // the lens moves with the pointer
+    scene_->settings().shading.lens_x = x;
+    scene_->settings().shading.lens_y = y;
+  }
   if (drag_orbit_)
     orbit_.turn(-dx * 0.3, dy * 0.3);
   else if (drag_pan_ && scene_)
@@ -231,12 +236,18 @@ bool WindowSession::layer_key(int key) {
   }
 }
 
-// A shading mode's key (render/shading_modes.cpp), O ambient occlusion, +/-
-// exaggeration.
+// A shading mode's key (render/shading_modes.cpp), O ambient occlusion, K the
+// lens, +/- exaggeration.
 void WindowSession::shading_key(int key) {
   ShadingSettings next = scene_->settings().shading;
   if (key == GLFW_KEY_O) {
     next.ambient_occlusion = !next.ambient_occlusion;
+  } else if (key == GLFW_KEY_K) {  // the lens on (following the pointer) / off
+    lens_follows_ = !lens_follows_;
+    next.lens_radius =
+        lens_follows_ ? (settings_.shading.lens_radius > 0 ? settings_.shading.lens_radius : 120)
+                      : 0;
+    next.lens_x = last_x_, next.lens_y = last_y_;
   } else if (key == GLFW_KEY_EQUAL || key == GLFW_KEY_KP_ADD) {
     next.exaggeration = std::min(next.exaggeration * 1.25, 100.0);
   } else if (key == GLFW_KEY_MINUS || key == GLFW_KEY_KP_SUBTRACT) {

@@ -276,6 +276,10 @@ RenderTimes TerrainRenderer::draw(const std::vector<Patch>& patches, const View&
   gl::Uniform1i(p.uniform("u_flow_pulses"), s.flow_phase ? 1 : 0);
   gl::Uniform1f(p.uniform("u_flow_phase"), static_cast<float>(s.flow_phase.value_or(0)));
   gl::Uniform1i(p.uniform("u_layer_ramp"), s.colormap_given ? 1 : 0);
+  // The lens centre in GL window coordinates (rows from the bottom).
+  gl::Uniform3f(p.uniform("u_lens"), static_cast<float>(s.lens_x),
+                static_cast<float>(g_.height - s.lens_y), static_cast<float>(s.lens_radius));
+  gl::Uniform1i(p.uniform("u_lens_mode"), static_cast<int>(s.lens_mode));
   gl::Uniform1f(p.uniform("u_iso_interval"), static_cast<float>(s.isoline_interval));
   gl::Uniform1i(p.uniform("u_iso_index"), s.isoline_index);
   gl::Uniform3f(p.uniform("u_iso_rgb"), s.isoline_rgb[0], s.isoline_rgb[1], s.isoline_rgb[2]);

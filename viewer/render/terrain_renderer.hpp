@@ -44,6 +44,10 @@ struct ShadingSettings {
   double isoline_interval = 0;
   int isoline_index = 0;
   std::array<float, 3> isoline_rgb{0.36f, 0.2f, 0.09f};
+  // A magic lens (--lens): inside the screen circle (pixels from the
+  // top-left) the terrain is shaded in `lens_mode` instead; radius 0: none.
+  double lens_x = 0, lens_y = 0, lens_radius = 0;
+  Shading lens_mode = Shading::kElevation;
 };
 
 // The terrain pass's output: shaded colour (RGBA8), world position (RGBA32F,

@@ -191,6 +191,8 @@ uniform float u_size;      // samples per block side
 uniform float u_zscale;    // world z per metre of height (with exaggeration)
 uniform vec3 u_sun;        // unit vector towards the sun
 uniform int u_mode;        // MODE_... (render/shading_modes.cpp defines them)
+uniform vec3 u_lens;       // a lens: centre (window pixels) and radius (0: none)
+uniform int u_lens_mode;   // the mode inside it
 uniform sampler2D u_ramp;  // elevation ramp: RampTable::kEntries x 1 colours
 uniform vec2 u_ramp_range; // heights of the ramp's first and last entries (metres)
 uniform sampler2DArray u_layers;
@@ -262,19 +264,20 @@ void main() {
   float relief = u_relief[clamp(u_key_zoom - v_shift, 0, 31)];
   vec3 lit = normalize(vec3(n.xy * relief, n.z));
   float shade = max(dot(lit, u_sun), 0.0);
+  int mode = u_lens.z > 0.0 && distance(gl_FragCoord.xy, u_lens.xy) < u_lens.z ? u_lens_mode : u_mode;
   vec3 color;
-  if (u_mode == MODE_HILLSHADE) {
+  if (mode == MODE_HILLSHADE) {
     color = vec3(0.12 + 0.88 * shade);
-  } else if (u_mode == MODE_ELEVATION) {
+  } else if (mode == MODE_ELEVATION) {
     float h = height_at(v_sample);
     color = ramp(h) * (0.55 + 0.45 * shade / max(u_sun.z, 0.2));
-  } else if (u_mode == MODE_SLOPE) {
+  } else if (mode == MODE_SLOPE) {
     float slope = u_has_gradient != 0 ? degrees(atan(length(layers_at(v_sample).ba)))
                                     : degrees(acos(clamp(n.z, 0.0, 1.0)));
     color = u_layer_ramp != 0
                 ? ramp(slope) * (0.55 + 0.45 * shade / max(u_sun.z, 0.2))
                 : mix(vec3(1.0, 1.0, 0.85), vec3(0.75, 0.1, 0.05), clamp(slope / 45.0, 0.0, 1.0));
-  } else if (u_mode == MODE_ASPECT) {
+  } else if (mode == MODE_ASPECT) {
     // The downhill direction and steepness: from the analysis package's
     // gradient, else from the drawn triangle's normal.
     vec2 a = u_has_gradient != 0 ? layers_at(v_sample).ba : n.xy;
@@ -282,10 +285,10 @@ void main() {
     // With --colormap: the ramp over 0..360 degrees clockwise from north.
     vec3 facing = u_layer_ramp != 0 ? ramp(mod(aspect * 360.0 + 180.0, 360.0)) : hue(aspect);
     color = mix(vec3(0.85), facing, clamp(length(a) * 4.0, 0.0, 1.0));
-  } else if (u_mode == MODE_SKYVIEW) {
+  } else if (mode == MODE_SKYVIEW) {
     float svf = layers_at(v_sample).r;
     color = u_layer_ramp != 0 ? ramp(svf) : vec3(sky_light(svf));
-  } else if (u_mode == MODE_FLOW) {
+  } else if (mode == MODE_FLOW) {
     // Rivers: light blue where they begin, deep blue for the largest.
     vec3 flow = texture(u_flow, vec3((v_sample + 0.5) / u_size, float(v_layer))).rgb;
     float a = flow.r;
