@@ -36,8 +36,9 @@ TEST(ShadingModes, TheShaderHasABranchForEachMode) {
   for (const ShadingMode& m : shading_modes()) {
     const std::string define = std::string("#define ") + m.glsl + " " + std::to_string(int(m.id));
     EXPECT_NE(shader.find(define), std::string::npos) << m.name;
-    // The branch: a test of u_mode, or the final else marked with the name.
-    EXPECT_TRUE(shader.find(std::string("u_mode == ") + m.glsl) != std::string::npos ||
+    // The branch: a test of the mode drawn (u_mode, or the lens's inside it), or
+    // the final else marked with the name.
+    EXPECT_TRUE(shader.find(std::string("mode == ") + m.glsl) != std::string::npos ||
                 shader.find(std::string("else {  // ") + m.glsl) != std::string::npos)
         << m.name << " has no branch in terrain_shaders.hpp";
   }

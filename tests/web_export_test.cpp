@@ -218,7 +218,7 @@ TEST(ExportDem, BadInputIsRefusedAndLeavesNothing) {
           out);
   // An existing output stays as it was without --force.
   std::ofstream(out) << "keep";
-  refused(pkg + " --format terrarium -o " + out, 3, "already exists", "");
+  refused(pkg + " --format terrarium -o " + out, 3, "output exists; pass --force", "");
   EXPECT_EQ(read_file(out), "keep");
   EXPECT_EQ(run(tiler() + " export -q --force " + pkg + " --format terrarium -o " + out, dir.path())
                 .exit_code,
