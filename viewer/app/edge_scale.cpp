@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "app/per_zoom.hpp"
+
 namespace globe::viewer {
 
 namespace {
@@ -27,21 +29,7 @@ bool EdgeScale::add_samples(const LoadedBlock& b, double spacing_m) {
 }
 
 std::array<float, EdgeScale::kZooms> EdgeScale::scales() const {
-  std::array<float, kZooms> out;
-  for (int z = 0; z < kZooms; ++z) {
-    out[z] = 0.05f;
-    for (int d = 0; d < kZooms; ++d) {
-      if (z - d >= 0 && scale_[z - d] > 0) {
-        out[z] = scale_[z - d];
-        break;
-      }
-      if (z + d < kZooms && scale_[z + d] > 0) {
-        out[z] = scale_[z + d];
-        break;
-      }
-    }
-  }
-  return out;
+  return nearest_measured(scale_, 0.05f);
 }
 
 }  // namespace globe::viewer

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "app/per_zoom.hpp"
+
 namespace globe::viewer {
 
 namespace {
@@ -37,21 +39,7 @@ bool ReliefScale::add_samples(const LoadedBlock& b, double spacing_x_m, double s
 }
 
 std::array<float, ReliefScale::kZooms> ReliefScale::stretches() const {
-  std::array<float, kZooms> out;
-  for (int z = 0; z < kZooms; ++z) {
-    out[z] = 1.0f;
-    for (int d = 0; d < kZooms; ++d) {
-      if (z - d >= 0 && stretch_[z - d] > 0) {
-        out[z] = stretch_[z - d];
-        break;
-      }
-      if (z + d < kZooms && stretch_[z + d] > 0) {
-        out[z] = stretch_[z + d];
-        break;
-      }
-    }
-  }
-  return out;
+  return nearest_measured(stretch_, 1.0f);
 }
 
 }  // namespace globe::viewer

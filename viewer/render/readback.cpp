@@ -6,14 +6,27 @@
 
 namespace globe::viewer {
 
-std::vector<uint8_t> read_rgba(GLuint fbo, int width, int height) {
-  std::vector<uint8_t> rgba(size_t(width) * height * 4);
-  gl::NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
+namespace {
+
+// Reads the rectangle (x, y, w, h) of colour attachment `attachment` of `fbo`
+// (GL rows, from the bottom) into `out`; attachment 0 stays the read buffer.
+void read_attachment(GLuint fbo, int attachment, int x, int y, int w, int h, GLenum format,
+                     GLenum type, void* out, const char* what) {
+  gl::NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0 + attachment);
   gl::BindFramebuffer(GL_FRAMEBUFFER, fbo);
   gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
-  gl::ReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  gl::ReadPixels(x, y, w, h, format, type, out);
   gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
-  gl::check("reading the image back");
+  gl::NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
+  gl::check(what);
+}
+
+}  // namespace
+
+std::vector<uint8_t> read_rgba(GLuint fbo, int width, int height) {
+  std::vector<uint8_t> rgba(size_t(width) * height * 4);
+  read_attachment(fbo, 0, 0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data(),
+                  "reading the image back");
   // GL rows are bottom-up.
   const size_t row = size_t(width) * 4;
   std::vector<uint8_t> flipped(rgba.size());
@@ -24,24 +37,15 @@ std::vector<uint8_t> read_rgba(GLuint fbo, int width, int height) {
 
 glm::vec4 read_position(GLuint fbo, int x, int y, int height) {
   glm::vec4 p(0);
-  gl::NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT1);
-  gl::BindFramebuffer(GL_FRAMEBUFFER, fbo);
-  gl::ReadPixels(x, height - 1 - y, 1, 1, GL_RGBA, GL_FLOAT, &p);
-  gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
-  gl::NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
-  gl::check("reading a G-buffer position");
+  read_attachment(fbo, 1, x, height - 1 - y, 1, 1, GL_RGBA, GL_FLOAT, &p,
+                  "reading a G-buffer position");
   return p;
 }
 
 double ground_fraction(GLuint fbo, int width, int height) {
   std::vector<float> p(size_t(width) * height * 4);
-  gl::NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT1);
-  gl::BindFramebuffer(GL_FRAMEBUFFER, fbo);
-  gl::PixelStorei(GL_PACK_ALIGNMENT, 4);
-  gl::ReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, p.data());
-  gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
-  gl::NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
-  gl::check("reading the G-buffer's positions");
+  read_attachment(fbo, 1, 0, 0, width, height, GL_RGBA, GL_FLOAT, p.data(),
+                  "reading the G-buffer's positions");
   size_t ground = 0;
   for (size_t i = 3; i < p.size(); i += 4)
     ground += p[i] > 0.5f;
@@ -50,12 +54,8 @@ double ground_fraction(GLuint fbo, int width, int height) {
 
 uint32_t read_u32(GLuint fbo, int attachment, int x, int y, int height) {
   uint32_t v = 0;
-  gl::NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0 + attachment);
-  gl::BindFramebuffer(GL_FRAMEBUFFER, fbo);
-  gl::ReadPixels(x, height - 1 - y, 1, 1, GL_RED_INTEGER, GL_UNSIGNED_INT, &v);
-  gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
-  gl::NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
-  gl::check("reading a pick id");
+  read_attachment(fbo, attachment, x, height - 1 - y, 1, 1, GL_RED_INTEGER, GL_UNSIGNED_INT, &v,
+                  "reading a pick id");
   return v;
 }
 

@@ -15,15 +15,9 @@ if [ "$1" = --click ]; then
 fi
 dir=$1 x=$2 y=$3
 shift 3
-cd "$dir"
-"$@" 2>viewer.stderr &
-pid=$!
-trap 'kill $pid 2>/dev/null || true' EXIT
-wid=$(timeout 30 xdotool search --sync --onlyvisible --name '^globe-view' | head -1)
-for _ in $(seq 120); do
-  sleep 0.5
-  xdotool getwindowname "$wid" | grep -q 'waiting 0\b' && break
-done
+. "$(dirname "$0")/session.sh"
+start_viewer "$dir" "$@"
+settled || true
 xdotool mousemove --window "$wid" "$x" "$y"
 if $click; then
   sleep 0.3

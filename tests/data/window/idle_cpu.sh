@@ -10,20 +10,9 @@
 set -euo pipefail
 dir=$1 seconds=$2
 shift 2
-cd "$dir"
-"$@" 2>viewer.stderr &
-pid=$!
-trap 'kill $pid 2>/dev/null || true' EXIT
-wid=$(timeout 30 xdotool search --sync --onlyvisible --name '^globe-view' | head -1)
-settled=false
-for _ in $(seq 120); do
-  sleep 0.5
-  if xdotool getwindowname "$wid" | grep -q 'waiting 0\b'; then
-    settled=true
-    break
-  fi
-done
-$settled || { echo "idle_cpu: the viewer never settled" >&2; exit 90; }
+. "$(dirname "$0")/session.sh"
+start_viewer "$dir" "$@"
+settled || exit 90
 sleep 1  # the last frames after loading
 ticks() { awk '{print $14 + $15}' "/proc/$pid/stat"; }
 hz=$(getconf CLK_TCK)
