@@ -322,13 +322,13 @@ FrameResult TerrainScene::frame(const CameraPose& asked, Loading loading, Output
     const auto t0 = std::chrono::steady_clock::now();
     f.view = make(pose);
     f.patches = selector_->select(f.view, *world_, *cache_, sel, &f.selection);
-    find_neighbours(f.patches);
     f.select_ms = ms_since(t0);
     cache_->flush_requests();
     if (loading == Loading::kAsReady || !cache_->loader_busy() || round > 1000) break;
     cache_->wait_for_loader();
   }
   if (output == Output::kSelectOnly) return f;
+  find_neighbours(f.patches);  // once, for the patches drawn
   if (ramp_->finished() && settings_.shading.mode != ramp_mode_) apply_ramp();
   f.terrain_ms = renderer_->draw(f.patches, f.view, *world_, settings_.shading).terrain_ms;
   if (caps_) {
