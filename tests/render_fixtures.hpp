@@ -55,6 +55,42 @@ inline std::vector<uint8_t> read_rgb(const std::string& path, int& w, int& h) {
   return rgb;
 }
 
+// The pixels of a snapshot that `pick` (an RGB pointer) accepts, row-major.
+template <class Pick>
+std::vector<bool> pixels_where(const std::string& png, int& w, int& h, Pick pick) {
+  const std::vector<uint8_t> rgb = read_rgb(png, w, h);
+  std::vector<bool> marked(size_t(w) * h);
+  for (size_t i = 0; i < marked.size(); ++i)
+    marked[i] = pick(&rgb[3 * i]);
+  return marked;
+}
+
+// Pixels that are mostly red (lines drawn in #ff0000).
+inline std::vector<bool> red_pixels(const std::string& png, int& w, int& h) {
+  return pixels_where(png, w, h, [](const uint8_t* p) { return int(p[0]) - int(p[1]) > 60; });
+}
+
+// The share of a's marked pixels with one of b's within 1.5 px (a 3 x 3
+// neighbourhood); `count`: a's marked pixels.
+inline double near_share(const std::vector<bool>& a, const std::vector<bool>& b, int w, int h,
+                         size_t& count) {
+  size_t near = 0;
+  count = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (!a[size_t(y) * w + x]) continue;
+      ++count;
+      bool found = false;
+      for (int dy = -1; dy <= 1 && !found; ++dy)
+        for (int dx = -1; dx <= 1 && !found; ++dx) {
+          const int xx = x + dx, yy = y + dy;
+          found = xx >= 0 && yy >= 0 && xx < w && yy < h && b[size_t(yy) * w + xx];
+        }
+      near += found;
+    }
+  return count ? double(near) / count : 0;
+}
+
 // Compares with the expected image; on failure writes <name>.actual.png and
 // <name>.diff.png (|difference| x 8) under the build's render-diffs folder.
 inline void expect_image(const std::string& actual, const std::string& name) {

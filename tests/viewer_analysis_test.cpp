@@ -331,6 +331,11 @@ TEST(ViewerAnalysis, MissingLayersAndOtherTilingsAreClearErrors) {
   r = view(t + " " + packages().all + " " + packages().skyview_only + snap, dir.path());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("two analysis packages"), std::string::npos) << r.err;
+  r = view(packages().all + snap, dir.path());  // lines may go without terrain, analyses not
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("is an analysis of a terrain; give that terrain package too"),
+            std::string::npos)
+      << r.err;
   EXPECT_FALSE(fs::exists(dir / "a.png"));
 }
 

@@ -45,35 +45,6 @@ const Packages& packages() {
   return p;
 }
 
-// Pixels that are mostly red (the lines), row-major.
-std::vector<bool> red_pixels(const std::string& png, int& w, int& h) {
-  const std::vector<uint8_t> rgb = read_rgb(png, w, h);
-  std::vector<bool> red(size_t(w) * h);
-  for (size_t i = 0; i < red.size(); ++i)
-    red[i] = int(rgb[3 * i]) - int(rgb[3 * i + 1]) > 60;
-  return red;
-}
-
-// The share of a's line pixels with one of b's within 1.5 px.
-double near_share(const std::vector<bool>& a, const std::vector<bool>& b, int w, int h,
-                  size_t& count) {
-  size_t near = 0;
-  count = 0;
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      if (!a[size_t(y) * w + x]) continue;
-      ++count;
-      bool found = false;
-      for (int dy = -1; dy <= 1 && !found; ++dy)
-        for (int dx = -1; dx <= 1 && !found; ++dx) {
-          const int xx = x + dx, yy = y + dy;
-          found = xx >= 0 && yy >= 0 && xx < w && yy < h && b[size_t(yy) * w + xx];
-        }
-      near += found;
-    }
-  return count ? double(near) / count : 0;
-}
-
 struct Case {
   const char* name;
   const char* terrain;

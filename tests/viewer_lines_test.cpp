@@ -244,7 +244,7 @@ TEST(ViewerLines, CorruptLineTileWarnsAndTheFrameGoesOn) {
 TEST(ViewerLines, BadInputGetsAClearError) {
   TempDir dir;
   const RunResult g = run(vectorize() + " lines -q " + sample("os_wales_contours.shp").string() +
-                              " --tiling geodetic -o " + (dir / "geo.mbtiles").string(),
+                              " --tiling local -o " + (dir / "bng.mbtiles").string(),
                           dir.path());
   ASSERT_EQ(g.exit_code, 0) << g.err;
   std::ofstream(dir / "broken.json") << "{ not json";
@@ -257,7 +257,8 @@ TEST(ViewerLines, BadInputGetsAClearError) {
     int code;
   };
   const Case cases[] = {
-      {t + " " + (dir / "geo.mbtiles").string() + snap, "differs from the terrain's", 1},
+      {t + " " + (dir / "bng.mbtiles").string() + snap,
+       "cross between geodetic and webmercator only", 1},
       {t + " " + l + " --style " + (dir / "broken.json").string() + snap, "broken.json", 1},
       {t + " " + l + " --style " + (dir / "unknown.json").string() + snap, "no class \"motorway\"",
        1},
@@ -265,7 +266,7 @@ TEST(ViewerLines, BadInputGetsAClearError) {
       {t + " " + l + " --style " + (dir / "missing.json").string() + snap, "missing.json", 1},
       {t + " --style " + (dir / "unknown.json").string() + snap, "give a line package", 2},
       {t + " " + l + " " + l + snap, "two line packages", 2},
-      {l + snap, "no terrain package", 2},
+      {snap, "no package given", 2},
       {t + " " + l + " --lines wiggly" + snap, "--lines", 2},
   };
   for (const Case& c : cases) {

@@ -50,10 +50,11 @@ std::string number_text(double v) {
 }  // namespace
 
 ChartLayer::ChartLayer(PointPackage package, const ChartSettings& settings, uint64_t budget_bytes,
-                       int width, int height)
+                       int width, int height, CrsCross cross, const WorldFrame& world)
     : cache_(std::move(package), budget_bytes),
       settings_(settings),
       renderer_(width, height),
+      tiling_(cache_.package().meta.common.tiling, cross, world),
       width_(width),
       height_(height) {
   const tileformat::PointMetadata& m = cache_.package().meta;
@@ -121,13 +122,16 @@ void ChartLayer::build(const std::vector<TileId>& tiles, const View& view,
     if (!t || zs == stats.end()) continue;
     const double max_total = std::max(zs->second->max_total, 1e-30);
     const double max_value = std::max(zs->second->max_value, 1e-30);
-    const double keys = double(world.steps()) * std::ldexp(1.0, world.key_zoom() - id.z);
+    // The tile's edge in world units, at its centre.
+    const double keys =
+        glm::length(tiling_.tile_to_key(id, 1, 0.5) - tiling_.tile_to_key(id, 0, 0.5));
     const double tile_world = keys * world.crs_per_key() * world.metres_per_crs_x();
     for (uint32_t i = 0; i < t->places.size(); ++i) {
       const tileformat::Place& pl = t->places[i];
       ChartInstance c{};
-      const double kx = (id.x + double(pl.at.x) / t->extent) * keys,
-                   ky = (id.y + double(pl.at.y) / t->extent) * keys;
+      const glm::dvec2 k =
+          tiling_.tile_to_key(id, double(pl.at.x) / t->extent, double(pl.at.y) / t->extent);
+      const double kx = k.x, ky = k.y;
       c.key[0] = static_cast<int32_t>(std::floor(kx));
       c.key[1] = static_cast<int32_t>(std::floor(ky));
       c.frac[0] = static_cast<float>(kx - std::floor(kx));
@@ -274,6 +278,7 @@ double ChartLayer::draw(GLuint input_fbo, const GBuffer& g, const View& view,
   sel.roots = roots_;
   sel.max_zoom = m.common.max_zoom;
   sel.exists = [this](TileId id) { return cache_.exists(id); };
+  sel.tiling = &tiling_;
   std::vector<TileId> tiles;
   for (;;) {
     // The frame's tiles are marked used before loaded ones come in, so

@@ -39,8 +39,9 @@ class ChartLayer {
  public:
   // Throws InputError for a bad style file, a package with more fields than
   // charts draw, or a chart kind that needs shares over a signed package.
+  // cross and world: how the package's tiling maps to the terrain's frame.
   ChartLayer(PointPackage package, const ChartSettings& settings, uint64_t budget_bytes, int width,
-             int height);
+             int height, CrsCross cross, const WorldFrame& world);
   ~ChartLayer();
 
   void resize(int width, int height) {
@@ -87,6 +88,7 @@ class ChartLayer {
   TextOverlay overlay_;
   std::unique_ptr<tileformat::PackageReader> labels_;  // the features table, for picking
   std::vector<tileformat::TileId> roots_;
+  LayerTiling tiling_;
   std::vector<tileformat::TileId> drawn_;  // the tiles of the instances
   std::vector<ChartInstance> instances_;
   std::vector<PlaceRef> places_;  // per instance

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <numbers>
 
+#include "camera/layer_tiling.hpp"
 #include "camera/proj_crs.hpp"
 #include "render/image_shaders.hpp"
 #include "runtime/errors.hpp"
@@ -18,17 +18,7 @@ namespace {
 using tileformat::Bounds;
 using tileformat::Scheme;
 
-constexpr int kGridN = 129;               // samples per side of a kGrid mapping
-constexpr double kMercatorR = 6378137.0;  // webmercator sphere
-constexpr double kMaxMercLat = 85.0511287798;
-
-double rad(double deg) {
-  return deg * std::numbers::pi / 180;
-}
-double deg(double rad) {
-  return rad * 180 / std::numbers::pi;
-}
-
+constexpr int kGridN = 129;  // samples per side of a kGrid mapping
 // The image's footprint in the terrain's tiling CRS (densified bounds), cut
 // to the terrain tiling's extent; empty if they do not meet.
 Bounds footprint_in_terrain(const ImagePackage& img, const WorldFrame& world) {
@@ -98,13 +88,12 @@ ImageLayers::ImageLayers(const std::vector<std::string>& paths,
     l.opacity = i < opacities.size() ? opacities[i] : (opacities.empty() ? 1.0 : opacities.back());
     const tileformat::Tiling& it = pkg.tiling;
     std::vector<float> grid;
-    if (it.scheme == tt.scheme && (it.scheme != Scheme::kLocal || it.crs == tt.crs ||
-                                   crs_equivalent(it.crs, path, tt.crs, "the terrain"))) {
+    const CrsCross cross = crs_cross(tt, it);
+    if (cross == CrsCross::kSame && (it.scheme != Scheme::kLocal || it.crs == tt.crs ||
+                                     crs_equivalent(it.crs, path, tt.crs, "the terrain"))) {
       l.mode = ImageLayerFrame::kSameCrs;
-    } else if (tt.scheme == Scheme::kGeodetic && it.scheme == Scheme::kWebMercator) {
-      l.mode = ImageLayerFrame::kGeodeticToMercator;
-    } else if (tt.scheme == Scheme::kWebMercator && it.scheme == Scheme::kGeodetic) {
-      l.mode = ImageLayerFrame::kMercatorToGeodetic;
+    } else if (cross == CrsCross::kGeodeticToMercator || cross == CrsCross::kMercatorToGeodetic) {
+      l.mode = static_cast<int>(cross);
     } else {
       l.mode = ImageLayerFrame::kGrid;
       const Bounds fp = footprint_in_terrain(pkg, world);
@@ -126,7 +115,7 @@ ImageLayers::ImageLayers(const std::vector<std::string>& paths,
             glm::dvec2 ll = world.crs_to_lonlat(l.grid_nw.x + c * l.grid_cell.x,
                                                 l.grid_nw.y - r * l.grid_cell.y);
             if (it.scheme == Scheme::kWebMercator)
-              ll.y = std::clamp(ll.y, -kMaxMercLat, kMaxMercLat);
+              ll.y = std::clamp(ll.y, -kMaxMercatorLat, kMaxMercatorLat);
             if (to_image.transform(ll.x, ll.y)) v[size_t(r) * kGridN + c] = ll;
           } catch (const std::runtime_error&) {
           }
@@ -165,13 +154,11 @@ ImageLayerFrame ImageLayers::frame_of(const Layer& l, const View& view,
   f.mode = l.mode;
   f.opacity = l.visible ? static_cast<float>(l.opacity) : 0.0f;
   glm::dvec2 anchor = o;  // image CRS point the shader's offsets start from
-  if (l.mode == ImageLayerFrame::kGeodeticToMercator) {
-    const double lat = std::clamp(o.y, -kMaxMercLat, kMaxMercLat);
-    anchor = {kMercatorR * rad(o.x), kMercatorR * std::atanh(std::sin(rad(lat)))};
-    f.param = {static_cast<float>(rad(lat)), static_cast<float>(kMercatorR)};
-  } else if (l.mode == ImageLayerFrame::kMercatorToGeodetic) {
-    anchor = {deg(o.x / kMercatorR), deg(std::atan(std::sinh(o.y / kMercatorR)))};
-    f.param = {static_cast<float>(o.y / kMercatorR), static_cast<float>(kMercatorR)};
+  if (l.mode == ImageLayerFrame::kGeodeticToMercator ||
+      l.mode == ImageLayerFrame::kMercatorToGeodetic) {
+    const CrossAnchor a = cross_anchor(static_cast<CrsCross>(l.mode), o);
+    anchor = a.anchor;
+    f.param = a.param;
   } else if (l.mode == ImageLayerFrame::kGrid) {
     anchor = l.grid_anchor;
     f.grid_org = {static_cast<float>((o.x - l.grid_nw.x) / l.grid_cell.x),

@@ -45,7 +45,7 @@ std::string property(const tileformat::JsonValue& props, const char* key) {
 
 LineLayer::LineLayer(const std::string& path, LinePackage package,
                      std::optional<std::string> style_path, LineMode mode, uint64_t budget_bytes,
-                     int width, int height)
+                     int width, int height, CrsCross cross)
     : path_(path),
       style_path_(std::move(style_path)),
       package_styles_(package.classes),
@@ -53,7 +53,8 @@ LineLayer::LineLayer(const std::string& path, LinePackage package,
       features_(std::make_unique<tileformat::PackageReader>(path)),
       mode_(mode),
       cache_(path, std::move(package), budget_bytes),
-      renderer_(cache_.arena_words(), width, height),
+      renderer_(cache_.arena_words(), width, height, cross),
+      cross_(cross),
       width_(width),
       height_(height),
       legend_(bundle_legend_rows(cache_.package().meta.bundle_json)) {
@@ -105,6 +106,17 @@ size_t LineLayer::upload_loaded() {
     cache_.drop_words(r);
   }
   return loaded.size();
+}
+
+void LineLayer::set_mode(LineMode m) {
+  if (m != LineMode::kDeferred && cross_ != CrsCross::kSame) {
+    std::fprintf(stderr,
+                 "globe-view: %s is tiled unlike the terrain; its lines draw per pixel only "
+                 "(geometry and lifted lines need the terrain's tiling)\n",
+                 path_.c_str());
+    return;
+  }
+  mode_ = m;
 }
 
 double LineLayer::draw(const GBuffer& g, const View& view, const WorldFrame& world,

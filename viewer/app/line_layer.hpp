@@ -34,8 +34,11 @@ struct LineLayerStats {
 class LineLayer {
  public:
   // Throws InputError if the style file is unreadable or wrong.
+  // cross: how the terrain's CRS reaches the package's tiling; lines in
+  // another tiling draw per pixel only (LineMode::kDeferred).
   LineLayer(const std::string& path, LinePackage package, std::optional<std::string> style_path,
-            LineMode mode, uint64_t budget_bytes, int width, int height);
+            LineMode mode, uint64_t budget_bytes, int width, int height,
+            CrsCross cross = CrsCross::kSame);
 
   void resize(int width, int height) {
     renderer_.resize(width, height);
@@ -52,7 +55,9 @@ class LineLayer {
   // if not). A broken file keeps the current styles; the error goes to stderr.
   bool reload_style(Reload when);  // true: the styles changed
   LineMode mode() const { return mode_; }
-  void set_mode(LineMode m) { mode_ = m; }
+  // Keeps the mode (and says so on stderr) where the lines cannot be drawn
+  // in `m`: geometry and lifted lines need the terrain's tiling.
+  void set_mode(LineMode m);
   LineLayerStats stats() const { return {cache_.stats(), tiles_used_}; }
   bool loading() { return cache_.loader_busy(); }  // tiles still being read
 
@@ -92,6 +97,7 @@ class LineLayer {
   LineMode mode_;
   LineCache cache_;
   LineRenderer renderer_;
+  CrsCross cross_;
   uint32_t frame_ = 0;
   size_t tiles_used_ = 0;
   int width_ = 0, height_ = 0;

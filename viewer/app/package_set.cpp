@@ -45,15 +45,17 @@ PackageSet sort_packages(const std::vector<std::string>& paths) {
                        "point)");
     }
   }
-  if (set.terrain.empty())
-    throw UsageError(
-        "no terrain package among the arguments; imagery and lines are draped over terrain "
-        "(give a terrain package made by globe-tiler terrain)");
+  if (set.terrain.empty() && set.analysis)
+    throw UsageError(*set.analysis +
+                     " is an analysis of a terrain; give that terrain package too (globe-view "
+                     "TERRAIN ANALYSIS)");
   return set;
 }
 
-void check_same_tiling(const tileformat::Tiling& t, const std::string& terrain_path,
-                       const tileformat::Tiling& o, const std::string& other_path) {
+namespace {
+
+bool same_tiling(const tileformat::Tiling& t, const std::string& terrain_path,
+                 const tileformat::Tiling& o, const std::string& other_path) {
   auto close = [](double a, double b) {
     return std::abs(a - b) <= 1e-9 * std::max(1.0, std::abs(a) + std::abs(b));
   };
@@ -62,12 +64,36 @@ void check_same_tiling(const tileformat::Tiling& t, const std::string& terrain_p
               t.roots_x == o.roots_x && t.roots_y == o.roots_y;
   if (same && t.scheme == tileformat::Scheme::kLocal && t.crs != o.crs)
     same = crs_equivalent(t.crs, terrain_path, o.crs, other_path);
-  if (!same)
-    throw InputError(
-        other_path + ": its tiling (" + std::string(tileformat::scheme_name(o.scheme)) + ", root " +
-        std::to_string(o.root_size) + ") differs from the terrain's (" + terrain_path + ": " +
-        tileformat::scheme_name(t.scheme) + ", root " + std::to_string(t.root_size) +
-        "); rebuild it with the terrain's --tiling (and --like for local tilings)");
+  return same;
+}
+
+[[noreturn]] void throw_tiling_differs(const tileformat::Tiling& t, const std::string& terrain_path,
+                                       const tileformat::Tiling& o, const std::string& other_path,
+                                       const std::string& what_crosses) {
+  throw InputError(other_path + ": its tiling (" + std::string(tileformat::scheme_name(o.scheme)) +
+                   ", root " + std::to_string(o.root_size) + ") differs from the terrain's (" +
+                   terrain_path + ": " + tileformat::scheme_name(t.scheme) + ", root " +
+                   std::to_string(t.root_size) + "); " + what_crosses +
+                   "rebuild it with the terrain's --tiling (and --like for local tilings)");
+}
+
+}  // namespace
+
+void check_same_tiling(const tileformat::Tiling& t, const std::string& terrain_path,
+                       const tileformat::Tiling& o, const std::string& other_path) {
+  if (!same_tiling(t, terrain_path, o, other_path))
+    throw_tiling_differs(t, terrain_path, o, other_path, "");
+}
+
+CrsCross layer_cross(const tileformat::Tiling& terrain, const std::string& terrain_path,
+                     const tileformat::Tiling& other, const std::string& other_path) {
+  const CrsCross cross = crs_cross(terrain, other);
+  if (cross == CrsCross::kGeodeticToMercator || cross == CrsCross::kMercatorToGeodetic)
+    return cross;
+  if (!same_tiling(terrain, terrain_path, other, other_path))
+    throw_tiling_differs(terrain, terrain_path, other, other_path,
+                         "lines and points cross between geodetic and webmercator only: ");
+  return CrsCross::kSame;
 }
 
 }  // namespace globe::viewer

@@ -45,20 +45,35 @@ tileformat::Bounds data_bounds_crs(const TerrainPackage& p, const WorldFrame& wo
 
 TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings) {
   ramp_ = std::make_unique<ElevationRamp>(settings_.shading);
-  const PackageSet set = sort_packages(settings_.packages);
+  PackageSet set = sort_packages(settings_.packages);
+  if (set.terrain.empty()) {
+    base_ = std::make_unique<FlatBase>(set);
+    set.terrain = base_->path();
+    std::fprintf(stderr,
+                 "globe-view: no terrain given; drawing over zero heights (the ellipsoid on the "
+                 "globe, a flat base on the map frame)\n");
+  }
   const std::string& path = set.terrain;
   TerrainPackage package = open_terrain_package(path);
   std::optional<LinePackage> lines;
+  CrsCross line_cross = CrsCross::kSame, point_cross = CrsCross::kSame;
   if (set.lines && settings_.lines) {
     lines = open_line_package(*set.lines);
-    check_same_tiling(package.tiling, path, lines->tiling, *set.lines);
+    line_cross = layer_cross(package.tiling, path, lines->tiling, *set.lines);
+    if (line_cross != CrsCross::kSame && settings_.line_mode != LineMode::kDeferred)
+      throw UsageError(*set.lines + " is tiled unlike the terrain (" +
+                       tileformat::scheme_name(lines->tiling.scheme) + " over " +
+                       tileformat::scheme_name(package.tiling.scheme) +
+                       "): --lines geometry and --bundles 3d need the terrain's tiling; drop "
+                       "them to draw the lines per pixel, or rebuild the lines with --tiling " +
+                       tileformat::scheme_name(package.tiling.scheme));
   } else if (settings_.style) {
     throw UsageError("--style styles lines; give a line package too");
   }
   std::optional<PointPackage> points;
   if (set.points) {
     points = open_point_package(*set.points);
-    check_same_tiling(package.tiling, path, points->meta.common.tiling, *set.points);
+    point_cross = layer_cross(package.tiling, path, points->meta.common.tiling, *set.points);
   } else if (settings_.charts_given) {
     throw UsageError(
         "--chart, --chart-style, --chart-depth and --chart-thinning draw charts; give "
@@ -135,10 +150,10 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
   if (lines)
     lines_ = std::make_unique<LineLayer>(*set.lines, std::move(*lines), settings_.style,
                                          settings_.line_mode, line_budget, settings_.width,
-                                         settings_.height);
+                                         settings_.height, line_cross);
   if (points)
     charts_ = std::make_unique<ChartLayer>(std::move(*points), settings_.charts, point_budget,
-                                           settings_.width, settings_.height);
+                                           settings_.width, settings_.height, point_cross, *world_);
 }
 
 TerrainScene::~TerrainScene() = default;

@@ -12,6 +12,7 @@
 #include "app/chart_layer.hpp"
 #include "app/edge_scale.hpp"
 #include "app/elevation_ramp.hpp"
+#include "app/flat_base.hpp"
 #include "app/image_layers.hpp"
 #include "app/line_layer.hpp"
 #include "app/relief_scale.hpp"
@@ -101,6 +102,7 @@ class TerrainScene {
   std::pair<double, double> block_spacing_m(tileformat::TileId id) const;
 
   ViewerSettings settings_;
+  std::unique_ptr<FlatBase> base_;  // the ground when no terrain is given (outlives its readers)
   std::unique_ptr<BlockCache> cache_;
   std::unique_ptr<PatchSelector> selector_;
   std::unique_ptr<WorldFrame> world_;

@@ -350,13 +350,15 @@ void declare_output_options(CliArgs& cli, ViewerSettings& s) {
 std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::string>& args) {
   ViewerSettings s;
   CliArgs cli("globe-view",
-              "globe-view TERRAIN.mbtiles [IMAGE.mbtiles ...] [LINES.mbtiles] [POINTS.mbtiles]\n"
+              "globe-view [TERRAIN.mbtiles] [IMAGE.mbtiles ...] [LINES.mbtiles] [POINTS.mbtiles]\n"
               "           [options]\n"
               "Renders a terrain package with image packages draped over it (bottom first),\n"
               "the lines of a line-cluster package shaded per pixel over both, and a chart per\n"
               "place of a point package on top: in a window, or headless with --snapshot,\n"
               "--stats or --export-mesh (OSMesa or EGL; no display needed). Packages are told\n"
-              "apart by their format.");
+              "apart by their format; layers may be tiled geodetic over a webmercator terrain\n"
+              "or the other way round. Without a terrain, layers lie on zero heights (the\n"
+              "ellipsoid on the globe, a flat base on the map frame).");
   cli.epilogue(
       "window: drag to orbit, right-drag to pan, wheel or W/S to zoom, arrows to pan,\n"
       "  R home view, P screenshot (globe-view-N.png), Esc quit;\n"

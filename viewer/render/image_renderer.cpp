@@ -7,6 +7,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "render/crs_cross_glsl.hpp"
 #include "render/deferred_pass.hpp"
 #include "render/gl_buffer.hpp"
 #include "render/image_shaders.hpp"
@@ -33,9 +34,10 @@ std::string at(const char* name, size_t i) {
 }  // namespace
 
 ImageRenderer::ImageRenderer(int width, int height, int grid_n) : grid_n_(grid_n) {
-  program_ = GlProgram("imagery pass", kFullScreenVertex,
-                       std::string("#version 450 core\n") + kTileHashGlsl +
-                           deferred_pass_glsl(kRequests) + shaders::kImageFragment);
+  program_ =
+      GlProgram("imagery pass", kFullScreenVertex,
+                std::string("#version 450 core\n") + kTileHashGlsl + deferred_pass_glsl(kRequests) +
+                    shaders::kCrsCrossGlsl + shaders::kImageFragment);
   GLuint buffers[3];
   gl::CreateBuffers(3, buffers);
   tables_ = buffers[0], requests_ = buffers[1], used_ = buffers[2];

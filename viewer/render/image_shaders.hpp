@@ -14,7 +14,7 @@ namespace globe::viewer::shaders {
 
 inline constexpr int kMaxImageLayers = 8;
 
-// (Follows "#version 450 core", tile_hash and deferred_pass_glsl().)
+// (Follows "#version 450 core", tile_hash, deferred_pass_glsl() and kCrsCrossGlsl.)
 inline constexpr const char* kImageFragment = R"(
 #define MAX_LAYERS 8
 layout(std430, binding = 0) readonly buffer Tables { uvec4 tables[]; };
@@ -40,8 +40,6 @@ uniform uint u_table_offset[MAX_LAYERS], u_table_mask[MAX_LAYERS], u_slot_offset
 uniform sampler2DArray u_images[MAX_LAYERS];
 uniform sampler2DArray u_grids;
 layout(location = 0) out vec4 o_color;
-
-const float kMaxMercLat = 1.4844222297453324;  // 85.0511 degrees
 
 // The layer's table value for tile (z, t), or -1 (unknown: not asked yet).
 int table_lookup(int L, int z, ivec2 t) {
@@ -73,18 +71,8 @@ bool image_offset(int L, vec2 d, out vec2 c) {
   int mode = u_mode[L];
   if (mode == 0) {
     c = d;
-  } else if (mode == 1) {
-    float lat0 = u_param[L].x, R = u_param[L].y, dl = radians(d.y);
-    float lat = clamp(lat0 + dl, -kMaxMercLat, kMaxMercLat);
-    dl = lat - lat0;
-    // atanh(sin lat) - atanh(sin lat0), without cancellation for small dl.
-    float num = 2.0 * cos(lat0 + 0.5 * dl) * sin(0.5 * dl);
-    c = vec2(R * radians(d.x), R * atanh(clamp(num / (1.0 - sin(lat) * sin(lat0)), -0.999999, 0.999999)));
-  } else if (mode == 2) {
-    float b = u_param[L].x, R = u_param[L].y, a = b + d.y / R;
-    // atan(sinh a) - atan(sinh b), likewise.
-    float num = 2.0 * cosh(0.5 * (a + b)) * sinh(0.5 * (a - b));
-    c = vec2(degrees(d.x / R), degrees(atan(num, 1.0 + sinh(a) * sinh(b))));
+  } else if (mode <= 2) {
+    cross_offset(mode, u_param[L], d, c);  // imagery clamps to the edge row
   } else {
     return grid_at(L, u_grid_org[L] + vec2(d.x, -d.y) * u_grid_inv_cell[L], c);
   }

@@ -9,6 +9,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "render/color.hpp"
+#include "render/crs_cross_glsl.hpp"
 #include "render/deferred_pass.hpp"
 #include "render/gl_buffer.hpp"
 #include "render/line_shaders.hpp"
@@ -51,17 +52,41 @@ void set_tile_ref(const GlProgram& p, const std::string& name, const View& view,
   gl::Uniform1i(p.uniform((name + ".wrap").c_str()), t.wrap_tiles());
 }
 
+// The same for the line tiling `lt` (which may cross from the terrain's CRS),
+// and the crossing's uniforms.
+void set_line_ref(const GlProgram& p, const View& view, const WorldFrame& world,
+                  const tileformat::Tiling& lt, CrsCross cross, int zoom) {
+  const glm::dvec2 o = world.key_to_crs(double(view.origin.x), double(view.origin.y));
+  const CrossAnchor a = cross_anchor(cross, o);
+  const double size = lt.tile_size(zoom);
+  const double tx = (a.anchor.x - lt.origin_x) / size, ty = (lt.origin_y - a.anchor.y) / size;
+  const double bx = std::floor(tx), by = std::floor(ty);
+  gl::Uniform2i(p.uniform("u_ref.base"), static_cast<int>(bx), static_cast<int>(by));
+  gl::Uniform2f(p.uniform("u_ref.frac"), static_cast<float>(tx - bx), static_cast<float>(ty - by));
+  const bool same = cross == CrsCross::kSame;
+  gl::Uniform2f(p.uniform("u_ref.per_m"),
+                static_cast<float>(1 / ((same ? world.ground_per_crs_x() : 1.0) * size)),
+                static_cast<float>(1 / ((same ? world.ground_per_crs_y() : 1.0) * size)));
+  gl::Uniform1i(p.uniform("u_ref.zoom"), zoom);
+  gl::Uniform1i(p.uniform("u_ref.wrap"), lt.wrap_tiles());
+  gl::Uniform1i(p.uniform("u_cross"), static_cast<int>(cross));
+  gl::Uniform2f(p.uniform("u_cross_param"), a.param.x, a.param.y);
+  gl::Uniform2f(p.uniform("u_crs_per_m"), static_cast<float>(1 / world.ground_per_crs_x()),
+                static_cast<float>(1 / world.ground_per_crs_y()));
+}
+
 std::string program_source(const std::string& table, int binding, const std::string& body) {
   return std::string(shaders::kLineCommon) + kTileHashGlsl + tile_table_glsl(table, binding) + body;
 }
 
 }  // namespace
 
-LineRenderer::LineRenderer(uint64_t arena_words, int width, int height) {
-  deferred_ =
-      GlProgram("line pass", kFullScreenVertex,
-                program_source("line_table", kLineTable,
-                               deferred_pass_glsl(kRequests) + shaders::kLineDeferredFragment));
+LineRenderer::LineRenderer(uint64_t arena_words, int width, int height, CrsCross cross)
+    : cross_(cross) {
+  deferred_ = GlProgram("line pass", kFullScreenVertex,
+                        program_source("line_table", kLineTable,
+                                       deferred_pass_glsl(kRequests) + shaders::kCrsCrossGlsl +
+                                           shaders::kLineDeferredFragment));
   geometry_ =
       GlProgram("line geometry",
                 program_source("terrain_table", kTerrainTable,
@@ -203,7 +228,7 @@ double LineRenderer::draw(const GBuffer& g, const View& view, const WorldFrame& 
                           LineFeedback& feedback) {
   upload_tables(cache);
   const LinePackage& pkg = cache.package();
-  const tileformat::Tiling& tiling = world.tiling();
+  const tileformat::Tiling& tiling = pkg.tiling;
   const double mx = world.ground_per_crs_x(), my = world.ground_per_crs_y();
 
   gl::BindFramebuffer(GL_FRAMEBUFFER, fbo_);
@@ -229,7 +254,7 @@ double LineRenderer::draw(const GBuffer& g, const View& view, const WorldFrame& 
   const glm::mat4 inv = glm::mat4(glm::inverse(view.proj * view.view));
   gl::UniformMatrix4fv(p.uniform("u_inv_view_proj"), 1, GL_FALSE, glm::value_ptr(inv));
   gl::Uniform3f(p.uniform("u_eye"), float(view.eye.x), float(view.eye.y), float(view.eye.z));
-  set_tile_ref(p, "u_ref", view, world, pkg.max_zoom);
+  set_line_ref(p, view, world, tiling, cross_, pkg.max_zoom);
   gl::Uniform1i(p.uniform("u_min_zoom"), pkg.min_zoom);
   gl::Uniform1i(p.uniform("u_max_zoom"), pkg.max_zoom);
   const double m0x = mx * tiling.root_size, m0y = my * tiling.root_size;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "camera/camera.hpp"
+#include "camera/layer_tiling.hpp"
 #include "data/line_cache.hpp"
 #include "render/gl_program.hpp"
 #include "render/terrain_renderer.hpp"
@@ -43,7 +44,9 @@ struct LineFeedback {
 class LineRenderer {
  public:
   // arena_words: capacity of the tile arena (the line cache's budget).
-  LineRenderer(uint64_t arena_words, int width, int height);
+  // cross: how the terrain's CRS reaches the line tiling's (deferred lines
+  // only; the geometry and lifted modes need the terrain's tiling).
+  LineRenderer(uint64_t arena_words, int width, int height, CrsCross cross = CrsCross::kSame);
   ~LineRenderer();
   LineRenderer(const LineRenderer&) = delete;
   LineRenderer& operator=(const LineRenderer&) = delete;
@@ -86,6 +89,7 @@ class LineRenderer {
          timer_ = 0;
   uint32_t table_mask_ = 0, record_count_ = 0;
   int class_count_ = 0, width_ = 0, height_ = 0;
+  CrsCross cross_;
   std::vector<int> lifted_order_;  // the classes lifted lines draw, bottom first
   // Lifted lines: per record, its segments' classes; the frame's lifted
   // points and its (first point, class) items, grouped by class.

@@ -23,10 +23,9 @@ struct TileRef {
   int zoom;
   int wrap;
 };
-// The tile of zoom z (<= ref.zoom) holding world point w, and w's position
-// inside it (0..1, y south).
-ivec2 tile_at(TileRef r, int z, vec2 w, out vec2 local) {
-  vec2 p = r.frac + vec2(w.x, -w.y) * r.per_m;
+// The tile of zoom z (<= ref.zoom) holding the point p tiles of zoom
+// ref.zoom from ref.base (y south), and p's position inside it (0..1, y south).
+ivec2 tile_of(TileRef r, int z, vec2 p, out vec2 local) {
   vec2 fl = floor(p);
   ivec2 g = r.base + ivec2(fl);
   int s = r.zoom - z;
@@ -37,6 +36,10 @@ ivec2 tile_at(TileRef r, int z, vec2 w, out vec2 local) {
     t.x = ((t.x % n) + n) % n;
   }
   return t;
+}
+// The same for world point w.
+ivec2 tile_at(TileRef r, int z, vec2 w, out vec2 local) {
+  return tile_of(r, z, r.frac + vec2(w.x, -w.y) * r.per_m, local);
 }
 vec2 seg_a(uint o) { return vec2(uintBitsToFloat(arena[o]), uintBitsToFloat(arena[o + 1u])); }
 vec2 seg_b(uint o) { return vec2(uintBitsToFloat(arena[o + 2u]), uintBitsToFloat(arena[o + 3u])); }
@@ -55,7 +58,9 @@ layout(std430, binding = 1) readonly buffer Records { uvec4 records[]; };  // 2 
 layout(std430, binding = 5) buffer Used { uint used[]; };
 uniform uint u_frame;
 uniform sampler2D u_color, u_ground, u_ground_dy;
-uniform TileRef u_ref;
+uniform TileRef u_ref;  // the line tiling's (per_m: per layer CRS unit when crossing)
+uniform int u_cross;    // 0 the terrain's CRS, 1/2 crossing (kCrsCrossGlsl)
+uniform vec2 u_cross_param, u_crs_per_m;  // crossing: its parameter, terrain CRS units per ground unit
 uniform int u_min_zoom, u_max_zoom;
 uniform float u_zoom_bias;  // log2(shorter zoom-0 tile edge in world metres / tile_px)
 uniform vec2 u_tile_m0;     // world metres per tile edge at zoom 0 (x, y)
@@ -107,12 +112,33 @@ void main() {
   // views that is finer than the most stretched direction would allow, so
   // widths are clamped per segment below.
   float footprint = sqrt(abs(determinant(J)));
-  int z = clamp(int(floor(u_zoom_bias - log2(footprint))), u_min_zoom, u_max_zoom);
+  // The pixel in tiles of the line tiling's zoom u_ref.zoom (p), and ground
+  // metres per such tile (M, columns x east and y south): linear in the
+  // terrain's CRS, through the crossing's Jacobian at the pixel otherwise.
+  vec2 p;
+  mat2 M;
+  float zoom_bias = u_zoom_bias;
+  if (u_cross == 0) {
+    p = u_ref.frac + vec2(G.x, -G.y) * u_ref.per_m;
+    M = mat2(1.0 / u_ref.per_m.x, 0.0, 0.0, -1.0 / u_ref.per_m.y);
+  } else {
+    vec2 c0, c1, c2;
+    if (!cross_offset(u_cross, u_cross_param, G * u_crs_per_m, c0)) return;  // past its edge
+    cross_offset(u_cross, u_cross_param, (G + J[0]) * u_crs_per_m, c1);
+    cross_offset(u_cross, u_cross_param, (G + J[1]) * u_crs_per_m, c2);
+    vec2 flip = vec2(1, -1) * u_ref.per_m;
+    p = u_ref.frac + c0 * flip;
+    mat2 Jt = mat2((c1 - c0) * flip, (c2 - c0) * flip);  // tiles per pixel
+    if (abs(determinant(Jt)) < 1e-30) return;
+    M = J * inverse(Jt);
+    zoom_bias = log2(min(length(M[0]), length(M[1])) / 256.0) + float(u_ref.zoom);
+  }
+  int z = clamp(int(floor(zoom_bias - log2(footprint))), u_min_zoom, u_max_zoom);
 
   int rec = -1, zz = z;
   vec2 local;
   for (; zz >= u_min_zoom; --zz) {
-    ivec2 t = tile_at(u_ref, zz, G, local);
+    ivec2 t = tile_of(u_ref, zz, p, local);
     rec = line_table_lookup(zz, t);
     if (rec >= 0) break;
     if (zz == z) request(zz, t, 0u);
@@ -126,11 +152,14 @@ void main() {
   float extent = uintBitsToFloat(r1.x), reach = uintBitsToFloat(r1.y);
   uint grid = r0.w;
   vec2 lu = local * extent;
-  vec2 m_per_unit = u_tile_m0 / (exp2(float(zz)) * extent);
+  // Ground metres per tile unit (x east, y south).
+  mat2 L = u_cross == 0 ? mat2(u_tile_m0.x / (exp2(float(zz)) * extent), 0.0, 0.0,
+                               -u_tile_m0.y / (exp2(float(zz)) * extent))
+                        : M * (exp2(float(u_ref.zoom - zz)) / extent);
   ivec2 cell = clamp(ivec2(lu * float(grid) / extent), ivec2(0), ivec2(int(grid) - 1));
   uint ci = uint(cell.y) * grid + uint(cell.x);
   uint begin = arena[r0.x + ci], end = arena[r0.x + ci + 1u];
-  float reach_m = reach * min(m_per_unit.x, m_per_unit.y);
+  float reach_m = reach * min(length(L[0]), length(L[1]));
   // The classes covering the pixel, at most kLayers of the highest ids: per
   // class its best casing and fill coverage and the segment of that fill.
   const int kLayers = 4;
@@ -146,7 +175,7 @@ void main() {
     vec4 st = styles[cls * 5 + 2];  // half width, casing width, unit is metres, dash count
     if (st.x <= 0.0) continue;
     vec2 A = seg_a(o), B = seg_b(o);
-    vec2 aw = (A - lu) * m_per_unit * vec2(1, -1), bw = (B - lu) * m_per_unit * vec2(1, -1);
+    vec2 aw = L * (A - lu), bw = L * (B - lu);
     vec2 as = Jinv * aw, ab = Jinv * bw - as;
     float len2 = dot(ab, ab);
     float t = len2 > 1e-12 ? clamp(-dot(as, ab) / len2, 0.0, 1.0) : 0.0;

@@ -25,19 +25,17 @@ struct Measured {
   bool visible = true;
 };
 
-Measured measure(TileId id, const View& view, const WorldFrame& world, double low_m,
-                 double high_m) {
+Measured measure(TileId id, const View& view, const WorldFrame& world, const LayerTiling& tiling,
+                 double low_m, double high_m) {
   Measured m{id};
-  // Key units per tile at any zoom, also finer than the terrain's.
-  const double keys = double(world.steps()) * std::ldexp(1.0, world.key_zoom() - id.z);
-  const double x0 = id.x * keys, y0 = id.y * keys;
   double lo_x = 1e300, lo_y = 1e300, hi_x = -1e300, hi_y = -1e300;
   bool behind = false, facing = false;
   std::array<int, 6> outside{};  // per frustum plane: samples outside it
   int samples = 0;
   for (int j = 0; j <= 2; ++j)
     for (int i = 0; i <= 2; ++i) {
-      const double kx = x0 + i * keys / 2, ky = y0 + j * keys / 2;
+      const glm::dvec2 k = tiling.tile_to_key(id, i / 2.0, j / 2.0);
+      const double kx = k.x, ky = k.y;
       const glm::dvec3 p = world.key_to_world(kx, ky, 0, view.origin);
       if (i == 1 && j == 1) m.distance = glm::length(p - view.eye);
       if (world.globe()) {
@@ -78,7 +76,7 @@ std::vector<TileId> select_point_tiles(const PointTileSelection& s, const View& 
   };
   std::priority_queue<Measured, std::vector<Measured>, decltype(larger)> open(larger);
   for (const TileId& r : s.roots) {
-    const Measured m = measure(r, view, world, s.low_m, s.high_m);
+    const Measured m = measure(r, view, world, *s.tiling, s.low_m, s.high_m);
     if (m.visible) open.push(m);
   }
   std::vector<Measured> chosen;
@@ -94,7 +92,7 @@ std::vector<TileId> select_point_tiles(const PointTileSelection& s, const View& 
       continue;
     }
     for (const TileId& c : children) {
-      const Measured cm = measure(c, view, world, s.low_m, s.high_m);
+      const Measured cm = measure(c, view, world, *s.tiling, s.low_m, s.high_m);
       if (cm.visible) open.push(cm);
     }
   }

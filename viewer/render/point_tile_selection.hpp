@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "camera/camera.hpp"
+#include "camera/layer_tiling.hpp"
 #include "camera/world_frame.hpp"
 #include "tileformat/tile_id.hpp"
 
@@ -22,7 +23,8 @@ struct PointTileSelection {
   int max_zoom = 0;
   // Whether the package holds a tile (children are asked before a visit).
   std::function<bool(tileformat::TileId)> exists;
-  double low_m = 0, high_m = 0;  // the terrain's height range (culling)
+  double low_m = 0, high_m = 0;         // the terrain's height range (culling)
+  const LayerTiling* tiling = nullptr;  // the package's tiles in the terrain's key units
   size_t max_tiles = 4096;
 };
 
