@@ -17,7 +17,7 @@ using namespace globe_test;
 
 struct Shaded {
   fs::path dir;
-  std::string global, himalaya;
+  std::string global, himalaya, himalaya_analysis;
 };
 
 const Shaded& packages() {
@@ -30,11 +30,14 @@ const Shaded& packages() {
           {tiler() + " terrain -q --tiling geodetic " + etopo + " -o " + at("etopo.mbtiles"),
            // The Himalaya: etopo20 cut to 70..100 E, 25..40 N (28 m to 6229 m).
            "gdal_translate -q -projwin 70 40 100 25 " + etopo + " " + at("himalaya.tif"),
-           tiler() + " terrain -q " + at("himalaya.tif") + " -o " + at("himalaya.mbtiles")},
+           tiler() + " terrain -q " + at("himalaya.tif") + " -o " + at("himalaya.mbtiles"),
+           tiler() + " analyze -q " + at("himalaya.mbtiles") + " --layers skyview -o " +
+               at("himalaya_analysis.mbtiles")},
           dir);
     });
     k.global = (k.dir / "etopo.mbtiles").string();
     k.himalaya = (k.dir / "himalaya.mbtiles").string();
+    k.himalaya_analysis = (k.dir / "himalaya_analysis.mbtiles").string();
     return k;
   }();
   return s;
@@ -144,6 +147,44 @@ TEST(ViewerShading, MountainsOnACoarseGridAreReadableByDefault) {
     EXPECT_GE(stretched, 8) << name;
     EXPECT_LT(plain, stretched / 2) << name << ": --exaggeration turns the stretch off";
   }
+}
+
+// Readable by default, the analysis modes: on the coarse grid the built-in
+// slope ramp (0..45 degrees) and sky-view ramp (0.65..1) would stay pale or
+// white; stretched to the data's own 95th-percentile slope and 5th-percentile
+// sky-view factor (app/data_ranges), they span most of their ramp. (The
+// fine jacksboro package keeps the fixed ramps: its expected pictures in
+// viewer_analysis_test and viewer_cli_test are unchanged.)
+TEST(ViewerShading, AnalysisModesSpanTheirRampOnACoarseGrid) {
+  TempDir dir;
+  const std::string base = packages().himalaya + " " + packages().himalaya_analysis +
+                           " --size 320x180 --camera=86.9,27.9,400000,0,0 --stats --snapshot ";
+  // Per mode: the position along the built-in ramp of a pixel (0 its start).
+  const std::pair<const char*, double (*)(const uint8_t*)> modes[] = {
+      {"slope", [](const uint8_t* p) { return (255.0 - p[1]) / 229.5; }},  // cream -> red
+      {"skyview", [](const uint8_t* p) { return 1.0 - p[0] / 255.0; }}};   // white -> black
+  for (const auto& [mode, along] : modes) {
+    const std::string png = (dir / (std::string(mode) + ".png")).string();
+    const RunResult r = view(base + png + " --shading " + mode, dir.path());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    int w = 0, h = 0;
+    const std::vector<uint8_t> rgb = read_rgb(png, w, h);
+    std::vector<double> t;
+    for (size_t i = 0; i < size_t(w) * h; ++i)
+      t.push_back(along(&rgb[3 * i]));
+    std::sort(t.begin(), t.end());
+    const double p50 = t[t.size() / 2], p99 = t[t.size() * 99 / 100];
+    std::printf("%s: ramp position p50 %.2f, p99 %.2f; grey std %.1f\n", mode, p50, p99,
+                grey_std(png));
+    EXPECT_GE(p99, 0.8) << mode << ": the steepest/most enclosed ground reaches the ramp's end";
+    EXPECT_GE(p50, 0.1) << mode;
+    EXPECT_GE(grey_std(png), 8) << mode;
+  }
+  // The stretch is reported, and stays within the fixed ramps.
+  const RunResult r = view(base + (dir / "s.png").string() + " --shading slope", dir.path());
+  EXPECT_NE(r.out.find("\"slope_ramp_top_deg\": "), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("\"slope_ramp_top_deg\": 45.00"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("\"skyview_ramp_low\": 0.6500"), std::string::npos) << r.out;
 }
 
 // The magic lens: outside its circle the frame is the frame without it, byte

@@ -141,6 +141,9 @@ int run_headless(const ViewerSettings& settings) {
     std::printf(", \"ground_fraction\": %.4f", ground);
     const auto [ramp_lo, ramp_hi] = scene.ramp().data_range();
     std::printf(", \"height_range\": [%.2f, %.2f]", ramp_lo, ramp_hi);
+    const DataRanges& dr = scene.data_ranges();
+    std::printf(", \"slope_ramp_top_deg\": %.2f, \"skyview_ramp_low\": %.4f", dr.slope_top_deg,
+                dr.sky_low);
     if (LineLayer* lines = scene.lines()) {
       const LineLayerStats ls = lines->stats();
       std::printf(

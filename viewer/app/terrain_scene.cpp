@@ -134,6 +134,10 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
   };
   renderer_->set_gradient_from_layers(holds(tileformat::AnalysisLayer::kSlope) &&
                                       holds(tileformat::AnalysisLayer::kAspect));
+  ranges_ = measure_data_ranges(path, set.analysis,
+                                [this](tileformat::TileId id) { return block_spacing_m(id); });
+  renderer_->set_data_ranges(static_cast<float>(ranges_.slope_top_deg),
+                             static_cast<float>(ranges_.sky_low));
   if (world_->globe()) {
     const TerrainPackage& p = cache_->package();
     const tileformat::Bounds ll =

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/chart_layer.hpp"
+#include "app/data_ranges.hpp"
 #include "app/edge_scale.hpp"
 #include "app/elevation_ramp.hpp"
 #include "app/flat_base.hpp"
@@ -83,6 +84,7 @@ class TerrainScene {
   // The colour ramp; after an edit, apply_ramp() hands the table for the
   // current shading mode to the renderer.
   ElevationRamp& ramp() { return *ramp_; }
+  const DataRanges& data_ranges() const { return ranges_; }
   void apply_ramp() {
     ramp_mode_ = settings_.shading.mode;
     renderer_->set_ramp(ramp_->table(ramp_mode_, flow_largest_));
@@ -117,6 +119,7 @@ class TerrainScene {
   ReliefScale relief_;                        // the hillshade's relief stretch per zoom
   bool auto_relief_ = true;                   // off when --exaggeration is given
   EdgeScale edges_;                           // the edges shading's stretch per zoom
+  DataRanges ranges_;                         // the slope and sky-view ramps on this data
   std::optional<std::string> analysis_path_;  // the analysis package, if any
   std::vector<tileformat::AnalysisLayer> analysis_layers_;  // and its layers
   float flow_largest_ = kNoFlow;                            // log2 m^2: the flow shading's top

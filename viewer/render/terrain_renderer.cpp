@@ -266,6 +266,8 @@ RenderTimes TerrainRenderer::draw(const std::vector<Patch>& patches, const View&
   gl::Uniform1i(p.uniform("u_has_gradient"), layers_ && gradient_from_layers_ ? 1 : 0);
   gl::Uniform1fv(p.uniform("u_edge_scale"), 32, edge_scales_.data());
   gl::Uniform1fv(p.uniform("u_relief"), 32, relief_stretches_.data());
+  gl::Uniform1f(p.uniform("u_slope_top"), slope_top_deg_);
+  gl::Uniform1f(p.uniform("u_sky_low"), sky_low_);
   gl::Uniform1i(p.uniform("u_key_zoom"), frame.key_zoom());
   gl::Uniform1i(p.uniform("u_ao"), s.ambient_occlusion && layers_ ? 1 : 0);
   gl::Uniform1i(p.uniform("u_layers"), 3);

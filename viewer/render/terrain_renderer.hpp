@@ -100,6 +100,11 @@ class TerrainRenderer {
   void set_edge_scales(const std::array<float, 32>& scales) { edge_scales_ = scales; }
   // The hillshade's slope stretch per zoom (lighting only; app/relief_scale).
   void set_relief_stretches(const std::array<float, 32>& s) { relief_stretches_ = s; }
+  // Where the built-in slope ramp ends (degrees) and the sky-view factor the
+  // skyview mode draws black (app/data_ranges.hpp).
+  void set_data_ranges(float slope_top_deg, float sky_low) {
+    slope_top_deg_ = slope_top_deg, sky_low_ = sky_low;
+  }
   // log2 of the upstream areas (m^2) where rivers start to show and where
   // they are darkest.
   void set_flow_range(float lo, float hi) { flow_lo_ = lo, flow_hi_ = hi; }
@@ -134,6 +139,7 @@ class TerrainRenderer {
   double ramp_lo_ = 0, ramp_hi_ = 1;
   std::array<float, 32> edge_scales_;
   std::array<float, 32> relief_stretches_;
+  float slope_top_deg_ = 45, sky_low_ = 0.65f;
   bool gradient_from_layers_ = false;
   GBuffer g_;
   GLuint timer_ = 0;

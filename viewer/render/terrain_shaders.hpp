@@ -199,6 +199,8 @@ uniform sampler2DArray u_layers;
 uniform int u_has_gradient;  // 1: u_layers holds the analysis package's slope and aspect
 uniform int u_ao;          // 1: multiply the sky-view factor onto the colour
 uniform float u_edge_scale[32]; // per zoom: plan curvature x spacing where edge colours saturate
+uniform float u_slope_top;     // degrees where the slope ramp ends (app/data_ranges.hpp)
+uniform float u_sky_low;       // sky-view factor drawn black in the skyview mode
 uniform float u_relief[32];     // per zoom: the hillshade's slope stretch (lighting only)
 uniform int u_key_zoom;
 uniform sampler2DArray u_flow;
@@ -246,9 +248,13 @@ vec3 ramp(float h) {  // the entries sit on texel centres
 vec4 layers_at(vec2 s) {
   return texture(u_layers, vec3((s + 0.5) / u_size, float(v_layer)));
 }
-// Sky-view factor -> brightness: 0.65 (a deep valley) black .. 1 (open) white.
+// Sky-view factor -> brightness: `low` (0.65: a deep valley) black .. 1
+// (open) white.
+float sky_light(float svf, float low) {
+  return clamp((svf - low) / (1.0 - low), 0.0, 1.0);
+}
 float sky_light(float svf) {
-  return clamp((svf - 0.65) / 0.35, 0.0, 1.0);
+  return sky_light(svf, 0.65);
 }
 vec3 hue(float h) {
   return clamp(abs(mod(h * 6.0 + vec3(0.0, 4.0, 2.0), 6.0) - 3.0) - 1.0, 0.0, 1.0);
@@ -276,7 +282,7 @@ void main() {
                                     : degrees(acos(clamp(n.z, 0.0, 1.0)));
     color = u_layer_ramp != 0
                 ? ramp(slope) * (0.55 + 0.45 * shade / max(u_sun.z, 0.2))
-                : mix(vec3(1.0, 1.0, 0.85), vec3(0.75, 0.1, 0.05), clamp(slope / 45.0, 0.0, 1.0));
+                : mix(vec3(1.0, 1.0, 0.85), vec3(0.75, 0.1, 0.05), clamp(slope / u_slope_top, 0.0, 1.0));
   } else if (mode == MODE_ASPECT) {
     // The downhill direction and steepness: from the analysis package's
     // gradient, else from the drawn triangle's normal.
@@ -287,7 +293,7 @@ void main() {
     color = mix(vec3(0.85), facing, clamp(length(a) * 4.0, 0.0, 1.0));
   } else if (mode == MODE_SKYVIEW) {
     float svf = layers_at(v_sample).r;
-    color = u_layer_ramp != 0 ? ramp(svf) : vec3(sky_light(svf));
+    color = u_layer_ramp != 0 ? ramp(svf) : vec3(sky_light(svf, u_sky_low));
   } else if (mode == MODE_FLOW) {
     // Rivers: light blue where they begin, deep blue for the largest.
     vec3 flow = texture(u_flow, vec3((v_sample + 0.5) / u_size, float(v_layer))).rgb;
