@@ -49,7 +49,7 @@ void parse_style(const std::string& spec, LineStyle& s, const std::string& conte
     const auto eq = kv.find('=');
     if (eq == std::string::npos)
       throw UsageError(context + ": '" + kv +
-                       "' is not key=value (keys: color, width, casing, dash, opacity)");
+                       "' is not key=value (keys: color, width, casing, dash, opacity, pattern)");
     const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
     if (key == "color") {
       if (!is_hex_color(value))
@@ -75,9 +75,17 @@ void parse_style(const std::string& spec, LineStyle& s, const std::string& conte
       s.opacity = CliArgs::to_double(context + " opacity", value);
       if (!(s.opacity >= 0 && s.opacity <= 1))
         throw UsageError(context + ": opacity '" + value + "' is not between 0 and 1");
+    } else if (key == "pattern") {  // NAME[@SPACING]
+      const auto at = value.find('@');
+      s.pattern = value.substr(0, at);
+      if (line_pattern_id(s.pattern) <= 0)
+        throw UsageError(context + ": pattern '" + s.pattern +
+                         "' is not railway, arrows, zigzag or dots");
+      s.pattern_spacing =
+          at == std::string::npos ? 0 : parse_length(value.substr(at + 1), context, nullptr);
     } else {
       throw UsageError(context + ": unknown style key '" + key +
-                       "' (keys: color, width, casing, dash, opacity)");
+                       "' (keys: color, width, casing, dash, opacity, pattern)");
     }
   }
 }
@@ -161,6 +169,8 @@ std::string LineClasses::json() const {
       out += (k ? "," : "") + number(s.dash[k]);
     out += "]";
     if (s.opacity < 1) out += ",\"opacity\":" + number(s.opacity);  // absent: opaque
+    if (!s.pattern.empty())
+      out += ",\"pattern\":\"" + s.pattern + "\",\"pattern_spacing\":" + number(s.pattern_spacing);
     out += "}";
   }
   return out + "]";

@@ -9,8 +9,9 @@ void declare_line_tile_options(CliArgs& cli, LinesSettings& s) {
   cli.option(
       "--style", "CLASS:K=V,...",
       "a class's style (repeatable); keys color=#rrggbb, width=2px|12m,\n"
-      "                              casing=#rrggbb@1px, dash=6+3, opacity=0.5 (default: palette,\n"
-      "                              1.5px, solid, opaque)",
+      "                              casing=#rrggbb@1px, dash=6+3, opacity=0.5,\n"
+      "                              pattern=railway|arrows|zigzag|dots[@SPACING] (default:\n"
+      "                              palette, 1.5px, solid, opaque, no pattern)",
       [&](const std::string& v) { s.styles.push_back(v); });
   cli.option("--cluster-grid", "C", "cluster cells per tile side (default 32)",
              [&](const std::string& v) {

@@ -171,6 +171,8 @@ void LineRenderer::set_styles(const std::vector<NamedLineStyle>& classes) {
                  s.width_in_m ? 1.0 : 0.0, static_cast<float>(s.dash.size())});
     v.push_back({dash[0], dash[1], dash[2], dash[3]});
     v.push_back({dash[4], dash[5], dash[6], dash[7]});
+    const int pattern = std::max(line_pattern_id(s.pattern), 0);
+    v.push_back({float(pattern), pattern ? float(line_pattern_spacing(s)) : 0.0f, 0.0f, 0.0f});
   }
   fill_buffer(styles_, v.size() * sizeof(glm::vec4), v.data());
   class_count_ = static_cast<int>(classes.size());

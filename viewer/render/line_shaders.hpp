@@ -9,7 +9,7 @@ namespace globe::viewer::shaders {
 // Declarations and helpers shared by both programs.
 inline constexpr const char* kLineCommon = R"(#version 450 core
 layout(std430, binding = 0) readonly buffer Arena { uint arena[]; };
-layout(std430, binding = 3) readonly buffer Styles { vec4 styles[]; };  // 5 per class
+layout(std430, binding = 3) readonly buffer Styles { vec4 styles[]; };  // 6 per class
 uniform int u_class_count;
 
 // Tile coordinates of world points: `base + frac` is the view origin in
@@ -78,9 +78,9 @@ float coverage(float d, float h) {
 }
 // Fraction of [pos - q/2, pos + q/2] that falls on the dash pattern's "on" parts.
 float dash_coverage(float pos, float q, int cls) {
-  vec4 d0 = styles[cls * 5 + 3], d1 = styles[cls * 5 + 4];
+  vec4 d0 = styles[cls * 6 + 3], d1 = styles[cls * 6 + 4];
   float pat[8] = float[8](d0.x, d0.y, d0.z, d0.w, d1.x, d1.y, d1.z, d1.w);
-  int n = int(styles[cls * 5 + 2].w);
+  int n = int(styles[cls * 6 + 2].w);
   float total = 0.0;
   for (int i = 0; i < n; ++i) total += pat[i];
   float p = mod(pos, total), cov = 0.0, s = 0.0;
@@ -92,6 +92,31 @@ float dash_coverage(float pos, float q, int cls) {
     s += pat[i] + pat[i + 1];
   }
   return clamp(cov / q, 0.0, 1.0);
+}
+
+// Coverage of a procedural pattern (docs/viewer.md "Line patterns") at
+// pixel offset p from the line (x along it, the line's direction ahead; y
+// across it), in pixels, from the nearest motif's centre; hw: the line's half
+// width in pixels; ahead: 1 where motif positions grow along the line.
+//  1 railway: a thin rail with ties across the width at every motif;
+//  2 arrows: a thin line with a chevron pointing along the line;
+//  3 zigzag: a thin line swinging across the width, one tooth per motif;
+//  4 dots: discs of the line's width.
+float pattern_coverage(int kind, vec2 p, float hw, float period_px, float phase) {
+  float thin = max(0.5, 0.3 * hw);
+  float inside = clamp(hw + 0.5 - abs(p.y), 0.0, 1.0);  // within the width
+  if (kind == 1) {
+    float tie = coverage(abs(p.x), max(0.6, 0.1 * period_px)) * inside;
+    return max(coverage(abs(p.y), thin), tie);
+  } else if (kind == 2) {
+    // Arms from the apex (half a width ahead of the centre) back at 45 degrees.
+    float arm = abs(p.x - (0.5 * hw - abs(p.y))) * 0.70710678;
+    return max(coverage(abs(p.y), thin), coverage(arm, thin) * inside);
+  } else if (kind == 3) {
+    float tri = 1.0 - 4.0 * abs(fract(phase + 0.25) - 0.5);  // -1 .. 1 once per motif
+    return coverage(abs(p.y - (hw - thin) * tri), thin);
+  }
+  return coverage(length(p), hw);
 }
 
 void main() {
@@ -133,7 +158,8 @@ void main() {
     M = J * inverse(Jt);
     zoom_bias = log2(min(length(M[0]), length(M[1])) / 256.0) + float(u_ref.zoom);
   }
-  int z = clamp(int(floor(zoom_bias - log2(footprint))), u_min_zoom, u_max_zoom);
+  int wanted = int(floor(zoom_bias - log2(footprint)));  // may lie past the package's zooms
+  int z = clamp(wanted, u_min_zoom, u_max_zoom);
 
   int rec = -1, zz = z;
   vec2 local;
@@ -160,6 +186,10 @@ void main() {
   uint ci = uint(cell.y) * grid + uint(cell.x);
   uint begin = arena[r0.x + ci], end = arena[r0.x + ci + 1u];
   float reach_m = reach * min(length(L[0]), length(L[1]));
+  // Pixel-unit dashes and patterns are laid out in pixels at the zoom the
+  // pixel wants (256 per tile edge), also where a coarser tile is drawn
+  // (past the package's finest zoom): 1..2 screen pixels each.
+  float units_to_px = u_units_to_nominal_px * exp2(float(wanted - zz));
   // The classes covering the pixel, at most kLayers of the highest ids: per
   // class its best casing and fill coverage and the segment of that fill.
   const int kLayers = 4;
@@ -172,7 +202,7 @@ void main() {
     uint o = r0.z + seg * 6u;
     int cls = int(arena[o + 4u]);
     if (cls >= u_class_count) continue;
-    vec4 st = styles[cls * 5 + 2];  // half width, casing width, unit is metres, dash count
+    vec4 st = styles[cls * 6 + 2];  // half width, casing width, unit is metres, dash count
     if (st.x <= 0.0) continue;
     vec2 A = seg_a(o), B = seg_b(o);
     vec2 aw = L * (A - lu), bw = L * (B - lu);
@@ -200,6 +230,23 @@ void main() {
     if (d > outer + 0.5) continue;
     float cov_c = st.y > 0.0 ? coverage(d, outer) : 0.0;
     float cov_f = coverage(d, hw);
+    vec4 pat = styles[cls * 6 + 5];  // pattern id, motif spacing in the width's unit
+    if (pat.x > 0.5 && len2 > 1e-12) {
+      // Position along the line in the width's unit (metres, or pixels as the
+      // dashes), and screen pixels per that unit along.
+      float seg_units = length(B - A);
+      float along = uintBitsToFloat(arena[o + 5u]) + t * seg_units;
+      float px_per_unit = sqrt(len2) / seg_units;
+      float u_per_tile_unit =
+          st.z > 0.5 ? length(bw - aw) / (seg_units * u_world_per_m) : units_to_px;
+      float a = along * u_per_tile_unit, px_per_u = px_per_unit / u_per_tile_unit;
+      float phase = a / pat.y, c = (phase - floor(phase + 0.5)) * pat.y;
+      // The pixel's distance from the segment, signed by its side (left of
+      // the line's direction > 0): round past the segment's ends.
+      float across = (ab.y * as.x - ab.x * as.y) >= 0.0 ? d : -d;
+      cov_f = pattern_coverage(int(pat.x + 0.5), vec2(c * px_per_u, across), hw,
+                               pat.y * px_per_u, phase);
+    }
     if (st.w > 0.0 && cov_f > 0.0 && len2 > 1e-12) {
       float seg_units = length(B - A);
       float along = uintBitsToFloat(arena[o + 5u]) + t * seg_units;
@@ -208,7 +255,7 @@ void main() {
         float m_per_u = length(bw - aw) / (seg_units * u_world_per_m);
         cov_f *= dash_coverage(along * m_per_u, m_per_u / px_per_unit, cls);
       } else {
-        cov_f *= dash_coverage(along * u_units_to_nominal_px, u_units_to_nominal_px / px_per_unit, cls);
+        cov_f *= dash_coverage(along * units_to_px, units_to_px / px_per_unit, cls);
       }
     }
     if (cov_c <= 0.0 && cov_f <= 0.0) continue;
@@ -230,7 +277,7 @@ void main() {
     if (cov_f > lay_f[at]) lay_f[at] = cov_f, lay_seg[at] = seg;
   }
   // Lowest class first, each casing then fill over what lies under it at its
-  // coverage times the class's opacity (styles[cls * 5].a).
+  // coverage times the class's opacity (styles[cls * 6].a).
   for (int i = 1; i < layers; ++i)
     for (int j = i; j > 0 && lay_cls[j - 1] > lay_cls[j]; --j) {
       int tc = lay_cls[j]; lay_cls[j] = lay_cls[j - 1]; lay_cls[j - 1] = tc;
@@ -241,9 +288,9 @@ void main() {
   vec3 col = base.rgb;
   for (int i = 0; i < layers; ++i) {
     int cls = lay_cls[i];
-    float a = styles[cls * 5].a;
-    col = mix(col, styles[cls * 5 + 1].rgb, lay_c[i] * a);
-    col = mix(col, styles[cls * 5].rgb, lay_f[i] * a);
+    float a = styles[cls * 6].a;
+    col = mix(col, styles[cls * 6 + 1].rgb, lay_c[i] * a);
+    col = mix(col, styles[cls * 6].rgb, lay_f[i] * a);
     o_segment = lay_seg[i] + 1u;  // the top one stays: what picking names
   }
   o_color = vec4(col, 1.0);
@@ -269,8 +316,8 @@ ivec2 quad_corner() {
 // Class cls's half width in the layer drawn (0: none, or hidden) and its
 // colour (into v_color); `metres` whether the width is in metres.
 float layer_half_width(int cls, out bool metres) {
-  vec4 st = cls < u_class_count ? styles[cls * 5 + 2] : vec4(0);
-  v_color = cls < u_class_count ? styles[cls * 5 + (u_layer == 0 ? 1 : 0)] : vec4(0);
+  vec4 st = cls < u_class_count ? styles[cls * 6 + 2] : vec4(0);
+  v_color = cls < u_class_count ? styles[cls * 6 + (u_layer == 0 ? 1 : 0)] : vec4(0);
   metres = st.z > 0.5;
   return u_layer == 0 ? (st.y > 0.0 ? st.x + st.y : 0.0) : st.x;
 }

@@ -74,18 +74,38 @@ void read_style(const JsonValue& o, const std::string& where, LineStyle& s) {
       if (!v.is_number() || !(v.number() >= 0 && v.number() <= 1))
         throw InputError(at + ": expected a number from 0 to 1");
       s.opacity = v.number();
+    } else if (key == "pattern") {
+      if (!v.is_string() || (!v.string().empty() && line_pattern_id(v.string()) < 0))
+        throw InputError(at + ": expected \"\" or one of railway, arrows, zigzag, dots");
+      s.pattern = v.string();
+    } else if (key == "pattern_spacing") {
+      s.pattern_spacing = length_of(v, at);
     } else if (key == "visible") {
       if (!v.is_bool()) throw InputError(at + ": expected true/false");
       s.visible = v.boolean();
     } else if (key != "id" && key != "name" && key != "layer" && key != "features") {
       throw InputError(at +
                        ": unknown key (color, width, unit, casing_color, casing_width, dash, "
-                       "opacity, visible)");
+                       "opacity, visible, pattern, pattern_spacing)");
     }
   }
 }
 
 }  // namespace
+
+int line_pattern_id(const std::string& name) {
+  if (name.empty()) return 0;
+  for (size_t i = 0; i < std::size(kLinePatterns); ++i)
+    if (name == kLinePatterns[i]) return static_cast<int>(i) + 1;
+  return -1;
+}
+
+double line_pattern_spacing(const LineStyle& s) {
+  if (s.pattern_spacing > 0) return s.pattern_spacing;
+  // Ties and teeth close together, arrows and dots further apart.
+  const int id = line_pattern_id(s.pattern);
+  return s.width * (id == 1 ? 2.5 : id == 3 ? 3.0 : id == 4 ? 2.5 : 6.0);
+}
 
 const char* palette_color(size_t id) {
   return kPalette[id % std::size(kPalette)];

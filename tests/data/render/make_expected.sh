@@ -110,3 +110,10 @@ GLOBE_TEST_KEEP=1 build/tests/tutorial_tests >/dev/null 2>&1 || true
 kept=$(ls -dt /tmp/globe-test-Tutorial-EveryStepRunsAndMakesItsPictures-* | head -1)
 cp "$kept"/tutorial_*.png $out/
 rm -rf "$kept"
+# Line patterns (tests/viewer_line_patterns_test.cpp writes its own lines): likewise.
+rm -f $out/line_patterns.png
+GLOBE_TEST_KEEP=1 build/tests/viewer_lines_tests --gtest_filter='*FourPatternsMatchExpected' \
+  >/dev/null 2>&1 || true
+kept=$(ls -dt /tmp/globe-test-ViewerLinePatterns-FourPatternsMatchExpected-* | head -1)
+cp "$kept"/p.png $out/line_patterns.png
+rm -rf "$kept"

@@ -18,6 +18,12 @@ struct LineStyle {
   std::vector<double> dash;  // on/off lengths in the unit of `width`; empty = solid
   bool visible = true;       // style files may hide a class
   double opacity = 1;        // 0..1: how much of what lies under the line shows through
+  // A procedural pattern drawn per pixel instead of the plain fill
+  // (docs/viewer.md "Line patterns"): "" (none), "railway", "arrows" (along
+  // the line's vertex order), "zigzag" or "dots"; one motif every
+  // `pattern_spacing` (the width's unit; 0 = the pattern's default).
+  std::string pattern;
+  double pattern_spacing = 0;
   // Half the drawn width including casing, in the width's unit.
   double half_extent() const { return width / 2 + (casing_color.empty() ? 0 : casing_width); }
 };
@@ -26,6 +32,14 @@ struct NamedLineStyle {
   std::string name;
   LineStyle style;
 };
+
+// The patterns LineStyle::pattern names, by id (1..4; 0 = none), and the
+// id of a name (-1 for an unknown one).
+inline constexpr const char* kLinePatterns[] = {"railway", "arrows", "zigzag", "dots"};
+int line_pattern_id(const std::string& name);
+// Spacing of the motifs in the width's unit: the style's, or the pattern's
+// default (a multiple of the width).
+double line_pattern_spacing(const LineStyle& s);
 
 // The default palette colour of class `id`.
 const char* palette_color(size_t id);
@@ -38,7 +52,8 @@ std::vector<NamedLineStyle> parse_classes_json(const std::string& json, const st
 // Applies a style file on top of `classes`: a JSON object whose keys are
 // class names, or "*" for every class a key does not name, each holding any
 // of "color", "width", "unit" ("px"|"m"), "casing_color", "casing_width",
-// "dash" (array of on/off lengths), "opacity" (0..1) and "visible". Throws InputError naming
+// "dash" (array of on/off lengths), "opacity" (0..1), "visible", "pattern"
+// and "pattern_spacing". Throws InputError naming
 // `context` (the file) and the key.
 void apply_style_json(const std::string& json, const std::string& context,
                       std::vector<NamedLineStyle>& classes);
