@@ -73,6 +73,17 @@ ChartLayer::ChartLayer(PointPackage package, const ChartSettings& settings, uint
     style_time_ = std::filesystem::last_write_time(*settings_.style, ec);
   }
   roots_ = cache_.package().reader->tile_ids(m.common.min_zoom);
+  if (settings_.heatmap && settings_.heat_field != "count") {
+    const auto f = std::find(m.fields.begin(), m.fields.end(), settings_.heat_field);
+    if (f == m.fields.end()) {
+      std::string names;
+      for (const std::string& n : m.fields)
+        names += (names.empty() ? "" : ", ") + n;
+      throw UsageError("--heatmap " + settings_.heat_field + ": " + path + " has no such field (" +
+                       names + "; or count)");
+    }
+    heat_field_ = static_cast<int>(f - m.fields.begin());
+  }
   labels_ = std::make_unique<tileformat::PackageReader>(path);
 }
 
@@ -279,6 +290,9 @@ double ChartLayer::draw(GLuint input_fbo, const GBuffer& g, const View& view,
   sel.max_zoom = m.common.max_zoom;
   sel.exists = [this](TileId id) { return cache_.exists(id); };
   sel.tiling = &tiling_;
+  // A heatmap sums places: one zoom finer than charts, so merged places
+  // stand closer to their sources.
+  if (settings_.heatmap) sel.refine_px /= 2;
   std::vector<TileId> tiles;
   for (;;) {
     // The frame's tiles are marked used before loaded ones come in, so
@@ -294,6 +308,14 @@ double ChartLayer::draw(GLuint input_fbo, const GBuffer& g, const View& view,
       missing = missing || cache_.loading(id);
     if (loading == Loading::kAsReady || !missing) break;
     cache_.wait_for_loader();
+  }
+  if (settings_.heatmap) {  // ground points move with the view origin: every frame
+    build_heat(tiles, view, world);
+    drawn_ = tiles;
+    HeatmapStyle hs;
+    hs.opacity = static_cast<float>(settings_.heat_opacity);
+    hs.margin_world = static_cast<float>(heights.relief_world);
+    return renderer_.draw_heatmap(input_fbo, g, view, world, terrain, heights, hs, exaggeration);
   }
   if (dirty_ || tiles != drawn_ || settings_.thinning == ChartThinning::kOn) {
     build(tiles, view, world);
@@ -316,7 +338,60 @@ double ChartLayer::draw(GLuint input_fbo, const GBuffer& g, const View& view,
   return ms;
 }
 
+void ChartLayer::build_heat(const std::vector<TileId>& tiles, const View& view,
+                            const WorldFrame& world) {
+  const tileformat::PointMetadata& m = cache_.package().meta;
+  const bool mean = m.aggregate == tileformat::PointAggregate::kMean;
+  const glm::dvec2 o = world.key_to_crs(double(view.origin.x), double(view.origin.y));
+  const double gx = world.ground_per_crs_x(), gy = world.ground_per_crs_y();
+  ground_per_m_ = world.ground_height_scale();  // ground units per metre at the view latitude
+  const tileformat::Tiling& t = world.tiling();
+  const double span = t.wraps_x() ? t.roots_x * t.root_size : 0;  // CRS units around the Earth
+  instances_.clear();
+  places_.clear();
+  for (const TileId& id : tiles) {
+    const tileformat::PointTile* tile = cache_.get(id);
+    if (!tile) continue;
+    for (uint32_t i = 0; i < tile->places.size(); ++i) {
+      const tileformat::Place& pl = tile->places[i];
+      const double weight =
+          heat_field_ < 0 ? double(pl.count)
+                          : tile->value(i, uint32_t(heat_field_)) * (mean ? double(pl.count) : 1.0);
+      if (!(weight > 0)) continue;  // a density of what is there: no negative mass
+      const glm::dvec2 k =
+          tiling_.tile_to_key(id, double(pl.at.x) / tile->extent, double(pl.at.y) / tile->extent);
+      const glm::dvec2 crs = world.key_to_crs(k.x, k.y);
+      double dx = crs.x - o.x;
+      if (span > 0) dx -= span * std::round(dx / span);  // the copy nearest the view
+      double radius = settings_.heat_radius * ground_per_m_;
+      if (!settings_.heat_radius_m)  // pixels: ground units across that many at the place
+        radius = settings_.heat_radius *
+                 glm::length(world.key_to_world(k.x, k.y, 0, view.origin) - view.eye) /
+                 view.pixels_per_radian;
+      ChartInstance c{};
+      c.key[0] = static_cast<int32_t>(std::floor(k.x));
+      c.key[1] = static_cast<int32_t>(std::floor(k.y));
+      c.frac[0] = static_cast<float>(k.x - std::floor(k.x));
+      c.frac[1] = static_cast<float>(k.y - std::floor(k.y));
+      c.params[0] = static_cast<float>(dx * gx);
+      c.params[1] = static_cast<float>((crs.y - o.y) * gy);
+      c.params[2] = static_cast<float>(weight);
+      c.params[3] = static_cast<float>(radius);
+      instances_.push_back(c);
+      places_.push_back({id, i});
+    }
+  }
+  renderer_.set_instances(instances_);
+}
+
 std::string ChartLayer::describe(int x, int y) {
+  if (settings_.heatmap) {
+    // The density there, per square kilometre of ground.
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "heatmap: %.6g per km2",
+                  renderer_.density_at(x, y) * ground_per_m_ * ground_per_m_ * 1e6);
+    return buf;
+  }
   const uint32_t pick = renderer_.pick(x, y);
   if (pick == 0 || pick > places_.size()) return "";
   const PlaceRef& ref = places_[pick - 1];

@@ -28,6 +28,14 @@ struct ChartSettings {
   ChartDepth depth = ChartDepth::kTerrain;
   ChartThinning thinning = ChartThinning::kOff;
   std::optional<std::string> style;  // --chart-style file
+  // --heatmap: a kernel density of the places instead of charts
+  // (docs/viewer.md "Heatmaps"), weighted by a field or by "count" (the
+  // source places each stands for); --heatmap-radius in pixels or metres.
+  bool heatmap = false;
+  std::string heat_field = "count";
+  double heat_radius = 30;
+  bool heat_radius_m = false;
+  double heat_opacity = 0.75;
 };
 
 struct ChartLayerStats {
@@ -76,6 +84,9 @@ class ChartLayer {
   };
   void build(const std::vector<tileformat::TileId>& tiles, const View& view,
              const WorldFrame& world);
+  // The heatmap's instances: every place's ground point, weight and kernel radius.
+  void build_heat(const std::vector<tileformat::TileId>& tiles, const View& view,
+                  const WorldFrame& world);
   void sort_back_to_front(const View& view, const WorldFrame& world);
   void thin(const View& view, const WorldFrame& world);
   void queue_legend();
@@ -89,6 +100,8 @@ class ChartLayer {
   std::unique_ptr<tileformat::PackageReader> labels_;  // the features table, for picking
   std::vector<tileformat::TileId> roots_;
   LayerTiling tiling_;
+  int heat_field_ = -1;                    // the field weighting the heatmap (-1: the count)
+  double ground_per_m_ = 1;                // the last heatmap's ground units per metre
   std::vector<tileformat::TileId> drawn_;  // the tiles of the instances
   std::vector<ChartInstance> instances_;
   std::vector<PlaceRef> places_;  // per instance

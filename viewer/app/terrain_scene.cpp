@@ -378,8 +378,11 @@ FrameResult TerrainScene::frame(const CameraPose& asked, Loading loading, Output
     f.lines_ms = lines_->draw(g, f.view, *world_, settings_.shading.exaggeration, heights, loading);
   }
   if (charts_) {
-    const TerrainHeights heights{renderer_->heights_texture(), cache_->resident_slots(),
-                                 package().min_zoom, package().max_zoom, package().block_size};
+    TerrainHeights heights{renderer_->heights_texture(), cache_->resident_slots(),
+                           package().min_zoom, package().max_zoom, package().block_size};
+    heights.relief_world =
+        (selector_->top_height_m(*cache_) - selector_->bottom_height_m(*cache_)) *
+        world_->height_scale() * settings_.shading.exaggeration;
     const double az = settings_.shading.sun_azimuth_deg * std::numbers::pi / 180,
                  alt = settings_.shading.sun_altitude_deg * std::numbers::pi / 180;
     const glm::vec3 sun(std::sin(az) * std::cos(alt), std::cos(az) * std::cos(alt), std::sin(alt));

@@ -311,6 +311,44 @@ void declare_layer_options(CliArgs& cli, ViewerSettings& s) {
              s.charts_given = true;
              s.charts.thinning = ChartThinning::kOn;
            });
+  cli.option("--heatmap", "count|FIELD",
+             "a heatmap of the places instead of charts: their kernel density per pixel over "
+             "the terrain, weighted by the source places each stands for (count) or by a field; "
+             "it integrates to the weight over the ground",
+             [&](const std::string& v) {
+               s.charts_given = true;
+               s.charts.heatmap = true;
+               s.charts.heat_field = v;
+             });
+  cli.option("--heatmap-radius", "R[px|m|km]",
+             "the kernel's radius: on screen (default 30px) or on the ground",
+             [&](const std::string& v) {
+               s.charts_given = true;
+               double scale = 1;
+               std::string n = v;
+               auto cut = [&](const char* unit, double factor) {
+                 const std::string u(unit);
+                 if (n.size() > u.size() && n.compare(n.size() - u.size(), u.size(), u) == 0) {
+                   n.resize(n.size() - u.size());
+                   scale = factor;
+                   return true;
+                 }
+                 return false;
+               };
+               const bool px = cut("px", 1);
+               const bool metres = !px && (cut("km", 1000) || cut("m", 1));
+               s.charts.heat_radius = CliArgs::to_double("--heatmap-radius", n) * scale;
+               s.charts.heat_radius_m = metres;
+               if (!(s.charts.heat_radius > 0))
+                 throw UsageError("--heatmap-radius: '" + v + "' is not a positive length");
+             });
+  cli.option("--heatmap-opacity", "A", "the heatmap's opacity at its densest (default 0.75)",
+             [&](const std::string& v) {
+               s.charts_given = true;
+               s.charts.heat_opacity = CliArgs::to_double("--heatmap-opacity", v);
+               if (!(s.charts.heat_opacity >= 0 && s.charts.heat_opacity <= 1))
+                 throw UsageError("--heatmap-opacity: '" + v + "' is not between 0 and 1");
+             });
 }
 
 // What a headless run writes or prints, and the platform.

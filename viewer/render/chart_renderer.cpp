@@ -7,7 +7,9 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "render/chart_shaders.hpp"
+#include "render/deferred_pass.hpp"
 #include "render/gl_buffer.hpp"
+#include "render/heatmap_shaders.hpp"
 #include "render/readback.hpp"
 #include "render/terrain_shaders.hpp"
 #include "render/tile_table.hpp"
@@ -76,6 +78,10 @@ ChartRenderer::ChartRenderer(int width, int height) {
                       shaders::kChartSpriteFragment);
   column_ = GlProgram("chart columns", vertex_source(shaders::kChartColumnMain),
                       shaders::kChartColumnFragment);
+  heat_splat_ = GlProgram("heatmap splats", vertex_source(shaders::kHeatSplatMain),
+                          shaders::kHeatSplatFragment);
+  heat_color_ = GlProgram("heatmap colours", kFullScreenVertex, shaders::kHeatColorFragment);
+  gl::CreateVertexArrays(1, &heat_vao_);
   GLuint buffers[4];
   gl::CreateBuffers(4, buffers);
   corner_vbo_ = buffers[0], box_vbo_ = buffers[1], instance_vbo_ = buffers[2],
@@ -113,11 +119,12 @@ ChartRenderer::ChartRenderer(int width, int height) {
 ChartRenderer::~ChartRenderer() {
   GLuint buffers[4] = {corner_vbo_, box_vbo_, instance_vbo_, terrain_table_};
   gl::DeleteBuffers(4, buffers);
-  GLuint vaos[2] = {sprite_vao_, column_vao_};
-  gl::DeleteVertexArrays(2, vaos);
-  gl::DeleteFramebuffers(1, &fbo_);
-  GLuint textures[2] = {color_, picks_};
-  gl::DeleteTextures(2, textures);
+  GLuint vaos[3] = {sprite_vao_, column_vao_, heat_vao_};
+  gl::DeleteVertexArrays(3, vaos);
+  GLuint fbos[2] = {fbo_, density_fbo_};
+  gl::DeleteFramebuffers(2, fbos);
+  GLuint textures[3] = {color_, picks_, density_};
+  gl::DeleteTextures(3, textures);
   gl::DeleteQueries(1, &timer_);
 }
 
@@ -125,10 +132,17 @@ void ChartRenderer::resize(int width, int height) {
   if (width == width_ && height == height_) return;
   width_ = width, height_ = height;
   if (fbo_) {
-    gl::DeleteFramebuffers(1, &fbo_);
-    GLuint textures[2] = {color_, picks_};
-    gl::DeleteTextures(2, textures);
+    GLuint fbos[2] = {fbo_, density_fbo_};
+    gl::DeleteFramebuffers(2, fbos);
+    GLuint textures[3] = {color_, picks_, density_};
+    gl::DeleteTextures(3, textures);
   }
+  gl::CreateTextures(GL_TEXTURE_2D, 1, &density_);
+  gl::TextureStorage2D(density_, 1, GL_R32F, width, height);
+  gl::TextureParameteri(density_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl::TextureParameteri(density_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl::CreateFramebuffers(1, &density_fbo_);
+  gl::NamedFramebufferTexture(density_fbo_, GL_COLOR_ATTACHMENT0, density_, 0);
   gl::CreateTextures(GL_TEXTURE_2D, 1, &color_);
   gl::TextureStorage2D(color_, 1, GL_RGBA8, width, height);
   gl::CreateTextures(GL_TEXTURE_2D, 1, &picks_);
@@ -156,36 +170,16 @@ double ChartRenderer::draw(GLuint input_fbo, const GBuffer& g, const View& view,
     gl::NamedFramebufferTexture(fbo_, GL_DEPTH_ATTACHMENT, g.depth, 0);
     bound_depth_ = g.depth;
   }
-  gl::NamedFramebufferReadBuffer(input_fbo, GL_COLOR_ATTACHMENT0);
-  gl::NamedFramebufferDrawBuffers(fbo_, 1, std::array<GLenum, 1>{GL_COLOR_ATTACHMENT0}.data());
-  gl::BlitNamedFramebuffer(input_fbo, fbo_, 0, 0, width_, height_, 0, 0, width_, height_,
-                           GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  copy_input(input_fbo);
   const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
   gl::NamedFramebufferDrawBuffers(fbo_, 2, both);
   const GLuint none = 0;
   gl::ClearNamedFramebufferuiv(fbo_, GL_COLOR, 1, &none);
   if (instances_ == 0) return 0;
 
-  std::vector<std::pair<tileformat::TileId, uint32_t>> slots;
-  for (const auto& [id, slot] : heights.slots)
-    slots.emplace_back(id, static_cast<uint32_t>(slot));
-  const auto table = build_tile_table(slots);
-  fill_buffer(terrain_table_, table.size() * sizeof(glm::uvec4), table.data());
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTerrainTable, terrain_table_);
-
   const bool columns = style.kind == ChartKind::kColumn;
   const GlProgram& p = columns ? column_ : sprite_;
-  terrain.set_frame_uniforms(p, view, world, exaggeration);
-  gl::Uniform1ui(p.uniform("terrain_mask"), static_cast<uint32_t>(table.size() - 1));
-  gl::Uniform2i(p.uniform("u_origin"), static_cast<int>(view.origin.x),
-                static_cast<int>(view.origin.y));
-  gl::Uniform3f(p.uniform("u_eye"), static_cast<float>(view.eye.x), static_cast<float>(view.eye.y),
-                static_cast<float>(view.eye.z));
-  gl::Uniform1i(p.uniform("u_tmin"), heights.min_zoom);
-  gl::Uniform1i(p.uniform("u_tmax"), heights.max_zoom);
-  gl::Uniform1i(p.uniform("u_key_zoom"), world.key_zoom());
-  gl::Uniform1i(p.uniform("u_steps"), world.steps());
-  gl::Uniform1f(p.uniform("u_block_size"), static_cast<float>(heights.block_size));
+  prepare(p, view, world, terrain, heights, exaggeration);
   gl::Uniform1i(p.uniform("u_fields"), style.fields);
   gl::Uniform4fv(p.uniform("u_colors"), kMaxChartFields, glm::value_ptr(style.colors[0]));
 
@@ -232,6 +226,100 @@ double ChartRenderer::draw(GLuint input_fbo, const GBuffer& g, const View& view,
   gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
   gl::check("drawing the charts");
   return static_cast<double>(ns) / 1e6;
+}
+
+void ChartRenderer::copy_input(GLuint input_fbo) {
+  gl::NamedFramebufferReadBuffer(input_fbo, GL_COLOR_ATTACHMENT0);
+  gl::NamedFramebufferDrawBuffers(fbo_, 1, std::array<GLenum, 1>{GL_COLOR_ATTACHMENT0}.data());
+  gl::BlitNamedFramebuffer(input_fbo, fbo_, 0, 0, width_, height_, 0, 0, width_, height_,
+                           GL_COLOR_BUFFER_BIT, GL_NEAREST);
+}
+
+void ChartRenderer::prepare(const GlProgram& p, const View& view, const WorldFrame& world,
+                            const TerrainRenderer& terrain, const TerrainHeights& heights,
+                            double exaggeration) {
+  std::vector<std::pair<tileformat::TileId, uint32_t>> slots;
+  for (const auto& [id, slot] : heights.slots)
+    slots.emplace_back(id, static_cast<uint32_t>(slot));
+  const auto table = build_tile_table(slots);
+  fill_buffer(terrain_table_, table.size() * sizeof(glm::uvec4), table.data());
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTerrainTable, terrain_table_);
+  terrain.set_frame_uniforms(p, view, world, exaggeration);  // uses p
+  gl::Uniform1ui(p.uniform("terrain_mask"), static_cast<uint32_t>(table.size() - 1));
+  gl::Uniform2i(p.uniform("u_origin"), static_cast<int>(view.origin.x),
+                static_cast<int>(view.origin.y));
+  gl::Uniform3f(p.uniform("u_eye"), static_cast<float>(view.eye.x), static_cast<float>(view.eye.y),
+                static_cast<float>(view.eye.z));
+  gl::Uniform1i(p.uniform("u_tmin"), heights.min_zoom);
+  gl::Uniform1i(p.uniform("u_tmax"), heights.max_zoom);
+  gl::Uniform1i(p.uniform("u_key_zoom"), world.key_zoom());
+  gl::Uniform1i(p.uniform("u_steps"), world.steps());
+  gl::Uniform1f(p.uniform("u_block_size"), static_cast<float>(heights.block_size));
+}
+
+double ChartRenderer::draw_heatmap(GLuint input_fbo, const GBuffer& g, const View& view,
+                                   const WorldFrame& world, const TerrainRenderer& terrain,
+                                   const TerrainHeights& heights, const HeatmapStyle& style,
+                                   double exaggeration) {
+  gl::BeginQuery(GL_TIME_ELAPSED, timer_);
+  // 1. The density: every place's kernel, added up per pixel.
+  const float zero[4] = {0, 0, 0, 0};
+  gl::ClearNamedFramebufferfv(density_fbo_, GL_COLOR, 0, zero);
+  if (instances_ > 0) {
+    const GlProgram& s = heat_splat_;
+    prepare(s, view, world, terrain, heights, exaggeration);
+    gl::Uniform2f(s.uniform("u_viewport"), static_cast<float>(width_), static_cast<float>(height_));
+    gl::Uniform1f(s.uniform("u_focal_px"), static_cast<float>(view.pixels_per_radian));
+    gl::Uniform1f(s.uniform("u_margin"), style.margin_world);
+    gl::BindTextureUnit(2, g.ground);  // unit 0: the terrain's heights
+    gl::BindTextureUnit(3, g.position);
+    gl::Uniform1i(s.uniform("u_gbuffer_ground"), 2);
+    gl::Uniform1i(s.uniform("u_gbuffer_position"), 3);
+    gl::BindFramebuffer(GL_FRAMEBUFFER, density_fbo_);
+    gl::Viewport(0, 0, width_, height_);
+    gl::Disable(GL_DEPTH_TEST);
+    gl::Enable(GL_BLEND);
+    gl::BlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+    gl::BindVertexArray(sprite_vao_);
+    gl::DrawArraysInstanced(GL_TRIANGLES, 0, 6, instances_);
+    gl::Disable(GL_BLEND);
+    gl::check("splatting the heatmap");
+  }
+  // The ramp's top: the frame's largest density.
+  const std::vector<float> d = read_r32f(density_fbo_, 0, 0, 0, width_, height_);
+  density_top_ = d.empty() ? 0 : *std::max_element(d.begin(), d.end());
+  // 2. The colours, blended over the input image.
+  copy_input(input_fbo);
+  const GlProgram& c = heat_color_;
+  gl::UseProgram(c.id());
+  gl::BindTextureUnit(1, density_);
+  gl::Uniform1i(c.uniform("u_density"), 1);
+  gl::Uniform1f(c.uniform("u_top"), density_top_);
+  gl::Uniform1f(c.uniform("u_opacity"), style.opacity);
+  gl::BindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  gl::Viewport(0, 0, width_, height_);
+  gl::Disable(GL_DEPTH_TEST);
+  gl::Enable(GL_BLEND);
+  gl::BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  gl::BindVertexArray(heat_vao_);
+  gl::DrawArrays(GL_TRIANGLES, 0, 3);
+  gl::Disable(GL_BLEND);
+  const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  gl::NamedFramebufferDrawBuffers(fbo_, 2, both);
+  const GLuint none = 0;
+  gl::ClearNamedFramebufferuiv(fbo_, GL_COLOR, 1, &none);  // no chart to pick
+  gl::EndQuery(GL_TIME_ELAPSED);
+  GLuint64 ns = 0;
+  gl::GetQueryObjectui64v(timer_, GL_QUERY_RESULT, &ns);
+  gl::BindVertexArray(0);
+  gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
+  gl::check("drawing the heatmap");
+  return static_cast<double>(ns) / 1e6;
+}
+
+float ChartRenderer::density_at(int x, int y) const {
+  if (x < 0 || y < 0 || x >= width_ || y >= height_) return 0;
+  return read_r32f(density_fbo_, 0, x, height_ - 1 - y, 1, 1).at(0);
 }
 
 uint32_t ChartRenderer::pick(int x, int y) const {

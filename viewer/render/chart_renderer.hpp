@@ -38,6 +38,13 @@ struct ChartInstance {
 };
 static_assert(sizeof(ChartInstance) == 104, "the vertex layout of chart_renderer.cpp");
 
+// The heatmap drawn instead of charts (instances' params: ground x, y
+// relative to the view origin, weight, kernel radius in ground units).
+struct HeatmapStyle {
+  float opacity = 0.75f;
+  float margin_world = 0;  // world units the relief may move a ground point on screen
+};
+
 struct ChartDrawStyle {
   ChartKind kind = ChartKind::kPie;
   ChartDepth depth = ChartDepth::kTerrain;
@@ -64,13 +71,31 @@ class ChartRenderer {
   double draw(GLuint input_fbo, const GBuffer& g, const View& view, const WorldFrame& world,
               const TerrainRenderer& terrain, const TerrainHeights& heights,
               const ChartDrawStyle& style, double exaggeration, glm::vec3 sun);
+  // The heatmap of the instances instead (heatmap_shaders.hpp): their
+  // kernel density over `input_fbo`'s colour, its top colour at the
+  // frame's largest density. Returns the GPU time in ms.
+  double draw_heatmap(GLuint input_fbo, const GBuffer& g, const View& view, const WorldFrame& world,
+                      const TerrainRenderer& terrain, const TerrainHeights& heights,
+                      const HeatmapStyle& style, double exaggeration);
   GLuint output_fbo() const { return fbo_; }
   // The pick id under pixel (x, y) (y from the top) of the last draw; 0 for
   // none.
   uint32_t pick(int x, int y) const;
+  // The last heatmap's density (weight per ground unit squared) at pixel
+  // (x, y) (from the top-left), and its largest.
+  float density_at(int x, int y) const;
+  float density_top() const { return density_top_; }
 
  private:
-  GlProgram sprite_, column_;
+  // Binds the terrain table and sets the uniforms the anchor code needs.
+  void prepare(const GlProgram& p, const View& view, const WorldFrame& world,
+               const TerrainRenderer& terrain, const TerrainHeights& heights, double exaggeration);
+  // Copies input_fbo's colour into the output image.
+  void copy_input(GLuint input_fbo);
+
+  GlProgram sprite_, column_, heat_splat_, heat_color_;
+  GLuint density_ = 0, density_fbo_ = 0, heat_vao_ = 0;
+  float density_top_ = 0;
   GLuint fbo_ = 0, color_ = 0, picks_ = 0;
   GLuint sprite_vao_ = 0, column_vao_ = 0, corner_vbo_ = 0, box_vbo_ = 0, instance_vbo_ = 0;
   GLuint terrain_table_ = 0, timer_ = 0;

@@ -33,7 +33,8 @@ struct TerrainHeights {
   int min_zoom = 0, max_zoom = 0, block_size = 0;
   const TerrainRenderer* frame = nullptr;  // lifted: sets the frame's uniforms
   double lift_m = 0;                       // lifted: metres above the terrain
-  double error_px = 0;  // lifted: the terrain LOD's screen-space error bound, cleared too
+  double error_px = 0;      // lifted: the terrain LOD's screen-space error bound, cleared too
+  double relief_world = 0;  // heatmaps: the terrain's height range, world units
 };
 
 struct LineFeedback {

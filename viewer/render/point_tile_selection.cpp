@@ -14,7 +14,6 @@ using tileformat::TileId;
 
 namespace {
 
-constexpr double kRefinePx = 1.5 * 256;
 // Tiles this coarse span too much of the globe for corner tests.
 constexpr int kCullFromZoom = 3;
 
@@ -84,7 +83,7 @@ std::vector<TileId> select_point_tiles(const PointTileSelection& s, const View& 
     const Measured m = open.top();
     open.pop();
     std::vector<TileId> children;
-    if (m.id.z < s.max_zoom && m.size_px > kRefinePx)
+    if (m.id.z < s.max_zoom && m.size_px > s.refine_px)
       for (const TileId& c : m.id.children())
         if (s.exists(c)) children.push_back(c);
     if (children.empty() || chosen.size() + open.size() + children.size() > s.max_tiles) {

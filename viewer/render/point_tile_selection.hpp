@@ -25,6 +25,7 @@ struct PointTileSelection {
   std::function<bool(tileformat::TileId)> exists;
   double low_m = 0, high_m = 0;         // the terrain's height range (culling)
   const LayerTiling* tiling = nullptr;  // the package's tiles in the terrain's key units
+  double refine_px = 1.5 * 256;         // a tile larger than this is refined
   size_t max_tiles = 4096;
 };
 

@@ -59,6 +59,12 @@ uint32_t read_u32(GLuint fbo, int attachment, int x, int y, int height) {
   return v;
 }
 
+std::vector<float> read_r32f(GLuint fbo, int attachment, int x, int y, int w, int h) {
+  std::vector<float> v(size_t(w) * h);
+  read_attachment(fbo, attachment, x, y, w, h, GL_RED, GL_FLOAT, v.data(), "reading a float image");
+  return v;
+}
+
 void blit_to_window(GLuint fbo, int width, int height, int window_width, int window_height) {
   gl::NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
   gl::BlitNamedFramebuffer(fbo, 0, 0, 0, width, height, 0, 0, window_width, window_height,

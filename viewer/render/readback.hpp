@@ -22,6 +22,9 @@ double ground_fraction(GLuint gbuffer_fbo, int width, int height);
 // The R32UI value of colour attachment `attachment` (0-based) of `fbo` at
 // pixel (x, y), y counted from the top.
 uint32_t read_u32(GLuint fbo, int attachment, int x, int y, int height);
+// The rectangle (x, y, w, h) of a float colour attachment (GL rows, from the
+// bottom), red channel.
+std::vector<float> read_r32f(GLuint fbo, int attachment, int x, int y, int w, int h);
 // Scales colour attachment 0 of `fbo` onto the window's framebuffer (0).
 void blit_to_window(GLuint fbo, int width, int height, int window_width, int window_height);
 
