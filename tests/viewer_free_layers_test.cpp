@@ -66,6 +66,15 @@ const Packages& packages() {
   return p;
 }
 
+// A pixel of the layer `kind`: a red contour (c1000), or a chart (places):
+// coloured, unlike the grey relief and the sky.
+bool layer_pixel(const std::string& kind, const uint8_t* p) {
+  if (kind == "c1000") return int(p[0]) - int(p[1]) > 60;
+  const int lo = std::min({int(p[0]), int(p[1]), int(p[2])}),
+            hi = std::max({int(p[0]), int(p[1]), int(p[2])});
+  return !is_sky(p) && hi - lo > 40;
+}
+
 std::string other(const std::string& tiling) {
   return tiling == "geodetic" ? "webmercator" : "geodetic";
 }
@@ -91,13 +100,7 @@ class CrossTiling : public ::testing::TestWithParam<Case> {
         {base + packages().at(kind + "_" + c.terrain + ".mbtiles") + " --snapshot " + a,
          base + packages().at(kind + "_" + other(c.terrain) + ".mbtiles") + " --snapshot " + b},
         dir_.path()));
-    auto pick = [&](const uint8_t* p) {
-      if (kind == "c1000") return int(p[0]) - int(p[1]) > 60;
-      // Chart pixels: coloured, unlike the grey relief and the sky.
-      const int lo = std::min({int(p[0]), int(p[1]), int(p[2])}),
-                hi = std::max({int(p[0]), int(p[1]), int(p[2])});
-      return !is_sky(p) && hi - lo > 40;
-    };
+    auto pick = [&](const uint8_t* p) { return layer_pixel(kind, p); };
     same = pixels_where(a, w_, h_, pick);
     int w = 0, h = 0;
     crossed = pixels_where(b, w, h, pick);
@@ -174,12 +177,7 @@ TEST_P(WithoutTerrain, LayersStandAsOverAZeroTerrain) {
     EXPECT_NE(r.err.find("no terrain given"), std::string::npos) << r.err;
     ASSERT_TRUE(run_all({base + b + " " + packages().at("zero_geodetic.mbtiles") + " " + layer},
                         dir.path()));
-    auto pick = [&](const uint8_t* p) {
-      if (kind == "c1000") return int(p[0]) - int(p[1]) > 60;
-      const int lo = std::min({int(p[0]), int(p[1]), int(p[2])}),
-                hi = std::max({int(p[0]), int(p[1]), int(p[2])});
-      return !is_sky(p) && hi - lo > 40;
-    };
+    auto pick = [&](const uint8_t* p) { return layer_pixel(kind, p); };
     int w = 0, h = 0, zw = 0, zh = 0;
     const std::vector<bool> alone = pixels_where(a, w, h, pick),
                             zero = pixels_where(b, zw, zh, pick);
