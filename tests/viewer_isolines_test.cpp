@@ -5,6 +5,8 @@
 // and oblique, over a regional and a global package.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -101,6 +103,94 @@ TEST(IsolineOptions, BadValuesAreUsageErrors) {
                             dir.path());
     EXPECT_EQ(r.exit_code, 2) << bad << ": " << r.err;
   }
+}
+
+// --isolines-of slope on a paraboloid z = a r^2 (a = 0.0005 / m, 10 m cells,
+// UTM): its slope is atan(2 a r), so the isolines every 10 degrees are
+// circles around the apex at r_k = tan(10 k deg) / (2 a). Seen straight down
+// from 60 km through a 5 degree field of view (nearly orthographic), the
+// circles' radii in pixels follow tan(10 k deg) with the scale this camera
+// gives: a closed-form reference, no shared code.
+TEST(IsolinesOf, SlopeIsolinesAreTheParaboloidsCircles) {
+  TempDir dir;
+  const int n = 401;
+  const double cell = 10, a = 0.0005;
+  {
+    std::ofstream asc(dir / "p.asc");
+    asc << "ncols " << n << "\nnrows " << n << "\nxllcorner 500000\nyllcorner 4000000\ncellsize "
+        << cell << "\n";
+    for (int j = 0; j < n; ++j) {
+      const double y = (n - 1 - j) * cell - 2000;
+      for (int i = 0; i < n; ++i) {
+        const double x = i * cell - 2000;
+        asc << (i ? " " : "") << a * (x * x + y * y);
+      }
+      asc << "\n";
+    }
+    std::ofstream(dir / "p.prj") << "EPSG:32616";
+  }
+  // The apex: the centre of cell (200, 200), easting 502005, northing 4002005.
+  const std::string pkg = (dir / "p.mbtiles").string(), png = (dir / "s.png").string();
+  ASSERT_TRUE(run_all(
+      {tiler() + " terrain -q --s_srs EPSG:32616 " + (dir / "p.asc").string() + " -o " + pkg},
+      dir.path()));
+  const RunResult apex =
+      run("echo 502005 4002005 | gdaltransform -s_srs EPSG:32616 -t_srs EPSG:4326", dir.path());
+  double lon = 0, lat = 0;
+  ASSERT_EQ(std::sscanf(apex.out.c_str(), "%lf %lf", &lon, &lat), 2) << apex.out << apex.err;
+  char camera[128];
+  std::snprintf(camera, sizeof camera, "--camera=%.7f,%.7f,60000,0,0", lon, lat);
+  const RunResult r =
+      run(viewer() + " --platform osmesa --size 480x270 --fov 5 " + camera + " " + pkg +
+              " --isolines 10 --isolines-of slope --isoline-color '#ff0000'" + " --snapshot " + png,
+          dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  int w = 0, h = 0;
+  const std::vector<bool> red = red_pixels(png, w, h);
+  // Distances from the apex (the frame's centre) of the isoline pixels
+  // inside 1.5 km (the DEM's own edge draws spurious levels further out).
+  const double m_per_px = 2 * 60000 * std::tan(2.5 * M_PI / 180) / h;
+  std::vector<double> d;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (red[size_t(y) * w + x]) {
+        const double dist = std::hypot(x + 0.5 - w / 2.0, y + 0.5 - h / 2.0);
+        if (dist * m_per_px < 1500) d.push_back(dist);
+      }
+  ASSERT_GT(d.size(), 500u) << "hardly any isolines";
+  auto share_on_circles = [&](double r1) {
+    size_t on = 0;
+    for (double v : d) {
+      double best = 1e9;
+      for (int k = 1; k <= 8; ++k)
+        best = std::min(
+            best, std::abs(v - r1 * std::tan(10 * k * M_PI / 180) / std::tan(10 * M_PI / 180)));
+      on += best <= 1.5;
+    }
+    return double(on) / double(d.size());
+  };
+  // The first circle's radius in pixels: the best fit, and the camera's.
+  double fit = 0, fit_share = 0;
+  for (double r1 = 2; r1 < 40; r1 += 0.05)
+    if (const double s = share_on_circles(r1); s > fit_share) fit = r1, fit_share = s;
+  const double expected = std::tan(10 * M_PI / 180) / (2 * a) / m_per_px;
+  std::printf(
+      "slope isolines: %zu pixels, %.1f %% on circles of radius ratio tan(10k)/tan(10) "
+      "(first %.2f px; the camera gives %.2f px)\n",
+      d.size(), 100 * fit_share, fit, expected);
+  EXPECT_GE(fit_share, 0.95);
+  EXPECT_NEAR(fit, expected, 0.05 * expected);
+}
+
+TEST(IsolinesOf, FlowNeedsAnAnalysisPackage) {
+  TempDir dir;
+  const RunResult r =
+      run(viewer() + " --platform osmesa " + packages().terrain("jacksboro.mbtiles") +
+              " --isolines 1 --isolines-of flow --snapshot " + (dir / "x.png").string(),
+          dir.path());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--isolines-of flow draws the flow_accumulation layer"), std::string::npos)
+      << r.err;
 }
 
 }  // namespace

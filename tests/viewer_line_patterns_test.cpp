@@ -1,9 +1,14 @@
-// Procedural line patterns (docs/viewer.md "Line patterns"): railway ties,
-// arrows, zigzag and dots drawn per pixel from the distance along and
-// across the line. The four on parallel lines over a flat base match an
-// expected picture; the arrows point along the line's vertex order, checked
-// from the drawn chevrons' shape (the arms trail the apex) on a line drawn
-// west to east and the same line drawn east to west.
+// Lines drawn per pixel beyond a plain fill:
+//  - procedural patterns (docs/viewer.md "Line patterns"): railway ties,
+//    arrows, zigzag and dots from the distance along and across the line.
+//    The four on parallel lines over a flat base match an expected picture;
+//    the arrows point along the line's vertex order, checked from the drawn
+//    chevrons' shape (the arms trail the apex) on a line drawn west to east
+//    and the same line drawn east to west;
+//  - colour by the ground under the line (docs/viewer.md "Lines coloured by
+//    the ground"): gdal_contour's 50 m contours coloured by height read back
+//    their own level from their colours; coloured by slope they match an
+//    expected picture (the street-slope map of the thesis's Figure 4.18).
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -139,6 +144,76 @@ TEST(ViewerLinePatterns, UnknownPatternsAreClearErrors) {
            dir.path());
   EXPECT_EQ(v.exit_code, 1) << v.err;
   EXPECT_NE(v.err.find("\"pattern\": expected \"\" or one of railway"), std::string::npos) << v.err;
+}
+
+// jacksboro with its 50 m contours (gdal_contour), shared by the tests below.
+struct Contours {
+  std::string terrain, lines;
+};
+const Contours& contours() {
+  static const Contours c = [] {
+    const fs::path dir = shared_folder("globe-view-line-colours", [](const fs::path& d) {
+      const std::string j = sample("jacksboro.tif").string();
+      return run_all({tiler() + " terrain -q " + j + " -o " + (d / "j.mbtiles").string(),
+                      "gdal_contour -q -i 50 -a elev " + j + " " + (d / "c50.shp").string(),
+                      vectorize() + " lines -q " + (d / "c50.shp").string() + " -o " +
+                          (d / "c50.mbtiles").string()},
+                     d);
+    });
+    return Contours{(dir / "j.mbtiles").string(), (dir / "c50.mbtiles").string()};
+  }();
+  return c;
+}
+
+constexpr const char* kContourCamera = " --camera=-84.30,36.55,2500,30,65 --size 480x270";
+
+TEST(ViewerLineColours, ContoursColouredByHeightShowTheirOwnLevel) {
+  TempDir dir;
+  // Blue at 200 m to red at 1100 m, a colour file beside the style file.
+  std::ofstream(dir / "ramp.txt") << "200 0 0 255\n1100 255 0 0\n";
+  std::ofstream(dir / "style.json") << R"({"c50": {"color": "height:ramp.txt", "width": 3}})";
+  const std::string png = (dir / "h.png").string();
+  // Top-down, so a pixel's ground lies close to the line's level.
+  const RunResult r = view(contours().terrain + " " + contours().lines + " --style " +
+                               (dir / "style.json").string() +
+                               " --camera=-84.25,36.50,3000,0,0 --size 480x270 --snapshot " + png,
+                           dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  int w = 0, h = 0;
+  const std::vector<uint8_t> rgb = read_rgb(png, w, h);
+  size_t lines = 0, on_level = 0;
+  for (size_t i = 0; i + 2 < rgb.size(); i += 3) {
+    const int R = rgb[i], G = rgb[i + 1], B = rgb[i + 2];
+    if (G > 10 || R + B < 245) continue;  // only the lines' fully covered pixels
+    ++lines;
+    const double height = 200 + 900.0 * R / (R + B);
+    on_level += std::abs(height - 50 * std::round(height / 50)) <= 12;
+  }
+  std::printf("height-coloured contours: %zu line pixels, %.1f %% within 12 m of a 50 m level\n",
+              lines, 100.0 * on_level / std::max<size_t>(lines, 1));
+  EXPECT_GT(lines, size_t(w) * h / 50);
+  // Chance would put 48 % within 12 m of a level; a 3 px line on a 30 degree
+  // slope spans +-8 m of ground around its level.
+  EXPECT_GE(double(on_level) / double(lines), 0.95);
+}
+
+TEST(ViewerLineColours, ContoursColouredBySlopeMatchExpected) {
+  TempDir dir;
+  std::ofstream(dir / "style.json") << R"({"c50": {"color": "slope", "width": 2}})";
+  const std::string png = (dir / "s.png").string();
+  const RunResult r =
+      view(contours().terrain + " " + contours().lines + " --style " +
+               (dir / "style.json").string() + kContourCamera + " --snapshot " + png,
+           dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_image(png, "line_colour_by_slope");
+  // A missing colour file is named.
+  std::ofstream(dir / "bad.json") << R"({"c50": {"color": "slope:nosuch.txt"}})";
+  const RunResult bad = view(contours().terrain + " " + contours().lines + " --style " +
+                                 (dir / "bad.json").string() + " --snapshot " + png,
+                             dir.path());
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("nosuch.txt"), std::string::npos) << bad.err;
 }
 
 }  // namespace

@@ -52,8 +52,10 @@ void parse_style(const std::string& spec, LineStyle& s, const std::string& conte
                        "' is not key=value (keys: color, width, casing, dash, opacity, pattern)");
     const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
     if (key == "color") {
+      if (parse_line_color_by(value, s)) continue;  // by the ground under the line
       if (!is_hex_color(value))
-        throw UsageError(context + ": color '" + value + "' is not #rrggbb");
+        throw UsageError(context + ": color '" + value +
+                         "' is not #rrggbb, slope[:RAMP.txt] or height[:RAMP.txt]");
       s.color = value;
     } else if (key == "width") {
       s.width = parse_length(value, context + " width", &s.width_in_m);
@@ -169,6 +171,9 @@ std::string LineClasses::json() const {
       out += (k ? "," : "") + number(s.dash[k]);
     out += "]";
     if (s.opacity < 1) out += ",\"opacity\":" + number(s.opacity);  // absent: opaque
+    if (!s.color_by.empty())
+      out += ",\"color_by\":\"" + s.color_by + "\",\"ramp\":\"" + tileformat::json_escape(s.ramp) +
+             "\"";
     if (!s.pattern.empty())
       out += ",\"pattern\":\"" + s.pattern + "\",\"pattern_spacing\":" + number(s.pattern_spacing);
     out += "}";

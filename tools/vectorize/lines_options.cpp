@@ -8,8 +8,10 @@ namespace globe {
 void declare_line_tile_options(CliArgs& cli, LinesSettings& s) {
   cli.option(
       "--style", "CLASS:K=V,...",
-      "a class's style (repeatable); keys color=#rrggbb, width=2px|12m,\n"
-      "                              casing=#rrggbb@1px, dash=6+3, opacity=0.5,\n"
+      "a class's style (repeatable); keys color=#rrggbb (or slope[:RAMP.txt],\n"
+      "                              height[:RAMP.txt]: by the ground under the line, in\n"
+      "                              globe-view), width=2px|12m, casing=#rrggbb@1px, dash=6+3,\n"
+      "                              opacity=0.5,\n"
       "                              pattern=railway|arrows|zigzag|dots[@SPACING] (default:\n"
       "                              palette, 1.5px, solid, opaque, no pattern)",
       [&](const std::string& v) { s.styles.push_back(v); });

@@ -36,6 +36,8 @@ std::string shading_needs(const ShadingSettings& s, const std::optional<std::str
     if (const ShadingMode& lens = shading_mode(s.lens_mode); lens.needs)
       need.emplace_back(*lens.needs, std::string("--lens ...:") + lens.name);
   if (s.ambient_occlusion) need.emplace_back(AnalysisLayer::kSkyview, "--ambient-occlusion");
+  if (s.isoline_interval > 0 && s.isolines_of == ShadingSettings::IsolinesOf::kFlow)
+    need.emplace_back(AnalysisLayer::kFlowAccumulation, "--isolines-of flow");
   for (const auto& [layer, what] : need) {
     const std::string name = tileformat::analysis_layer_info(layer).name;
     const std::string make = layer == AnalysisLayer::kPlanCurvature      ? "curvature"

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "app/color_relief_file.hpp"
+#include "render/color_ramp.hpp"
 #include "runtime/errors.hpp"
 #include "tileformat/feature_table.hpp"
 #include "tileformat/json.hpp"
@@ -41,6 +43,38 @@ std::string property(const tileformat::JsonValue& props, const char* key) {
   return v->is_number() ? number_text(v->number()) : v->is_string() ? v->string() : "";
 }
 
+// Per class, the ramp of a class coloured by the ground under it: its
+// colour file (UsageError naming it when unreadable) or the built-in one.
+std::vector<LineRamp> line_ramps(const std::vector<NamedLineStyle>& classes,
+                                 std::pair<double, double> heights) {
+  std::vector<LineRamp> out(classes.size());
+  for (size_t k = 0; k < classes.size(); ++k) {
+    const LineStyle& s = classes[k].style;
+    if (s.color_by.empty()) continue;
+    const bool slope = s.color_by == "slope";
+    ColorRamp ramp;
+    if (!s.ramp.empty()) {
+      ramp = read_color_relief_file(s.ramp).ramp;
+    } else if (slope) {  // as --shading slope: cream to red over 0..45 degrees
+      ramp = {"slope (built-in)",
+              {{0, false, {255, 255, 217, 255}}, {45, false, {191, 26, 13, 255}}}};
+    } else {
+      ramp = builtin_ramp("hypsometric", heights.first, heights.second);
+    }
+    const RampTable t =
+        slope ? tabulate(ramp, 0, 90) : tabulate(ramp, heights.first, heights.second);
+    LineRamp& r = out[k];
+    r.by = slope ? 1 : 2;
+    r.lo = static_cast<float>(t.lo), r.hi = static_cast<float>(t.hi);
+    r.rgba.resize(LineRamp::kEntries * 4);
+    for (int i = 0; i < LineRamp::kEntries; ++i) {
+      const int src = i * (RampTable::kEntries - 1) / (LineRamp::kEntries - 1);
+      std::copy_n(t.rgba.begin() + src * 4, 4, r.rgba.begin() + i * 4);
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 LineLayer::LineLayer(const std::string& path, LinePackage package,
@@ -59,7 +93,7 @@ LineLayer::LineLayer(const std::string& path, LinePackage package,
       height_(height),
       legend_(bundle_legend_rows(cache_.package().meta.bundle_json)) {
   styles_ = read_styles();
-  renderer_.set_styles(styles_);
+  renderer_.set_styles(styles_, line_ramps(styles_, heights_));
   if (style_path_) {
     std::error_code ec;
     style_time_ = std::filesystem::last_write_time(*style_path_, ec);
@@ -89,7 +123,7 @@ bool LineLayer::reload_style(Reload when) {
   style_time_ = t;
   try {
     std::vector<NamedLineStyle> styles = read_styles();
-    renderer_.set_styles(styles);
+    renderer_.set_styles(styles, line_ramps(styles, heights_));
     styles_ = std::move(styles);
     std::fprintf(stderr, "globe-view: styles reloaded from %s\n", style_path_->c_str());
     return true;
@@ -106,6 +140,16 @@ size_t LineLayer::upload_loaded() {
     cache_.drop_words(r);
   }
   return loaded.size();
+}
+
+void LineLayer::set_height_range(double lo, double hi) {
+  if (!(hi > lo) || std::pair(lo, hi) == heights_) return;
+  heights_ = {lo, hi};
+  for (const NamedLineStyle& c : styles_)
+    if (c.style.color_by == "height") {
+      renderer_.set_styles(styles_, line_ramps(styles_, heights_));
+      return;
+    }
 }
 
 void LineLayer::set_mode(LineMode m) {

@@ -54,6 +54,9 @@ class LineLayer {
   // Re-reads the style file if it changed since the last read (kAlways: even
   // if not). A broken file keeps the current styles; the error goes to stderr.
   bool reload_style(Reload when);  // true: the styles changed
+  // The terrain's height range (metres): where the built-in height ramp and a
+  // colour file's percentages lie for classes coloured by height.
+  void set_height_range(double lo, double hi);
   LineMode mode() const { return mode_; }
   // Keeps the mode (and says so on stderr) where the lines cannot be drawn
   // in `m`: geometry and lifted lines need the terrain's tiling.
@@ -101,8 +104,9 @@ class LineLayer {
   uint32_t frame_ = 0;
   size_t tiles_used_ = 0;
   int width_ = 0, height_ = 0;
-  std::vector<NamedLineStyle> styles_;  // as drawn (package, style file, highlight)
-  std::vector<LegendRow> legend_;       // bundled flows: the weight classes
+  std::vector<NamedLineStyle> styles_;          // as drawn (package, style file, highlight)
+  std::pair<double, double> heights_{0, 3000};  // set_height_range
+  std::vector<LegendRow> legend_;               // bundled flows: the weight classes
   TextOverlay overlay_;
 };
 

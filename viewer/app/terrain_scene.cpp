@@ -375,6 +375,8 @@ FrameResult TerrainScene::frame(const CameraPose& asked, Loading loading, Output
       heights.lift_m = settings_.lift_m ? *settings_.lift_m : 0.03 * glm::length(f.view.eye);
       heights.error_px = settings_.max_error_px;
     }
+    const auto [height_lo, height_hi] = ramp_->data_range();
+    lines_->set_height_range(height_lo, height_hi);
     f.lines_ms = lines_->draw(g, f.view, *world_, settings_.shading.exaggeration, heights, loading);
   }
   if (charts_) {

@@ -162,6 +162,20 @@ void declare_shading_options(CliArgs& cli, ViewerSettings& s) {
                  s.shading.isoline_index =
                      CliArgs::to_int("--isolines", v.substr(comma + 1), 1, 1000);
              });
+  cli.option("--isolines-of", "FIELD",
+             "what --isolines follows: height (default, metres), slope (degrees) or flow (the "
+             "analysis package's upstream area, every M doublings)",
+             [&](const std::string& v) {
+               using Of = ShadingSettings::IsolinesOf;
+               if (v == "height")
+                 s.shading.isolines_of = Of::kHeight;
+               else if (v == "slope")
+                 s.shading.isolines_of = Of::kSlope;
+               else if (v == "flow")
+                 s.shading.isolines_of = Of::kFlow;
+               else
+                 throw UsageError("--isolines-of: unknown field '" + v + "' (height, slope, flow)");
+             });
   cli.option("--isoline-color", "#RRGGBB", "the isolines' colour (default #5c3317)",
              [&](const std::string& v) {
                unsigned rgb = 0;

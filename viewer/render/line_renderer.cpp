@@ -127,6 +127,7 @@ LineRenderer::~LineRenderer() {
   gl::DeleteFramebuffers(2, fbos);
   gl::DeleteTextures(3, textures);
   gl::DeleteQueries(1, &timer_);
+  if (ramps_) gl::DeleteTextures(1, &ramps_);
 }
 
 void LineRenderer::resize(int width, int height) {
@@ -155,9 +156,12 @@ void LineRenderer::resize(int width, int height) {
   gl::NamedFramebufferTexture(geometry_fbo_, GL_COLOR_ATTACHMENT0, output_, 0);
 }
 
-void LineRenderer::set_styles(const std::vector<NamedLineStyle>& classes) {
+void LineRenderer::set_styles(const std::vector<NamedLineStyle>& classes,
+                              const std::vector<LineRamp>& ramps) {
   std::vector<glm::vec4> v;
-  for (const NamedLineStyle& c : classes) {
+  std::vector<uint8_t> rows;
+  for (size_t k = 0; k < classes.size(); ++k) {
+    const NamedLineStyle& c = classes[k];
     const LineStyle& s = c.style;
     const bool casing = !s.casing_color.empty() && s.casing_width > 0;
     float dash[8] = {};
@@ -173,7 +177,23 @@ void LineRenderer::set_styles(const std::vector<NamedLineStyle>& classes) {
     v.push_back({dash[4], dash[5], dash[6], dash[7]});
     const int pattern = std::max(line_pattern_id(s.pattern), 0);
     v.push_back({float(pattern), pattern ? float(line_pattern_spacing(s)) : 0.0f, 0.0f, 0.0f});
+    const LineRamp* r = k < ramps.size() && ramps[k].by > 0 ? &ramps[k] : nullptr;
+    const int row = static_cast<int>(rows.size() / (LineRamp::kEntries * 4));
+    if (r) rows.insert(rows.end(), r->rgba.begin(), r->rgba.end());
+    v.push_back({r ? float(r->by) : 0.0f, float(row), r ? r->lo : 0.0f, r ? r->hi : 1.0f});
   }
+  if (ramps_) gl::DeleteTextures(1, &ramps_);
+  ramp_rows_ = std::max<int>(1, static_cast<int>(rows.size() / (LineRamp::kEntries * 4)));
+  rows.resize(size_t(ramp_rows_) * LineRamp::kEntries * 4, 0);
+  gl::CreateTextures(GL_TEXTURE_2D, 1, &ramps_);
+  gl::TextureStorage2D(ramps_, 1, GL_RGBA8, LineRamp::kEntries, ramp_rows_);
+  gl::TextureParameteri(ramps_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  gl::TextureParameteri(ramps_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  gl::TextureParameteri(ramps_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  gl::TextureParameteri(ramps_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  gl::TextureSubImage2D(ramps_, 0, 0, 0, LineRamp::kEntries, ramp_rows_, GL_RGBA, GL_UNSIGNED_BYTE,
+                        rows.data());
   fill_buffer(styles_, v.size() * sizeof(glm::vec4), v.data());
   class_count_ = static_cast<int>(classes.size());
   // Lifted lines: narrower classes first, so wider ones lie on top (where
@@ -253,6 +273,8 @@ double LineRenderer::draw(const GBuffer& g, const View& view, const WorldFrame& 
   gl::Uniform1i(p.uniform("u_position"), 1);
   gl::Uniform1i(p.uniform("u_ground"), 2);
   gl::Uniform1i(p.uniform("u_ground_dy"), 3);
+  gl::BindTextureUnit(5, ramps_);
+  gl::Uniform1i(p.uniform("u_line_ramps"), 5);
   const glm::mat4 inv = glm::mat4(glm::inverse(view.proj * view.view));
   gl::UniformMatrix4fv(p.uniform("u_inv_view_proj"), 1, GL_FALSE, glm::value_ptr(inv));
   gl::Uniform3f(p.uniform("u_eye"), float(view.eye.x), float(view.eye.y), float(view.eye.z));

@@ -37,6 +37,16 @@ struct TerrainHeights {
   double relief_world = 0;  // heatmaps: the terrain's height range, world units
 };
 
+// A class coloured by the ground under it: the G-buffer value it reads
+// (1 slope in degrees, 2 height in metres), the values at the ends of its
+// ramp and kEntries colours evenly between them.
+struct LineRamp {
+  static constexpr int kEntries = 256;
+  int by = 0;  // 0: the class's plain colour
+  float lo = 0, hi = 1;
+  std::vector<uint8_t> rgba;  // kEntries * 4
+};
+
 struct LineFeedback {
   std::vector<tileformat::TileId> requests;  // wanted, not resident
   std::vector<uint32_t> used;                // records the frame read
@@ -53,7 +63,9 @@ class LineRenderer {
   LineRenderer& operator=(const LineRenderer&) = delete;
 
   void resize(int width, int height);
-  void set_styles(const std::vector<NamedLineStyle>& classes);
+  // ramps: per class (may be shorter: the rest keep their plain colours).
+  void set_styles(const std::vector<NamedLineStyle>& classes,
+                  const std::vector<LineRamp>& ramps = {});
   // Copies freshly loaded record `index`'s words into the arena (and keeps
   // its segments' classes, for lifted lines).
   void upload(uint32_t index, const LineRecord& record);
@@ -82,6 +94,8 @@ class LineRenderer {
                    const std::vector<uint32_t>& used, uint32_t frame);
 
   GlProgram deferred_, geometry_, lifted_points_, lifted_;
+  GLuint ramps_ = 0;  // RGBA8, LineRamp::kEntries x one row per ramp
+  int ramp_rows_ = 0;
   GLuint arena_ = 0, records_ = 0, table_ = 0, styles_ = 0, requests_ = 0, used_ = 0,
          terrain_table_ = 0;
   // fbo_: output + pixel records (the full-screen pass); geometry_fbo_:

@@ -9,7 +9,7 @@ namespace globe::viewer::shaders {
 // Declarations and helpers shared by both programs.
 inline constexpr const char* kLineCommon = R"(#version 450 core
 layout(std430, binding = 0) readonly buffer Arena { uint arena[]; };
-layout(std430, binding = 3) readonly buffer Styles { vec4 styles[]; };  // 6 per class
+layout(std430, binding = 3) readonly buffer Styles { vec4 styles[]; };  // 7 per class
 uniform int u_class_count;
 
 // Tile coordinates of world points: `base + frac` is the view origin in
@@ -58,6 +58,7 @@ layout(std430, binding = 1) readonly buffer Records { uvec4 records[]; };  // 2 
 layout(std430, binding = 5) buffer Used { uint used[]; };
 uniform uint u_frame;
 uniform sampler2D u_color, u_ground, u_ground_dy;
+uniform sampler2D u_line_ramps;  // a row per class coloured by the ground (LineRamp)
 uniform TileRef u_ref;  // the line tiling's (per_m: per layer CRS unit when crossing)
 uniform int u_cross;    // 0 the terrain's CRS, 1/2 crossing (kCrsCrossGlsl)
 uniform vec2 u_cross_param, u_crs_per_m;  // crossing: its parameter, terrain CRS units per ground unit
@@ -78,9 +79,9 @@ float coverage(float d, float h) {
 }
 // Fraction of [pos - q/2, pos + q/2] that falls on the dash pattern's "on" parts.
 float dash_coverage(float pos, float q, int cls) {
-  vec4 d0 = styles[cls * 6 + 3], d1 = styles[cls * 6 + 4];
+  vec4 d0 = styles[cls * 7 + 3], d1 = styles[cls * 7 + 4];
   float pat[8] = float[8](d0.x, d0.y, d0.z, d0.w, d1.x, d1.y, d1.z, d1.w);
-  int n = int(styles[cls * 6 + 2].w);
+  int n = int(styles[cls * 7 + 2].w);
   float total = 0.0;
   for (int i = 0; i < n; ++i) total += pat[i];
   float p = mod(pos, total), cov = 0.0, s = 0.0;
@@ -202,7 +203,7 @@ void main() {
     uint o = r0.z + seg * 6u;
     int cls = int(arena[o + 4u]);
     if (cls >= u_class_count) continue;
-    vec4 st = styles[cls * 6 + 2];  // half width, casing width, unit is metres, dash count
+    vec4 st = styles[cls * 7 + 2];  // half width, casing width, unit is metres, dash count
     if (st.x <= 0.0) continue;
     vec2 A = seg_a(o), B = seg_b(o);
     vec2 aw = L * (A - lu), bw = L * (B - lu);
@@ -230,7 +231,7 @@ void main() {
     if (d > outer + 0.5) continue;
     float cov_c = st.y > 0.0 ? coverage(d, outer) : 0.0;
     float cov_f = coverage(d, hw);
-    vec4 pat = styles[cls * 6 + 5];  // pattern id, motif spacing in the width's unit
+    vec4 pat = styles[cls * 7 + 5];  // pattern id, motif spacing in the width's unit
     if (pat.x > 0.5 && len2 > 1e-12) {
       // Position along the line in the width's unit (metres, or pixels as the
       // dashes), and screen pixels per that unit along.
@@ -277,7 +278,7 @@ void main() {
     if (cov_f > lay_f[at]) lay_f[at] = cov_f, lay_seg[at] = seg;
   }
   // Lowest class first, each casing then fill over what lies under it at its
-  // coverage times the class's opacity (styles[cls * 6].a).
+  // coverage times the class's opacity (styles[cls * 7].a).
   for (int i = 1; i < layers; ++i)
     for (int j = i; j > 0 && lay_cls[j - 1] > lay_cls[j]; --j) {
       int tc = lay_cls[j]; lay_cls[j] = lay_cls[j - 1]; lay_cls[j - 1] = tc;
@@ -286,11 +287,19 @@ void main() {
       uint ts = lay_seg[j]; lay_seg[j] = lay_seg[j - 1]; lay_seg[j - 1] = ts;
     }
   vec3 col = base.rgb;
+  vec4 under = texelFetch(u_ground_dy, px, 0);  // .z height (m), .w slope (deg) of the ground
   for (int i = 0; i < layers; ++i) {
     int cls = lay_cls[i];
-    float a = styles[cls * 6].a;
-    col = mix(col, styles[cls * 6 + 1].rgb, lay_c[i] * a);
-    col = mix(col, styles[cls * 6].rgb, lay_f[i] * a);
+    float a = styles[cls * 7].a;
+    vec3 fill = styles[cls * 7].rgb;
+    vec4 by = styles[cls * 7 + 6];  // by (1 slope, 2 height), ramp row, value at 0, value at 1
+    if (by.x > 0.5) {
+      float t = clamp(((by.x < 1.5 ? under.w : under.z) - by.z) / max(by.w - by.z, 1e-6), 0.0, 1.0);
+      fill = texture(u_line_ramps, vec2((t * 255.0 + 0.5) / 256.0,
+                                        (by.y + 0.5) / float(textureSize(u_line_ramps, 0).y))).rgb;
+    }
+    col = mix(col, styles[cls * 7 + 1].rgb, lay_c[i] * a);
+    col = mix(col, fill, lay_f[i] * a);
     o_segment = lay_seg[i] + 1u;  // the top one stays: what picking names
   }
   o_color = vec4(col, 1.0);
@@ -316,8 +325,8 @@ ivec2 quad_corner() {
 // Class cls's half width in the layer drawn (0: none, or hidden) and its
 // colour (into v_color); `metres` whether the width is in metres.
 float layer_half_width(int cls, out bool metres) {
-  vec4 st = cls < u_class_count ? styles[cls * 6 + 2] : vec4(0);
-  v_color = cls < u_class_count ? styles[cls * 6 + (u_layer == 0 ? 1 : 0)] : vec4(0);
+  vec4 st = cls < u_class_count ? styles[cls * 7 + 2] : vec4(0);
+  v_color = cls < u_class_count ? styles[cls * 7 + (u_layer == 0 ? 1 : 0)] : vec4(0);
   metres = st.z > 0.5;
   return u_layer == 0 ? (st.y > 0.0 ? st.x + st.y : 0.0) : st.x;
 }

@@ -136,7 +136,7 @@ void TerrainRenderer::resize(int width, int height) {
   g_.position = texture(GL_RGBA32F);
   g_.normal = texture(GL_RGBA16F);
   g_.ground = texture(GL_RGBA32F);
-  g_.ground_dy = texture(GL_RG32F);
+  g_.ground_dy = texture(GL_RGBA32F);
   g_.depth = texture(GL_DEPTH_COMPONENT24);
   gl::CreateFramebuffers(1, &g_.fbo);
   gl::NamedFramebufferTexture(g_.fbo, GL_COLOR_ATTACHMENT0, g_.color, 0);
@@ -253,6 +253,7 @@ RenderTimes TerrainRenderer::draw(const std::vector<Patch>& patches, const View&
   gl::BindTextureUnit(1, mask_);
   gl::Uniform1f(p.uniform("u_size"), static_cast<float>(size_));
   gl::Uniform1f(p.uniform("u_zscale"), static_cast<float>(frame.height_scale() * s.exaggeration));
+  gl::Uniform1f(p.uniform("u_exaggeration"), static_cast<float>(s.exaggeration));
   const double az = s.sun_azimuth_deg * std::numbers::pi / 180,
                alt = s.sun_altitude_deg * std::numbers::pi / 180;
   gl::Uniform3f(p.uniform("u_sun"), static_cast<float>(std::sin(az) * std::cos(alt)),
@@ -284,6 +285,7 @@ RenderTimes TerrainRenderer::draw(const std::vector<Patch>& patches, const View&
   gl::Uniform1i(p.uniform("u_lens_mode"), static_cast<int>(s.lens_mode));
   gl::Uniform1f(p.uniform("u_iso_interval"), static_cast<float>(s.isoline_interval));
   gl::Uniform1i(p.uniform("u_iso_index"), s.isoline_index);
+  gl::Uniform1i(p.uniform("u_iso_of"), static_cast<int>(s.isolines_of));
   gl::Uniform3f(p.uniform("u_iso_rgb"), s.isoline_rgb[0], s.isoline_rgb[1], s.isoline_rgb[2]);
   gl::BindVertexArray(vao_);
   gl::BeginQuery(GL_TIME_ELAPSED, timer_);

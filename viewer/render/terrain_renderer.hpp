@@ -43,6 +43,11 @@ struct ShadingSettings {
   // `isoline_rgb`; widths in pixels, whatever the distance or slope.
   double isoline_interval = 0;
   int isoline_index = 0;
+  // What the isolines follow (--isolines-of): the heights (metres), the
+  // slope (degrees) or the upstream area (log2 m^2, an analysis package's
+  // flow_accumulation layer).
+  enum class IsolinesOf { kHeight = 0, kSlope = 1, kFlow = 2 };
+  IsolinesOf isolines_of = IsolinesOf::kHeight;
   std::array<float, 3> isoline_rgb{0.36f, 0.2f, 0.09f};
   // A magic lens (--lens): inside the screen circle (pixels from the
   // top-left) the terrain is shaded in `lens_mode` instead; radius 0: none.
@@ -62,7 +67,7 @@ struct ShadingSettings {
 struct GBuffer {
   GLuint fbo = 0, color = 0, position = 0, normal = 0, depth = 0;
   GLuint ground = 0;     // RGBA32F: ground x, y, d/dx of x, y (per pixel to the right)
-  GLuint ground_dy = 0;  // RG32F: d/dy of ground x, y (per pixel up)
+  GLuint ground_dy = 0;  // RGBA32F: d/dy of ground x, y (per pixel up), height m, slope deg
   int width = 0, height = 0;
 };
 

@@ -189,6 +189,8 @@ uniform sampler2DArray u_heights;
 uniform sampler2DArray u_mask;
 uniform float u_size;      // samples per block side
 uniform float u_zscale;    // world z per metre of height (with exaggeration)
+uniform float u_exaggeration;
+uniform int u_iso_of;  // 0 heights, 1 slope (degrees), 2 upstream area (log2 m^2)
 uniform vec3 u_sun;        // unit vector towards the sun
 uniform int u_mode;        // MODE_... (render/shading_modes.cpp defines them)
 uniform vec3 u_lens;       // a lens: centre (window pixels) and radius (0: none)
@@ -215,7 +217,7 @@ layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_position;  // G-buffer: world point, w = 1 on terrain
 layout(location = 2) out vec4 o_normal;    // G-buffer: plane of the drawn triangle
 layout(location = 3) out vec4 o_ground;    // G-buffer: ground x, y and their d/dx
-layout(location = 4) out vec2 o_ground_dy; // G-buffer: d/dy of ground x, y
+layout(location = 4) out vec4 o_ground_dy; // G-buffer: d/dy of ground x, y; height (m), slope (deg)
 
 // The height at block sample s (x east, y south), also just outside the
 // block: there from the neighbour of the same zoom (edges are shared, so its
@@ -327,11 +329,19 @@ void main() {
     }
   }
   if (u_ao != 0) color *= 0.3 + 0.7 * sky_light(layers_at(v_sample).r);
-  if (u_iso_interval > 0.0) {
-    // Isolines of the drawn heights: the distance to the nearest level in
-    // pixels from the level's screen gradient, so a line keeps its width on
-    // any slope and at any distance; a 1-px box filter across it.
-    float f = height_at(v_sample) / u_iso_interval;
+  // The ground's own slope (without exaggeration; the package's when it has
+  // the gradient), for isolines of slope and the G-buffer.
+  float true_slope = u_has_gradient != 0
+                         ? degrees(atan(length(layers_at(v_sample).ba)))
+                         : degrees(atan(length(n.xy) / max(n.z, 1e-6) / max(u_exaggeration, 1e-6)));
+  float iso_field = u_iso_of == 0 ? height_at(v_sample)
+                  : u_iso_of == 1 ? true_slope
+                                  : texture(u_flow, vec3((v_sample + 0.5) / u_size, float(v_layer))).r;
+  if (u_iso_interval > 0.0 && (u_iso_of != 2 || iso_field > -50.0)) {
+    // Isolines of the field (heights by default): the distance to the nearest
+    // level in pixels from the level's screen gradient, so a line keeps its
+    // width on any slope and at any distance; a 1-px box filter across it.
+    float f = iso_field / u_iso_interval;
     float level = floor(f + 0.5);
     float grad = length(vec2(dFdx(f), dFdy(f)));
     float px = abs(f - level) / max(grad, 1e-6);
@@ -347,7 +357,9 @@ void main() {
   o_position = vec4(v_world, 1.0);
   o_normal = vec4(normalize(cross(dFdx(v_world), dFdy(v_world))), 0.0);
   o_ground = vec4(v_ground, dFdxFine(v_ground));
-  o_ground_dy = dFdyFine(v_ground);
+  // The ground's own height and slope, for the passes that colour by them
+  // (lines by slope or height).
+  o_ground_dy = vec4(dFdyFine(v_ground), height_at(v_sample), true_slope);
 }
 )";
 

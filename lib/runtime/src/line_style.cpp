@@ -2,6 +2,7 @@
 #include "runtime/line_style.hpp"
 
 #include <cctype>
+#include <filesystem>
 #include <iterator>
 
 #include "runtime/errors.hpp"
@@ -39,15 +40,18 @@ std::string color_of(const JsonValue& v, const std::string& where, bool allow_em
   if (!v.is_string()) throw InputError(where + ": expected a string");
   const std::string& c = v.string();
   if ((c.empty() && allow_empty) || is_hex_color(c)) return c;
-  throw InputError(where + ": '" + c + "' is not #rrggbb");
+  throw InputError(where + ": '" + c + "' is not #rrggbb (or slope[:FILE], height[:FILE])");
 }
 
-// Reads the keys present in `o` onto `s`.
-void read_style(const JsonValue& o, const std::string& where, LineStyle& s) {
+// Reads the keys present in `o` onto `s`; colour files named relative to base_dir.
+void read_style(const JsonValue& o, const std::string& where, LineStyle& s,
+                const std::string& base_dir) {
   for (const auto& [key, v] : o.members()) {
     const std::string at = where + " \"" + key + "\"";
     if (key == "color") {
+      if (v.is_string() && parse_line_color_by(v.string(), s, base_dir)) continue;
       s.color = color_of(v, at, true);
+      s.color_by.clear();
     } else if (key == "width") {
       s.width = length_of(v, at);
       if (s.width <= 0) throw InputError(at + ": must be positive");
@@ -78,6 +82,15 @@ void read_style(const JsonValue& o, const std::string& where, LineStyle& s) {
       if (!v.is_string() || (!v.string().empty() && line_pattern_id(v.string()) < 0))
         throw InputError(at + ": expected \"\" or one of railway, arrows, zigzag, dots");
       s.pattern = v.string();
+    } else if (key == "color_by") {  // as globe-vectorize stores "color=slope:FILE"
+      if (!v.is_string() || (!v.string().empty() && !parse_line_color_by(v.string(), s, base_dir)))
+        throw InputError(at + ": expected \"slope\" or \"height\"");
+      if (v.string().empty()) s.color_by.clear();
+    } else if (key == "ramp") {
+      if (!v.is_string()) throw InputError(at + ": expected a colour file's path");
+      s.ramp = v.string().empty() || base_dir.empty() || v.string()[0] == '/'
+                   ? v.string()
+                   : base_dir + "/" + v.string();
     } else if (key == "pattern_spacing") {
       s.pattern_spacing = length_of(v, at);
     } else if (key == "visible") {
@@ -86,12 +99,25 @@ void read_style(const JsonValue& o, const std::string& where, LineStyle& s) {
     } else if (key != "id" && key != "name" && key != "layer" && key != "features") {
       throw InputError(at +
                        ": unknown key (color, width, unit, casing_color, casing_width, dash, "
-                       "opacity, visible, pattern, pattern_spacing)");
+                       "opacity, visible, pattern, pattern_spacing, color_by, ramp)");
     }
   }
 }
 
 }  // namespace
+
+bool parse_line_color_by(const std::string& value, LineStyle& s, const std::string& base_dir) {
+  const auto colon = value.find(':');
+  const std::string by = value.substr(0, colon);
+  if (by != "slope" && by != "height") return false;
+  s.color_by = by;
+  s.ramp.clear();
+  if (colon != std::string::npos) {
+    s.ramp = value.substr(colon + 1);
+    if (!s.ramp.empty() && s.ramp[0] != '/' && !base_dir.empty()) s.ramp = base_dir + "/" + s.ramp;
+  }
+  return true;
+}
 
 int line_pattern_id(const std::string& name) {
   if (name.empty()) return 0;
@@ -130,7 +156,7 @@ std::vector<NamedLineStyle> parse_classes_json(const std::string& json,
     NamedLineStyle c;
     if (const JsonValue* name = arr[i].find("name"); name && name->is_string())
       c.name = name->string();
-    read_style(arr[i], context + " class " + std::to_string(i), c.style);
+    read_style(arr[i], context + " class " + std::to_string(i), c.style, "");
     if (c.style.color.empty()) c.style.color = palette_color(out.size());
     out.push_back(std::move(c));
   }
@@ -139,6 +165,7 @@ std::vector<NamedLineStyle> parse_classes_json(const std::string& json,
 
 void apply_style_json(const std::string& json, const std::string& context,
                       std::vector<NamedLineStyle>& classes) {
+  const std::string base_dir = std::filesystem::path(context).parent_path().string();
   const JsonValue root =
       load_json(json, context, JsonValue::Type::kObject, "a JSON object of class name -> style");
   std::vector<bool> named(classes.size(), false);
@@ -153,7 +180,7 @@ void apply_style_json(const std::string& json, const std::string& context,
     bool found = false;
     for (size_t i = 0; i < classes.size(); ++i)
       if (classes[i].name == name) {
-        read_style(v, context + " \"" + name + "\"", classes[i].style);
+        read_style(v, context + " \"" + name + "\"", classes[i].style, base_dir);
         named[i] = found = true;
       }
     if (!found) {
@@ -166,7 +193,7 @@ void apply_style_json(const std::string& json, const std::string& context,
   }
   if (all)
     for (size_t i = 0; i < classes.size(); ++i)
-      if (!named[i]) read_style(*all, context + " \"*\"", classes[i].style);
+      if (!named[i]) read_style(*all, context + " \"*\"", classes[i].style, base_dir);
 }
 
 }  // namespace globe

@@ -117,3 +117,10 @@ GLOBE_TEST_KEEP=1 build/tests/viewer_lines_tests --gtest_filter='*FourPatternsMa
 kept=$(ls -dt /tmp/globe-test-ViewerLinePatterns-FourPatternsMatchExpected-* | head -1)
 cp "$kept"/p.png $out/line_patterns.png
 rm -rf "$kept"
+# Contours coloured by slope (the same test file): likewise.
+rm -f $out/line_colour_by_slope.png
+GLOBE_TEST_KEEP=1 build/tests/viewer_lines_tests \
+  --gtest_filter='*ContoursColouredBySlopeMatchExpected' >/dev/null 2>&1 || true
+kept=$(ls -dt /tmp/globe-test-ViewerLineColours-ContoursColouredBySlopeMatchExpected-* | head -1)
+cp "$kept"/s.png $out/line_colour_by_slope.png
+rm -rf "$kept"

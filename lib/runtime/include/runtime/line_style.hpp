@@ -24,6 +24,13 @@ struct LineStyle {
   // `pattern_spacing` (the width's unit; 0 = the pattern's default).
   std::string pattern;
   double pattern_spacing = 0;
+  // Colour by the ground under the line, per pixel (docs/viewer.md "Lines
+  // coloured by the ground"): "" (the plain colour), "slope" (degrees) or
+  // "height" (metres), through the gdaldem colour file `ramp` ("" =
+  // built-in: cream to red over 0..45 degrees, hypsometric over the
+  // terrain's heights).
+  std::string color_by;
+  std::string ramp;
   // Half the drawn width including casing, in the width's unit.
   double half_extent() const { return width / 2 + (casing_color.empty() ? 0 : casing_width); }
 };
@@ -40,6 +47,11 @@ int line_pattern_id(const std::string& name);
 // Spacing of the motifs in the width's unit: the style's, or the pattern's
 // default (a multiple of the width).
 double line_pattern_spacing(const LineStyle& s);
+
+// A colour expression "slope", "height", "slope:FILE" or "height:FILE" into
+// s.color_by and s.ramp (a relative FILE taken from base_dir when given);
+// false (s unchanged) for anything else.
+bool parse_line_color_by(const std::string& value, LineStyle& s, const std::string& base_dir = "");
 
 // The default palette colour of class `id`.
 const char* palette_color(size_t id);
