@@ -18,7 +18,7 @@ export LSAN_OPTIONS=suppressions=$supp:print_suppressions=0 UBSAN_OPTIONS=print_
 # without leak detection (ASan and UBSan still on): those drivers leak 112
 # bytes and are unloaded (dlclose) before the leak check runs, so their frames
 # can no longer be named and suppressed as Mesa's like the others.
-egl_test='ViewerRender.OsMesaAndEglGiveTheSameImage|ViewerIdleWindow|ViewerImageryWindow|ViewerGlobe.WindowZooms|ViewerChartsWindow|ViewerBundlesWindow'
+egl_test='ViewerRender.OsMesaAndEglGiveTheSameImage|ViewerIdleWindow|ViewerImageryWindow|ViewerGlobe.WindowZooms|ViewerChartsWindow|ViewerBundlesWindow|ViewerShadingWindow'
 status=0
 # The web label runs browsers, none of the project's binaries: once, in build/.
 ASAN_OPTIONS=detect_leaks=1 stage "tests (build-asan/)" ctest --output-on-failure -j "$(nproc)" \

@@ -5,6 +5,7 @@
 
 #include <gdal.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -89,6 +90,45 @@ inline double near_share(const std::vector<bool>& a, const std::vector<bool>& b,
       near += found;
     }
   return count ? double(near) / count : 0;
+}
+
+// PSNR of two RGB snapshots of the same size (99 when equal).
+inline double psnr(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+  double se = 0;
+  for (size_t i = 0; i < a.size(); ++i)
+    se += (double(a[i]) - b[i]) * (double(a[i]) - b[i]);
+  return se == 0 ? 99.0 : 10 * std::log10(255.0 * 255.0 / (se / double(a.size())));
+}
+
+// A magic lens's frame (--lens CX,CY,R): outside the circle byte for byte
+// the frame without the lens, inside the frame with the lens's content
+// everywhere (a pixel's width around the rim left out: the circle cuts those
+// pixels). Returns the pixels compared inside.
+inline size_t expect_lens_frame(const std::vector<uint8_t>& plain,
+                                const std::vector<uint8_t>& everywhere,
+                                const std::vector<uint8_t>& lens, int w, int h, double cx,
+                                double cy, double r) {
+  EXPECT_EQ(plain.size(), size_t(w) * h * 3);
+  EXPECT_EQ(everywhere.size(), plain.size());
+  EXPECT_EQ(lens.size(), plain.size());
+  if (plain.size() != size_t(w) * h * 3 || everywhere.size() != plain.size() ||
+      lens.size() != plain.size())
+    return 0;
+  size_t inside = 0, outside = 0, inside_equal = 0, outside_equal = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const double d = std::hypot(x + 0.5 - cx, y + 0.5 - cy);
+      if (std::abs(d - r) <= 1) continue;
+      const size_t i = (size_t(y) * w + x) * 3;
+      const bool same = std::equal(&lens[i], &lens[i] + 3, d < r ? &everywhere[i] : &plain[i]);
+      (d < r ? inside : outside)++;
+      (d < r ? inside_equal : outside_equal) += same;
+    }
+  EXPECT_EQ(outside_equal, outside) << "pixels outside the lens changed";
+  EXPECT_EQ(inside_equal, inside)
+      << "pixels inside the lens differ from the frame with it everywhere";
+  EXPECT_NE(plain, everywhere) << "the lens's content changes nothing here";
+  return inside;
 }
 
 // Compares with the expected image; on failure writes <name>.actual.png and

@@ -214,6 +214,22 @@ TEST(ViewerImageryRender, ObliqueOverOlindaMatchesExpected) {
   expect_image(snap, "olinda_landsat_oblique");
 }
 
+// A magic lens that shows the image layers: only inside it, exactly as drawn
+// everywhere; outside, the terrain alone, byte for byte.
+TEST(ViewerImageryRender, ALensShowsTheImagesOnlyInsideIt) {
+  TempDir dir;
+  auto shot = [&](const std::string& name, const std::string& packages) {
+    const std::string png = (dir / (name + ".png")).string();
+    EXPECT_EQ(view(packages + kOlindaOblique + " --snapshot " + png, dir.path()).exit_code, 0);
+    int w = 0, h = 0;
+    return read_rgb(png, w, h);
+  };
+  const std::string t = olinda().terrain, i = olinda().natural;
+  const auto plain = shot("plain", t), images = shot("images", t + " " + i),
+             lens = shot("lens", t + " " + i + " --lens 160,100,50:images");
+  EXPECT_GT(expect_lens_frame(plain, images, lens, 320, 180, 160, 100, 50), 5000u);
+}
+
 TEST(ViewerImageryRender, TwoBlendedLayersMatchExpected) {
   TempDir dir;
   const std::string snap = (dir / "a.png").string();
@@ -222,13 +238,6 @@ TEST(ViewerImageryRender, TwoBlendedLayersMatchExpected) {
                            dir.path());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   expect_image(snap, "olinda_landsat_blended");
-}
-
-double psnr(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
-  double se = 0;
-  for (size_t i = 0; i < a.size(); ++i)
-    se += (double(a[i]) - b[i]) * (double(a[i]) - b[i]);
-  return se == 0 ? 99.0 : 10 * std::log10(255.0 * 255.0 / (se / double(a.size())));
 }
 
 TEST(ViewerImageryInput, CorruptImageTileWarnsAndShowsTheCoarserImage) {

@@ -241,6 +241,26 @@ TEST(ViewerLines, CorruptLineTileWarnsAndTheFrameGoesOn) {
   EXPECT_EQ(r.out.find("\"broken_line_tiles\": 0"), std::string::npos) << r.out;
 }
 
+// A magic lens that shows the lines: only inside it, exactly as drawn
+// everywhere; outside, the terrain alone, byte for byte.
+TEST(ViewerLines, ALensShowsTheLinesOnlyInsideIt) {
+  TempDir dir;
+  auto shot = [&](const std::string& name, const std::string& packages) {
+    const std::string png = (dir / (name + ".png")).string();
+    const RunResult r =
+        run(viewer() + " --platform osmesa --size 320x180 " + std::string(kJacksboroCamera) + " " +
+                packages + " --snapshot " + png,
+            dir.path());
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    int w = 0, h = 0;
+    return read_rgb(png, w, h);
+  };
+  const std::string t = packages().jacksboro, l = packages().contours;
+  const auto plain = shot("plain", t), lines = shot("lines", t + " " + l),
+             lens = shot("lens", t + " " + l + " --lens 160,110,60:lines");
+  EXPECT_GT(expect_lens_frame(plain, lines, lens, 320, 180, 160, 110, 60), 10000u);
+}
+
 TEST(ViewerLines, BadInputGetsAClearError) {
   TempDir dir;
   const RunResult g = run(vectorize() + " lines -q " + sample("os_wales_contours.shp").string() +

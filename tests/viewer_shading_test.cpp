@@ -201,26 +201,50 @@ TEST(ViewerShading, TheLensShowsItsModeInsideAndChangesNothingOutside) {
   };
   const std::vector<uint8_t> plain = shot("plain", ""), slope = shot("slope", "--shading slope"),
                              lens = shot("lens", "--lens 150,100,60:slope");
-  ASSERT_EQ(plain.size(), size_t(320) * 180 * 3);
-  size_t inside = 0, outside = 0, inside_equal = 0, outside_equal = 0;
-  for (int y = 0; y < 180; ++y)
-    for (int x = 0; x < 320; ++x) {
-      const double d = std::hypot(x + 0.5 - 150, y + 0.5 - 100);
-      if (std::abs(d - 60) <= 1) continue;
-      const size_t i = (size_t(y) * 320 + x) * 3;
-      const bool is_lens = std::equal(&lens[i], &lens[i] + 3, d < 60 ? &slope[i] : &plain[i]);
-      (d < 60 ? inside : outside)++;
-      (d < 60 ? inside_equal : outside_equal) += is_lens;
-    }
-  EXPECT_EQ(outside_equal, outside) << "pixels outside the lens changed";
-  EXPECT_EQ(inside_equal, inside) << "pixels inside the lens differ from the slope frame";
-  EXPECT_GT(inside, 10000u);
-  EXPECT_NE(plain, slope);
+  EXPECT_GT(expect_lens_frame(plain, slope, lens, 320, 180, 150, 100, 60), 10000u);
+  // Isolines only inside the lens.
+  const std::vector<uint8_t> iso = shot("iso", "--isolines 500"),
+                             iso_lens = shot("iso_lens", "--lens 150,100,60:isolines=500");
+  EXPECT_GT(expect_lens_frame(plain, iso, iso_lens, 320, 180, 150, 100, 60), 10000u);
   // A lens mode that needs an analysis package is refused without one.
   EXPECT_EQ(
       view(base + " --lens 10,10,5:skyview --snapshot " + (dir / "x.png").string(), dir.path())
           .exit_code,
       2);
+}
+
+// The lens in the window: K turns it on where the pointer is (radius 120 px,
+// elevation inside the hillshade), it follows the pointer, and the wheel with
+// Shift held resizes it (x 1.15 a notch); each frame equals the headless
+// --lens frame of that circle.
+TEST(ViewerShadingWindow, TheLensFollowsThePointerAndShiftWheelResizesIt) {
+  TempDir dir;
+  const std::string base = packages().himalaya + " --size 320x180 --camera=86.9,27.9,400000,30,45";
+  const RunResult w = run(
+      "xvfb-run -a -s '-screen 0 640x480x24' " + std::string(GLOBE_TEST_DATA_DIR) +
+          "/window/drive_keys.sh " + dir.path().string() +
+          " '@move:100,90 k @move:150,100;@shiftwheel:down @shiftwheel:down @shiftwheel:down' " +
+          viewer() + " --platform glfw " + base,
+      dir.path());
+  ASSERT_EQ(w.exit_code, 0) << w.err << read_file(dir / "viewer.stderr");
+  const std::pair<const char*, double> expect[] = {{"globe-view-1.png", 120},
+                                                   {"globe-view-2.png", 120 / std::pow(1.15, 3)}};
+  std::vector<std::vector<uint8_t>> headless;
+  for (const auto& [shot, radius] : expect) {
+    const std::string snap = (dir / (std::string("headless-") + shot)).string();
+    ASSERT_EQ(
+        view(base + " --lens 150,100," + std::to_string(radius) + " --snapshot " + snap, dir.path())
+            .exit_code,
+        0);
+    int w1 = 0, h1 = 0, w2 = 0, h2 = 0;
+    const auto got = read_rgb((dir / shot).string(), w1, h1), want = read_rgb(snap, w2, h2);
+    ASSERT_EQ(got.size(), want.size()) << shot;
+    std::printf("%s: PSNR %.1f dB to the headless lens of radius %.1f\n", shot, psnr(got, want),
+                radius);
+    EXPECT_GT(psnr(got, want), 35.0) << shot;
+    headless.push_back(want);
+  }
+  EXPECT_LT(psnr(headless[0], headless[1]), 30.0) << "the two lenses differ";
 }
 
 TEST(ViewerShading, ElevationOnAGlobalGridShowsSeaAndLand) {

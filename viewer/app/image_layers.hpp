@@ -38,6 +38,10 @@ class ImageLayers {
   double draw(const GBuffer& g, const View& view, const WorldFrame& world, ImageLighting lighting,
               float light_norm, Loading loading);
   GLuint output_fbo() const { return renderer_.output_fbo(); }
+  // Images only inside this circle (a magic lens; radius 0: everywhere).
+  void set_lens_only(double x, double y, double radius) {
+    renderer_.set_lens_only(float(x), float(y), float(radius));
+  }
   GLuint output_texture() const { return renderer_.output_texture(); }
   std::vector<ImageCacheStats> stats() const;
   int passes() const { return passes_; }  // imagery passes the last draw took

@@ -49,6 +49,10 @@ class LineLayer {
   double draw(const GBuffer& g, const View& view, const WorldFrame& world, double exaggeration,
               const TerrainHeights& terrain, Loading loading);
   GLuint output_fbo() const { return renderer_.output_fbo(); }
+  // Lines only inside this circle (a magic lens; radius 0: everywhere).
+  void set_lens_only(double x, double y, double radius) {
+    renderer_.set_lens_only(float(x), float(y), float(radius));
+  }
 
   enum class Reload { kIfChanged, kAlways };
   // Re-reads the style file if it changed since the last read (kAlways: even

@@ -358,6 +358,12 @@ FrameResult TerrainScene::frame(const CameraPose& asked, Loading loading, Output
                 glm::vec3(grey * 0.92f + 0.08f, grey * 0.94f + 0.06f, grey * 0.96f + 0.04f));
   }
   GBuffer g = renderer_->gbuffer();
+  // A lens that shows the images or the lines: those only inside it.
+  using Shows = ShadingSettings::LensShows;
+  const ShadingSettings& sh = settings_.shading;
+  auto lens_only = [&](Shows what) { return sh.lens_shows == what ? sh.lens_radius : 0.0; };
+  if (images_) images_->set_lens_only(sh.lens_x, sh.lens_y, lens_only(Shows::kImages));
+  if (lines_) lines_->set_lens_only(sh.lens_x, sh.lens_y, lens_only(Shows::kLines));
   if (images_) {
     const double sun_z = std::sin(settings_.shading.sun_altitude_deg * std::numbers::pi / 180);
     f.images_ms =

@@ -134,20 +134,35 @@ void declare_shading_options(CliArgs& cli, ViewerSettings& s) {
            "darken by the sky-view factor of an analysis package (any shading, and imagery lit "
            "by it)",
            [&] { s.shading.ambient_occlusion = true; });
-  cli.option("--lens", "X,Y,R[:MODE]",
+  cli.option("--lens", "X,Y,R[:WHAT]",
              "a magic lens: inside the circle of radius R pixels around X,Y (from the top-left) "
-             "the terrain is shaded in MODE (default: elevation, or hillshade when that is the "
-             "shading); the window's K key moves it with the mouse",
+             "the terrain is shaded in another mode (WHAT a --shading name; default: elevation, "
+             "or hillshade when that is the shading), or shows isolines=M (isolines every M), "
+             "lines (the line package only there) or images (the image layers only there); the "
+             "window's K key moves it with the mouse",
              [&](const std::string& v) {
+               using Shows = ShadingSettings::LensShows;
                const size_t colon = v.find(':');
                const auto d = CliArgs::to_doubles("--lens", v.substr(0, colon), 3);
                if (!(d[2] > 0)) throw UsageError("--lens: the radius must be > 0 pixels");
                s.shading.lens_x = d[0], s.shading.lens_y = d[1], s.shading.lens_radius = d[2];
-               if (colon != std::string::npos) {
-                 const ShadingMode* m = find_shading_mode(v.substr(colon + 1));
-                 if (!m) throw UsageError("--lens: unknown mode '" + v.substr(colon + 1) + "'");
+               if (colon == std::string::npos) return;
+               const std::string what = v.substr(colon + 1);
+               if (what == "lines") {
+                 s.shading.lens_shows = Shows::kLines;
+               } else if (what == "images") {
+                 s.shading.lens_shows = Shows::kImages;
+               } else if (what.rfind("isolines=", 0) == 0) {
+                 s.shading.lens_shows = Shows::kIsolines;
+                 s.shading.lens_isoline_interval = CliArgs::to_double("--lens", what.substr(9));
+                 if (!(s.shading.lens_isoline_interval > 0))
+                   throw UsageError("--lens: isolines=M needs an interval > 0");
+               } else if (const ShadingMode* m = find_shading_mode(what)) {
                  s.lens_mode_given = true;
                  s.shading.lens_mode = m->id;
+               } else {
+                 throw UsageError("--lens: unknown mode '" + what +
+                                  "' (a --shading name, isolines=M, lines or images)");
                }
              });
   cli.option("--isolines", "M[,N]",
@@ -417,7 +432,7 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
       "  " +
       shading_keys_help() +
       ", O ambient occlusion on/off,\n"
-      "  K the lens (--lens) on/off, following the mouse;\n"
+      "  K the lens (--lens) on/off, following the mouse, Shift+wheel resizes it;\n"
       "  +/- exaggeration;\n"
       "  , and . shift the elevation ramp down/up, ; and ' narrow/widen it, 0 reset;\n"
       "  I select the next image layer, V show/hide it, [ and ] its opacity -/+ 0.1,\n"

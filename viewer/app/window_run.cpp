@@ -45,7 +45,7 @@ class WindowSession {
   WindowCallbacks callbacks();
   void on_button(int button, bool down, double x, double y);
   void on_cursor(double x, double y);
-  void on_scroll(double dy);
+  void on_scroll(double dy, int mods);
   void on_key(int key);
   // The key groups of on_key; each returns whether it knew the key.
   bool camera_key(int key);
@@ -84,7 +84,7 @@ WindowCallbacks WindowSession::callbacks() {
     on_button(button, down, x, y);
   };
   cb.on_cursor = [this](double x, double y) { on_cursor(x, y); };
-  cb.on_scroll = [this](double dy) { on_scroll(dy); };
+  cb.on_scroll = [this](double dy, int mods) { on_scroll(dy, mods); };
   cb.on_key = [this](int key, int) { on_key(key); };
   return cb;
 }
@@ -115,9 +115,15 @@ void WindowSession::on_cursor(double x, double y) {
     orbit_.pan(dx, dy, pixels_per_radian(), scene_->world());
 }
 
-// The wheel zooms towards the terrain point under the cursor.
-void WindowSession::on_scroll(double dy) {
+// The wheel zooms towards the terrain point under the cursor; with Shift
+// held while the lens follows the pointer, it resizes the lens.
+void WindowSession::on_scroll(double dy, int mods) {
   if (!scene_) return;
+  if (lens_follows_ && (mods & GLFW_MOD_SHIFT)) {
+    double& r = scene_->settings().shading.lens_radius;
+    r = std::clamp(r * std::pow(1.15, dy), 8.0, 4000.0);
+    return;
+  }
   const glm::vec4 p = read_position(scene_->renderer().gbuffer().fbo, int(last_x_), int(last_y_),
                                     scene_->renderer().height());
   const glm::dvec3 under(p.x, p.y, p.z);

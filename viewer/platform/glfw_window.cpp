@@ -51,7 +51,15 @@ GlfwWindow::GlfwWindow(int width, int height, const std::string& title, WindowCa
   });
   glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double dy) {
     ++state_of(w).events;
-    if (callbacks_of(w).on_scroll) callbacks_of(w).on_scroll(dy);
+    const int mods = (glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
+                              glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS
+                          ? GLFW_MOD_SHIFT
+                          : 0) |
+                     (glfwGetKey(w, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS ||
+                              glfwGetKey(w, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS
+                          ? GLFW_MOD_CONTROL
+                          : 0);
+    if (callbacks_of(w).on_scroll) callbacks_of(w).on_scroll(dy, mods);
   });
   // Resized, uncovered, focused: draw again.
   glfwSetFramebufferSizeCallback(window_, [](GLFWwindow* w, int, int) { ++state_of(w).events; });

@@ -14,7 +14,7 @@ struct WindowCallbacks {
   std::function<void(int key, int mods)> on_key;  // GLFW key codes, presses
   std::function<void(int button, bool down, double x, double y)> on_button;
   std::function<void(double x, double y)> on_cursor;
-  std::function<void(double dy)> on_scroll;
+  std::function<void(double dy, int mods)> on_scroll;  // mods: GLFW_MOD_SHIFT, _CONTROL held
 };
 
 // What GLFW's C callbacks reach through the window's user pointer.

@@ -171,6 +171,8 @@ double ImageRenderer::draw(const GBuffer& g, const View& view, const WorldFrame&
   gl::Uniform1ui(p.uniform("u_frame"), frame);
   const size_t n = std::min(frames.size(), layers_.size());
   gl::Uniform1i(p.uniform("u_layers"), static_cast<int>(n));
+  gl::Uniform3f(p.uniform("u_lens_only"), lens_only_.x, float(height_) - lens_only_.y,
+                lens_only_.z);
   for (size_t i = 0; i < n; ++i) {
     const ImageLayerFrame& f = frames[i];
     const Layer& l = layers_[i];

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include "camera/camera.hpp"
 #include "data/image_cache.hpp"
@@ -62,6 +63,9 @@ class ImageRenderer {
               uint32_t frame, ImageFeedback& feedback);
   GLuint output_fbo() const { return fbo_; }
   GLuint output_texture() const { return output_; }
+  // A magic lens showing the images: only inside the circle (centre in
+  // pixels from the top-left); radius 0: everywhere.
+  void set_lens_only(float x, float y, float radius) { lens_only_ = {x, y, radius}; }
 
  private:
   struct Layer {
@@ -76,6 +80,7 @@ class ImageRenderer {
   bool grids_dirty_ = true;
   GLuint tables_ = 0, requests_ = 0, used_ = 0, vao_ = 0, fbo_ = 0, output_ = 0, timer_ = 0;
   int width_ = 0, height_ = 0;
+  glm::vec3 lens_only_{0};
 };
 
 }  // namespace globe::viewer

@@ -25,6 +25,7 @@ uniform vec2 u_crs_per_m;   // terrain CRS units per ground unit (x, y)
 uniform int u_lit;          // 1: imagery x hillshade; 0: unlit
 uniform float u_light_norm; // hillshade value of flat ground
 uniform int u_layers;
+uniform vec3 u_lens_only;  // images only inside this circle (window pixels; radius 0: everywhere)
 uniform int u_mode[MAX_LAYERS];  // 0 same CRS, 1 geodetic -> webmercator, 2 webmercator -> geodetic, 3 grid
 uniform ivec2 u_base[MAX_LAYERS];
 uniform vec2 u_frac[MAX_LAYERS];
@@ -85,6 +86,7 @@ void main() {
   o_color = base;
   vec4 p4 = texelFetch(u_position, px, 0);
   if (p4.w == 0.0) return;
+  if (u_lens_only.z > 0.0 && distance(gl_FragCoord.xy, u_lens_only.xy) >= u_lens_only.z) return;
   // The pixel's ground point and its neighbours' (terrain_renderer.hpp):
   // the terrain CRS offset from the view origin and the pixel's footprint.
   vec4 gr = texelFetch(u_ground, px, 0);

@@ -292,6 +292,8 @@ double LineRenderer::draw(const GBuffer& g, const View& view, const WorldFrame& 
   gl::Uniform1ui(p.uniform("u_frame"), frame);
   gl::Uniform1i(p.uniform("u_class_count"), class_count_);
   gl::Uniform1i(p.uniform("u_select_only"), mode == LineMode::kDeferred ? 0 : 1);
+  gl::Uniform3f(p.uniform("u_lens_only"), lens_only_.x, float(height_) - lens_only_.y,
+                lens_only_.z);
   gl::BindVertexArray(vao_);
   if (mode == LineMode::kDeferred) gl::BeginQuery(GL_TIME_ELAPSED, timer_);
   gl::DrawArrays(GL_TRIANGLES, 0, 3);

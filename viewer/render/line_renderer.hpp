@@ -76,6 +76,9 @@ class LineRenderer {
               const LineCache& cache, const TerrainHeights& terrain, LineMode mode, uint32_t frame,
               LineFeedback& feedback);
   GLuint output_fbo() const { return fbo_; }
+  // A magic lens showing the lines (deferred mode): only inside the circle
+  // (centre in pixels from the top-left); radius 0: everywhere.
+  void set_lens_only(float x, float y, float radius) { lens_only_ = {x, y, radius}; }
   // The line drawn on top at pixel (x, y) (from the top-left) in the last
   // deferred pass: its record and its segment in that record's tile (both
   // + 1; 0 = no line there, or the geometry baseline).
@@ -105,6 +108,7 @@ class LineRenderer {
   uint32_t table_mask_ = 0, record_count_ = 0;
   int class_count_ = 0, width_ = 0, height_ = 0;
   CrsCross cross_;
+  glm::vec3 lens_only_{0};
   std::vector<int> lifted_order_;  // the classes lifted lines draw, bottom first
   // Lifted lines: per record, its segments' classes; the frame's lifted
   // points and its (first point, class) items, grouped by class.

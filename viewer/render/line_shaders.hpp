@@ -59,6 +59,7 @@ layout(std430, binding = 5) buffer Used { uint used[]; };
 uniform uint u_frame;
 uniform sampler2D u_color, u_ground, u_ground_dy;
 uniform sampler2D u_line_ramps;  // a row per class coloured by the ground (LineRamp)
+uniform vec3 u_lens_only;        // lines only inside this circle (window pixels; radius 0: everywhere)
 uniform TileRef u_ref;  // the line tiling's (per_m: per layer CRS unit when crossing)
 uniform int u_cross;    // 0 the terrain's CRS, 1/2 crossing (kCrsCrossGlsl)
 uniform vec2 u_cross_param, u_crs_per_m;  // crossing: its parameter, terrain CRS units per ground unit
@@ -128,6 +129,7 @@ void main() {
   o_segment = 0u;
   vec4 p4 = texelFetch(u_position, px, 0);
   if (p4.w == 0.0) return;
+  if (u_lens_only.z > 0.0 && distance(gl_FragCoord.xy, u_lens_only.xy) >= u_lens_only.z) return;
   // The pixel's ground point and its screen derivatives (terrain_renderer.hpp).
   vec4 gr = texelFetch(u_ground, px, 0);
   vec2 G = gr.xy;

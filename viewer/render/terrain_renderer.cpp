@@ -283,6 +283,8 @@ RenderTimes TerrainRenderer::draw(const std::vector<Patch>& patches, const View&
   gl::Uniform3f(p.uniform("u_lens"), static_cast<float>(s.lens_x),
                 static_cast<float>(g_.height - s.lens_y), static_cast<float>(s.lens_radius));
   gl::Uniform1i(p.uniform("u_lens_mode"), static_cast<int>(s.lens_mode));
+  gl::Uniform1i(p.uniform("u_lens_shows"), static_cast<int>(s.lens_shows));
+  gl::Uniform1f(p.uniform("u_lens_iso"), static_cast<float>(s.lens_isoline_interval));
   gl::Uniform1f(p.uniform("u_iso_interval"), static_cast<float>(s.isoline_interval));
   gl::Uniform1i(p.uniform("u_iso_index"), s.isoline_index);
   gl::Uniform1i(p.uniform("u_iso_of"), static_cast<int>(s.isolines_of));

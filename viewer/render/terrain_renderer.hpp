@@ -53,6 +53,11 @@ struct ShadingSettings {
   // top-left) the terrain is shaded in `lens_mode` instead; radius 0: none.
   double lens_x = 0, lens_y = 0, lens_radius = 0;
   Shading lens_mode = Shading::kElevation;
+  // What the lens shows: the terrain shaded in lens_mode, isolines every
+  // lens_isoline_interval, or the line package or image layers only there.
+  enum class LensShows { kShading = 0, kIsolines = 1, kLines = 2, kImages = 3 };
+  LensShows lens_shows = LensShows::kShading;
+  double lens_isoline_interval = 0;
 };
 
 // The terrain pass's output: shaded colour (RGBA8), world position (RGBA32F,

@@ -195,6 +195,8 @@ uniform vec3 u_sun;        // unit vector towards the sun
 uniform int u_mode;        // MODE_... (render/shading_modes.cpp defines them)
 uniform vec3 u_lens;       // a lens: centre (window pixels) and radius (0: none)
 uniform int u_lens_mode;   // the mode inside it
+uniform int u_lens_shows;  // 0 that mode, 1 isolines every u_lens_iso (2 lines, 3 images: other passes)
+uniform float u_lens_iso;
 uniform sampler2D u_ramp;  // elevation ramp: RampTable::kEntries x 1 colours
 uniform vec2 u_ramp_range; // heights of the ramp's first and last entries (metres)
 uniform sampler2DArray u_layers;
@@ -272,7 +274,9 @@ void main() {
   float relief = u_relief[clamp(u_key_zoom - v_shift, 0, 31)];
   vec3 lit = normalize(vec3(n.xy * relief, n.z));
   float shade = max(dot(lit, u_sun), 0.0);
-  int mode = u_lens.z > 0.0 && distance(gl_FragCoord.xy, u_lens.xy) < u_lens.z ? u_lens_mode : u_mode;
+  bool in_lens = u_lens.z > 0.0 && distance(gl_FragCoord.xy, u_lens.xy) < u_lens.z;
+  int mode = in_lens && u_lens_shows == 0 ? u_lens_mode : u_mode;
+  float iso_interval = in_lens && u_lens_shows == 1 ? u_lens_iso : u_iso_interval;
   vec3 color;
   if (mode == MODE_HILLSHADE) {
     color = vec3(0.12 + 0.88 * shade);
@@ -337,11 +341,11 @@ void main() {
   float iso_field = u_iso_of == 0 ? height_at(v_sample)
                   : u_iso_of == 1 ? true_slope
                                   : texture(u_flow, vec3((v_sample + 0.5) / u_size, float(v_layer))).r;
-  if (u_iso_interval > 0.0 && (u_iso_of != 2 || iso_field > -50.0)) {
+  if (iso_interval > 0.0 && (u_iso_of != 2 || iso_field > -50.0)) {
     // Isolines of the field (heights by default): the distance to the nearest
     // level in pixels from the level's screen gradient, so a line keeps its
     // width on any slope and at any distance; a 1-px box filter across it.
-    float f = iso_field / u_iso_interval;
+    float f = iso_field / iso_interval;
     float level = floor(f + 0.5);
     float grad = length(vec2(dFdx(f), dFdy(f)));
     float px = abs(f - level) / max(grad, 1e-6);
