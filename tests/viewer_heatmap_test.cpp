@@ -3,9 +3,11 @@
 // kernel sum written here from the CSV's own places (great-circle distances,
 // the same quartic kernel): correlated >= 0.95 and equal in total (the
 // kernel integrates to the weight over the ground). A radius in pixels
-// shrinks the peak with its square.
+// shrinks the peak with its square. Heatmaps of line packages likewise,
+// against an integral along the GeoJSON's own lines.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -74,6 +76,32 @@ std::vector<double> picked(const std::string& out) {
   return v;
 }
 
+// Pearson correlation of two samples.
+double correlation(const std::vector<double>& a, const std::vector<double>& b) {
+  const double n = double(a.size());
+  double ma = 0, mb = 0;
+  for (size_t i = 0; i < a.size(); ++i)
+    ma += a[i] / n, mb += b[i] / n;
+  double sab = 0, saa = 0, sbb = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    sab += (a[i] - ma) * (b[i] - mb);
+    saa += (a[i] - ma) * (a[i] - ma);
+    sbb += (b[i] - mb) * (b[i] - mb);
+  }
+  return sab / std::sqrt(saa * sbb);
+}
+
+// The median of ours / reference where the reference is over a fifth of its
+// peak (0 when there is none).
+double median_ratio(const std::vector<double>& ours, const std::vector<double>& ref) {
+  const double peak = *std::max_element(ref.begin(), ref.end());
+  std::vector<double> ratios;
+  for (size_t i = 0; i < ours.size(); ++i)
+    if (ref[i] > 0.2 * peak) ratios.push_back(ours[i] / ref[i]);
+  std::sort(ratios.begin(), ratios.end());
+  return ratios.empty() ? 0 : ratios[ratios.size() / 2];
+}
+
 class Heatmap : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -117,25 +145,8 @@ TEST_F(Heatmap, DensityMatchesABruteForceKernelSum) {
   std::vector<double> ref;
   for (const auto& [lon, lat] : at)
     ref.push_back(density_per_km2(places_, lon, lat, radius_m));
-  // Pearson correlation, and the ratio where the density is substantial.
-  const double n = double(ours.size());
-  double ma = 0, mb = 0;
-  for (size_t i = 0; i < ours.size(); ++i)
-    ma += ours[i] / n, mb += ref[i] / n;
-  double sab = 0, saa = 0, sbb = 0, peak = 0;
-  for (size_t i = 0; i < ours.size(); ++i) {
-    sab += (ours[i] - ma) * (ref[i] - mb);
-    saa += (ours[i] - ma) * (ours[i] - ma);
-    sbb += (ref[i] - mb) * (ref[i] - mb);
-    peak = std::max(peak, ref[i]);
-  }
-  const double corr = sab / std::sqrt(saa * sbb);
-  std::vector<double> ratios;
-  for (size_t i = 0; i < ours.size(); ++i)
-    if (ref[i] > 0.2 * peak) ratios.push_back(ours[i] / ref[i]);
-  std::sort(ratios.begin(), ratios.end());
-  ASSERT_FALSE(ratios.empty());
-  const double median = ratios[ratios.size() / 2];
+  const double corr = correlation(ours, ref), median = median_ratio(ours, ref);
+  const double peak = *std::max_element(ref.begin(), ref.end());
   std::printf("heatmap: %zu points, correlation %.4f, median ratio %.3f (peak %.4g per km2)\n",
               at.size(), corr, median, peak);
   EXPECT_GE(corr, 0.95);
@@ -175,6 +186,80 @@ TEST_F(Heatmap, BadOptionsAreClearErrors) {
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("--heatmap-radius"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "x.png"));
+}
+
+// A heatmap of a line package: the density of the lines' length (weight 1
+// per metre), against a kernel sum along the GeoJSON's own lines written
+// here (great-circle lengths and distances, 100 m steps).
+TEST(HeatmapOfLines, DensityMatchesABruteForceIntegralAlongTheLines) {
+  TempDir dir;
+  // Two crossing lines and a ring, densified (0.05 degrees) so that straight
+  // in webmercator and straight in lon/lat agree.
+  std::vector<std::vector<std::pair<double, double>>> lines(3);
+  for (int i = 0; i <= 180; ++i) {
+    const double t = i / 180.0;
+    lines[0].push_back({6 + 9 * t, 44 + 5 * t});
+    lines[1].push_back({6 + 9 * t, 48 - 3 * t});
+    const double a = 2 * M_PI * t;
+    lines[2].push_back({11 + 1.2 * std::cos(a), 46.5 + 0.8 * std::sin(a)});
+  }
+  {
+    std::ofstream f(dir / "l.geojson");
+    f.precision(10);
+    f << R"({"type":"FeatureCollection","features":[)";
+    for (size_t l = 0; l < lines.size(); ++l) {
+      f << (l ? "," : "") << R"({"type":"Feature","properties":{},"geometry":{"type":)"
+        << R"("LineString","coordinates":[)";
+      for (size_t k = 0; k < lines[l].size(); ++k)
+        f << (k ? "," : "") << "[" << lines[l][k].first << "," << lines[l][k].second << "]";
+      f << "]}}";
+    }
+    f << "]}\n";
+  }
+  const std::string pkg = (dir / "l.mbtiles").string();
+  ASSERT_TRUE(run_all({vectorize() + " lines -q " + (dir / "l.geojson").string() + " -o " + pkg},
+                      dir.path()));
+  const double radius_m = 60000;
+  std::string picks;
+  std::vector<std::pair<double, double>> at;
+  for (double lat = 44.0; lat <= 49.01; lat += 0.5)
+    for (double lon = 5.5; lon <= 15.51; lon += 0.5) {
+      at.push_back({lon, lat});
+      picks += " --pick @" + std::to_string(lon) + "," + std::to_string(lat);
+    }
+  const RunResult r = run(viewer() + " --platform osmesa --size 480x270 " + pkg +
+                              " --heatmap count --heatmap-radius 60km --flat"
+                              " --camera=10.5,46.5,900000,0,0 --snapshot " +
+                              (dir / "h.png").string() + picks,
+                          dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<double> ours = picked(r.out);
+  ASSERT_EQ(ours.size(), at.size()) << r.out;
+  // The brute force: km of line per km^2, the quartic kernel along each line.
+  std::vector<double> ref;
+  for (const auto& [lon, lat] : at) {
+    double sum = 0;
+    for (const auto& l : lines)
+      for (size_t k = 0; k + 1 < l.size(); ++k) {
+        const double len = distance_m(l[k].first, l[k].second, l[k + 1].first, l[k + 1].second);
+        const int n = std::max(1, int(std::ceil(len / 100)));
+        for (int i = 0; i < n; ++i) {
+          const double t = (i + 0.5) / n;
+          const double q =
+              std::pow(distance_m(lon, lat, l[k].first + t * (l[k + 1].first - l[k].first),
+                                  l[k].second + t * (l[k + 1].second - l[k].second)) /
+                           radius_m,
+                       2);
+          if (q < 1) sum += len / n * 3 / (M_PI * radius_m * radius_m) * (1 - q) * (1 - q);
+        }
+      }
+    ref.push_back(sum * 1e3);  // m per m^2 -> km per km^2
+  }
+  const double corr = correlation(ours, ref), median = median_ratio(ours, ref);
+  std::printf("line heatmap: %zu points, correlation %.4f, median ratio %.3f\n", at.size(), corr,
+              median);
+  EXPECT_GE(corr, 0.95);
+  EXPECT_NEAR(median, 1.0, 0.1) << "the kernel integrates to the line's length over the ground";
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 
+#include "app/heat_samples.hpp"
 #include "render/color.hpp"
 #include "render/point_tile_selection.hpp"
 #include "runtime/errors.hpp"
@@ -342,11 +343,9 @@ void ChartLayer::build_heat(const std::vector<TileId>& tiles, const View& view,
                             const WorldFrame& world) {
   const tileformat::PointMetadata& m = cache_.package().meta;
   const bool mean = m.aggregate == tileformat::PointAggregate::kMean;
-  const glm::dvec2 o = world.key_to_crs(double(view.origin.x), double(view.origin.y));
-  const double gx = world.ground_per_crs_x(), gy = world.ground_per_crs_y();
-  ground_per_m_ = world.ground_height_scale();  // ground units per metre at the view latitude
-  const tileformat::Tiling& t = world.tiling();
-  const double span = t.wraps_x() ? t.roots_x * t.root_size : 0;  // CRS units around the Earth
+  const HeatFrame frame(view, world);
+  const HeatRadius radius{settings_.heat_radius, settings_.heat_radius_m};
+  ground_per_m_ = frame.ground_per_m();
   instances_.clear();
   places_.clear();
   for (const TileId& id : tiles) {
@@ -360,24 +359,7 @@ void ChartLayer::build_heat(const std::vector<TileId>& tiles, const View& view,
       if (!(weight > 0)) continue;  // a density of what is there: no negative mass
       const glm::dvec2 k =
           tiling_.tile_to_key(id, double(pl.at.x) / tile->extent, double(pl.at.y) / tile->extent);
-      const glm::dvec2 crs = world.key_to_crs(k.x, k.y);
-      double dx = crs.x - o.x;
-      if (span > 0) dx -= span * std::round(dx / span);  // the copy nearest the view
-      double radius = settings_.heat_radius * ground_per_m_;
-      if (!settings_.heat_radius_m)  // pixels: ground units across that many at the place
-        radius = settings_.heat_radius *
-                 glm::length(world.key_to_world(k.x, k.y, 0, view.origin) - view.eye) /
-                 view.pixels_per_radian;
-      ChartInstance c{};
-      c.key[0] = static_cast<int32_t>(std::floor(k.x));
-      c.key[1] = static_cast<int32_t>(std::floor(k.y));
-      c.frac[0] = static_cast<float>(k.x - std::floor(k.x));
-      c.frac[1] = static_cast<float>(k.y - std::floor(k.y));
-      c.params[0] = static_cast<float>(dx * gx);
-      c.params[1] = static_cast<float>((crs.y - o.y) * gy);
-      c.params[2] = static_cast<float>(weight);
-      c.params[3] = static_cast<float>(radius);
-      instances_.push_back(c);
+      instances_.push_back(frame.instance(k, weight, radius));
       places_.push_back({id, i});
     }
   }

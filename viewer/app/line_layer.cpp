@@ -2,9 +2,12 @@
 #include "app/line_layer.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cstdio>
 #include <fstream>
+#include <set>
 #include <sstream>
+#include <stdexcept>
 
 #include "app/color_relief_file.hpp"
 #include "render/color_ramp.hpp"
@@ -137,7 +140,7 @@ size_t LineLayer::upload_loaded() {
   const std::vector<uint32_t> loaded = cache_.take_loaded();
   for (uint32_t r : loaded) {
     renderer_.upload(r, cache_.records()[r]);
-    cache_.drop_words(r);
+    if (!heat_) cache_.drop_words(r);  // a heatmap samples the segments on the CPU
   }
   return loaded.size();
 }
@@ -164,7 +167,8 @@ void LineLayer::set_mode(LineMode m) {
 }
 
 double LineLayer::draw(const GBuffer& g, const View& view, const WorldFrame& world,
-                       double exaggeration, const TerrainHeights& terrain, Loading loading) {
+                       double exaggeration, const TerrainHeights& terrain, Loading loading,
+                       GLuint under_fbo) {
   double ms = 0;
   int idle_rounds = 0;
   for (int round = 0;; ++round) {
@@ -173,6 +177,7 @@ double LineLayer::draw(const GBuffer& g, const View& view, const WorldFrame& wor
     LineFeedback fb;
     ms = renderer_.draw(g, view, world, exaggeration, cache_, terrain, mode_, ++frame_, fb);
     tiles_used_ = fb.used.size();
+    used_ = fb.used;
     for (uint32_t r : fb.used)
       cache_.mark_used(r);
     bool news = false;
@@ -185,11 +190,76 @@ double LineLayer::draw(const GBuffer& g, const View& view, const WorldFrame& wor
     if (idle_rounds > 3 || round > 200) break;
     if (cache_.loader_busy()) cache_.wait_for_loader();
   }
+  if (heat_) return draw_heatmap(g, view, world, exaggeration, terrain, under_fbo);
   if (!legend_.empty()) {
     queue_bundle_legend(legend_, styles_, height_, overlay_);
     overlay_.draw(renderer_.output_fbo(), width_, height_);
   }
   return ms;
+}
+
+void LineLayer::enable_heatmap(const HeatRadius& radius, double opacity, const WorldFrame& world) {
+  heat_ = std::make_unique<ChartRenderer>(width_, height_);
+  heat_tiling_ = std::make_unique<LayerTiling>(cache_.package().tiling, cross_, world);
+  heat_radius_ = radius;
+  heat_opacity_ = opacity;
+}
+
+double LineLayer::draw_heatmap(const GBuffer& g, const View& view, const WorldFrame& world,
+                               double exaggeration, const TerrainHeights& terrain,
+                               GLuint under_fbo) {
+  if (!terrain.frame) throw std::logic_error("a line heatmap without the terrain's frame");
+  // Weights per class: a bundle weight class's middle, else 1.
+  std::vector<double> weight(styles_.size(), 1.0);
+  for (const LegendRow& row : legend_)
+    for (size_t c = 0; c < styles_.size(); ++c)
+      if (styles_[c].name == row.class_name) weight[c] = 0.5 * (row.min + row.max);
+  // The tiles the frame read, the coarsest where zooms overlap (each
+  // stretch of line counts once).
+  std::set<tileformat::TileId> ids;
+  for (uint32_t r : used_)
+    ids.insert(cache_.records()[r].id);
+  auto covered = [&](tileformat::TileId id) {
+    while (id.z > 0) {
+      id = {id.z - 1, id.x / 2, id.y / 2};
+      if (ids.count(id)) return true;
+    }
+    return false;
+  };
+  const HeatFrame frame(view, world);
+  heat_ground_per_m_ = frame.ground_per_m();
+  std::vector<ChartInstance> samples;
+  for (uint32_t r : used_) {
+    const LineRecord& rec = cache_.records()[r];
+    if (rec.empty || rec.tile.words.empty() || covered(rec.id)) continue;
+    const uint32_t base = rec.tile.grid * rec.tile.grid + 1 + rec.tile.cell_entries;
+    const double extent = rec.tile.extent;
+    for (uint32_t s = 0; s < rec.tile.segments; ++s) {
+      const uint32_t* w = &rec.tile.words[base + size_t(s) * kLineWordsPerSegment];
+      const uint32_t cls = w[4];
+      if (cls >= styles_.size() || !styles_[cls].style.visible) continue;
+      auto at = [&](uint32_t k) {
+        return heat_tiling_->tile_to_key(rec.id, std::bit_cast<float>(w[k]) / extent,
+                                         std::bit_cast<float>(w[k + 1]) / extent);
+      };
+      const glm::dvec2 a = at(0), b = at(2);
+      const double length = glm::length(world.key_to_world(b.x, b.y, 0, view.origin) -
+                                        world.key_to_world(a.x, a.y, 0, view.origin)) /
+                            frame.ground_per_m();
+      // Samples at most a third of the kernel's radius apart, each standing
+      // for its stretch of line.
+      const double step = frame.radius_m(0.5 * (a + b), heat_radius_) / 3;
+      const int n = std::max(1, static_cast<int>(std::ceil(length / std::max(step, 1e-9))));
+      for (int i = 0; i < n; ++i)
+        samples.push_back(
+            frame.instance(a + (b - a) * ((i + 0.5) / n), weight[cls] * length / n, heat_radius_));
+    }
+  }
+  heat_->set_instances(samples);
+  HeatmapStyle hs;
+  hs.opacity = static_cast<float>(heat_opacity_);
+  hs.margin_world = static_cast<float>(terrain.relief_world);
+  return heat_->draw_heatmap(under_fbo, g, view, world, *terrain.frame, terrain, hs, exaggeration);
 }
 
 std::optional<uint64_t> LineLayer::feature_at(int x, int y) {
@@ -257,6 +327,12 @@ std::string LineLayer::describe(uint64_t feature, std::vector<uint64_t>& lit) {
 }
 
 std::string LineLayer::pick(int x, int y, bool highlight) {
+  if (heat_) {  // the density there: weight x km of line per km^2
+    char buf[80];
+    std::snprintf(buf, sizeof buf, "heatmap: %.6g per km2 (weight x km of line)",
+                  heat_->density_at(x, y) * heat_ground_per_m_ * heat_ground_per_m_ * 1e3);
+    return buf;
+  }
   std::vector<uint64_t> lit;
   std::string text;
   if (const std::optional<uint64_t> feature = feature_at(x, y)) {

@@ -15,7 +15,9 @@
 #include <vector>
 
 #include "app/bundle_legend.hpp"
+#include "app/heat_samples.hpp"
 #include "data/line_cache.hpp"
+#include "render/chart_renderer.hpp"
 #include "render/line_renderer.hpp"
 #include "runtime/line_style.hpp"
 
@@ -46,9 +48,15 @@ class LineLayer {
   }
   // The line pass over `g`; Loading::kSettle: keep loading until no visible
   // tile is missing (headless). Returns the GPU time of the last pass in ms.
+  // With a heatmap, its colours go over `under_fbo`'s colour instead of the
+  // lines (terrain.frame must be set).
   double draw(const GBuffer& g, const View& view, const WorldFrame& world, double exaggeration,
-              const TerrainHeights& terrain, Loading loading);
-  GLuint output_fbo() const { return renderer_.output_fbo(); }
+              const TerrainHeights& terrain, Loading loading, GLuint under_fbo = 0);
+  GLuint output_fbo() const { return heat_ ? heat_->output_fbo() : renderer_.output_fbo(); }
+  // A heatmap of the lines instead of the lines (docs/viewer.md "Heatmaps"):
+  // the density of their length, weighted by the bundle weight classes'
+  // middles (a bundled-flows package) or 1.
+  void enable_heatmap(const HeatRadius& radius, double opacity, const WorldFrame& world);
   // Lines only inside this circle (a magic lens; radius 0: everywhere).
   void set_lens_only(double x, double y, double radius) {
     renderer_.set_lens_only(float(x), float(y), float(radius));
@@ -88,6 +96,8 @@ class LineLayer {
   std::vector<NamedLineStyle> read_styles() const;
   size_t upload_loaded();
   std::optional<uint64_t> feature_at(int x, int y);
+  double draw_heatmap(const GBuffer& g, const View& view, const WorldFrame& world,
+                      double exaggeration, const TerrainHeights& terrain, GLuint under_fbo);
   // The picked feature's description; adds the features it highlights
   // besides itself to `lit`.
   std::string describe(uint64_t feature, std::vector<uint64_t>& lit);
@@ -105,6 +115,11 @@ class LineLayer {
   LineCache cache_;
   LineRenderer renderer_;
   CrsCross cross_;
+  std::unique_ptr<ChartRenderer> heat_;  // the heatmap, when enabled
+  std::unique_ptr<LayerTiling> heat_tiling_;
+  HeatRadius heat_radius_;
+  double heat_opacity_ = 0.75, heat_ground_per_m_ = 1;
+  std::vector<uint32_t> used_;  // the records the last frame read
   uint32_t frame_ = 0;
   size_t tiles_used_ = 0;
   int width_ = 0, height_ = 0;

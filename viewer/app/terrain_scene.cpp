@@ -74,7 +74,7 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
   if (set.points) {
     points = open_point_package(*set.points);
     point_cross = layer_cross(package.tiling, path, points->meta.common.tiling, *set.points);
-  } else if (settings_.charts_given) {
+  } else if (settings_.charts_given && !(settings_.charts.heatmap && set.lines)) {
     throw UsageError(
         "--chart, --chart-style, --chart-depth and --chart-thinning draw charts; give "
         "a point package too (globe-vectorize points)");
@@ -155,6 +155,9 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
     lines_ = std::make_unique<LineLayer>(*set.lines, std::move(*lines), settings_.style,
                                          settings_.line_mode, line_budget, settings_.width,
                                          settings_.height, line_cross);
+  if (lines_ && settings_.charts.heatmap && !points)  // a heatmap of the lines
+    lines_->enable_heatmap({settings_.charts.heat_radius, settings_.charts.heat_radius_m},
+                           settings_.charts.heat_opacity, *world_);
   if (points)
     charts_ = std::make_unique<ChartLayer>(std::move(*points), settings_.charts, point_budget,
                                            settings_.width, settings_.height, point_cross, *world_);
@@ -374,16 +377,22 @@ FrameResult TerrainScene::frame(const CameraPose& asked, Loading loading, Output
   }
   if (lines_) {
     TerrainHeights heights;
-    if (lines_->mode() != LineMode::kDeferred) {
+    if (lines_->mode() != LineMode::kDeferred || settings_.charts.heatmap) {
       heights = {renderer_->heights_texture(), cache_->resident_slots(), package().min_zoom,
                  package().max_zoom, package().block_size};
       heights.frame = renderer_.get();
       heights.lift_m = settings_.lift_m ? *settings_.lift_m : 0.03 * glm::length(f.view.eye);
       heights.error_px = settings_.max_error_px;
+      heights.relief_world =
+          (selector_->top_height_m(*cache_) - selector_->bottom_height_m(*cache_)) *
+          world_->height_scale() * settings_.shading.exaggeration;
     }
     const auto [height_lo, height_hi] = ramp_->data_range();
     lines_->set_height_range(height_lo, height_hi);
-    f.lines_ms = lines_->draw(g, f.view, *world_, settings_.shading.exaggeration, heights, loading);
+    // A heatmap of the lines goes over the terrain (and imagery) as it is.
+    const GLuint under = images_ ? images_->output_fbo() : renderer_->gbuffer().fbo;
+    f.lines_ms =
+        lines_->draw(g, f.view, *world_, settings_.shading.exaggeration, heights, loading, under);
   }
   if (charts_) {
     TerrainHeights heights{renderer_->heights_texture(), cache_->resident_slots(),

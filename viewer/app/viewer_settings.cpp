@@ -343,7 +343,8 @@ void declare_layer_options(CliArgs& cli, ViewerSettings& s) {
   cli.option("--heatmap", "count|FIELD",
              "a heatmap of the places instead of charts: their kernel density per pixel over "
              "the terrain, weighted by the source places each stands for (count) or by a field; "
-             "it integrates to the weight over the ground",
+             "it integrates to the weight over the ground. Without a point package, of a line "
+             "package's length (bundled flows: weighted by their weight classes)",
              [&](const std::string& v) {
                s.charts_given = true;
                s.charts.heatmap = true;
