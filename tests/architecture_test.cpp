@@ -139,16 +139,41 @@ std::vector<std::string> outside(const std::vector<std::string>& hits,
   return out;
 }
 
+// globe-vectorize is one folder per pipeline (docs/architecture.md): only
+// main.cpp and commands.hpp at its root, and its own headers are included by
+// their folder ("lines/line_plan.hpp"), never bare.
+TEST(Architecture, VectorizeIsOneFolderPerPipeline) {
+  const fs::path root = kSource / "tools/vectorize";
+  std::vector<std::string> headers, loose;
+  for (const auto& e : fs::recursive_directory_iterator(root)) {
+    const auto ext = e.path().extension();
+    if (!e.is_regular_file() || (ext != ".cpp" && ext != ".hpp")) continue;
+    const std::string name = e.path().filename().string();
+    if (e.path().parent_path() == root && name != "main.cpp" && name != "commands.hpp")
+      loose.push_back(name);
+    if (ext == ".hpp" && e.path().parent_path() != root) headers.push_back(name);
+  }
+  EXPECT_EQ(joined(loose), "") << "put these in the folder of their pipeline";
+  auto bare = [&](const std::string& l) {
+    for (const std::string& h : headers)
+      if (l.find("#include \"" + h + "\"") != std::string::npos) return true;
+    return false;
+  };
+  for (const char* dir : {"tools/vectorize", "tests", "bench"})
+    EXPECT_EQ(joined(matches(dir, bare)), "") << "include vectorize headers by their folder";
+}
+
 TEST(Architecture, EachCApiIsCalledOnlyFromItsWrapper) {
   auto gdal = [](const std::string& l) {
     return calls_c_api(l, {"GDAL", "OGR", "OSR", "OCT", "CPL", "CSL", "VSI"});
   };
-  EXPECT_EQ(joined(outside(matches("tools", gdal),
-                           {"tools/common/geo/", "tools/tiler/raster/raster_warper.",
-                            "tools/vectorize/vector_reader.", "tools/vectorize/vector_writer.",
-                            // a GDAL driver implements GDAL's own API
-                            "tools/gdal_plugin/"})),
-            "")
+  EXPECT_EQ(
+      joined(outside(matches("tools", gdal),
+                     {"tools/common/geo/", "tools/tiler/raster/raster_warper.",
+                      "tools/vectorize/io/vector_reader.", "tools/vectorize/io/vector_writer.",
+                      // a GDAL driver implements GDAL's own API
+                      "tools/gdal_plugin/"})),
+      "")
       << "call GDAL/OGR/OSR through tools/common/geo (docs/architecture.md rule 3)";
   auto sqlite = [](const std::string& l) { return calls_c_api(l, {"sqlite3_"}); };
   EXPECT_EQ(joined(outside(matches("lib", sqlite), {"lib/tileformat/src/sqlite_db."})), "");

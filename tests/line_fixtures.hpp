@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "line_geometry.hpp"
+#include "lines/line_geometry.hpp"
 
 namespace globe_test {
 

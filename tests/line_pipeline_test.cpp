@@ -4,11 +4,11 @@
 
 #include <random>
 
-#include "line_geometry.hpp"
-#include "line_projector.hpp"
+#include "lines/line_geometry.hpp"
+#include "lines/line_projector.hpp"
 #include "test_support.hpp"
-#include "tile_cutter.hpp"
-#include "tile_sorter.hpp"
+#include "tiles/tile_cutter.hpp"
+#include "tiles/tile_sorter.hpp"
 
 namespace {
 

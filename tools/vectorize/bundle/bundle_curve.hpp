@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-#include "line_geometry.hpp"
+#include "lines/line_geometry.hpp"
 
 namespace globe {
 

@@ -8,7 +8,7 @@
 
 #include "bundle/flow_input.hpp"
 #include "bundle/network_graph.hpp"
-#include "lines_settings.hpp"
+#include "lines/lines_settings.hpp"
 
 namespace globe {
 

@@ -7,9 +7,9 @@
 #include <numeric>
 
 #include "geodesic.hpp"
+#include "io/vector_reader.hpp"
 #include "runtime/errors.hpp"
 #include "spatial_ref.hpp"
-#include "vector_reader.hpp"
 
 namespace globe {
 

@@ -14,7 +14,7 @@
 #include <span>
 #include <vector>
 
-#include "line_geometry.hpp"
+#include "lines/line_geometry.hpp"
 #include "tileformat/tiling.hpp"
 
 namespace globe {

@@ -1,0 +1,105 @@
+// Line packages to Mapbox Vector Tiles (see mvt_export.hpp).
+#include "export/mvt_export.hpp"
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+
+#include "gzip.hpp"
+#include "line_mvt.hpp"
+#include "mvt_encoder.hpp"
+#include "runtime/errors.hpp"
+#include "runtime/line_package.hpp"
+#include "tile_output.hpp"
+#include "tileformat/pmtiles.hpp"
+
+namespace globe {
+
+std::string mvt_source_url(const std::string& output) {
+  const std::string name = std::filesystem::path(output).filename().string();
+  switch (output_kind(output)) {
+    case OutputKind::kPmtiles:
+      return "pmtiles://" + name;
+    case OutputKind::kDirectory:
+      return name + "/metadata.json";
+    default:
+      return name;
+  }
+}
+
+void write_style_json(const std::string& path, const std::string& style) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << style << "\n";
+    if (!out) throw OutputError(tmp + ": cannot write (disk full?)");
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) throw OutputError(path + ": cannot write (" + ec.message() + ")");
+}
+
+MvtExportSummary write_vector_tiles(
+    const MvtExportSettings& s, Progress& progress, tileformat::PackageReader& reader,
+    const tileformat::CommonMetadata& common,
+    const std::function<std::vector<uint8_t>(tileformat::TileId, std::span<const uint8_t>)>& encode,
+    const std::function<void(ExportInfo&)>& describe,
+    const std::function<std::string(const std::string&)>& style) {
+  const auto start = std::chrono::steady_clock::now();
+  if (common.tiling.scheme != tileformat::Scheme::kWebMercator)
+    throw UsageError(s.input +
+                     ": web maps read web mercator vector tiles and this package is in the " +
+                     std::string(tileformat::scheme_name(common.tiling.scheme)) +
+                     " tiling; build it with --tiling webmercator");
+  const std::vector<tileformat::TileId> items =
+      tiles_in_output_order(reader, common.min_zoom, common.max_zoom);
+  std::unique_ptr<TileOutput> out = TileOutput::open(s.output, s.force, "pbf", false);
+  progress.begin("encode vector tiles", items.size());
+  for (const tileformat::TileId& it : items) {
+    const auto blob = reader.tile(it);
+    progress.advance();
+    if (!blob) continue;
+    const std::vector<uint8_t> tile = encode(it, *blob);
+    if (!tile.empty()) out->put(it.z, it.x, it.y, web::gzip(tile));
+  }
+  progress.end();
+
+  ExportInfo info;
+  info.name = std::filesystem::path(s.output).stem().string();
+  info.format = "pbf";
+  info.extension = "pbf";
+  info.type = "overlay";
+  info.tile_type = tileformat::pmtiles::TileType::kMvt;
+  info.tile_compression = tileformat::pmtiles::Compression::kGzip;
+  info.min_zoom = common.min_zoom, info.max_zoom = common.max_zoom;
+  const tileformat::Bounds& b = common.lonlat;
+  info.west = b.min_x, info.south = b.min_y, info.east = b.max_x, info.north = b.max_y;
+  describe(info);
+  MvtExportSummary sum;
+  sum.tiles = out->tiles();
+  sum.bytes = out->finish(info);
+  if (!s.style_json.empty()) write_style_json(s.style_json, style(mvt_source_url(s.output)));
+  sum.min_zoom = common.min_zoom, sum.max_zoom = common.max_zoom;
+  sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return sum;
+}
+
+MvtExportSummary export_mvt(const MvtExportSettings& s, Progress& progress) {
+  LinePackage pkg = open_line_package(s.input);
+  web::LineMvtEncoder encoder(pkg);
+  MvtExportSummary sum = write_vector_tiles(
+      s, progress, *pkg.reader, pkg.meta.common,
+      [&](tileformat::TileId id, std::span<const uint8_t> blob) {
+        return encoder.encode(id, blob);
+      },
+      [&](ExportInfo& info) {
+        info.description = "Lines of " + s.input + " as Mapbox Vector Tiles 2.1 (gzip)";
+        info.extra_json = "\"vector_layers\":" + web::vector_layers_json(encoder.fields());
+      },
+      [&](const std::string& url) { return web::line_style_json(pkg, encoder.classes_in(), url); });
+  sum.features = encoder.features();
+  sum.zero_length = encoder.zero_length();
+  return sum;
+}
+
+}  // namespace globe

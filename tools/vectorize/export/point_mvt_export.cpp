@@ -1,0 +1,32 @@
+// Point packages to Mapbox Vector Tiles (see point_mvt_export.hpp).
+#include "export/point_mvt_export.hpp"
+
+#include "mvt_encoder.hpp"
+#include "point_mvt.hpp"
+#include "runtime/point_package.hpp"
+#include "tile_output.hpp"
+
+namespace globe {
+
+MvtExportSummary export_point_mvt(const MvtExportSettings& s, Progress& progress) {
+  PointPackage pkg = open_point_package(s.input);
+  uint64_t places = 0;
+  MvtExportSummary sum = write_vector_tiles(
+      s, progress, *pkg.reader, pkg.meta.common,
+      [&](tileformat::TileId id, std::span<const uint8_t> blob) {
+        return web::point_tile_mvt(pkg, id, blob, &places);
+      },
+      [&](ExportInfo& info) {
+        info.description =
+            "Places of " + s.input + " as Mapbox Vector Tiles 2.1 (gzip); values are " +
+            (pkg.meta.aggregate == tileformat::PointAggregate::kMean ? "means" : "sums") +
+            " over the places each stands for";
+        info.extra_json =
+            "\"vector_layers\":" + web::vector_layers_json(web::point_mvt_fields(pkg));
+      },
+      [&](const std::string& url) { return web::point_style_json(pkg, url); });
+  sum.features = places;
+  return sum;
+}
+
+}  // namespace globe
