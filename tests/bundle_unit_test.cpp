@@ -21,8 +21,8 @@
 #include "bundle/network_graph.hpp"
 #include "bundle/routing.hpp"
 #include "bundle/significance.hpp"
-#include "geodesic.hpp"
-#include "progress.hpp"
+#include "geo/geodesic.hpp"
+#include "kit/progress.hpp"
 #include "test_support.hpp"
 
 namespace globe {

@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "error_tree.hpp"
+#include "terrain/error_tree.hpp"
 #include "tileformat/kpatch.hpp"
 
 using tileformat::KPatchLayout;

@@ -9,8 +9,8 @@
 #include <random>
 #include <vector>
 
-#include "chunk_heights.hpp"
-#include "depression_fill.hpp"
+#include "analysis/flow/chunk_heights.hpp"
+#include "analysis/flow/depression_fill.hpp"
 
 namespace {
 

@@ -7,7 +7,7 @@
 #include <set>
 #include <utility>
 
-#include "height_queue.hpp"
+#include "analysis/flow/height_queue.hpp"
 
 namespace {
 

@@ -5,8 +5,8 @@
 #include <atomic>
 #include <thread>
 
-#include "image_codec.hpp"
-#include "image_pyramid.hpp"
+#include "geo/image_codec.hpp"
+#include "imagery/image_pyramid.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/image_tile.hpp"
 

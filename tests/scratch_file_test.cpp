@@ -6,9 +6,9 @@
 #include <cstring>
 #include <filesystem>
 
+#include "kit/scratch_array_file.hpp"
+#include "kit/scratch_file.hpp"
 #include "runtime/errors.hpp"
-#include "scratch_array_file.hpp"
-#include "scratch_file.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;

@@ -9,8 +9,8 @@
 #include <random>
 #include <set>
 
+#include "kit/shard_plan.hpp"
 #include "runtime/errors.hpp"
-#include "shard_plan.hpp"
 
 using globe::ShardPlan;
 using globe::TileWork;

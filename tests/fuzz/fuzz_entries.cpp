@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <fstream>
 
+#include "serve/url_route.hpp"
 #include "tileformat/analysis_block.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/image_tile.hpp"
@@ -15,7 +16,6 @@
 #include "tileformat/metadata.hpp"
 #include "tileformat/package.hpp"
 #include "tileformat/point_tile.hpp"
-#include "url_route.hpp"
 
 namespace globe_fuzz {
 namespace {

@@ -1,5 +1,5 @@
 // cpp-httplib behind plain structs (see http_server.hpp).
-#include "http_server.hpp"
+#include "serve/http_server.hpp"
 
 #include <httplib.h>
 #include <sys/socket.h>

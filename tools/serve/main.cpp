@@ -12,12 +12,12 @@
 #include <thread>
 #include <vector>
 
-#include "http_server.hpp"
-#include "package_registry.hpp"
-#include "request_handler.hpp"
 #include "runtime/cli_args.hpp"
 #include "runtime/error_report.hpp"
 #include "runtime/errors.hpp"
+#include "serve/http_server.hpp"
+#include "serve/package_registry.hpp"
+#include "serve/request_handler.hpp"
 
 namespace {
 

@@ -1,5 +1,5 @@
 // Packages by name, reopened when replaced (see package_registry.hpp).
-#include "package_registry.hpp"
+#include "serve/package_registry.hpp"
 
 #include <sys/stat.h>
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "package_services.hpp"
+#include "serve/package_services.hpp"
 
 namespace globe::serve {
 

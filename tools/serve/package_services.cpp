@@ -1,5 +1,5 @@
 // The services of the package kinds (see package_services.hpp).
-#include "package_services.hpp"
+#include "serve/package_services.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -14,22 +14,22 @@
 #include <unordered_set>
 #include <vector>
 
-#include "line_mvt.hpp"
-#include "lru_cache.hpp"
-#include "mesh_tiles.hpp"
-#include "mvt_encoder.hpp"
-#include "point_mvt.hpp"
-#include "raster_dem.hpp"
-#include "raster_dem_tile.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/image_package.hpp"
 #include "runtime/line_package.hpp"
 #include "runtime/package_open.hpp"
 #include "runtime/point_package.hpp"
 #include "runtime/terrain_package.hpp"
-#include "terrain_sampler.hpp"
 #include "tileformat/image_tile.hpp"
 #include "tileformat/json.hpp"
+#include "web/line_mvt.hpp"
+#include "web/lru_cache.hpp"
+#include "web/mesh_tiles.hpp"
+#include "web/mvt_encoder.hpp"
+#include "web/point_mvt.hpp"
+#include "web/raster_dem.hpp"
+#include "web/raster_dem_tile.hpp"
+#include "web/terrain_sampler.hpp"
 
 namespace globe::serve {
 namespace {

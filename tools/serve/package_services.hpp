@@ -10,8 +10,8 @@
 #include <memory>
 #include <string>
 
-#include "http_server.hpp"
-#include "url_route.hpp"
+#include "serve/http_server.hpp"
+#include "serve/url_route.hpp"
 
 namespace globe::serve {
 

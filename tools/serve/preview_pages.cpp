@@ -1,5 +1,5 @@
 // Preview pages (see preview_pages.hpp).
-#include "preview_pages.hpp"
+#include "serve/preview_pages.hpp"
 
 #include <cstdio>
 

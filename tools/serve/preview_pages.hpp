@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "package_registry.hpp"
+#include "serve/package_registry.hpp"
 
 namespace globe::serve {
 

@@ -1,5 +1,5 @@
 // Requests to answers (see request_handler.hpp).
-#include "request_handler.hpp"
+#include "serve/request_handler.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -9,10 +9,10 @@
 #include <filesystem>
 #include <span>
 
-#include "gzip.hpp"
-#include "preview_pages.hpp"
+#include "serve/preview_pages.hpp"
+#include "serve/url_route.hpp"
 #include "tileformat/fnv1a.hpp"
-#include "url_route.hpp"
+#include "web/gzip.hpp"
 
 namespace globe::serve {
 namespace {

@@ -5,8 +5,8 @@
 
 #include <string>
 
-#include "http_server.hpp"
-#include "package_registry.hpp"
+#include "serve/http_server.hpp"
+#include "serve/package_registry.hpp"
 
 namespace globe::serve {
 

@@ -1,5 +1,5 @@
 // Request paths to routes (see url_route.hpp).
-#include "url_route.hpp"
+#include "serve/url_route.hpp"
 
 #include <vector>
 

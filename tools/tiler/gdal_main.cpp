@@ -4,11 +4,11 @@
 // tools/common/kit/command_tool.
 #include <memory>
 
-#include "command_tool.hpp"
-#include "commands.hpp"
-#include "heap_tuning.hpp"
-#include "mesh_export.hpp"
-#include "polygon_mask.hpp"
+#include "export/mesh_export.hpp"
+#include "geo/polygon_mask.hpp"
+#include "kit/command_tool.hpp"
+#include "kit/heap_tuning.hpp"
+#include "tiler_commands.hpp"
 
 int main(int argc, char** argv) {
   globe::keep_tile_buffers_in_heap();

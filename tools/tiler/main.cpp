@@ -18,10 +18,10 @@
 #include <string>
 #include <vector>
 
-#include "command_tool.hpp"
-#include "commands.hpp"
-#include "heap_tuning.hpp"
+#include "kit/command_tool.hpp"
+#include "kit/heap_tuning.hpp"
 #include "runtime/errors.hpp"
+#include "tiler_commands.hpp"
 
 namespace {
 

@@ -1,6 +1,6 @@
 // What both globe-tiler executables share before dispatching: the usage
 // text.
-#include "commands.hpp"
+#include "tiler_commands.hpp"
 
 namespace globe {
 

@@ -1,7 +1,7 @@
 // globe-vectorize: vector data (any OGR source) -> line-cluster packages, and
 // tools to inspect them. Dispatch and error reporting: tools/common/kit/command_tool.
-#include "command_tool.hpp"
-#include "commands.hpp"
+#include "kit/command_tool.hpp"
+#include "vectorize_commands.hpp"
 
 namespace {
 

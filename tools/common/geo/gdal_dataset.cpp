@@ -1,5 +1,5 @@
 // GDAL dataset wrapper (see gdal_dataset.hpp).
-#include "gdal_dataset.hpp"
+#include "geo/gdal_dataset.hpp"
 
 #include <cpl_conv.h>
 #include <cpl_error.h>
@@ -12,8 +12,8 @@
 #include <filesystem>
 #include <mutex>
 
+#include "geo/spatial_ref.hpp"
 #include "runtime/errors.hpp"
-#include "spatial_ref.hpp"
 
 namespace globe {
 

@@ -1,5 +1,5 @@
 // Geodesic distances and lines (see geodesic.hpp).
-#include "geodesic.hpp"
+#include "geo/geodesic.hpp"
 
 #include <geodesic.h>
 

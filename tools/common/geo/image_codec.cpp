@@ -1,6 +1,6 @@
 // Image tile encoding (PNG through libpng, JPEG and WebP through GDAL) and
 // decoding through GDAL (see image_codec.hpp).
-#include "image_codec.hpp"
+#include "geo/image_codec.hpp"
 
 #include <cpl_string.h>
 #include <cpl_vsi.h>
@@ -11,7 +11,7 @@
 #include <numeric>
 #include <string>
 
-#include "gdal_dataset.hpp"
+#include "geo/gdal_dataset.hpp"
 #include "runtime/png_codec.hpp"
 #include "tileformat/error.hpp"
 

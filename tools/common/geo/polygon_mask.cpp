@@ -1,14 +1,14 @@
 // Polygons burnt into masks (see polygon_mask.hpp).
-#include "polygon_mask.hpp"
+#include "geo/polygon_mask.hpp"
 
 #include <gdal_alg.h>
 #include <ogr_api.h>
 
 #include <algorithm>
 
-#include "gdal_dataset.hpp"
+#include "geo/gdal_dataset.hpp"
+#include "geo/spatial_ref.hpp"
 #include "runtime/errors.hpp"
-#include "spatial_ref.hpp"
 
 namespace globe {
 

@@ -1,5 +1,5 @@
 // Spatial reference and transformation wrappers (see spatial_ref.hpp).
-#include "spatial_ref.hpp"
+#include "geo/spatial_ref.hpp"
 
 #include <cpl_error.h>
 
@@ -8,7 +8,7 @@
 
 #include <cpl_conv.h>
 
-#include "gdal_dataset.hpp"
+#include "geo/gdal_dataset.hpp"
 #include "runtime/errors.hpp"
 
 namespace globe {

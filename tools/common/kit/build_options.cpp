@@ -1,5 +1,5 @@
 // Shared build options (see build_options.hpp).
-#include "build_options.hpp"
+#include "kit/build_options.hpp"
 
 #include <filesystem>
 

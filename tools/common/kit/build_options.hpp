@@ -9,9 +9,9 @@
 #include <thread>
 #include <vector>
 
-#include "progress.hpp"
+#include "kit/progress.hpp"
+#include "kit/shard_plan.hpp"
 #include "runtime/cli_args.hpp"
-#include "shard_plan.hpp"
 #include "tileformat/tiling.hpp"
 
 namespace globe {

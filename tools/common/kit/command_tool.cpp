@@ -1,5 +1,5 @@
 // Subcommand dispatch (see command_tool.hpp).
-#include "command_tool.hpp"
+#include "kit/command_tool.hpp"
 
 #include <cstdio>
 

@@ -1,5 +1,5 @@
 // glibc allocator settings (see heap_tuning.hpp).
-#include "heap_tuning.hpp"
+#include "kit/heap_tuning.hpp"
 
 #include <malloc.h>
 

@@ -1,5 +1,5 @@
 // JSON objects for `info --json` (see info_json.hpp).
-#include "info_json.hpp"
+#include "kit/info_json.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -1,5 +1,5 @@
 // Shared `info` output (see package_info.hpp).
-#include "package_info.hpp"
+#include "kit/package_info.hpp"
 
 #include <cstdio>
 #include <filesystem>

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "info_json.hpp"
+#include "kit/info_json.hpp"
 #include "tileformat/package.hpp"
 
 namespace globe {

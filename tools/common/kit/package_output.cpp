@@ -1,10 +1,10 @@
 // Package creation and commit (see package_output.hpp).
-#include "package_output.hpp"
+#include "kit/package_output.hpp"
 
 #include <filesystem>
 
-#include "build_options.hpp"
-#include "progress.hpp"
+#include "kit/build_options.hpp"
+#include "kit/progress.hpp"
 #include "runtime/errors.hpp"
 #include "tileformat/error.hpp"
 

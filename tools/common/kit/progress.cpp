@@ -1,5 +1,5 @@
 // Progress reporting (see progress.hpp).
-#include "progress.hpp"
+#include "kit/progress.hpp"
 
 #include "tileformat/json.hpp"
 

@@ -1,5 +1,5 @@
 // Random-access scratch files (see scratch_array_file.hpp).
-#include "scratch_array_file.hpp"
+#include "kit/scratch_array_file.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>

@@ -1,5 +1,5 @@
 // Scratch record files (see scratch_file.hpp).
-#include "scratch_file.hpp"
+#include "kit/scratch_file.hpp"
 
 #include <cerrno>
 #include <cstring>

@@ -1,12 +1,12 @@
 // Shard planning (see shard_plan.hpp).
-#include "shard_plan.hpp"
+#include "kit/shard_plan.hpp"
 
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <map>
 
-#include "build_options.hpp"
+#include "kit/build_options.hpp"
 #include "runtime/cli_args.hpp"
 #include "runtime/errors.hpp"
 

@@ -1,11 +1,11 @@
 // Shard sets (see shard_set.hpp).
-#include "shard_set.hpp"
+#include "kit/shard_set.hpp"
 
 #include <algorithm>
 #include <filesystem>
 
-#include "build_options.hpp"
-#include "progress.hpp"
+#include "kit/build_options.hpp"
+#include "kit/progress.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/package_open.hpp"
 #include "tileformat/metadata.hpp"

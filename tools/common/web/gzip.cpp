@@ -1,5 +1,5 @@
 // gzip through zlib (see gzip.hpp).
-#include "gzip.hpp"
+#include "web/gzip.hpp"
 
 #include <zlib.h>
 

@@ -1,5 +1,5 @@
 // Line-cluster tiles as Mapbox Vector Tiles (see line_mvt.hpp).
-#include "line_mvt.hpp"
+#include "web/line_mvt.hpp"
 
 #include <cmath>
 #include <cstdio>

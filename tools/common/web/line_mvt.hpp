@@ -16,10 +16,10 @@
 #include <utility>
 #include <vector>
 
-#include "mvt_encoder.hpp"
 #include "runtime/line_package.hpp"
 #include "tileformat/feature_table.hpp"
 #include "tileformat/tile_id.hpp"
+#include "web/mvt_encoder.hpp"
 
 namespace globe::web {
 

@@ -1,5 +1,5 @@
 // Quantized-mesh tiles of a terrain package (see mesh_tiles.hpp).
-#include "mesh_tiles.hpp"
+#include "web/mesh_tiles.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,10 +7,10 @@
 #include <map>
 #include <set>
 
-#include "quantized_mesh.hpp"
-#include "raster_dem.hpp"
 #include "tileformat/json.hpp"
 #include "tileformat/mblock.hpp"
+#include "web/quantized_mesh.hpp"
+#include "web/raster_dem.hpp"
 
 namespace globe::web {
 namespace {

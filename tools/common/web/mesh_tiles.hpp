@@ -18,11 +18,11 @@
 #include <string>
 #include <vector>
 
-#include "lru_cache.hpp"
 #include "runtime/terrain_package.hpp"
-#include "terrain_mesh.hpp"
-#include "terrain_sampler.hpp"
 #include "tileformat/tile_id.hpp"
+#include "web/lru_cache.hpp"
+#include "web/terrain_mesh.hpp"
+#include "web/terrain_sampler.hpp"
 
 namespace globe::web {
 

@@ -1,5 +1,5 @@
 // Mapbox Vector Tile encoding (see mvt_encoder.hpp).
-#include "mvt_encoder.hpp"
+#include "web/mvt_encoder.hpp"
 
 #include <cstring>
 #include <tuple>

@@ -1,11 +1,11 @@
 // Point tiles as Mapbox Vector Tiles (see point_mvt.hpp).
-#include "point_mvt.hpp"
+#include "web/point_mvt.hpp"
 
-#include "mvt_encoder.hpp"
 #include "runtime/errors.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/json.hpp"
 #include "tileformat/point_tile.hpp"
+#include "web/mvt_encoder.hpp"
 
 namespace globe::web {
 

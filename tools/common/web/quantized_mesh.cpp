@@ -1,5 +1,5 @@
 // quantized-mesh-1.0 tiles (see quantized_mesh.hpp).
-#include "quantized_mesh.hpp"
+#include "web/quantized_mesh.hpp"
 
 #include <algorithm>
 #include <cmath>

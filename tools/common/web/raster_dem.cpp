@@ -1,5 +1,5 @@
 // Raster-DEM pixel codings and web mercator geometry (see raster_dem.hpp).
-#include "raster_dem.hpp"
+#include "web/raster_dem.hpp"
 
 #include <algorithm>
 #include <cmath>

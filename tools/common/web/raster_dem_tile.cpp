@@ -1,5 +1,5 @@
 // One raster-DEM tile of a terrain package (see raster_dem_tile.hpp).
-#include "raster_dem_tile.hpp"
+#include "web/raster_dem_tile.hpp"
 
 #include <algorithm>
 #include <cmath>

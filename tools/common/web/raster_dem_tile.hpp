@@ -8,9 +8,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "raster_dem.hpp"
 #include "runtime/terrain_package.hpp"
-#include "terrain_sampler.hpp"
+#include "web/raster_dem.hpp"
+#include "web/terrain_sampler.hpp"
 
 namespace globe::web {
 

@@ -1,5 +1,5 @@
 // Terrain tiles as TINs (see terrain_mesh.hpp).
-#include "terrain_mesh.hpp"
+#include "web/terrain_mesh.hpp"
 
 #include <algorithm>
 #include <climits>

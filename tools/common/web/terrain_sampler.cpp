@@ -1,5 +1,5 @@
 // Heights of a terrain package anywhere (see terrain_sampler.hpp).
-#include "terrain_sampler.hpp"
+#include "web/terrain_sampler.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -17,10 +17,10 @@
 #include <optional>
 #include <vector>
 
-#include "lru_cache.hpp"
 #include "runtime/terrain_package.hpp"
 #include "tileformat/mblock.hpp"
 #include "tileformat/tile_id.hpp"
+#include "web/lru_cache.hpp"
 
 namespace globe::web {
 

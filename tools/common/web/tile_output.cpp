@@ -1,5 +1,5 @@
 // Export outputs (see tile_output.hpp).
-#include "tile_output.hpp"
+#include "web/tile_output.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <fstream>
 #include <utility>
 
-#include "package_output.hpp"
+#include "kit/package_output.hpp"
 #include "runtime/errors.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/json.hpp"

@@ -1,5 +1,5 @@
 // The analysis builder (see analysis_builder.hpp).
-#include "analysis_builder.hpp"
+#include "analysis/analysis_builder.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -9,16 +9,16 @@
 #include <mutex>
 #include <optional>
 
-#include "batch_blocks.hpp"
+#include "analysis/batch_blocks.hpp"
+#include "analysis/height_window.hpp"
+#include "analysis/sky_view.hpp"
+#include "analysis/terrain_derivatives.hpp"
 #include "flow/flow_solver.hpp"
-#include "height_window.hpp"
-#include "package_output.hpp"
-#include "parallel_batches.hpp"
+#include "kit/package_output.hpp"
+#include "kit/parallel_batches.hpp"
+#include "kit/shard_plan.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/terrain_package.hpp"
-#include "shard_plan.hpp"
-#include "sky_view.hpp"
-#include "terrain_derivatives.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/mblock.hpp"
 #include "tileformat/metadata.hpp"

@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "build_options.hpp"
-#include "progress.hpp"
-#include "sky_view.hpp"
+#include "analysis/sky_view.hpp"
+#include "kit/build_options.hpp"
+#include "kit/progress.hpp"
 #include "tileformat/analysis_block.hpp"
 
 namespace globe {

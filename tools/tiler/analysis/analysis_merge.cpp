@@ -1,9 +1,9 @@
 // Analysis shard merge (see analysis_merge.hpp).
-#include "analysis_merge.hpp"
+#include "analysis/analysis_merge.hpp"
 
 #include <chrono>
 
-#include "package_output.hpp"
+#include "kit/package_output.hpp"
 #include "runtime/package_open.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/metadata.hpp"

@@ -5,10 +5,10 @@
 // zoom first). Resumable like a build.
 #pragma once
 
-#include "analysis_builder.hpp"
-#include "build_options.hpp"
-#include "progress.hpp"
-#include "shard_set.hpp"
+#include "analysis/analysis_builder.hpp"
+#include "kit/build_options.hpp"
+#include "kit/progress.hpp"
+#include "kit/shard_set.hpp"
 
 namespace globe {
 

@@ -5,11 +5,11 @@
 #include <cstdio>
 #include <sstream>
 
-#include "analysis_builder.hpp"
-#include "commands.hpp"
-#include "heap_tuning.hpp"
+#include "analysis/analysis_builder.hpp"
+#include "kit/heap_tuning.hpp"
 #include "runtime/cli_args.hpp"
 #include "runtime/errors.hpp"
+#include "tiler_commands.hpp"
 
 namespace globe {
 namespace {

@@ -1,5 +1,5 @@
 // Height windows across block edges (see height_window.hpp).
-#include "height_window.hpp"
+#include "analysis/height_window.hpp"
 
 #include <algorithm>
 #include <set>

@@ -1,5 +1,5 @@
 // Sky-view factor (see sky_view.hpp).
-#include "sky_view.hpp"
+#include "analysis/sky_view.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -7,8 +7,8 @@
 
 #include <vector>
 
-#include "height_window.hpp"
-#include "terrain_derivatives.hpp"
+#include "analysis/height_window.hpp"
+#include "analysis/terrain_derivatives.hpp"
 
 namespace globe {
 

@@ -1,5 +1,5 @@
 // Terrain derivatives (see terrain_derivatives.hpp).
-#include "terrain_derivatives.hpp"
+#include "analysis/terrain_derivatives.hpp"
 
 #include <cmath>
 #include <limits>

@@ -1,5 +1,5 @@
 // Raster-DEM export (see dem_export.hpp).
-#include "dem_export.hpp"
+#include "export/dem_export.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -8,13 +8,13 @@
 #include <memory>
 #include <vector>
 
-#include "parallel_batches.hpp"
-#include "raster_dem_tile.hpp"
+#include "kit/parallel_batches.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/terrain_package.hpp"
-#include "terrain_sampler.hpp"
-#include "tile_output.hpp"
 #include "tileformat/pmtiles.hpp"
+#include "web/raster_dem_tile.hpp"
+#include "web/terrain_sampler.hpp"
+#include "web/tile_output.hpp"
 
 namespace globe {
 namespace {

@@ -11,8 +11,8 @@
 #include <cstdint>
 #include <string>
 
-#include "progress.hpp"
-#include "raster_dem.hpp"
+#include "kit/progress.hpp"
+#include "web/raster_dem.hpp"
 
 namespace globe {
 

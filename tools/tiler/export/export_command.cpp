@@ -3,14 +3,14 @@
 // package's kind and --format.
 #include <sstream>
 
-#include "build_options.hpp"
-#include "commands.hpp"
-#include "dem_export.hpp"
-#include "image_export.hpp"
-#include "mesh_export.hpp"
+#include "export/dem_export.hpp"
+#include "export/image_export.hpp"
+#include "export/mesh_export.hpp"
+#include "kit/build_options.hpp"
 #include "runtime/cli_args.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/package_open.hpp"
+#include "tiler_commands.hpp"
 
 namespace globe {
 

@@ -1,5 +1,5 @@
 // Image package export (see image_export.hpp).
-#include "image_export.hpp"
+#include "export/image_export.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -8,8 +8,8 @@
 
 #include "runtime/errors.hpp"
 #include "runtime/image_package.hpp"
-#include "tile_output.hpp"
 #include "tileformat/pmtiles.hpp"
+#include "web/tile_output.hpp"
 
 namespace globe {
 

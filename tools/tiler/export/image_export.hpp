@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "dem_export.hpp"
+#include "export/dem_export.hpp"
 
 namespace globe {
 

@@ -1,5 +1,5 @@
 // Quantized-mesh export (see mesh_export.hpp).
-#include "mesh_export.hpp"
+#include "export/mesh_export.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -7,13 +7,13 @@
 #include <memory>
 #include <vector>
 
-#include "gzip.hpp"
-#include "mesh_tiles.hpp"
-#include "parallel_batches.hpp"
+#include "kit/parallel_batches.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/terrain_package.hpp"
-#include "tile_output.hpp"
 #include "tileformat/pmtiles.hpp"
+#include "web/gzip.hpp"
+#include "web/mesh_tiles.hpp"
+#include "web/tile_output.hpp"
 
 namespace globe {
 

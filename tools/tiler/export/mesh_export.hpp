@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "dem_export.hpp"
-#include "progress.hpp"
+#include "export/dem_export.hpp"
+#include "kit/progress.hpp"
 
 namespace globe {
 

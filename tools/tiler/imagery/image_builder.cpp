@@ -1,5 +1,5 @@
 // Image package builder (see image_builder.hpp).
-#include "image_builder.hpp"
+#include "imagery/image_builder.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -11,17 +11,17 @@
 #include <sstream>
 #include <thread>
 
-#include "data_probe.hpp"
-#include "image_codec.hpp"
-#include "image_pyramid.hpp"
-#include "image_warper.hpp"
-#include "package_output.hpp"
-#include "parallel_batches.hpp"
-#include "raster_metadata.hpp"
-#include "raster_stages.hpp"
+#include "geo/image_codec.hpp"
+#include "imagery/image_pyramid.hpp"
+#include "imagery/image_warper.hpp"
+#include "kit/package_output.hpp"
+#include "kit/parallel_batches.hpp"
+#include "kit/shard_plan.hpp"
+#include "raster/data_probe.hpp"
+#include "raster/raster_metadata.hpp"
+#include "raster/raster_stages.hpp"
+#include "raster/tile_groups.hpp"
 #include "runtime/errors.hpp"
-#include "shard_plan.hpp"
-#include "tile_groups.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/package.hpp"
 #include "tileformat/shard_table.hpp"

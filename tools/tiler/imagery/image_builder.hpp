@@ -9,9 +9,9 @@
 
 #include <cstdint>
 
-#include "image_plan.hpp"
-#include "progress.hpp"
-#include "raster_stages.hpp"
+#include "imagery/image_plan.hpp"
+#include "kit/progress.hpp"
+#include "raster/raster_stages.hpp"
 #include "tileformat/package.hpp"
 #include "tileformat/shard_table.hpp"
 

@@ -1,9 +1,9 @@
 // Image shard merge (see image_merge.hpp).
-#include "image_merge.hpp"
+#include "imagery/image_merge.hpp"
 
 #include <chrono>
 
-#include "package_output.hpp"
+#include "kit/package_output.hpp"
 #include "runtime/package_open.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/image_tile.hpp"

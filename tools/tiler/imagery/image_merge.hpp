@@ -5,10 +5,10 @@
 // split zoom's pixels in the shard tables. Resumable like a build.
 #pragma once
 
-#include "build_options.hpp"
-#include "image_builder.hpp"
-#include "progress.hpp"
-#include "shard_set.hpp"
+#include "imagery/image_builder.hpp"
+#include "kit/build_options.hpp"
+#include "kit/progress.hpp"
+#include "kit/shard_set.hpp"
 
 namespace globe {
 

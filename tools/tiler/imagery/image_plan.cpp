@@ -1,12 +1,12 @@
 // Imagery build planning (see image_plan.hpp, docs/imagery.md "Planning").
-#include "image_plan.hpp"
+#include "imagery/image_plan.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "gdal_dataset.hpp"
-#include "raster_warper.hpp"
+#include "geo/gdal_dataset.hpp"
+#include "raster/raster_warper.hpp"
 #include "runtime/errors.hpp"
 
 namespace globe {

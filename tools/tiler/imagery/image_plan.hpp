@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "image_settings.hpp"
-#include "raster_footprint.hpp"
+#include "imagery/image_settings.hpp"
+#include "raster/raster_footprint.hpp"
 
 namespace globe {
 

@@ -1,5 +1,5 @@
 // Image pyramid step (see image_pyramid.hpp).
-#include "image_pyramid.hpp"
+#include "imagery/image_pyramid.hpp"
 
 namespace globe {
 

@@ -6,7 +6,7 @@
 
 #include <array>
 
-#include "image_codec.hpp"
+#include "geo/image_codec.hpp"
 
 namespace globe {
 

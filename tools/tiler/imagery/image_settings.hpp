@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "build_options.hpp"
+#include "kit/build_options.hpp"
 #include "tileformat/image_tile.hpp"
 
 namespace globe {

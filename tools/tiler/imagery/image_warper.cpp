@@ -1,10 +1,10 @@
 // Image tiles from the imagery mosaic (see image_warper.hpp).
-#include "image_warper.hpp"
+#include "imagery/image_warper.hpp"
 
 #include <cstdio>
 
+#include "geo/spatial_ref.hpp"
 #include "runtime/errors.hpp"
-#include "spatial_ref.hpp"
 
 namespace globe {
 namespace {

@@ -8,8 +8,8 @@
 #include <memory>
 #include <vector>
 
-#include "image_plan.hpp"
-#include "raster_warper.hpp"
+#include "imagery/image_plan.hpp"
+#include "raster/raster_warper.hpp"
 #include "tileformat/tile_id.hpp"
 
 namespace globe {

@@ -3,12 +3,12 @@
 #include <cstdio>
 #include <sstream>
 
-#include "commands.hpp"
-#include "image_builder.hpp"
-#include "image_plan.hpp"
-#include "raster_warper.hpp"
+#include "imagery/image_builder.hpp"
+#include "imagery/image_plan.hpp"
+#include "raster/raster_warper.hpp"
 #include "runtime/cli_args.hpp"
 #include "runtime/errors.hpp"
+#include "tiler_commands.hpp"
 
 namespace globe {
 namespace {

@@ -4,12 +4,12 @@
 #include <limits>
 #include <map>
 
-#include "inspect_commands.hpp"
-#include "package_info.hpp"
+#include "inspect/inspect_commands.hpp"
+#include "kit/package_info.hpp"
+#include "kit/validation_report.hpp"
 #include "runtime/analysis_package.hpp"
 #include "runtime/errors.hpp"
 #include "tileformat/error.hpp"
-#include "validation_report.hpp"
 
 namespace globe {
 

@@ -7,17 +7,17 @@
 #include <filesystem>
 #include <limits>
 
-#include "commands.hpp"
-#include "gdal_dataset.hpp"
-#include "inspect_commands.hpp"
+#include "geo/gdal_dataset.hpp"
+#include "geo/spatial_ref.hpp"
+#include "inspect/inspect_commands.hpp"
 #include "runtime/cli_args.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/image_package.hpp"
 #include "runtime/package_open.hpp"
 #include "runtime/terrain_package.hpp"
-#include "spatial_ref.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/mblock.hpp"
+#include "tiler_commands.hpp"
 
 namespace globe {
 

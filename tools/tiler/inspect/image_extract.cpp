@@ -4,9 +4,9 @@
 
 #include <cstdio>
 
-#include "gdal_dataset.hpp"
-#include "image_codec.hpp"
-#include "inspect_commands.hpp"
+#include "geo/gdal_dataset.hpp"
+#include "geo/image_codec.hpp"
+#include "inspect/inspect_commands.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/image_package.hpp"
 #include "tileformat/error.hpp"

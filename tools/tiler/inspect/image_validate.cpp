@@ -11,12 +11,12 @@
 #include <map>
 #include <optional>
 
-#include "image_codec.hpp"
-#include "image_pyramid.hpp"
-#include "inspect_commands.hpp"
+#include "geo/image_codec.hpp"
+#include "imagery/image_pyramid.hpp"
+#include "inspect/inspect_commands.hpp"
+#include "kit/validation_report.hpp"
 #include "runtime/image_package.hpp"
 #include "tileformat/error.hpp"
-#include "validation_report.hpp"
 
 namespace globe {
 

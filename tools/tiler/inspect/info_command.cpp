@@ -2,15 +2,15 @@
 // stdout, for terrain and image packages.
 #include <cstdio>
 
-#include "commands.hpp"
-#include "inspect_commands.hpp"
-#include "package_info.hpp"
+#include "inspect/inspect_commands.hpp"
+#include "kit/package_info.hpp"
 #include "runtime/cli_args.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/image_package.hpp"
 #include "runtime/package_open.hpp"
 #include "runtime/terrain_package.hpp"
 #include "tileformat/error.hpp"
+#include "tiler_commands.hpp"
 
 namespace globe {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "gdal_dataset.hpp"
+#include "geo/gdal_dataset.hpp"
 #include "tileformat/package.hpp"
 #include "tileformat/tiling.hpp"
 

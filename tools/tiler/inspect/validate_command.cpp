@@ -8,8 +8,8 @@
 #include <map>
 #include <optional>
 
-#include "commands.hpp"
-#include "inspect_commands.hpp"
+#include "inspect/inspect_commands.hpp"
+#include "kit/validation_report.hpp"
 #include "runtime/cli_args.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/image_package.hpp"
@@ -18,7 +18,7 @@
 #include "tileformat/error.hpp"
 #include "tileformat/kpatch.hpp"
 #include "tileformat/mblock.hpp"
-#include "validation_report.hpp"
+#include "tiler_commands.hpp"
 
 namespace globe {
 namespace {

@@ -3,13 +3,13 @@
 // (docs/scale-out.md), by the shards' kind.
 #include <sstream>
 
-#include "analysis_merge.hpp"
-#include "commands.hpp"
-#include "image_merge.hpp"
+#include "analysis/analysis_merge.hpp"
+#include "imagery/image_merge.hpp"
+#include "kit/shard_set.hpp"
 #include "runtime/cli_args.hpp"
 #include "runtime/errors.hpp"
-#include "shard_set.hpp"
-#include "terrain_merge.hpp"
+#include "terrain/terrain_merge.hpp"
+#include "tiler_commands.hpp"
 
 namespace globe {
 

@@ -1,12 +1,12 @@
 // Work estimate from a coarse read of the inputs (see data_probe.hpp).
-#include "data_probe.hpp"
+#include "raster/data_probe.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 
-#include "spatial_ref.hpp"
-#include "tile_groups.hpp"
+#include "geo/spatial_ref.hpp"
+#include "raster/tile_groups.hpp"
 
 namespace globe {
 namespace {

@@ -11,8 +11,8 @@
 #include <optional>
 #include <vector>
 
-#include "raster_footprint.hpp"
-#include "shard_plan.hpp"
+#include "kit/shard_plan.hpp"
+#include "raster/raster_footprint.hpp"
 
 namespace globe {
 

@@ -1,5 +1,5 @@
 // Raster inputs in a tiling (see raster_footprint.hpp, docs/terrain.md "Planning").
-#include "raster_footprint.hpp"
+#include "raster/raster_footprint.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "build_options.hpp"
-#include "gdal_dataset.hpp"
-#include "spatial_ref.hpp"
+#include "geo/gdal_dataset.hpp"
+#include "geo/spatial_ref.hpp"
+#include "kit/build_options.hpp"
 #include "tileformat/tiling.hpp"
 
 namespace globe {

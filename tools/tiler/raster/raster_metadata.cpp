@@ -1,5 +1,5 @@
 // Common raster package metadata (see raster_metadata.hpp).
-#include "raster_metadata.hpp"
+#include "raster/raster_metadata.hpp"
 
 #include <algorithm>
 #include <filesystem>

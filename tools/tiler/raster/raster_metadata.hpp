@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "raster_footprint.hpp"
+#include "raster/raster_footprint.hpp"
 #include "tileformat/metadata.hpp"
 
 namespace globe {

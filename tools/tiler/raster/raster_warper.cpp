@@ -1,5 +1,5 @@
 // Windowed warping through GDAL's warp kernel (see raster_warper.hpp).
-#include "raster_warper.hpp"
+#include "raster/raster_warper.hpp"
 
 #include <cpl_string.h>
 #include <gdal_alg.h>
@@ -10,9 +10,9 @@
 #include <numeric>
 #include <optional>
 
+#include "geo/spatial_ref.hpp"
+#include "raster/window_coordinates.hpp"
 #include "runtime/errors.hpp"
-#include "spatial_ref.hpp"
-#include "window_coordinates.hpp"
 
 namespace globe {
 namespace {

@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-#include "gdal_dataset.hpp"
+#include "geo/gdal_dataset.hpp"
 
 namespace globe {
 

@@ -1,5 +1,5 @@
 // Finest-zoom tiles and warp groups (see tile_groups.hpp).
-#include "tile_groups.hpp"
+#include "raster/tile_groups.hpp"
 
 #include <algorithm>
 #include <map>

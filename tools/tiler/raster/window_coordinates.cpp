@@ -1,5 +1,5 @@
 // Interpolated window coordinates (see window_coordinates.hpp).
-#include "window_coordinates.hpp"
+#include "raster/window_coordinates.hpp"
 
 #include <algorithm>
 #include <array>

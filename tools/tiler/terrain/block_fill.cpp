@@ -1,5 +1,5 @@
 // Hole filling (see block_fill.hpp).
-#include "block_fill.hpp"
+#include "terrain/block_fill.hpp"
 
 #include <algorithm>
 #include <cmath>

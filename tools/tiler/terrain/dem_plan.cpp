@@ -1,5 +1,5 @@
 // Terrain build planning (see dem_plan.hpp, docs/terrain.md "Planning").
-#include "dem_plan.hpp"
+#include "terrain/dem_plan.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,10 +8,10 @@
 #include <optional>
 #include <vector>
 
-#include "gdal_dataset.hpp"
-#include "raster_warper.hpp"
+#include "geo/gdal_dataset.hpp"
+#include "geo/spatial_ref.hpp"
+#include "raster/raster_warper.hpp"
 #include "runtime/errors.hpp"
-#include "spatial_ref.hpp"
 #include "tileformat/mblock.hpp"
 
 namespace globe {

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "raster_footprint.hpp"
-#include "terrain_settings.hpp"
+#include "raster/raster_footprint.hpp"
+#include "terrain/terrain_settings.hpp"
 #include "tileformat/tiling.hpp"
 
 namespace globe {

@@ -1,5 +1,5 @@
 // Terrain package builder (see terrain_builder.hpp).
-#include "terrain_builder.hpp"
+#include "terrain/terrain_builder.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -9,18 +9,18 @@
 #include <memory>
 #include <sstream>
 
-#include "block_fill.hpp"
-#include "data_probe.hpp"
-#include "error_tree.hpp"
-#include "package_output.hpp"
-#include "parallel_batches.hpp"
-#include "raster_metadata.hpp"
-#include "raster_stages.hpp"
+#include "kit/package_output.hpp"
+#include "kit/parallel_batches.hpp"
+#include "kit/shard_plan.hpp"
+#include "raster/data_probe.hpp"
+#include "raster/raster_metadata.hpp"
+#include "raster/raster_stages.hpp"
+#include "raster/tile_groups.hpp"
 #include "runtime/errors.hpp"
-#include "shard_plan.hpp"
-#include "terrain_stages.hpp"
-#include "tile_groups.hpp"
-#include "tile_warper.hpp"
+#include "terrain/block_fill.hpp"
+#include "terrain/error_tree.hpp"
+#include "terrain/terrain_stages.hpp"
+#include "terrain/tile_warper.hpp"
 #include "tileformat/blob_header.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/kpatch.hpp"

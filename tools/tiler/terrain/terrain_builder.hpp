@@ -14,10 +14,10 @@
 
 #include <cstdint>
 
-#include "dem_plan.hpp"
-#include "progress.hpp"
-#include "raster_stages.hpp"
-#include "terrain_settings.hpp"
+#include "kit/progress.hpp"
+#include "raster/raster_stages.hpp"
+#include "terrain/dem_plan.hpp"
+#include "terrain/terrain_settings.hpp"
 #include "tileformat/package.hpp"
 
 namespace globe {

@@ -4,11 +4,11 @@
 #include <sstream>
 #include <thread>
 
-#include "commands.hpp"
-#include "dem_plan.hpp"
 #include "runtime/cli_args.hpp"
 #include "runtime/errors.hpp"
-#include "terrain_builder.hpp"
+#include "terrain/dem_plan.hpp"
+#include "terrain/terrain_builder.hpp"
+#include "tiler_commands.hpp"
 
 namespace globe {
 

@@ -1,16 +1,16 @@
 // Terrain shard merge (see terrain_merge.hpp).
-#include "terrain_merge.hpp"
+#include "terrain/terrain_merge.hpp"
 
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <map>
 
-#include "error_tree.hpp"
-#include "package_output.hpp"
-#include "parallel_batches.hpp"
+#include "kit/package_output.hpp"
+#include "kit/parallel_batches.hpp"
 #include "runtime/package_open.hpp"
-#include "terrain_stages.hpp"
+#include "terrain/error_tree.hpp"
+#include "terrain/terrain_stages.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/kpatch.hpp"
 #include "tileformat/mblock.hpp"

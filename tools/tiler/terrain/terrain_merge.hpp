@@ -7,10 +7,10 @@
 // split zoom's quarters and node errors. Resumable like a build.
 #pragma once
 
-#include "build_options.hpp"
-#include "progress.hpp"
-#include "shard_set.hpp"
-#include "terrain_builder.hpp"
+#include "kit/build_options.hpp"
+#include "kit/progress.hpp"
+#include "kit/shard_set.hpp"
+#include "terrain/terrain_builder.hpp"
 
 namespace globe {
 

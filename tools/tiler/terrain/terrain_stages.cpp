@@ -1,5 +1,5 @@
 // Terrain staged-data codecs (see terrain_stages.hpp).
-#include "terrain_stages.hpp"
+#include "terrain/terrain_stages.hpp"
 
 #include "tileformat/byte_io.hpp"
 #include "tileformat/mblock.hpp"

@@ -1,11 +1,11 @@
 // Terrain tiles from the DEM mosaic (see tile_warper.hpp).
-#include "tile_warper.hpp"
+#include "terrain/tile_warper.hpp"
 
 #include <cmath>
 #include <limits>
 
+#include "geo/spatial_ref.hpp"
 #include "runtime/errors.hpp"
-#include "spatial_ref.hpp"
 
 namespace globe {
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "dem_plan.hpp"
-#include "raster_warper.hpp"
+#include "raster/raster_warper.hpp"
+#include "terrain/dem_plan.hpp"
 #include "tileformat/tile_id.hpp"
 
 namespace globe {

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "bundle/bundle_settings.hpp"
-#include "progress.hpp"
+#include "kit/progress.hpp"
 
 namespace globe {
 

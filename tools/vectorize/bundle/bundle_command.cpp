@@ -3,10 +3,10 @@
 #include <sstream>
 
 #include "bundle/bundle_builder.hpp"
-#include "commands.hpp"
 #include "lines/lines_options.hpp"
 #include "runtime/cli_args.hpp"
 #include "runtime/errors.hpp"
+#include "vectorize_commands.hpp"
 
 namespace globe {
 

@@ -8,9 +8,9 @@
 #include <memory>
 #include <unordered_map>
 
+#include "geo/spatial_ref.hpp"
 #include "io/vector_reader.hpp"
 #include "runtime/errors.hpp"
-#include "spatial_ref.hpp"
 
 namespace globe {
 

@@ -6,10 +6,10 @@
 #include <numbers>
 #include <numeric>
 
-#include "geodesic.hpp"
+#include "geo/geodesic.hpp"
+#include "geo/spatial_ref.hpp"
 #include "io/vector_reader.hpp"
 #include "runtime/errors.hpp"
-#include "spatial_ref.hpp"
 
 namespace globe {
 

@@ -16,7 +16,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "progress.hpp"
+#include "kit/progress.hpp"
 
 namespace globe {
 

@@ -7,7 +7,7 @@
 #include <map>
 #include <string>
 
-#include "parallel_batches.hpp"
+#include "kit/parallel_batches.hpp"
 
 namespace globe {
 

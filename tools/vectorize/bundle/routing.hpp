@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "bundle/network_graph.hpp"
-#include "progress.hpp"
+#include "kit/progress.hpp"
 
 namespace globe {
 

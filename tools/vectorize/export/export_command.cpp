@@ -2,13 +2,13 @@
 // line, bundle and point packages as vector tiles for web maps (docs/web.md).
 #include <sstream>
 
-#include "build_options.hpp"
-#include "commands.hpp"
 #include "export/mvt_export.hpp"
 #include "export/point_mvt_export.hpp"
+#include "kit/build_options.hpp"
 #include "runtime/cli_args.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/package_open.hpp"
+#include "vectorize_commands.hpp"
 
 namespace globe {
 

@@ -5,13 +5,13 @@
 #include <filesystem>
 #include <fstream>
 
-#include "gzip.hpp"
-#include "line_mvt.hpp"
-#include "mvt_encoder.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/line_package.hpp"
-#include "tile_output.hpp"
 #include "tileformat/pmtiles.hpp"
+#include "web/gzip.hpp"
+#include "web/line_mvt.hpp"
+#include "web/mvt_encoder.hpp"
+#include "web/tile_output.hpp"
 
 namespace globe {
 

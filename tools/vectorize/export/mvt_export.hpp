@@ -14,10 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "progress.hpp"
-#include "tile_output.hpp"
+#include "kit/progress.hpp"
 #include "tileformat/metadata.hpp"
 #include "tileformat/package.hpp"
+#include "web/tile_output.hpp"
 
 namespace globe {
 

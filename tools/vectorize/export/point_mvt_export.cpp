@@ -1,10 +1,10 @@
 // Point packages to Mapbox Vector Tiles (see point_mvt_export.hpp).
 #include "export/point_mvt_export.hpp"
 
-#include "mvt_encoder.hpp"
-#include "point_mvt.hpp"
 #include "runtime/point_package.hpp"
-#include "tile_output.hpp"
+#include "web/mvt_encoder.hpp"
+#include "web/point_mvt.hpp"
+#include "web/tile_output.hpp"
 
 namespace globe {
 

@@ -7,7 +7,7 @@
 #pragma once
 
 #include "export/mvt_export.hpp"
-#include "progress.hpp"
+#include "kit/progress.hpp"
 
 namespace globe {
 

@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <map>
 
-#include "commands.hpp"
 #include "inspect/points_inspect.hpp"
 #include "io/vector_writer.hpp"
 #include "runtime/cli_args.hpp"
@@ -15,6 +14,7 @@
 #include "runtime/point_package.hpp"
 #include "tileformat/feature_table.hpp"
 #include "tileformat/line_tile.hpp"
+#include "vectorize_commands.hpp"
 
 namespace globe {
 

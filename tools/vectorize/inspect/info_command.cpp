@@ -3,9 +3,8 @@
 #include <cstdio>
 #include <map>
 
-#include "commands.hpp"
 #include "inspect/points_inspect.hpp"
-#include "package_info.hpp"
+#include "kit/package_info.hpp"
 #include "runtime/cli_args.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/line_package.hpp"
@@ -13,6 +12,7 @@
 #include "tileformat/feature_table.hpp"
 #include "tileformat/json.hpp"
 #include "tileformat/line_tile.hpp"
+#include "vectorize_commands.hpp"
 
 namespace globe {
 

@@ -19,13 +19,13 @@
 #include <map>
 
 #include "io/vector_writer.hpp"
-#include "package_info.hpp"
+#include "kit/package_info.hpp"
+#include "kit/validation_report.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/point_package.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/feature_table.hpp"
 #include "tileformat/point_tile.hpp"
-#include "validation_report.hpp"
 
 namespace globe {
 

@@ -10,8 +10,8 @@
 #include <cstdio>
 #include <map>
 
-#include "commands.hpp"
 #include "inspect/points_inspect.hpp"
+#include "kit/validation_report.hpp"
 #include "runtime/cli_args.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/line_package.hpp"
@@ -21,7 +21,7 @@
 #include "tileformat/line_clusters.hpp"
 #include "tileformat/line_tile.hpp"
 #include "tileformat/shard_table.hpp"
-#include "validation_report.hpp"
+#include "vectorize_commands.hpp"
 
 namespace globe {
 int run_lines_validate(const std::vector<std::string>& args) {

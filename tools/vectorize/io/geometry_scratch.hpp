@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "scratch_file.hpp"
+#include "kit/scratch_file.hpp"
 #include "tiles/tile_cutter.hpp"
 
 namespace globe {

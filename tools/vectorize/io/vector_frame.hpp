@@ -8,9 +8,9 @@
 #include <string>
 #include "tileformat/metadata.hpp"
 
-#include "build_options.hpp"
+#include "geo/spatial_ref.hpp"
+#include "kit/build_options.hpp"
 #include "lines/line_projector.hpp"
-#include "spatial_ref.hpp"
 #include "tileformat/tiling.hpp"
 
 namespace globe {

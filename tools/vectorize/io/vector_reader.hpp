@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "gdal_dataset.hpp"
+#include "geo/gdal_dataset.hpp"
+#include "geo/spatial_ref.hpp"
 #include "lines/line_geometry.hpp"
-#include "spatial_ref.hpp"
 
 namespace globe {
 

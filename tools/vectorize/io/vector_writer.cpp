@@ -6,8 +6,8 @@
 
 #include <filesystem>
 
+#include "geo/spatial_ref.hpp"
 #include "runtime/errors.hpp"
-#include "spatial_ref.hpp"
 
 namespace globe {
 

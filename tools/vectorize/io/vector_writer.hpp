@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "gdal_dataset.hpp"
+#include "geo/gdal_dataset.hpp"
 #include "lines/line_geometry.hpp"
 #include "tileformat/package.hpp"
 

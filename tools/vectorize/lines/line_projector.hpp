@@ -6,8 +6,8 @@
 #include <memory>
 #include <vector>
 
+#include "geo/spatial_ref.hpp"
 #include "lines/line_geometry.hpp"
-#include "spatial_ref.hpp"
 
 namespace globe {
 

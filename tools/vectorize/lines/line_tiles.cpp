@@ -1,7 +1,7 @@
 // Line tile passes (see line_tiles.hpp).
 #include "lines/line_tiles.hpp"
 
-#include "parallel_batches.hpp"
+#include "kit/parallel_batches.hpp"
 #include "tileformat/line_clusters.hpp"
 #include "tileformat/line_tile.hpp"
 

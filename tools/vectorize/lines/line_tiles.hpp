@@ -10,8 +10,8 @@
 #include <functional>
 
 #include "io/geometry_scratch.hpp"
+#include "kit/progress.hpp"
 #include "lines/line_plan.hpp"
-#include "progress.hpp"
 #include "tileformat/package.hpp"
 #include "tiles/tile_cutter.hpp"
 #include "tiles/tile_sorter.hpp"

@@ -9,12 +9,12 @@
 
 #include "io/geometry_scratch.hpp"
 #include "io/vector_reader.hpp"
+#include "kit/package_output.hpp"
 #include "lines/line_classes.hpp"
 #include "lines/line_metadata.hpp"
 #include "lines/line_plan.hpp"
 #include "lines/line_projector.hpp"
 #include "lines/line_tiles.hpp"
-#include "package_output.hpp"
 #include "runtime/errors.hpp"
 #include "shard/line_shard.hpp"
 #include "tileformat/error.hpp"

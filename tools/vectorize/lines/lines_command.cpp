@@ -2,11 +2,11 @@
 // prints the summary.
 #include <sstream>
 
-#include "commands.hpp"
 #include "lines/lines_builder.hpp"
 #include "lines/lines_options.hpp"
 #include "runtime/cli_args.hpp"
 #include "runtime/errors.hpp"
+#include "vectorize_commands.hpp"
 
 namespace globe {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "build_options.hpp"
+#include "kit/build_options.hpp"
 
 namespace globe {
 

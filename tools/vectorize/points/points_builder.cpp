@@ -9,9 +9,9 @@
 
 #include "io/vector_frame.hpp"
 #include "io/vector_reader.hpp"
+#include "kit/package_output.hpp"
+#include "kit/parallel_batches.hpp"
 #include "lines/line_projector.hpp"
-#include "package_output.hpp"
-#include "parallel_batches.hpp"
 #include "points/point_aggregation.hpp"
 #include "runtime/errors.hpp"
 #include "tileformat/error.hpp"

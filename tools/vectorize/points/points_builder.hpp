@@ -14,8 +14,8 @@
 
 #include <cstdint>
 
+#include "kit/progress.hpp"
 #include "points/points_settings.hpp"
-#include "progress.hpp"
 
 namespace globe {
 

@@ -2,10 +2,10 @@
 // prints the summary.
 #include <sstream>
 
-#include "commands.hpp"
 #include "points/points_builder.hpp"
 #include "runtime/cli_args.hpp"
 #include "runtime/errors.hpp"
+#include "vectorize_commands.hpp"
 
 namespace globe {
 int run_points(const std::vector<std::string>& args) {

@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "build_options.hpp"
+#include "kit/build_options.hpp"
 #include "tileformat/metadata.hpp"
 
 namespace globe {

@@ -13,10 +13,10 @@
 #include <cstdint>
 
 #include "io/geometry_scratch.hpp"
+#include "kit/progress.hpp"
+#include "kit/shard_plan.hpp"
 #include "lines/line_plan.hpp"
 #include "lines/lines_settings.hpp"
-#include "progress.hpp"
-#include "shard_plan.hpp"
 
 namespace globe {
 

@@ -3,7 +3,7 @@
 
 #include <chrono>
 
-#include "package_output.hpp"
+#include "kit/package_output.hpp"
 #include "runtime/package_open.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/feature_table.hpp"

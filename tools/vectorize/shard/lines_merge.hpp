@@ -6,10 +6,10 @@
 // (coarsest zoom first). Resumable like a build.
 #pragma once
 
-#include "build_options.hpp"
+#include "kit/build_options.hpp"
+#include "kit/progress.hpp"
+#include "kit/shard_set.hpp"
 #include "lines/lines_builder.hpp"
-#include "progress.hpp"
-#include "shard_set.hpp"
 
 namespace globe {
 

@@ -3,11 +3,11 @@
 // one machine would build (docs/scale-out.md).
 #include <sstream>
 
-#include "commands.hpp"
+#include "kit/shard_set.hpp"
 #include "runtime/cli_args.hpp"
 #include "runtime/errors.hpp"
 #include "shard/lines_merge.hpp"
-#include "shard_set.hpp"
+#include "vectorize_commands.hpp"
 
 namespace globe {
 

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <tuple>
 
-#include "scratch_file.hpp"
+#include "kit/scratch_file.hpp"
 #include "tileformat/byte_io.hpp"
 
 namespace globe {

@@ -1,5 +1,5 @@
 // Chunk heights from terrain blocks (see chunk_heights.hpp).
-#include "chunk_heights.hpp"
+#include "analysis/flow/chunk_heights.hpp"
 
 #include <algorithm>
 

@@ -10,8 +10,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "flow_grid.hpp"
-#include "height_window.hpp"
+#include "analysis/flow/flow_grid.hpp"
+#include "analysis/height_window.hpp"
 
 namespace globe::flow {
 

@@ -1,5 +1,5 @@
 // Tiled priority-flood depression filling (see depression_fill.hpp).
-#include "depression_fill.hpp"
+#include "analysis/flow/depression_fill.hpp"
 
 #include <algorithm>
 #include <array>

@@ -13,7 +13,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "chunk_heights.hpp"
+#include "analysis/flow/chunk_heights.hpp"
 
 namespace globe::flow {
 

@@ -1,5 +1,5 @@
 // Routing through filled depressions (see depression_routing.hpp).
-#include "depression_routing.hpp"
+#include "analysis/flow/depression_routing.hpp"
 
 #include <algorithm>
 #include <cmath>

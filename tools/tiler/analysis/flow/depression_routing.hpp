@@ -21,9 +21,9 @@
 #include <tuple>
 #include <vector>
 
-#include "flow_directions.hpp"
-#include "flow_grid.hpp"
-#include "height_queue.hpp"
+#include "analysis/flow/flow_directions.hpp"
+#include "analysis/flow/flow_grid.hpp"
+#include "analysis/flow/height_queue.hpp"
 
 namespace globe::flow {
 

@@ -1,5 +1,5 @@
 // Tiled flow accumulation (see flow_accumulation.hpp).
-#include "flow_accumulation.hpp"
+#include "analysis/flow/flow_accumulation.hpp"
 
 namespace globe::flow {
 

@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "flow_grid.hpp"
+#include "analysis/flow/flow_grid.hpp"
 
 namespace globe::flow {
 

@@ -1,10 +1,10 @@
 // D8 directions and flat routing (see flow_directions.hpp).
-#include "flow_directions.hpp"
+#include "analysis/flow/flow_directions.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "depression_fill.hpp"
+#include "analysis/flow/depression_fill.hpp"
 
 namespace globe::flow {
 

@@ -16,7 +16,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "chunk_heights.hpp"
+#include "analysis/flow/chunk_heights.hpp"
 
 namespace globe::flow {
 

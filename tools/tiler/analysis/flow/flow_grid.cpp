@@ -1,11 +1,11 @@
 // Flow grid geometry (see flow_grid.hpp).
-#include "flow_grid.hpp"
+#include "analysis/flow/flow_grid.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include "terrain_derivatives.hpp"
+#include "analysis/terrain_derivatives.hpp"
 
 namespace globe::flow {
 

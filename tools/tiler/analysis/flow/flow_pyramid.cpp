@@ -1,5 +1,5 @@
 // Flow at every zoom (see flow_pyramid.hpp).
-#include "flow_pyramid.hpp"
+#include "analysis/flow/flow_pyramid.hpp"
 
 #include <algorithm>
 

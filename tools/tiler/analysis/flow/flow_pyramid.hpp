@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "flow_grid.hpp"
-#include "scratch_array_file.hpp"
+#include "analysis/flow/flow_grid.hpp"
+#include "kit/scratch_array_file.hpp"
 
 namespace globe::flow {
 

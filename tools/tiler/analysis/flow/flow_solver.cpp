@@ -1,18 +1,18 @@
 // The out-of-core flow solver (see flow_solver.hpp).
-#include "flow_solver.hpp"
+#include "analysis/flow/flow_solver.hpp"
 
 #include <algorithm>
 #include <bit>
 #include <map>
 
-#include "batch_blocks.hpp"
-#include "chunk_heights.hpp"
-#include "depression_fill.hpp"
-#include "depression_routing.hpp"
-#include "flow_accumulation.hpp"
-#include "flow_directions.hpp"
-#include "parallel_batches.hpp"
-#include "scratch_array_file.hpp"
+#include "analysis/batch_blocks.hpp"
+#include "analysis/flow/chunk_heights.hpp"
+#include "analysis/flow/depression_fill.hpp"
+#include "analysis/flow/depression_routing.hpp"
+#include "analysis/flow/flow_accumulation.hpp"
+#include "analysis/flow/flow_directions.hpp"
+#include "kit/parallel_batches.hpp"
+#include "kit/scratch_array_file.hpp"
 
 namespace globe::flow {
 

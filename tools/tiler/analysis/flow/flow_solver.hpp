@@ -22,9 +22,9 @@
 #include <memory>
 #include <string>
 
-#include "flow_grid.hpp"
-#include "flow_pyramid.hpp"
-#include "progress.hpp"
+#include "analysis/flow/flow_grid.hpp"
+#include "analysis/flow/flow_pyramid.hpp"
+#include "kit/progress.hpp"
 #include "runtime/terrain_package.hpp"
 
 namespace globe::flow {
