@@ -134,6 +134,69 @@ void declare_shading_options(CliArgs& cli, ViewerSettings& s) {
            "darken by the sky-view factor of an analysis package (any shading, and imagery lit "
            "by it)",
            [&] { s.shading.ambient_occlusion = true; });
+  cli.option("--colormap", "NAME|FILE",
+             "the colour ramp: hypsometric (default: bathymetry below 0 m, land above), "
+             "gray, or a gdaldem color-relief file (VALUE R G B [A] per line; VALUE in the "
+             "layer's unit, a percentage of its range, or nv); the window reloads the file when "
+             "it changes. Elevation always uses it; given, it also colours slope (0..90 "
+             "degrees), skyview (0..1), flow (upstream area in m^2, log scale), aspect (0..360 "
+             "degrees from north) and edges (curvature stretched to -1 valleys .. 1 ridges)",
+             [&](const std::string& v) {
+               s.shading.colormap = v;
+               s.shading.colormap_given = true;
+             });
+  cli.option("--height-range", "MIN,MAX",
+             "heights in metres the elevation ramp spans (default: the data's own heights, "
+             "from the coarsest blocks)",
+             [&](const std::string& v) {
+               const auto d = CliArgs::to_doubles("--height-range", v, 2);
+               if (!(d[1] > d[0])) throw UsageError("--height-range: MAX must be above MIN");
+               s.shading.height_range = std::pair{d[0], d[1]};
+             });
+  cli.option("--height-percentile", "P",
+             "clip the data's height range to its P-th and (100-P)-th percentiles "
+             "(default 0: minimum to maximum)",
+             [&](const std::string& v) {
+               s.shading.height_percentile = CliArgs::to_double("--height-percentile", v);
+               if (s.shading.height_percentile < 0 || s.shading.height_percentile >= 50)
+                 throw UsageError("--height-percentile: must be within 0..50");
+             });
+  cli.option("--image-opacity", "A[,B...]",
+             "opacity of each image layer, bottom first, 0..1 (default 1; the last value "
+             "applies to the layers after it)",
+             [&](const std::string& v) {
+               s.image_opacity.clear();
+               size_t start = 0;
+               for (;;) {
+                 const size_t comma = v.find(',', start);
+                 const double a =
+                     CliArgs::to_double("--image-opacity", v.substr(start, comma - start));
+                 if (a < 0 || a > 1) throw UsageError("--image-opacity: must be within 0..1");
+                 s.image_opacity.push_back(a);
+                 if (comma == std::string::npos) break;
+                 start = comma + 1;
+               }
+             });
+  cli.option("--sun", "AZ,ALT", "sun azimuth and altitude in degrees (default 315,45)",
+             [&](const std::string& v) {
+               const auto d = CliArgs::to_doubles("--sun", v, 2);
+               s.shading.sun_azimuth_deg = d[0];
+               s.shading.sun_altitude_deg = d[1];
+             });
+  cli.option("--exaggeration", "K",
+             "vertical exaggeration (default 1; without it the hillshade stretches the slopes of "
+             "coarse grids for the light, docs/viewer.md)",
+             [&](const std::string& v) {
+               s.shading.exaggeration = CliArgs::to_double("--exaggeration", v);
+               s.shading.exaggeration_given = true;
+               if (s.shading.exaggeration <= 0 || s.shading.exaggeration > 100)
+                 throw UsageError("--exaggeration: must be within (0, 100]");
+             });
+}
+
+// The deferred map's per-pixel extras over the terrain: --lens, --isolines,
+// --isolines-of, --isoline-color.
+void declare_map_options(CliArgs& cli, ViewerSettings& s) {
   cli.option("--lens", "X,Y,R[:WHAT]",
              "a magic lens: inside the circle of radius R pixels around X,Y (from the top-left) "
              "the terrain is shaded in another mode (WHAT a --shading name; default: elevation, "
@@ -198,64 +261,6 @@ void declare_shading_options(CliArgs& cli, ViewerSettings& s) {
                  throw UsageError("--isoline-color: expected #RRGGBB, got '" + v + "'");
                s.shading.isoline_rgb = {float((rgb >> 16) & 255) / 255,
                                         float((rgb >> 8) & 255) / 255, float(rgb & 255) / 255};
-             });
-  cli.option("--colormap", "NAME|FILE",
-             "the colour ramp: hypsometric (default: bathymetry below 0 m, land above), "
-             "gray, or a gdaldem color-relief file (VALUE R G B [A] per line; VALUE in the "
-             "layer's unit, a percentage of its range, or nv); the window reloads the file when "
-             "it changes. Elevation always uses it; given, it also colours slope (0..90 "
-             "degrees), skyview (0..1), flow (upstream area in m^2, log scale), aspect (0..360 "
-             "degrees from north) and edges (curvature stretched to -1 valleys .. 1 ridges)",
-             [&](const std::string& v) {
-               s.shading.colormap = v;
-               s.shading.colormap_given = true;
-             });
-  cli.option("--height-range", "MIN,MAX",
-             "heights in metres the elevation ramp spans (default: the data's own heights, "
-             "from the coarsest blocks)",
-             [&](const std::string& v) {
-               const auto d = CliArgs::to_doubles("--height-range", v, 2);
-               if (!(d[1] > d[0])) throw UsageError("--height-range: MAX must be above MIN");
-               s.shading.height_range = std::pair{d[0], d[1]};
-             });
-  cli.option("--height-percentile", "P",
-             "clip the data's height range to its P-th and (100-P)-th percentiles "
-             "(default 0: minimum to maximum)",
-             [&](const std::string& v) {
-               s.shading.height_percentile = CliArgs::to_double("--height-percentile", v);
-               if (s.shading.height_percentile < 0 || s.shading.height_percentile >= 50)
-                 throw UsageError("--height-percentile: must be within 0..50");
-             });
-  cli.option("--image-opacity", "A[,B...]",
-             "opacity of each image layer, bottom first, 0..1 (default 1; the last value "
-             "applies to the layers after it)",
-             [&](const std::string& v) {
-               s.image_opacity.clear();
-               size_t start = 0;
-               for (;;) {
-                 const size_t comma = v.find(',', start);
-                 const double a =
-                     CliArgs::to_double("--image-opacity", v.substr(start, comma - start));
-                 if (a < 0 || a > 1) throw UsageError("--image-opacity: must be within 0..1");
-                 s.image_opacity.push_back(a);
-                 if (comma == std::string::npos) break;
-                 start = comma + 1;
-               }
-             });
-  cli.option("--sun", "AZ,ALT", "sun azimuth and altitude in degrees (default 315,45)",
-             [&](const std::string& v) {
-               const auto d = CliArgs::to_doubles("--sun", v, 2);
-               s.shading.sun_azimuth_deg = d[0];
-               s.shading.sun_altitude_deg = d[1];
-             });
-  cli.option("--exaggeration", "K",
-             "vertical exaggeration (default 1; without it the hillshade stretches the slopes of "
-             "coarse grids for the light, docs/viewer.md)",
-             [&](const std::string& v) {
-               s.shading.exaggeration = CliArgs::to_double("--exaggeration", v);
-               s.shading.exaggeration_given = true;
-               if (s.shading.exaggeration <= 0 || s.shading.exaggeration > 100)
-                 throw UsageError("--exaggeration: must be within (0, 100]");
              });
 }
 
@@ -444,6 +449,7 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
       "  elsewhere to clear; the title names it.\n");
   declare_view_options(cli, s);
   declare_shading_options(cli, s);
+  declare_map_options(cli, s);
   declare_layer_options(cli, s);
   declare_output_options(cli, s);
   auto positional = cli.parse_command(args, 1, 11, "package");

@@ -14,13 +14,50 @@
 
 namespace globe {
 
-int run_export(const std::vector<std::string>& args) {
-  BuildOptions o;
-  std::string format;
+namespace {
+
+// The terrain options of `export`.
+struct TerrainExport {
+  std::string format;  // terrarium, terrain-rgb or quantized-mesh
   int tile_size = 256;
   bool gzip = false, normals = true;
   double mesh_error = 1.0, finest_error = 2.0;
   std::string watermask;
+};
+
+// A terrain package to raster-DEM tiles or quantized-mesh.
+ExportSummary export_terrain(const std::string& input, const BuildOptions& o,
+                             const TerrainExport& t, Progress& progress) {
+  if (t.format.empty())
+    throw UsageError(input +
+                     " is a terrain package: give --format terrarium, terrain-rgb or "
+                     "quantized-mesh");
+  if (!t.watermask.empty() && t.format != "quantized-mesh")
+    throw UsageError("--watermask is for --format quantized-mesh");
+  if (t.format == "quantized-mesh") {
+    MeshExportSettings m;
+    m.input = input, m.output = o.output, m.force = o.force;
+    m.threads = o.worker_threads();
+    m.gzip = t.gzip, m.normals = t.normals, m.error_scale = t.mesh_error;
+    m.finest_error = t.finest_error;
+    m.watermask = t.watermask;
+    return export_quantized_mesh(m, progress);
+  }
+  DemExportSettings s;
+  s.input = input, s.output = o.output, s.force = o.force;
+  s.encoding =
+      t.format == "terrarium" ? web::DemEncoding::kTerrarium : web::DemEncoding::kTerrainRgb;
+  s.tile_size = t.tile_size;
+  s.threads = o.worker_threads();
+  return export_raster_dem(s, progress);
+}
+
+}  // namespace
+
+int run_export(const std::vector<std::string>& args) {
+  BuildOptions o;
+  TerrainExport t;
+  std::string& format = t.format;
   CliArgs cli(
       "globe-tiler export",
       "globe-tiler export PACKAGE --format FORMAT -o OUT.pmtiles|OUT.mbtiles|DIR\n\n"
@@ -51,19 +88,19 @@ int run_export(const std::vector<std::string>& args) {
   cli.flag("--gzip",
            "quantized-mesh: gzip each tile (the server must then send them with "
            "Content-Encoding: gzip)",
-           [&] { gzip = true; });
+           [&] { t.gzip = true; });
   cli.option("--watermask", "POLYGONS",
              "quantized-mesh: water polygons (any OGR source) as each tile's water mask "
              "(extension watermask: CesiumJS draws water there)",
-             [&](const std::string& v) { watermask = v; });
+             [&](const std::string& v) { t.watermask = v; });
   cli.flag("--no-normals", "quantized-mesh: leave out the vertex normals",
-           [&] { normals = false; });
+           [&] { t.normals = false; });
   cli.option("--mesh-error", "F",
              "quantized-mesh: TIN error as a fraction of Cesium's geometric error per level "
              "(default 1; smaller: more triangles)",
              [&](const std::string& v) {
-               mesh_error = CliArgs::to_double("--mesh-error", v);
-               if (!(mesh_error > 0 && mesh_error <= 16))
+               t.mesh_error = CliArgs::to_double("--mesh-error", v);
+               if (!(t.mesh_error > 0 && t.mesh_error <= 16))
                  throw UsageError("--mesh-error: a fraction above 0 and at most 16");
              });
   cli.option("--finest-error", "M",
@@ -71,13 +108,13 @@ int run_export(const std::vector<std::string>& args) {
              "shows however close the camera comes (default 2: below the vertical accuracy of SRTM "
              "and Copernicus GLO-30)",
              [&](const std::string& v) {
-               finest_error = CliArgs::to_double("--finest-error", v);
-               if (!(finest_error >= 0)) throw UsageError("--finest-error: metres, 0 or more");
+               t.finest_error = CliArgs::to_double("--finest-error", v);
+               if (!(t.finest_error >= 0)) throw UsageError("--finest-error: metres, 0 or more");
              });
   cli.option("--tile-size", "PX", "raster-DEM tiles of 256 (default) or 512 pixels",
              [&](const std::string& v) {
-               tile_size = CliArgs::to_int("--tile-size", v, 256, 512);
-               if (tile_size != 256 && tile_size != 512)
+               t.tile_size = CliArgs::to_int("--tile-size", v, 256, 512);
+               if (t.tile_size != 256 && t.tile_size != 512)
                  throw UsageError("--tile-size: 256 or 512");
              });
   cli.option("-o,--output", "OUT", "OUT.pmtiles, OUT.mbtiles or a folder",
@@ -91,29 +128,7 @@ int run_export(const std::vector<std::string>& args) {
   Progress progress(o.progress);
   ExportSummary sum;
   if (kind == tileformat::PackageKind::kTerrain) {
-    if (format.empty())
-      throw UsageError(input +
-                       " is a terrain package: give --format terrarium, terrain-rgb or "
-                       "quantized-mesh");
-    if (!watermask.empty() && format != "quantized-mesh")
-      throw UsageError("--watermask is for --format quantized-mesh");
-    if (format == "quantized-mesh") {
-      MeshExportSettings m;
-      m.input = input, m.output = o.output, m.force = o.force;
-      m.threads = o.worker_threads();
-      m.gzip = gzip, m.normals = normals, m.error_scale = mesh_error;
-      m.finest_error = finest_error;
-      m.watermask = watermask;
-      sum = export_quantized_mesh(m, progress);
-    } else {
-      DemExportSettings s;
-      s.input = input, s.output = o.output, s.force = o.force;
-      s.encoding =
-          format == "terrarium" ? web::DemEncoding::kTerrarium : web::DemEncoding::kTerrainRgb;
-      s.tile_size = tile_size;
-      s.threads = o.worker_threads();
-      sum = export_raster_dem(s, progress);
-    }
+    sum = export_terrain(input, o, t, progress);
   } else if (kind == tileformat::PackageKind::kImage) {
     if (!format.empty())
       throw UsageError(input +

@@ -17,30 +17,8 @@ ColumnPair column_pair(const std::string& option, const std::string& v) {
   return {names[0], names[1]};
 }
 
-}  // namespace
-
-int run_bundle(const std::vector<std::string>& args) {
-  BundleSettings s;
-  CliArgs cli("globe-vectorize bundle",
-              "globe-vectorize bundle FLOWS --network NETWORK... -o OUT.mbtiles [options]\n\n"
-              "Routes origin-destination flows (a CSV file or any OGR source, one connection\n"
-              "per row) along a reference network (roads, rails, airways: any OGR lines), so\n"
-              "flows sharing a corridor merge into bundles, smooths each bundle into a curve\n"
-              "that stays within --corridor-px of the network at every zoom, and writes a\n"
-              "line-cluster package: bundles in classes weight-1.. by their total weight\n"
-              "(wider and darker with weight), unrouted connections straight (class\n"
-              "unrouted), and a features row per connection naming its bundles\n"
-              "(docs/bundles.md).\n\n"
-              "examples:\n"
-              "  globe-vectorize bundle flights.csv --from-id origin --to-id destination\n"
-              "      --weight count --locations airports.csv --id-field iata\n"
-              "      --network airways.geojson -o flights.mbtiles\n"
-              "  globe-vectorize bundle commutes.csv --from hlon,hlat --to wlon,wlat\n"
-              "      --network roads.gpkg --network-layer roads -o commutes.mbtiles");
-  declare_area_options(cli, s,
-                       "CRS of the network and locations files without one (default: theirs)",
-                       "finest zoom (default: where the network's median segment spans 4 px, "
-                       "at most 18)");
+// The reference network and the flows: --network … --weight.
+void declare_network_and_flow_options(CliArgs& cli, BundleSettings& s) {
   cli.option("--network", "FILE", "reference network: any OGR lines (repeatable; required)",
              [&](const std::string& v) { s.network.push_back(v); });
   cli.option("--network-layer", "NAME", "only this layer of the network (repeatable)",
@@ -79,6 +57,11 @@ int run_bundle(const std::vector<std::string>& args) {
              [&](const std::string& v) { s.flow.locations_xy = column_pair("--locations-xy", v); });
   cli.option("--weight", "COL", "numeric column of each connection's weight (default: 1 each)",
              [&](const std::string& v) { s.flow.weight = v; });
+}
+
+// How bundles are smoothed, classed and drawn: --corridor-px …
+// --no-junction-tangents.
+void declare_bundle_drawing_options(CliArgs& cli, BundleSettings& s) {
   cli.option("--corridor-px", "PX",
              "how far (pixels of each zoom) a smoothed bundle may stray from the network "
              "(default 4; 0 = follow it exactly)",
@@ -139,6 +122,59 @@ int run_bundle(const std::vector<std::string>& args) {
            "let curves turn where one bundle hands over to the next (default: they share a\n"
            "                              tangent there, no kink)",
            [&] { s.smooth_junctions = false; });
+}
+
+// The one-paragraph summary of a finished build.
+std::string summary_text(const BundleSummary& sum, const std::string& output) {
+  std::ostringstream o;
+  o.precision(3);
+  o << std::fixed << "globe-vectorize: wrote " << output << ": " << sum.connections
+    << " connections from " << sum.rows << " rows (" << sum.bad_rows << " bad rows, "
+    << sum.zero_weights << " of weight 0): " << sum.routed << " routed, " << sum.unrouted
+    << " unrouted (" << sum.unsnapped << " beyond --max-snap, " << sum.same_node << " on one node, "
+    << sum.disconnected << " across components); " << sum.bundles << " bundles ("
+    << sum.hidden_at_min_zoom << " flows too light to draw at zoom " << sum.min_zoom << ", "
+    << sum.never_drawn << " under --min-weight), mean detour " << sum.mean_detour << ", ink ratio "
+    << sum.ink_ratio << "; network " << sum.network_nodes << " nodes, " << sum.network_edges
+    << " edges, " << sum.components << " components, reduced to " << sum.reduced_nodes
+    << " nodes and " << sum.reduced_edges << " edges; zoom " << sum.min_zoom << ".." << sum.max_zoom
+    << ", " << sum.curve_levels << " curves (" << sum.curve_points << " points), " << sum.tiles
+    << " tiles (" << sum.unique_blobs << " unique), " << sum.file_bytes << " bytes, " << sum.seconds
+    << " s (";
+  for (size_t i = 0; i < sum.stage_seconds.size(); ++i)
+    o << (i ? ", " : "") << sum.stage_seconds[i].first << " " << sum.stage_seconds[i].second;
+  o << ")";
+  for (const std::string& e : sum.bad_row_examples)
+    o << "\n  bad row: " << e;
+  return o.str();
+}
+
+}  // namespace
+
+int run_bundle(const std::vector<std::string>& args) {
+  BundleSettings s;
+  CliArgs cli("globe-vectorize bundle",
+              "globe-vectorize bundle FLOWS --network NETWORK... -o OUT.mbtiles [options]\n\n"
+              "Routes origin-destination flows (a CSV file or any OGR source, one connection\n"
+              "per row) along a reference network (roads, rails, airways: any OGR lines), so\n"
+              "flows sharing a corridor merge into bundles, smooths each bundle into a curve\n"
+              "that stays within --corridor-px of the network at every zoom, and writes a\n"
+              "line-cluster package: bundles in classes weight-1.. by their total weight\n"
+              "(wider and darker with weight), unrouted connections straight (class\n"
+              "unrouted), and a features row per connection naming its bundles\n"
+              "(docs/bundles.md).\n\n"
+              "examples:\n"
+              "  globe-vectorize bundle flights.csv --from-id origin --to-id destination\n"
+              "      --weight count --locations airports.csv --id-field iata\n"
+              "      --network airways.geojson -o flights.mbtiles\n"
+              "  globe-vectorize bundle commutes.csv --from hlon,hlat --to wlon,wlat\n"
+              "      --network roads.gpkg --network-layer roads -o commutes.mbtiles");
+  declare_area_options(cli, s,
+                       "CRS of the network and locations files without one (default: theirs)",
+                       "finest zoom (default: where the network's median segment spans 4 px, "
+                       "at most 18)");
+  declare_network_and_flow_options(cli, s);
+  declare_bundle_drawing_options(cli, s);
   cli.option("--like", "PACKAGE",
              "use the tiling of this package (e.g. a local terrain), so tile ids match",
              [&](const std::string& v) { s.like = v; });
@@ -163,27 +199,7 @@ int run_bundle(const std::vector<std::string>& args) {
 
   Progress progress(s.progress);
   const BundleSummary sum = build_bundles(s, progress);
-  std::ostringstream o;
-  o.precision(3);
-  o << std::fixed << "globe-vectorize: wrote " << s.output << ": " << sum.connections
-    << " connections from " << sum.rows << " rows (" << sum.bad_rows << " bad rows, "
-    << sum.zero_weights << " of weight 0): " << sum.routed << " routed, " << sum.unrouted
-    << " unrouted (" << sum.unsnapped << " beyond --max-snap, " << sum.same_node << " on one node, "
-    << sum.disconnected << " across components); " << sum.bundles << " bundles ("
-    << sum.hidden_at_min_zoom << " flows too light to draw at zoom " << sum.min_zoom << ", "
-    << sum.never_drawn << " under --min-weight), mean detour " << sum.mean_detour << ", ink ratio "
-    << sum.ink_ratio << "; network " << sum.network_nodes << " nodes, " << sum.network_edges
-    << " edges, " << sum.components << " components, reduced to " << sum.reduced_nodes
-    << " nodes and " << sum.reduced_edges << " edges; zoom " << sum.min_zoom << ".." << sum.max_zoom
-    << ", " << sum.curve_levels << " curves (" << sum.curve_points << " points), " << sum.tiles
-    << " tiles (" << sum.unique_blobs << " unique), " << sum.file_bytes << " bytes, " << sum.seconds
-    << " s (";
-  for (size_t i = 0; i < sum.stage_seconds.size(); ++i)
-    o << (i ? ", " : "") << sum.stage_seconds[i].first << " " << sum.stage_seconds[i].second;
-  o << ")";
-  for (const std::string& e : sum.bad_row_examples)
-    o << "\n  bad row: " << e;
-  progress.note(o.str());
+  progress.note(summary_text(sum, s.output));
   return kExitOk;
 }
 

@@ -90,7 +90,10 @@ std::unordered_map<std::string, LonLat> read_locations(const FlowOptions& o, Flo
 
 }  // namespace
 
-FlowInput read_flows(const std::string& path, const FlowOptions& o) {
+namespace {
+
+// Refuses inconsistent ways of naming the connections' ends (UsageError).
+void check_flow_options(const FlowOptions& o) {
   const bool by_id = !o.from_id.empty() || !o.to_id.empty();
   const bool by_xy = o.from_xy || o.to_xy;
   if (by_id && by_xy)
@@ -106,6 +109,14 @@ FlowInput read_flows(const std::string& path, const FlowOptions& o) {
         "--locations airports.csv --id-field iata)");
   if (!by_id && !o.locations.empty())
     throw UsageError("--locations is for ids: add --from-id COL --to-id COL");
+}
+
+}  // namespace
+
+FlowInput read_flows(const std::string& path, const FlowOptions& o) {
+  check_flow_options(o);
+  const bool by_id = !o.from_id.empty() || !o.to_id.empty();
+  const bool by_xy = o.from_xy || o.to_xy;
 
   FlowInput in;
   std::unordered_map<std::string, LonLat> places;
