@@ -10,6 +10,7 @@
 #include "test_support.hpp"
 #include "tileformat/line_tile.hpp"
 #include "tileformat/package.hpp"
+#include "tileformat/sqlite_db.hpp"
 
 namespace {
 
@@ -90,8 +91,9 @@ TEST_F(LinesCli, BuildsAValidPackageAndCountsWhatItSkips) {
   EXPECT_EQ(reader.meta("maxzoom"), "12");
   EXPECT_EQ(reader.meta("globe:scheme"), "webmercator");
   // Attributes are kept per feature.
-  auto props = reader.db().query_int(
-      "SELECT count(*) FROM features WHERE properties LIKE '%\"kind\":\"b\"%'");
+  tileformat::SqliteDb db(pkg("a.mbtiles"), tileformat::SqliteDb::Mode::kReadOnly);
+  auto props =
+      db.query_int("SELECT count(*) FROM features WHERE properties LIKE '%\"kind\":\"b\"%'");
   EXPECT_EQ(props, 3);
   EXPECT_FALSE(fs::exists(pkg("a.mbtiles.tmp")));
   EXPECT_FALSE(fs::exists(pkg("a.mbtiles.scratch-geometry")));

@@ -9,6 +9,14 @@
 #include "tileformat/error.hpp"
 #include "tileformat/package.hpp"
 
+namespace tileformat {
+// The package's own database, for tests that look under the API.
+struct PackageTestAccess {
+  static SqliteDb& db(PackageWriter& w) { return w.db(); }
+  static SqliteDb& db(PackageReader& r) { return r.db(); }
+};
+}  // namespace tileformat
+
 using globe_test::TempDir;
 using tileformat::PackageReader;
 using tileformat::PackageWriter;
@@ -37,7 +45,8 @@ TEST(Package, WritesReadsAndDeduplicates) {
   EXPECT_FALSE(r.tile({2, 0, 0}).has_value());
   EXPECT_EQ(r.unique_blobs(), 2u);
   // TMS storage: y = 0 at zoom 2 is row 3.
-  EXPECT_EQ(r.db().query_int("SELECT tile_row FROM tiles WHERE zoom_level = 2 AND tile_column = 1"),
+  EXPECT_EQ(tileformat::PackageTestAccess::db(r).query_int(
+                "SELECT tile_row FROM tiles WHERE zoom_level = 2 AND tile_column = 1"),
             3);
 }
 
@@ -125,10 +134,11 @@ TEST(Package, RowsWrittenAfterATileAreCommittedWithIt) {
   const pid_t pid = ::fork();
   if (pid == 0) {
     PackageWriter w(out, tileformat::IfExists::kFail, "key", tileformat::Resume::kStartAfresh);
-    w.db().exec("CREATE TABLE extra (tile INTEGER NOT NULL)");
+    tileformat::PackageTestAccess::db(w).exec("CREATE TABLE extra (tile INTEGER NOT NULL)");
     for (uint32_t i = 0; i < 600; ++i) {
       w.put_tile({10, i, 7}, std::vector<uint8_t>{uint8_t(i), uint8_t(i >> 8), 42});
-      w.db().exec("INSERT INTO extra VALUES (" + std::to_string(i) + ")");
+      tileformat::PackageTestAccess::db(w).exec("INSERT INTO extra VALUES (" + std::to_string(i) +
+                                                ")");
     }
     ::_exit(0);
   }
@@ -137,5 +147,5 @@ TEST(Package, RowsWrittenAfterATileAreCommittedWithIt) {
   PackageWriter w(out, tileformat::IfExists::kFail, "key", tileformat::Resume::kContinue);
   ASSERT_TRUE(w.resumed());
   EXPECT_EQ(w.tiles_at_zoom(10), 512u);
-  EXPECT_EQ(w.db().query_int("SELECT COUNT(*) FROM extra"), 512);
+  EXPECT_EQ(tileformat::PackageTestAccess::db(w).query_int("SELECT COUNT(*) FROM extra"), 512);
 }

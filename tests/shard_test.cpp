@@ -25,9 +25,8 @@ namespace {
 // package library's reader).
 void expect_same_features(const std::string& ours, const std::string& ref) {
   auto rows = [](const std::string& path) {
-    tileformat::PackageReader r(path);
-    tileformat::SqliteStatement all(r.db(),
-                                    "SELECT id, layer, properties FROM features ORDER BY id");
+    tileformat::SqliteDb db(path, tileformat::SqliteDb::Mode::kReadOnly);
+    tileformat::SqliteStatement all(db, "SELECT id, layer, properties FROM features ORDER BY id");
     std::vector<std::string> out;
     while (all.step())
       out.push_back(std::to_string(all.column_int(0)) + " " + all.column_text(1) + " " +

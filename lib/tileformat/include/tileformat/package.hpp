@@ -76,9 +76,6 @@ class PackageWriter {
   // Tiles of zoom z committed before this writer was opened plus those put since.
   uint64_t tiles_at_zoom(int z);
 
-  // The database being built, for tables beyond the tiles (e.g. a line
-  // package's features table). Writes join the writer's open transaction.
-  SqliteDb& db() { return *db_; }
   const std::string& temp_path() const { return temp_path_; }
   uint64_t tiles_written() const { return tiles_; }
   uint64_t unique_blobs() const { return unique_; }
@@ -86,6 +83,12 @@ class PackageWriter {
 
  private:
   void create_schema();
+  // The database being built, for the tables beyond the tiles (the features
+  // and shard tables, by their own classes). Writes join the open transaction.
+  friend class FeatureTableWriter;
+  friend class ShardTableWriter;
+  friend struct PackageTestAccess;  // tests/package_test.cpp
+  SqliteDb& db() { return *db_; }
   bool open_existing();
   static bool is_empty_database(const std::string& path);
   void prepare_statements();
@@ -130,11 +133,16 @@ class PackageReader {
   std::vector<TileId> tile_ids(int zoom);
   std::vector<ZoomSummary> zoom_summaries();
   uint64_t unique_blobs();
-  SqliteDb& db() { return *db_; }
   // The file this reader opened, for messages.
   const std::string& path() const;
 
  private:
+  // The tables beyond the tiles (the features and shard tables) are read by
+  // their own classes; nothing else issues SQL (docs/architecture.md rule 1).
+  friend class FeatureTableReader;
+  friend class ShardTableReader;
+  friend struct PackageTestAccess;  // tests/package_test.cpp
+  SqliteDb& db() { return *db_; }
   TileId checked_id(int64_t z, int64_t column, int64_t row) const;
   std::unique_ptr<SqliteDb> db_;
   std::unique_ptr<SqliteStatement> get_tile_, has_tile_;
