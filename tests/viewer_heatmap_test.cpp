@@ -76,6 +76,19 @@ std::vector<double> picked(const std::string& out) {
   return v;
 }
 
+// --pick options at every half degree of lon0..lon1 x lat0..lat1; `at`
+// gets the points.
+std::string pick_grid(double lon0, double lon1, double lat0, double lat1,
+                      std::vector<std::pair<double, double>>& at) {
+  std::string picks;
+  for (double lat = lat0; lat <= lat1 + 0.01; lat += 0.5)
+    for (double lon = lon0; lon <= lon1 + 0.01; lon += 0.5) {
+      at.push_back({lon, lat});
+      picks += " --pick @" + std::to_string(lon) + "," + std::to_string(lat);
+    }
+  return picks;
+}
+
 // Pearson correlation of two samples.
 double correlation(const std::vector<double>& a, const std::vector<double>& b) {
   const double n = double(a.size());
@@ -127,13 +140,8 @@ class Heatmap : public ::testing::Test {
 
 TEST_F(Heatmap, DensityMatchesABruteForceKernelSum) {
   const double radius_m = 60000;
-  std::string picks;
   std::vector<std::pair<double, double>> at;
-  for (double lat = 44.0; lat <= 49.01; lat += 0.5)
-    for (double lon = 5.0; lon <= 16.01; lon += 0.5) {
-      at.push_back({lon, lat});
-      picks += " --pick @" + std::to_string(lon) + "," + std::to_string(lat);
-    }
+  const std::string picks = pick_grid(5.0, 16.0, 44.0, 49.0, at);
   const std::string png = (dir_ / "h.png").string();
   const RunResult r = view(
       "--heatmap w --heatmap-radius 60km --flat --camera=10.5,46.5,900000,0,0"
@@ -174,6 +182,36 @@ TEST_F(Heatmap, APixelRadiusShrinksThePeakWithItsSquare) {
   // Not exactly 4: a wider kernel also gathers more of the cluster.
   EXPECT_GT(narrow / wide, 1.5);
   EXPECT_LT(narrow / wide, 4.5);
+}
+
+// --heatmap-colormap: the density in a colour file's colours (percentages of
+// the largest density), here all blue, transparent where there is none.
+TEST_F(Heatmap, AColourFileColoursTheDensity) {
+  std::ofstream(dir_ / "blue.txt") << "0% 0 0 255 0\n1% 0 0 255 255\n100% 0 0 255 255\n";
+  auto census = [&](const std::string& options) {
+    const std::string png = (dir_ / "c.png").string();
+    const RunResult r = view(
+        "--heatmap count --heatmap-radius 60km --flat "
+        "--camera=10.5,46.5,900000,0,0 --snapshot " +
+        png + " " + options);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    int w = 0, h = 0;
+    const auto rgb = read_rgb(png, w, h);
+    size_t blue = 0, warm = 0;
+    for (size_t i = 0; i + 2 < rgb.size(); i += 3) {
+      blue += rgb[i + 2] > rgb[i] + 60;
+      warm += rgb[i] > rgb[i + 2] + 60;
+    }
+    return std::pair(blue, warm);
+  };
+  const auto [blue, warm] = census("--heatmap-colormap " + (dir_ / "blue.txt").string());
+  const auto [plain_blue, plain_warm] = census("");
+  std::printf("blue file: %zu blue, %zu warm pixels; built-in: %zu blue, %zu warm\n", blue, warm,
+              plain_blue, plain_warm);
+  EXPECT_GT(blue, 1000u);
+  EXPECT_EQ(warm, 0u);
+  EXPECT_GT(plain_warm, 1000u);
+  EXPECT_EQ(plain_blue, 0u);
 }
 
 TEST_F(Heatmap, BadOptionsAreClearErrors) {
@@ -220,13 +258,8 @@ TEST(HeatmapOfLines, DensityMatchesABruteForceIntegralAlongTheLines) {
   ASSERT_TRUE(run_all({vectorize() + " lines -q " + (dir / "l.geojson").string() + " -o " + pkg},
                       dir.path()));
   const double radius_m = 60000;
-  std::string picks;
   std::vector<std::pair<double, double>> at;
-  for (double lat = 44.0; lat <= 49.01; lat += 0.5)
-    for (double lon = 5.5; lon <= 15.51; lon += 0.5) {
-      at.push_back({lon, lat});
-      picks += " --pick @" + std::to_string(lon) + "," + std::to_string(lat);
-    }
+  const std::string picks = pick_grid(5.5, 15.5, 44.0, 49.0, at);
   const RunResult r = run(viewer() + " --platform osmesa --size 480x270 " + pkg +
                               " --heatmap count --heatmap-radius 60km --flat"
                               " --camera=10.5,46.5,900000,0,0 --snapshot " +

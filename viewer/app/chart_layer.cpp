@@ -74,6 +74,8 @@ ChartLayer::ChartLayer(PointPackage package, const ChartSettings& settings, uint
     style_time_ = std::filesystem::last_write_time(*settings_.style, ec);
   }
   roots_ = cache_.package().reader->tile_ids(m.common.min_zoom);
+  if (settings_.heatmap)
+    heat_style_ = heatmap_style(settings_.heat_opacity, settings_.heat_colormap);
   if (settings_.heatmap && settings_.heat_field != "count") {
     const auto f = std::find(m.fields.begin(), m.fields.end(), settings_.heat_field);
     if (f == m.fields.end()) {
@@ -313,8 +315,7 @@ double ChartLayer::draw(GLuint input_fbo, const GBuffer& g, const View& view,
   if (settings_.heatmap) {  // ground points move with the view origin: every frame
     build_heat(tiles, view, world);
     drawn_ = tiles;
-    HeatmapStyle hs;
-    hs.opacity = static_cast<float>(settings_.heat_opacity);
+    HeatmapStyle hs = heat_style_;
     hs.margin_world = static_cast<float>(heights.relief_world);
     return renderer_.draw_heatmap(input_fbo, g, view, world, terrain, heights, hs, exaggeration);
   }

@@ -36,6 +36,7 @@ struct ChartSettings {
   double heat_radius = 30;
   bool heat_radius_m = false;
   double heat_opacity = 0.75;
+  std::optional<std::string> heat_colormap;  // --heatmap-colormap: a gdaldem colour file
 };
 
 struct ChartLayerStats {
@@ -102,6 +103,7 @@ class ChartLayer {
   LayerTiling tiling_;
   int heat_field_ = -1;                    // the field weighting the heatmap (-1: the count)
   double ground_per_m_ = 1;                // the last heatmap's ground units per metre
+  HeatmapStyle heat_style_;                // its opacity and colours
   std::vector<tileformat::TileId> drawn_;  // the tiles of the instances
   std::vector<ChartInstance> instances_;
   std::vector<PlaceRef> places_;  // per instance

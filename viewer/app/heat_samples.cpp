@@ -3,9 +3,27 @@
 
 #include <cmath>
 
+#include <algorithm>
+
 #include <glm/geometric.hpp>
 
+#include "app/color_relief_file.hpp"
+#include "render/color_ramp.hpp"
+
 namespace globe::viewer {
+
+HeatmapStyle heatmap_style(double opacity, const std::optional<std::string>& colormap) {
+  HeatmapStyle hs;
+  hs.opacity = static_cast<float>(opacity);
+  if (!colormap) return hs;
+  const RampTable t = tabulate(read_color_relief_file(*colormap).ramp, 0, 100);
+  hs.ramp.resize(256 * 4);
+  for (int i = 0; i < 256; ++i) {  // the table spans its stops; the heatmap spans 0..100 %
+    const Rgba c = t.at(100.0 * i / 255);
+    std::copy(c.begin(), c.end(), hs.ramp.begin() + i * 4);
+  }
+  return hs;
+}
 
 HeatFrame::HeatFrame(const View& view, const WorldFrame& world) : view_(view), world_(world) {
   origin_crs_ = world.key_to_crs(double(view.origin.x), double(view.origin.y));

@@ -6,6 +6,9 @@
 // (LineLayer).
 #pragma once
 
+#include <optional>
+#include <string>
+
 #include <glm/vec2.hpp>
 
 #include "camera/camera.hpp"
@@ -13,6 +16,11 @@
 #include "render/chart_renderer.hpp"
 
 namespace globe::viewer {
+
+// The heatmap's look from the settings: opacity and, with
+// --heatmap-colormap, the colour file's ramp over 0..100 % of the largest
+// density (UsageError naming the file when it cannot be read).
+HeatmapStyle heatmap_style(double opacity, const std::optional<std::string>& colormap);
 
 struct HeatRadius {
   double value = 30;

@@ -198,11 +198,12 @@ double LineLayer::draw(const GBuffer& g, const View& view, const WorldFrame& wor
   return ms;
 }
 
-void LineLayer::enable_heatmap(const HeatRadius& radius, double opacity, const WorldFrame& world) {
+void LineLayer::enable_heatmap(const HeatRadius& radius, const HeatmapStyle& style,
+                               const WorldFrame& world) {
   heat_ = std::make_unique<ChartRenderer>(width_, height_);
   heat_tiling_ = std::make_unique<LayerTiling>(cache_.package().tiling, cross_, world);
   heat_radius_ = radius;
-  heat_opacity_ = opacity;
+  heat_style_ = style;
 }
 
 double LineLayer::draw_heatmap(const GBuffer& g, const View& view, const WorldFrame& world,
@@ -256,8 +257,7 @@ double LineLayer::draw_heatmap(const GBuffer& g, const View& view, const WorldFr
     }
   }
   heat_->set_instances(samples);
-  HeatmapStyle hs;
-  hs.opacity = static_cast<float>(heat_opacity_);
+  HeatmapStyle hs = heat_style_;
   hs.margin_world = static_cast<float>(terrain.relief_world);
   return heat_->draw_heatmap(under_fbo, g, view, world, *terrain.frame, terrain, hs, exaggeration);
 }

@@ -56,7 +56,7 @@ class LineLayer {
   // A heatmap of the lines instead of the lines (docs/viewer.md "Heatmaps"):
   // the density of their length, weighted by the bundle weight classes'
   // middles (a bundled-flows package) or 1.
-  void enable_heatmap(const HeatRadius& radius, double opacity, const WorldFrame& world);
+  void enable_heatmap(const HeatRadius& radius, const HeatmapStyle& style, const WorldFrame& world);
   // Lines only inside this circle (a magic lens; radius 0: everywhere).
   void set_lens_only(double x, double y, double radius) {
     renderer_.set_lens_only(float(x), float(y), float(radius));
@@ -118,7 +118,8 @@ class LineLayer {
   std::unique_ptr<ChartRenderer> heat_;  // the heatmap, when enabled
   std::unique_ptr<LayerTiling> heat_tiling_;
   HeatRadius heat_radius_;
-  double heat_opacity_ = 0.75, heat_ground_per_m_ = 1;
+  HeatmapStyle heat_style_;
+  double heat_ground_per_m_ = 1;
   std::vector<uint32_t> used_;  // the records the last frame read
   uint32_t frame_ = 0;
   size_t tiles_used_ = 0;

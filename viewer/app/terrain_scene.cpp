@@ -156,8 +156,9 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
                                          settings_.line_mode, line_budget, settings_.width,
                                          settings_.height, line_cross);
   if (lines_ && settings_.charts.heatmap && !points)  // a heatmap of the lines
-    lines_->enable_heatmap({settings_.charts.heat_radius, settings_.charts.heat_radius_m},
-                           settings_.charts.heat_opacity, *world_);
+    lines_->enable_heatmap(
+        {settings_.charts.heat_radius, settings_.charts.heat_radius_m},
+        heatmap_style(settings_.charts.heat_opacity, settings_.charts.heat_colormap), *world_);
   if (points)
     charts_ = std::make_unique<ChartLayer>(std::move(*points), settings_.charts, point_budget,
                                            settings_.width, settings_.height, point_cross, *world_);

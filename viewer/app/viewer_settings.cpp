@@ -377,6 +377,14 @@ void declare_layer_options(CliArgs& cli, ViewerSettings& s) {
                if (!(s.charts.heat_radius > 0))
                  throw UsageError("--heatmap-radius: '" + v + "' is not a positive length");
              });
+  cli.option("--heatmap-colormap", "FILE",
+             "the heatmap's colours: a gdaldem color-relief file (VALUE R G B [A]) whose values "
+             "are percentages of the frame's largest density (default: yellow-orange-red, "
+             "transparent where there is none)",
+             [&](const std::string& v) {
+               s.charts_given = true;
+               s.charts.heat_colormap = v;
+             });
   cli.option("--heatmap-opacity", "A", "the heatmap's opacity at its densest (default 0.75)",
              [&](const std::string& v) {
                s.charts_given = true;

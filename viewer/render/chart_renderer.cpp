@@ -125,6 +125,7 @@ ChartRenderer::~ChartRenderer() {
   gl::DeleteFramebuffers(2, fbos);
   GLuint textures[3] = {color_, picks_, density_};
   gl::DeleteTextures(3, textures);
+  if (heat_ramp_) gl::DeleteTextures(1, &heat_ramp_);
   gl::DeleteQueries(1, &timer_);
 }
 
@@ -296,6 +297,21 @@ double ChartRenderer::draw_heatmap(GLuint input_fbo, const GBuffer& g, const Vie
   gl::Uniform1i(c.uniform("u_density"), 1);
   gl::Uniform1f(c.uniform("u_top"), density_top_);
   gl::Uniform1f(c.uniform("u_opacity"), style.opacity);
+  gl::Uniform1i(c.uniform("u_has_ramp"), style.ramp.empty() ? 0 : 1);
+  if (!style.ramp.empty()) {  // the colour file's ramp
+    if (!heat_ramp_) {
+      gl::CreateTextures(GL_TEXTURE_2D, 1, &heat_ramp_);
+      gl::TextureStorage2D(heat_ramp_, 1, GL_RGBA8, 256, 1);
+      gl::TextureParameteri(heat_ramp_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+      gl::TextureParameteri(heat_ramp_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+      gl::TextureParameteri(heat_ramp_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    }
+    gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    gl::TextureSubImage2D(heat_ramp_, 0, 0, 0, 256, 1, GL_RGBA, GL_UNSIGNED_BYTE,
+                          style.ramp.data());
+    gl::BindTextureUnit(2, heat_ramp_);
+    gl::Uniform1i(c.uniform("u_heat_ramp"), 2);
+  }
   gl::BindFramebuffer(GL_FRAMEBUFFER, fbo_);
   gl::Viewport(0, 0, width_, height_);
   gl::Disable(GL_DEPTH_TEST);

@@ -42,7 +42,8 @@ static_assert(sizeof(ChartInstance) == 104, "the vertex layout of chart_renderer
 // relative to the view origin, weight, kernel radius in ground units).
 struct HeatmapStyle {
   float opacity = 0.75f;
-  float margin_world = 0;  // world units the relief may move a ground point on screen
+  float margin_world = 0;     // world units the relief may move a ground point on screen
+  std::vector<uint8_t> ramp;  // 256 RGBA entries over 0..the largest density; empty: YlOrRd
 };
 
 struct ChartDrawStyle {
@@ -94,7 +95,7 @@ class ChartRenderer {
   void copy_input(GLuint input_fbo);
 
   GlProgram sprite_, column_, heat_splat_, heat_color_;
-  GLuint density_ = 0, density_fbo_ = 0, heat_vao_ = 0;
+  GLuint density_ = 0, density_fbo_ = 0, heat_vao_ = 0, heat_ramp_ = 0;
   float density_top_ = 0;
   GLuint fbo_ = 0, color_ = 0, picks_ = 0;
   GLuint sprite_vao_ = 0, column_vao_ = 0, corner_vbo_ = 0, box_vbo_ = 0, instance_vbo_ = 0;

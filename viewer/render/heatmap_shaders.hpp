@@ -52,8 +52,9 @@ void main() {
 )";
 
 inline constexpr const char* kHeatColorFragment = R"(#version 450 core
-uniform sampler2D u_density;
+uniform sampler2D u_density, u_heat_ramp;
 uniform float u_top, u_opacity;
+uniform int u_has_ramp;  // 1: u_heat_ramp (a colour file) instead of the built-in ramp
 layout(location = 0) out vec4 o_color;  // blended over the frame
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
@@ -66,6 +67,11 @@ void main() {
   int i = min(int(s), 3);
   vec3 heat = mix(stops[i], stops[i + 1], s - float(i));
   float alpha = u_opacity * clamp(t * 8.0, 0.0, 1.0);
+  if (u_has_ramp != 0) {  // its own colours and alphas
+    vec4 c = texture(u_heat_ramp, vec2((t * 255.0 + 0.5) / 256.0, 0.5));
+    heat = c.rgb;
+    alpha = u_opacity * c.a * (t > 0.0 ? 1.0 : 0.0);
+  }
   o_color = vec4(heat, alpha);
 }
 )";
