@@ -275,6 +275,7 @@ MetadataMap to_metadata(const AnalysisMetadata& m) {
     meta["globe:skyview_directions"] = std::to_string(m.skyview_directions);
     meta["globe:skyview_radius_m"] = metadata_number(m.skyview_radius_m);
   }
+  if (!m.flow_method.empty()) meta["globe:flow_method"] = m.flow_method;
   return meta;
 }
 
@@ -300,6 +301,7 @@ AnalysisMetadata read_analysis_metadata(const MetadataMap& meta) {
     m.skyview_directions = k.integer("globe:skyview_directions");
     m.skyview_radius_m = k.number("globe:skyview_radius_m");
   }
+  m.flow_method = k.find("globe:flow_method").value_or("");
   return m;
 }
 

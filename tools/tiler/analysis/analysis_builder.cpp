@@ -164,6 +164,9 @@ tileformat::AnalysisMetadata analysis_metadata(const AnalysisSettings& s, const 
     m.skyview_directions = s.skyview.directions;
     m.skyview_radius_m = s.skyview.radius_m;
   }
+  if (has_layer(s.layers, tileformat::AnalysisLayer::kFlowDirection) ||
+      has_layer(s.layers, tileformat::AnalysisLayer::kFlowAccumulation))
+    m.flow_method = s.flow_method == flow::FlowMethod::kCarve ? "carve" : "fill";
   return m;
 }
 
@@ -211,17 +214,23 @@ AnalysisSummary build_analysis(const AnalysisSettings& s, Progress& progress) {
       flow::FlowSettings fs;
       fs.memory_bytes = s.memory_mb << 20;
       fs.chunk = s.flow_chunk;
+      fs.method = s.flow_method;
       fs.threads = s.worker_threads();
       fs.scratch_prefix = s.output + ".flow-";
       fs.input = path;
       flow = flow::solve_flow(p, fs, progress);
       const flow::FlowGrid& g = *flow.grid;
-      sum.flow_note = "flow: " + std::to_string(g.width()) + " x " + std::to_string(g.height()) +
-                      " cells in " + std::to_string(g.chunks().size()) + " chunks of " +
-                      std::to_string(g.chunk_size()) +
-                      (flow.scratch_in_memory ? " (scratch in memory), " : " (scratch on disk), ") +
-                      std::to_string(flow.watersheds) + " watersheds, " +
-                      std::to_string(flow.flat_rounds) + " flat rounds";
+      sum.flow_note =
+          "flow: " + std::to_string(g.width()) + " x " + std::to_string(g.height()) + " cells";
+      if (flow.method == flow::FlowMethod::kCarve)
+        sum.flow_note += ", routed by least cost in memory (--flow-method carve)";
+      else
+        sum.flow_note +=
+            " in " + std::to_string(g.chunks().size()) + " chunks of " +
+            std::to_string(g.chunk_size()) +
+            (flow.scratch_in_memory ? " (scratch in memory), " : " (scratch on disk), ") +
+            std::to_string(flow.watersheds) + " watersheds, " + std::to_string(flow.flat_rounds) +
+            " flat rounds";
     }
     const BlockAnalyzer analyzer(p, s, flow.pyramid.get());
     progress.begin("analyze", items.size());

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/flow/flow_solver.hpp"
 #include "analysis/sky_view.hpp"
 #include "kit/build_options.hpp"
 #include "kit/progress.hpp"
@@ -24,6 +25,7 @@ struct AnalysisSettings : BuildOptions {
   SkyViewSettings skyview;
   uint64_t memory_mb = 1024;  // the flow solver's working set (--memory-mb)
   int64_t flow_chunk = 0;     // the flow solver's chunk side (--flow-chunk); 0: chosen
+  flow::FlowMethod flow_method = flow::FlowMethod::kFill;  // --flow-method
 };
 
 struct AnalysisSummary {

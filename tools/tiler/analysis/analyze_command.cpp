@@ -62,8 +62,9 @@ int run_analyze(const std::vector<std::string>& args) {
               "the geodetic and webmercator tilings. Blocks read their neighbours' samples, so\n"
               "values at block edges are seamless. Flow: D8 direction and accumulation (upstream\n"
               "area in m^2) over the whole finest zoom, depressions filled by priority-flood and\n"
-              "flats crossed by the shortest way, out of core within --memory-mb; coarser zooms\n"
-              "follow the rivers. 'globe-tiler extract ANALYSIS --layer NAME' writes one layer\n"
+              "flats crossed by the shortest way, out of core within --memory-mb (or, with\n"
+              "--flow-method carve, routed by least cost in memory); coarser zooms follow the\n"
+              "rivers. 'globe-tiler extract ANALYSIS --layer NAME' writes one layer\n"
               "as a GeoTIFF.");
   cli.option("--layers", "LIST",
              "comma-separated: " + layer_names() +
@@ -97,6 +98,22 @@ int run_analyze(const std::vector<std::string>& args) {
                if (!std::has_single_bit(unsigned(n)))
                  throw UsageError("--flow-chunk: give a power of two (64, 128, ... 16777216)");
                s.flow_chunk = n;
+             });
+  cli.option("--flow-method", "fill|carve",
+             "how water crosses depressions and flats. fill (default): depressions filled by "
+             "priority-flood, flats and filled depressions routed; solved out of core and in "
+             "parallel for any size, the same bytes for any --memory-mb. carve: least-cost "
+             "routing (GRASS r.watershed's search): water runs through a depression's rim along "
+             "the lowest way, no filling; closest to r.watershed on large flat lowlands (coarse "
+             "continental DEMs); holds the whole finest zoom in memory (26 bytes a cell within "
+             "--memory-mb), on one thread",
+             [&](const std::string& v) {
+               if (v == "fill")
+                 s.flow_method = flow::FlowMethod::kFill;
+               else if (v == "carve")
+                 s.flow_method = flow::FlowMethod::kCarve;
+               else
+                 throw UsageError("--flow-method: give fill or carve, not '" + v + "'");
              });
   cli.option("-o,--output", "OUT.mbtiles", "output analysis package",
              [&](const std::string& v) { s.output = v; });

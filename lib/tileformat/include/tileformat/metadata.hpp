@@ -111,6 +111,7 @@ struct AnalysisMetadata {
   double height_step = 0;             // globe:height_step of that terrain
   int skyview_directions = 0;         // globe:skyview_directions (with the skyview layer)
   double skyview_radius_m = 0;        // globe:skyview_radius_m
+  std::string flow_method;            // globe:flow_method (with the flow layers): "fill", "carve"
 };
 
 // Points for charts (§11.4).

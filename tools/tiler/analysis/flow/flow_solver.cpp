@@ -11,8 +11,10 @@
 #include "analysis/flow/depression_routing.hpp"
 #include "analysis/flow/flow_accumulation.hpp"
 #include "analysis/flow/flow_directions.hpp"
+#include "analysis/flow/least_cost_routing.hpp"
 #include "kit/parallel_batches.hpp"
 #include "kit/scratch_array_file.hpp"
+#include "runtime/errors.hpp"
 
 namespace globe::flow {
 
@@ -922,7 +924,76 @@ int64_t chunk_size_for(const tileformat::Tiling& t, int zoom, int block_size,
   return best;
 }
 
+namespace {
+
+// --flow-method carve: the data's window of the grid routed by least cost
+// in memory (its heights read chunk by chunk), then cut into the chunks of
+// the fill method's grid for the pyramid.
+FlowSolution solve_carved(const TerrainPackage& p, const FlowSettings& s, Progress& progress) {
+  const std::vector<TileId> finest = p.reader->tile_ids(p.max_zoom);
+  const int64_t c = s.chunk > 0 ? s.chunk
+                                : chunk_size_for(p.tiling, p.max_zoom, p.block_size, finest,
+                                                 s.memory_bytes, s.threads);
+  FlowSolution out;
+  out.method = FlowMethod::kCarve;
+  out.scratch_in_memory = true;
+  out.grid = std::make_unique<FlowGrid>(p.tiling, p.max_zoom, p.block_size, finest, c);
+  const FlowGrid& g = *out.grid;
+  const GridWindow win = GridWindow::of_tiles(g, finest);
+  const uint64_t need_mb = (win.cells() * kCarveBytesPerCell >> 20) + 1;
+  if (need_mb > s.memory_bytes >> 20 || win.cells() >= UINT32_MAX)
+    throw UsageError("--flow-method carve holds the data's part of the finest zoom of " + s.input +
+                     " in memory: " + std::to_string(win.w) + " x " + std::to_string(win.h) +
+                     " cells need about " + std::to_string(need_mb) +
+                     " MB, more than --memory-mb " + std::to_string(s.memory_bytes >> 20) +
+                     "; raise --memory-mb, or use --flow-method fill (solved out of core)");
+  std::vector<int32_t> z(size_t(win.cells()), kNoData);
+  progress.begin("flow: read heights", g.chunks().size());
+  for (const Chunk& k : g.chunks()) {
+    BatchBlocks one;
+    const std::vector<int32_t> heights =
+        ChunkWindow(k).take_cells(chunk_heights(g, k, [&](TileId t) {
+          one = BatchBlocks();
+          one.add(t, p.reader->tile(t));
+          return one.get(t, s.input);
+        }));
+    for (int y = 0; y < k.h; ++y)
+      for (int x = 0; x < k.w; ++x) {
+        const int64_t i = win.local(g, k.x0 + x, k.y0 + y);
+        if (i >= 0) z[size_t(i)] = heights[size_t(y) * k.w + x];
+      }
+    progress.advance();
+  }
+  progress.end();
+  progress.begin("flow: least-cost routing", 1);
+  const CarvedFlow carved = route_least_cost(g, win, z);
+  std::vector<int32_t>().swap(z);
+  progress.advance();
+  progress.end();
+  out.pyramid = std::make_unique<FlowPyramid>(g, p.min_zoom, s.scratch_prefix, true);
+  for (size_t slot = 0; slot < g.chunks().size(); ++slot) {
+    const Chunk& k = g.chunks()[slot];
+    LevelGrid level;
+    level.x0 = k.x0, level.y0 = k.y0, level.w = k.w, level.h = k.h;
+    level.area.assign(k.cells(), 0);
+    level.code.assign(k.cells(), kNoDataCode);
+    for (int y = 0; y < k.h; ++y)
+      for (int x = 0; x < k.w; ++x) {
+        const int64_t i = win.local(g, k.x0 + x, k.y0 + y);
+        if (i < 0) continue;
+        level.area[size_t(y) * k.w + x] = carved.area[size_t(i)];
+        level.code[size_t(y) * k.w + x] = carved.code[size_t(i)];
+      }
+    out.pyramid->put_chunk(int(slot), std::move(level));
+  }
+  out.pyramid->finish();
+  return out;
+}
+
+}  // namespace
+
 FlowSolution solve_flow(const TerrainPackage& p, const FlowSettings& s, Progress& progress) {
+  if (s.method == FlowMethod::kCarve) return solve_carved(p, s, progress);
   return Solver(p, s, progress).run();
 }
 

@@ -16,6 +16,8 @@
 // Where the whole grid fits the budget as one chunk that does not wrap, the
 // same passes run once on it, without the joining (1 and 2 as one flood with
 // no watersheds), on one thread; --flow-chunk chooses chunks instead.
+// FlowMethod::kCarve replaces 1-4 by least-cost routing of the whole grid in
+// memory (least_cost_routing.hpp).
 #pragma once
 
 #include <cstdint>
@@ -29,7 +31,14 @@
 
 namespace globe::flow {
 
+// How water crosses depressions and flats (--flow-method): fill them
+// (priority-flood, flats and filled depressions routed; out of core), or
+// carve through their rims (least-cost routing in height order from the
+// data's edge; the whole grid in memory).
+enum class FlowMethod { kFill, kCarve };
+
 struct FlowSettings {
+  FlowMethod method = FlowMethod::kFill;
   uint64_t memory_bytes = uint64_t(1024) << 20;
   int64_t chunk = 0;  // chunk side (a power of two); 0: chunk_size_for
   int threads = 1;
@@ -43,6 +52,7 @@ struct FlowSolution {
   uint64_t watersheds = 0, perimeter_cells = 0;
   int flat_rounds = 0;
   bool scratch_in_memory = false;  // the per-cell scratch fitted the budget
+  FlowMethod method = FlowMethod::kFill;
 };
 
 // The chunk size (a power of two): the whole grid as one chunk where it does
@@ -55,7 +65,8 @@ int64_t chunk_size_for(const tileformat::Tiling& tiling, int zoom, int block_siz
                        int threads);
 
 // Throws InputError for a corrupt terrain block, OutputError for scratch
-// files that cannot be written.
+// files that cannot be written, UsageError where --flow-method carve's whole
+// grid does not fit `memory_bytes`.
 FlowSolution solve_flow(const TerrainPackage& package, const FlowSettings& settings,
                         Progress& progress);
 
