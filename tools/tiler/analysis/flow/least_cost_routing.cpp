@@ -20,11 +20,23 @@ enum : uint8_t { kUnseen = 0, kSeed, kQueued, kWorked };
 class Search {
  public:
   Search(const FlowGrid& g, const GridWindow& win, const std::vector<int32_t>& z)
-      : g_(g), win_(win), z_(z), w_(win.w) {}
+      : g_(g), win_(win), z_(z), w_(win.w), steps_(size_t(win.h) * 9) {
+    for (int64_t y = 0; y < win.h; ++y) {
+      const double dx = g.dx(win.y0 + y), dy = g.dy(win.y0 + y), diagonal = std::hypot(dx, dy);
+      for (uint8_t d = 1; d <= 8; ++d)
+        steps_[size_t(y) * 9 + d] = kDx[d] == 0 ? dy : kDy[d] == 0 ? dx : diagonal;
+    }
+    for (uint8_t d = 1; d <= 8; ++d)
+      offset_[d] = kDy[d] * w_ + kDx[d];
+  }
 
   // The neighbour of window cell (x, y) in direction d, or -1 (off the
   // window or no data).
   int64_t neighbour(int64_t x, int64_t y, int d) const {
+    if (x > 0 && y > 0 && x < w_ - 1 && y < win_.h - 1) {  // inside: no bounds to check
+      const int64_t n = y * w_ + x + offset_[d];
+      return z_[size_t(n)] == kNoData ? -1 : n;
+    }
     int64_t nx = x + kDx[d];
     const int64_t ny = y + kDy[d];
     if (ny < 0 || ny >= win_.h) return -1;
@@ -54,10 +66,13 @@ class Search {
       if (v != kNoData) lowest = std::min(lowest, v), highest = std::max(highest, v), ++data;
     if (data == 0) return;
     queue_.reset(lowest, highest, data);
+    // Without holes only the window's edge holds seeds: no neighbour scan.
+    const bool holes = data < cells;
     for (int64_t y = 0; y < win_.h; ++y)
       for (int64_t x = 0; x < w_; ++x) {
         const size_t i = size_t(y * w_ + x);
-        if (z_[i] == kNoData || !is_seed(x, y)) continue;
+        const bool edge = y == 0 || y == win_.h - 1 || (!win_.wraps && (x == 0 || x == w_ - 1));
+        if (z_[i] == kNoData || !(edge || (holes && is_seed(x, y)))) continue;
         out.code[i] = kOutlet;
         state_[i] = kSeed;
         queue_.push(z_[i], uint32_t(i));
@@ -73,10 +88,7 @@ class Search {
 
  private:
   // The ground distance from a cell of window row y to its neighbour d.
-  double step(int64_t y, uint8_t d) const {
-    const double dx = g_.dx(win_.y0 + y), dy = g_.dy(win_.y0 + y);
-    return kDx[d] == 0 ? dy : kDy[d] == 0 ? dx : std::hypot(dx, dy);
-  }
+  double step(int64_t y, uint8_t d) const { return steps_[size_t(y) * 9 + d]; }
 
   void work(uint32_t i, std::vector<uint8_t>& code) {
     const int64_t x = int64_t(i) % w_, y = int64_t(i) / w_;
@@ -124,11 +136,12 @@ class Search {
     const int64_t nx = int64_t(n) % w_, ny = int64_t(n) / w_;
     const uint8_t now = code[n];
     const int64_t r = neighbour(nx, ny, now);
-    const double to_here = double(z_[n] - z_[i]) / step(ny, toward);
-    if (r < 0) return to_here > 0;  // (drains off the data: only for a descent)
-    const double to_now = double(z_[n] - z_[size_t(r)]) / step(ny, now);
-    return to_here > to_now ||
-           (to_here == to_now && code[i] == kOutlet && code[size_t(r)] != kOutlet);
+    const double drop_here = double(z_[n] - z_[i]);
+    if (r < 0) return drop_here > 0;  // (drains off the data: only for a descent)
+    // drop_here / step_here against drop_now / step_now, without dividing.
+    const double here = drop_here * step(ny, now),
+                 now_ = double(z_[n] - z_[size_t(r)]) * step(ny, toward);
+    return here > now_ || (here == now_ && code[i] == kOutlet && code[size_t(r)] != kOutlet);
   }
 
   // Whether diagonal neighbour d is left to an orthogonal neighbour between:
@@ -151,6 +164,8 @@ class Search {
   const GridWindow& win_;
   const std::vector<int32_t>& z_;
   const int64_t w_;
+  std::vector<double> steps_;  // per window row, per direction: the ground distance
+  int64_t offset_[9] = {0};    // per direction: the index step inside the window
   std::vector<uint8_t> state_;
   HeightQueue queue_;
 };
