@@ -926,6 +926,25 @@ int64_t chunk_size_for(const tileformat::Tiling& t, int zoom, int block_size,
 
 namespace {
 
+// Calls fn(chunk cell, window cell) for each cell of chunk k inside the
+// window (runs of a row are contiguous in both, so the wrap is worked out
+// once per row).
+template <typename F>
+void for_window_cells(const FlowGrid& g, const GridWindow& win, const Chunk& k, F fn) {
+  for (int y = 0; y < k.h; ++y) {
+    const int64_t first = win.local(g, k.x0, k.y0 + y);
+    if (first >= 0 && first % win.w + k.w <= win.w) {  // the whole row, one run
+      for (int x = 0; x < k.w; ++x)
+        fn(size_t(y) * k.w + x, size_t(first + x));
+      continue;
+    }
+    for (int x = 0; x < k.w; ++x) {
+      const int64_t i = win.local(g, k.x0 + x, k.y0 + y);
+      if (i >= 0) fn(size_t(y) * k.w + x, size_t(i));
+    }
+  }
+}
+
 // --flow-method carve: the data's window of the grid routed by least cost
 // in memory (its heights read chunk by chunk), then cut into the chunks of
 // the fill method's grid for the pyramid.
@@ -957,11 +976,9 @@ FlowSolution solve_carved(const TerrainPackage& p, const FlowSettings& s, Progre
           one.add(t, p.reader->tile(t));
           return one.get(t, s.input);
         }));
-    for (int y = 0; y < k.h; ++y)
-      for (int x = 0; x < k.w; ++x) {
-        const int64_t i = win.local(g, k.x0 + x, k.y0 + y);
-        if (i >= 0) z[size_t(i)] = heights[size_t(y) * k.w + x];
-      }
+    for_window_cells(g, win, k, [&](size_t chunk_cell, size_t window_cell) {
+      z[window_cell] = heights[chunk_cell];
+    });
     progress.advance();
   }
   progress.end();
@@ -977,13 +994,10 @@ FlowSolution solve_carved(const TerrainPackage& p, const FlowSettings& s, Progre
     level.x0 = k.x0, level.y0 = k.y0, level.w = k.w, level.h = k.h;
     level.area.assign(k.cells(), 0);
     level.code.assign(k.cells(), kNoDataCode);
-    for (int y = 0; y < k.h; ++y)
-      for (int x = 0; x < k.w; ++x) {
-        const int64_t i = win.local(g, k.x0 + x, k.y0 + y);
-        if (i < 0) continue;
-        level.area[size_t(y) * k.w + x] = carved.area[size_t(i)];
-        level.code[size_t(y) * k.w + x] = carved.code[size_t(i)];
-      }
+    for_window_cells(g, win, k, [&](size_t chunk_cell, size_t window_cell) {
+      level.area[chunk_cell] = carved.area[window_cell];
+      level.code[chunk_cell] = carved.code[window_cell];
+    });
     out.pyramid->put_chunk(int(slot), std::move(level));
   }
   out.pyramid->finish();

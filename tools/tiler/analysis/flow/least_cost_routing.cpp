@@ -57,9 +57,11 @@ class Search {
     return false;
   }
 
+  // Per cell one byte, the state in the high nibble and the receiver code in
+  // the low one (one cache line for both: the search waits on memory).
   void run(CarvedFlow& out, std::vector<uint32_t>& order) {
     const size_t cells = z_.size();
-    state_.assign(cells, kUnseen);
+    std::vector<uint8_t>& cell = out.code;  // kNoDataCode, state kUnseen
     int32_t lowest = INT32_MAX, highest = INT32_MIN;
     size_t data = 0;
     for (int32_t v : z_)
@@ -73,52 +75,54 @@ class Search {
         const size_t i = size_t(y * w_ + x);
         const bool edge = y == 0 || y == win_.h - 1 || (!win_.wraps && (x == 0 || x == w_ - 1));
         if (z_[i] == kNoData || !(edge || (holes && is_seed(x, y)))) continue;
-        out.code[i] = kOutlet;
-        state_[i] = kSeed;
+        cell[i] = pack(kSeed, kOutlet);
         queue_.push(z_[i], uint32_t(i));
       }
     order.reserve(data);
     while (!queue_.empty()) {
       const uint32_t i = queue_.pop();
       order.push_back(i);
-      work(i, out.code);
-      state_[i] = kWorked;
+      work(i, cell);
+      cell[i] = pack(kWorked, code_of(cell[i]));
     }
+    for (uint8_t& c : cell)
+      c = code_of(c);
   }
 
  private:
+  static uint8_t pack(uint8_t state, uint8_t code) { return uint8_t(state << 4 | code); }
+  static uint8_t state_of(uint8_t c) { return c >> 4; }
+  static uint8_t code_of(uint8_t c) { return c & 15; }
+
   // The ground distance from a cell of window row y to its neighbour d.
   double step(int64_t y, uint8_t d) const { return steps_[size_t(y) * 9 + d]; }
 
-  void work(uint32_t i, std::vector<uint8_t>& code) {
-    const int64_t x = int64_t(i) % w_, y = int64_t(i) / w_;
+  void work(uint32_t i, std::vector<uint8_t>& cell) {
+    const uint32_t row = i / uint32_t(w_);  // (a 32-bit division: this is the hot loop)
+    const int64_t y = row, x = int64_t(i) - y * w_;
     const double dx = g_.dx(win_.y0 + y), dy = g_.dy(win_.y0 + y);
     const int32_t here = z_[i];
     int64_t at[9];
     double climb[9] = {0};  // to the neighbours not yet worked that lie higher
     for (uint8_t d = 1; d <= 8; ++d) {
       at[d] = neighbour(x, y, d);
-      if (at[d] >= 0 && state_[size_t(at[d])] != kWorked && z_[size_t(at[d])] > here)
+      if (at[d] >= 0 && state_of(cell[size_t(at[d])]) != kWorked && z_[size_t(at[d])] > here)
         climb[d] = double(z_[size_t(at[d])] - here) / step(y, d);
     }
     for (uint8_t d : kOrder) {
       if (at[d] < 0) continue;
       const size_t n = size_t(at[d]);
       const uint8_t toward = d8_code(-kDx[d], -kDy[d]);
-      switch (state_[n]) {
+      switch (state_of(cell[n])) {
         case kSeed:  // still draining off the data: here, if lower
-          if (here < z_[n]) {
-            code[n] = toward;
-            state_[n] = kQueued;
-          }
+          if (here < z_[n]) cell[n] = pack(kQueued, toward);
           break;
         case kQueued:
-          if (steeper_here(n, i, toward, code)) code[n] = toward;
+          if (steeper_here(n, y + kDy[d], i, toward, cell)) cell[n] = pack(kQueued, toward);
           break;
         case kUnseen:
           if (yields(d, at, climb, dx, dy)) break;
-          code[n] = toward;
-          state_[n] = kQueued;
+          cell[n] = pack(kQueued, toward);
           queue_.push(z_[n], uint32_t(n));
           break;
         default:
@@ -127,21 +131,22 @@ class Search {
     }
   }
 
-  // Whether queued cell n, now draining by code[n], should drain to worked
-  // cell i (in direction `toward` from n) instead: the descent to i is
-  // steeper, or as steep and i drains off the data where n's receiver does
-  // not (so a level strip along the data's edge drains straight off it, not
-  // along it).
-  bool steeper_here(size_t n, uint32_t i, uint8_t toward, const std::vector<uint8_t>& code) const {
-    const int64_t nx = int64_t(n) % w_, ny = int64_t(n) / w_;
-    const uint8_t now = code[n];
-    const int64_t r = neighbour(nx, ny, now);
+  // Whether queued cell n (of window row ny), now draining by its code,
+  // should drain to worked cell i (in direction `toward` from n) instead:
+  // the descent to i is steeper, or as steep and i drains off the data where
+  // n's receiver does not (so a level strip along the data's edge drains
+  // straight off it, not along it).
+  bool steeper_here(size_t n, int64_t ny, uint32_t i, uint8_t toward,
+                    const std::vector<uint8_t>& cell) const {
+    const uint8_t now = code_of(cell[n]);
+    const int64_t r = neighbour(int64_t(n) - ny * w_, ny, now);
     const double drop_here = double(z_[n] - z_[i]);
     if (r < 0) return drop_here > 0;  // (drains off the data: only for a descent)
     // drop_here / step_here against drop_now / step_now, without dividing.
     const double here = drop_here * step(ny, now),
                  now_ = double(z_[n] - z_[size_t(r)]) * step(ny, toward);
-    return here > now_ || (here == now_ && code[i] == kOutlet && code[size_t(r)] != kOutlet);
+    return here > now_ ||
+           (here == now_ && code_of(cell[i]) == kOutlet && code_of(cell[size_t(r)]) != kOutlet);
   }
 
   // Whether diagonal neighbour d is left to an orthogonal neighbour between:
@@ -166,7 +171,6 @@ class Search {
   const int64_t w_;
   std::vector<double> steps_;  // per window row, per direction: the ground distance
   int64_t offset_[9] = {0};    // per direction: the index step inside the window
-  std::vector<uint8_t> state_;
   HeightQueue queue_;
 };
 
@@ -228,9 +232,10 @@ CarvedFlow route_least_cost(const FlowGrid& g, const GridWindow& win,
     const uint32_t i = order[k];
     const uint8_t c = out.code[i];
     if (c == kOutlet) continue;
-    const int64_t nx = (int64_t(i) % w + kDx[c] + w) % w;  // (wraps only where the window does)
-    const int64_t ny = int64_t(i) / w + kDy[c];
-    out.area[size_t(ny * w + nx)] += out.area[i];
+    // The receiver: one index step, unless it crosses the window's wrap.
+    const int64_t y = int64_t(i / uint32_t(w)), x = int64_t(i) - y * w, nx = x + kDx[c];
+    const int64_t r = int64_t(i) + kDy[c] * w + kDx[c] + (nx < 0 ? w : nx >= w ? -w : 0);
+    out.area[size_t(r)] += out.area[i];
   }
   return out;
 }
