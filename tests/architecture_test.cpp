@@ -2,6 +2,7 @@
 // the built binaries: a rule that is not checked erodes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <functional>
@@ -100,6 +101,50 @@ TEST(Architecture, ViewerIncludesNothingFromTools) {
            !l.starts_with("#include \"tileformat/");
   };
   EXPECT_EQ(joined(matches("lib/runtime", above_runtime)), "");
+}
+
+// Each layer includes only its own folder and the layers below it
+// (docs/architecture.md, the table): the viewer's platform < camera < data
+// < render < app, and the tiler's pipelines over raster/, with analysis/
+// and export/ beside them (no GDAL) and inspect/ and merge/ over them all.
+TEST(Architecture, LayersIncludeOnlyTheirOwnAndBelow) {
+  struct Layer {
+    const char* dir;
+    std::vector<std::string> may;  // the first folder of an include
+  };
+  const std::vector<std::string> lib = {"runtime", "tileformat"};
+  auto with = [&](std::vector<std::string> v) {
+    v.insert(v.end(), lib.begin(), lib.end());
+    return v;
+  };
+  const std::vector<Layer> layers = {
+      {"viewer/platform", with({"platform"})},
+      {"viewer/camera", with({"camera", "platform"})},
+      {"viewer/data", with({"data", "camera", "platform"})},
+      {"viewer/render", with({"render", "data", "camera", "platform"})},
+      {"viewer/app", with({"app", "render", "data", "camera", "platform"})},
+      {"tools/tiler/raster", with({"raster", "geo", "kit"})},
+      {"tools/tiler/terrain", with({"terrain", "raster", "geo", "kit"})},
+      {"tools/tiler/imagery", with({"imagery", "raster", "geo", "kit"})},
+      {"tools/tiler/analysis", with({"analysis", "kit"})},
+      {"tools/tiler/export", with({"export", "web", "kit"})},
+      {"tools/tiler/inspect",
+       with({"inspect", "terrain", "imagery", "analysis", "raster", "geo", "web", "kit"})},
+      {"tools/tiler/merge",
+       with({"merge", "terrain", "imagery", "analysis", "raster", "geo", "kit"})},
+  };
+  for (const Layer& layer : layers) {
+    auto above = [&](const std::string& l) {
+      if (!l.starts_with("#include \"")) return false;
+      const std::string path = l.substr(10, l.find('"', 10) - 10);
+      const size_t slash = path.find('/');
+      if (slash == std::string::npos) return false;
+      return std::find(layer.may.begin(), layer.may.end(), path.substr(0, slash)) ==
+             layer.may.end();
+    };
+    EXPECT_EQ(joined(matches(layer.dir, above)), "")
+        << layer.dir << " includes from a layer above or beside it";
+  }
 }
 
 // Whether `line` calls a C function named PREFIX + [A-Z_]... (e.g. GDALOpen,
