@@ -10,10 +10,10 @@
 #include <optional>
 
 #include "analysis/batch_blocks.hpp"
+#include "analysis/flow/flow_solver.hpp"
 #include "analysis/height_window.hpp"
 #include "analysis/sky_view.hpp"
 #include "analysis/terrain_derivatives.hpp"
-#include "analysis/flow/flow_solver.hpp"
 #include "kit/package_output.hpp"
 #include "kit/parallel_batches.hpp"
 #include "kit/shard_plan.hpp"
