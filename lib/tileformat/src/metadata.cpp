@@ -274,6 +274,10 @@ MetadataMap to_metadata(const AnalysisMetadata& m) {
   if (m.skyview_directions > 0) {
     meta["globe:skyview_directions"] = std::to_string(m.skyview_directions);
     meta["globe:skyview_radius_m"] = metadata_number(m.skyview_radius_m);
+    std::string by_zoom;
+    for (const auto& [z, r] : m.skyview_radius_by_zoom)
+      by_zoom += (by_zoom.empty() ? "" : ",") + std::to_string(z) + ":" + metadata_number(r);
+    if (!by_zoom.empty()) meta["globe:skyview_radius_by_zoom"] = by_zoom;
   }
   if (!m.flow_method.empty()) meta["globe:flow_method"] = m.flow_method;
   return meta;
@@ -300,6 +304,22 @@ AnalysisMetadata read_analysis_metadata(const MetadataMap& meta) {
   if (k.find("globe:skyview_directions")) {
     m.skyview_directions = k.integer("globe:skyview_directions");
     m.skyview_radius_m = k.number("globe:skyview_radius_m");
+    const std::string by_zoom = k.find("globe:skyview_radius_by_zoom").value_or("");
+    for (size_t start = 0; start < by_zoom.size();) {
+      const size_t comma = std::min(by_zoom.find(',', start), by_zoom.size());
+      const std::string item = by_zoom.substr(start, comma - start);
+      const size_t colon = std::min(item.find(':'), item.size());
+      int z = -1;
+      double r = -1;
+      const char* b = item.data();
+      const auto zr = std::from_chars(b, b + colon, z);
+      const auto rr = std::from_chars(b + std::min(colon + 1, item.size()), b + item.size(), r);
+      if (zr.ec != std::errc() || zr.ptr != b + colon || rr.ec != std::errc() ||
+          rr.ptr != b + item.size() || z < 0 || z > 40 || !(r >= 0))
+        throw FormatError("9", "globe:skyview_radius_by_zoom: '" + item + "' is not ZOOM:METRES");
+      m.skyview_radius_by_zoom.emplace_back(z, r);
+      start = comma + 1;
+    }
   }
   m.flow_method = k.find("globe:flow_method").value_or("");
   return m;

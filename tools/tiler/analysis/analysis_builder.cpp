@@ -8,10 +8,11 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 
 #include "analysis/batch_blocks.hpp"
 #include "analysis/flow/flow_solver.hpp"
-#include "analysis/height_window.hpp"
+#include "analysis/height_levels.hpp"
 #include "analysis/sky_view.hpp"
 #include "analysis/terrain_derivatives.hpp"
 #include "kit/package_output.hpp"
@@ -46,16 +47,19 @@ class BlockAnalyzer {
                        [](AnalysisLayer l) { return l <= AnalysisLayer::kSkyview; });
   }
 
-  // Samples around a block that its layers read.
-  int halo(TileId id) const {
+  // Samples around a block that its layers read, at its own zoom and (sky
+  // view past two blocks) at its ancestors' zooms.
+  std::vector<int> halos(TileId id) const {
     const int n = p_.block_size - 1;
-    if (!has_layer(s_.layers, AnalysisLayer::kSkyview)) return 1;
+    if (!has_layer(s_.layers, AnalysisLayer::kSkyview)) return {1};
     double spacing = 1e300;
     for (int row : {0, n}) {
       const GroundSpacing g = ground_spacing(p_.tiling, id.z, n, id.y, row);
       spacing = std::min({spacing, g.dx, g.dy});
     }
-    return std::max(1, sky_view_halo(s_.skyview, spacing, n));
+    std::vector<int> h = sky_view_reach(s_.skyview, spacing, n, id.z - p_.min_zoom).halos;
+    h[0] = std::max(h[0], 1);
+    return h;
   }
 
   std::vector<uint8_t> analyze(TileId id, const BatchBlocks& blocks) const {
@@ -79,15 +83,18 @@ class BlockAnalyzer {
     std::vector<uint64_t> area;
     std::vector<uint8_t> code;
     if (flow) flow_->block(id, s, area, code);
-    std::optional<HeightWindow> window;
+    std::optional<HeightLevels> levels;
     if (reads_heights())
-      window.emplace(p_.tiling, id, s, halo(id),
+      levels.emplace(p_.tiling, id, s, halos(id),
                      [&](TileId t) { return blocks.get(t, s_.inputs[0]); });
-    for (int y = 0; window && y < s; ++y) {
-      const HeightWindow& w = *window;
+    for (int y = 0; levels && y < s; ++y) {
+      const HeightWindow& w = levels->own();
       const GroundSpacing sp = ground_spacing(p_.tiling, id.z, n, id.y, y);
-      std::optional<SkyViewScan> scan;
-      if (skyview) scan.emplace(s_.skyview, sp);
+      std::vector<double> sky;
+      if (skyview) {
+        sky.resize(size_t(s));
+        SkyViewScan(s_.skyview, sp).row(*levels, y, s, sky.data());
+      }
       for (int x = 0; x < s; ++x) {
         if (!w.valid(x, y)) continue;
         Derivatives d;
@@ -115,7 +122,7 @@ class BlockAnalyzer {
               v = d.plan;
               break;
             case AnalysisLayer::kSkyview:
-              v = scan->factor(w, x, y);
+              v = sky[size_t(x)];
               break;
             case AnalysisLayer::kFlowDirection:
             case AnalysisLayer::kFlowAccumulation:
@@ -143,6 +150,42 @@ class BlockAnalyzer {
   const flow::FlowPyramid* flow_;
 };
 
+// Per zoom, the radius every sample's rays reach (globe:skyview_radius_by_zoom):
+// the least sky_view_reach over its tile rows, at their smallest ground
+// spacing; on the geodetic tiling over latitudes within 80 degrees of the
+// equator (towards the poles its east-west spacing shrinks to nothing).
+std::vector<std::pair<int, double>> skyview_radius_by_zoom(const TerrainPackage& p,
+                                                           const SkyViewSettings& s) {
+  const int n = p.block_size - 1;
+  const bool geodetic = p.tiling.scheme == tileformat::Scheme::kGeodetic;
+  std::vector<std::pair<int, double>> out;
+  for (int z = p.min_zoom; z <= p.max_zoom; ++z) {
+    std::set<uint32_t> rows;  // the blocks of a tile row share their spacing
+    for (const TileId& id : p.reader->tile_ids(z))
+      rows.insert(id.y);
+    const double sp = p.tiling.sample_spacing(z, n);
+    double radius = s.radius_m;
+    bool any = false;
+    for (uint32_t ty : rows) {
+      double north = p.tiling.origin_y - double(ty) * n * sp, south = north - n * sp;
+      if (geodetic) {
+        north = std::min(north, 80.0);
+        south = std::max(south, -80.0);
+        if (north < south) continue;
+      }
+      double spacing = 1e300;
+      for (double y : {north, south, std::clamp(0.0, south, north)}) {
+        const GroundSpacing g = ground_spacing_at(p.tiling, z, n, y);
+        spacing = std::min({spacing, g.dx, g.dy});
+      }
+      radius = std::min(radius, sky_view_reach(s, spacing, n, z - p.min_zoom).radius_m);
+      any = true;
+    }
+    if (any) out.emplace_back(z, radius);
+  }
+  return out;
+}
+
 tileformat::AnalysisMetadata analysis_metadata(const AnalysisSettings& s, const TerrainPackage& p) {
   tileformat::AnalysisMetadata m;
   m.common = p.meta.common;
@@ -163,6 +206,7 @@ tileformat::AnalysisMetadata analysis_metadata(const AnalysisSettings& s, const 
   if (has_layer(s.layers, tileformat::AnalysisLayer::kSkyview)) {
     m.skyview_directions = s.skyview.directions;
     m.skyview_radius_m = s.skyview.radius_m;
+    m.skyview_radius_by_zoom = skyview_radius_by_zoom(p, s.skyview);
   }
   if (has_layer(s.layers, tileformat::AnalysisLayer::kFlowDirection) ||
       has_layer(s.layers, tileformat::AnalysisLayer::kFlowAccumulation))
@@ -241,8 +285,8 @@ AnalysisSummary build_analysis(const AnalysisSettings& s, Progress& progress) {
           BatchBlocks blocks;
           if (!analyzer.reads_heights()) return blocks;  // flow layers only
           for (size_t i = begin; i < end; ++i) {
-            const int radius = HeightWindow::radius_for(p.block_size, analyzer.halo(items[i]));
-            for (const TileId& t : tiles_around(p.tiling, items[i], radius))
+            for (const TileId& t :
+                 HeightLevels::tiles(p.tiling, items[i], p.block_size, analyzer.halos(items[i])))
               if (!blocks.has(t)) blocks.add(t, p.reader->tile(t));
           }
           return blocks;

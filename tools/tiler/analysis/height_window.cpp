@@ -60,10 +60,17 @@ HeightWindow::HeightWindow(const tileformat::Tiling& tiling, TileId id, int size
             const int bx = wx - tx * n, by = wy - ty * n;
             const size_t k = index(wx, wy);
             if (!self && ok_[k]) continue;  // an equal shared edge sample is there
-            h_[k] = b->height(bx, by);
+            h_[k] = static_cast<float>(b->height(bx, by));
             ok_[k] = b->is_valid(bx, by) ? 1 : 0;
           }
       }
+  invalid_before_.assign(size_t(width_) * (width_ + 1), 0);
+  for (int y = 0; y < width_; ++y) {
+    uint16_t* c = &invalid_before_[size_t(y) * (width_ + 1)];
+    const uint8_t* ok = &ok_[size_t(y) * width_];
+    for (int x = 0; x < width_; ++x)
+      c[x + 1] = uint16_t(c[x] + (ok[x] ? 0 : 1));
+  }
 }
 
 }  // namespace globe

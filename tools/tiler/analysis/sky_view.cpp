@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace globe {
@@ -14,11 +15,27 @@ namespace {
 constexpr int kFineSteps = 12;
 constexpr double kGrowth = 1.07;
 
+double snap(double v) {
+  const double r = std::round(v);
+  return std::abs(v - r) < 1e-9 ? r : v;
+}
+
 }  // namespace
 
-int sky_view_halo(const SkyViewSettings& s, double min_spacing_m, int steps) {
-  const double h = std::ceil(s.radius_m / min_spacing_m) + 1;
-  return static_cast<int>(std::min<double>(h, 2.0 * steps));
+SkyViewReach sky_view_reach(const SkyViewSettings& s, double min_spacing_m, int steps,
+                            int coarser_zooms) {
+  SkyViewReach r;
+  for (int k = 0; k <= coarser_zooms; ++k) {
+    const double spacing = std::ldexp(min_spacing_m, k);  // metres per sample of level k
+    const double wanted = std::ceil(s.radius_m / spacing) + 1;
+    const int halo = static_cast<int>(std::min<double>(wanted, 2.0 * steps));
+    r.halos.push_back(halo);
+    // A sample on the block's edge has halo - 1 whole steps of bilinear
+    // neighbourhoods beyond it (HeightLevels::height).
+    r.radius_m = std::min(s.radius_m, (halo - 1) * spacing);
+    if (halo == wanted) break;
+  }
+  return r;
 }
 
 SkyViewScan::SkyViewScan(const SkyViewSettings& s, GroundSpacing sp) {
@@ -33,34 +50,96 @@ SkyViewScan::SkyViewScan(const SkyViewSettings& s, GroundSpacing sp) {
     for (int j = 1;; ++j) {
       dist = j <= kFineSteps ? unit * j : dist * kGrowth;
       if (dist > s.radius_m * (1 + 1e-9)) break;
-      ray.push_back({ex * dist, ey * dist, 1 / dist});
+      // Offsets a rounding error away from a whole sample (the diagonals'
+      // first steps) are that sample, so that which samples a step reads
+      // (and where a ray ends at no data) does not hang on the last bit.
+      const double dx = snap(ex * dist), dy = snap(ey * dist);
+      const int ix = static_cast<int>(std::floor(dx)), iy = static_cast<int>(std::floor(dy));
+      ray.push_back({dx, dy, 1 / dist, ix, iy, dx - ix, dy - iy});
     }
     rays_.push_back(std::move(ray));
   }
 }
 
-double SkyViewScan::factor(const HeightWindow& w, int x, int y) const {
-  const double h0 = w.height(x, y);
-  double sum = 0;
+void SkyViewScan::row(const HeightLevels& levels, int y, int size, double* out) const {
+  const HeightWindow& w = levels.own();
+  const int halo = w.halo();
+  const float* h0 = w.row(y);
+  const size_t n = static_cast<size_t>(size);
+  constexpr float kNever = -std::numeric_limits<float>::infinity();
+  std::vector<double> sum(n, 0.0);
+  std::vector<float> best(n);  // tangents: single precision, like the heights
+  // Added to a sample's tangents: 0, or kNever once its ray has ended at no
+  // data (so that the whole row's step stays one branch-free loop).
+  std::vector<float> ended(n);
+  // Per sample, the step at which its ray left the block's own zoom, or
+  // kAtOwnZoom while it has not.
+  std::vector<size_t> left(n);
+  constexpr size_t kAtOwnZoom = std::numeric_limits<size_t>::max();
   for (const auto& ray : rays_) {
-    double best = 0;  // tangent of the horizon's elevation, >= 0
-    for (const Step& s : ray) {
-      const double fx = x + s.dx, fy = y + s.dy;
-      const int x0 = static_cast<int>(std::floor(fx)), y0 = static_cast<int>(std::floor(fy));
-      if (!w.inside(x0, y0) || !w.inside(x0 + 1, y0 + 1)) break;
-      if (!w.valid(x0, y0) || !w.valid(x0 + 1, y0) || !w.valid(x0, y0 + 1) ||
-          !w.valid(x0 + 1, y0 + 1))
-        break;
-      const double tx = fx - x0, ty = fy - y0;
-      const double top = w.height(x0, y0) + tx * (w.height(x0 + 1, y0) - w.height(x0, y0));
-      const double bottom =
-          w.height(x0, y0 + 1) + tx * (w.height(x0 + 1, y0 + 1) - w.height(x0, y0 + 1));
-      const double h = top + ty * (bottom - top);
-      best = std::max(best, (h - h0) * s.inv_distance);
+    int a = 0, b = size - 1;  // the samples whose rays are still at their own zoom
+    for (size_t x = 0; x < n; ++x) {
+      best[x] = 0;
+      ended[x] = w.valid(int(x), y) ? 0 : kNever;
+      left[x] = kAtOwnZoom;
     }
-    sum += best / std::sqrt(1 + best * best);  // sin(atan(best))
+    for (size_t j = 0; j < ray.size() && a <= b; ++j) {
+      const Step& s = ray[j];
+      const int yy = y + s.iy;
+      int lo = 1, hi = 0;  // x whose neighbourhood lies inside the window
+      if (yy >= -halo && yy + 1 <= size - 1 + halo) {
+        lo = std::max(a, -halo - s.ix);
+        hi = std::min(b, size - 2 + halo - s.ix);
+      }
+      // The ray moves monotonically away: samples out of the window now
+      // stay out (their rays go on in the coarser zooms, below).
+      for (int x = a; x <= b; ++x) {
+        if (x >= lo && x <= hi) {
+          x = hi;
+          continue;
+        }
+        left[size_t(x)] = j;
+      }
+      a = lo;
+      b = hi;
+      if (a > b) break;
+      const float* r0 = w.row(yy) + s.ix;
+      const float* r1 = w.row(yy + 1) + s.ix;
+      const float tx = float(s.tx), ty = float(s.ty), inv = float(s.inv_distance);
+      // The tangent of the step's elevation seen from sample x.
+      const auto tangent = [&](int x) {
+        const float top = r0[x] + tx * (r0[x + 1] - r0[x]);
+        const float bottom = r1[x] + tx * (r1[x + 1] - r1[x]);
+        return (top + ty * (bottom - top) - h0[x]) * inv;
+      };
+      const int c0 = a + s.ix, c1 = b + s.ix + 1;  // the window columns read
+      if (!w.all_valid(yy, c0, c1) || !w.all_valid(yy + 1, c0, c1)) {
+        const uint8_t* v0 = w.valid_row(yy) + s.ix;
+        const uint8_t* v1 = w.valid_row(yy + 1) + s.ix;
+        for (int x = a; x <= b; ++x)  // rays that meet no data here end
+          ended[size_t(x)] = (v0[x] & v0[x + 1] & v1[x] & v1[x + 1]) ? ended[size_t(x)] : kNever;
+      }
+      for (int x = a; x <= b; ++x)
+        best[size_t(x)] = std::max(best[size_t(x)], tangent(x) + ended[size_t(x)]);
+    }
+    for (size_t x = 0; x < n; ++x) {
+      if (ended[x] == 0 && left[x] != kAtOwnZoom) {  // on in the coarser zooms
+        int level = 1;
+        for (size_t j = left[x]; j < ray.size(); ++j) {
+          const Step& s = ray[j];
+          double h = 0;
+          if (levels.height(double(x) + s.dx, y + s.dy, level, h) != HeightLevels::Sample::kHeight)
+            break;
+          best[x] = std::max(best[x], float((h - h0[x]) * s.inv_distance));
+        }
+      }
+      const double t = best[x];
+      sum[x] += t / std::sqrt(1 + t * t);  // sin(atan(t))
+    }
   }
-  return 1 - sum / static_cast<double>(rays_.size());
+  for (int x = 0; x < size; ++x)
+    out[x] = w.valid(x, y) ? 1 - sum[size_t(x)] / static_cast<double>(rays_.size())
+                           : std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace globe

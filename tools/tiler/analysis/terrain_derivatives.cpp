@@ -45,8 +45,12 @@ Derivatives derivatives(const Window3& w, double dx, double dy) {
 GroundSpacing ground_spacing(const tileformat::Tiling& tiling, int z, int steps, uint32_t tile_y,
                              int row) {
   const double sp = tiling.sample_spacing(z, steps);
+  return ground_spacing_at(tiling, z, steps, tiling.origin_y - (double(tile_y) * steps + row) * sp);
+}
+
+GroundSpacing ground_spacing_at(const tileformat::Tiling& tiling, int z, int steps, double y) {
+  const double sp = tiling.sample_spacing(z, steps);
   if (tiling.scheme == tileformat::Scheme::kLocal) return {sp, sp};
-  const double y = tiling.origin_y - (double(tile_y) * steps + row) * sp;  // CRS y of the row
   double lat = 0, dlat = 0;  // radians; dlat: radians per sample north-south
   if (tiling.scheme == tileformat::Scheme::kGeodetic) {
     lat = y * kDeg;

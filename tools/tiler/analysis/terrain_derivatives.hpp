@@ -35,5 +35,7 @@ struct GroundSpacing {
 };
 GroundSpacing ground_spacing(const tileformat::Tiling& tiling, int z, int steps, uint32_t tile_y,
                              int row);
+// The same at the tiling's CRS y `crs_y` (any y, not only a row's).
+GroundSpacing ground_spacing_at(const tileformat::Tiling& tiling, int z, int steps, double crs_y);
 
 }  // namespace globe

@@ -27,6 +27,29 @@ std::string layer_list(const std::vector<AnalysisLayer>& layers) {
   return s;
 }
 
+// "sky view: ..." for info: directions, radius, and the zooms whose rays
+// reach less (the zooms above them ran out: analysis_builder.cpp).
+std::string skyview_line(const tileformat::AnalysisMetadata& m) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "sky view: %d directions, radius %g m", m.skyview_directions,
+                m.skyview_radius_m);
+  std::string s = buf, shorter;
+  for (const auto& [z, r] : m.skyview_radius_by_zoom)
+    if (r < m.skyview_radius_m) {
+      std::snprintf(buf, sizeof buf, "%szoom %d %.0f m", shorter.empty() ? "" : ", ", z, r);
+      shorter += buf;
+    }
+  if (m.skyview_radius_by_zoom.empty())
+    s += " (reach per zoom not recorded: made before 2026-11-28)";
+  else if (shorter.empty())
+    s += ", reached at every zoom";
+  else
+    s += "; reached except at " + shorter +
+         " (no coarser zoom to draw the far field from: build the terrain from a lower "
+         "--min-zoom)";
+  return s;
+}
+
 }  // namespace
 
 void print_analysis_info(const std::string& path, bool json) {
@@ -39,6 +62,15 @@ void print_analysis_info(const std::string& path, bool json) {
     }
     InfoJson a;
     a.objects("layers", layers).text("terrain", p.meta.terrain).integer("block_size", p.block_size);
+    if (p.meta.skyview_directions > 0) {
+      std::vector<InfoJson> by_zoom;
+      for (const auto& [z, r] : p.meta.skyview_radius_by_zoom)
+        by_zoom.push_back(InfoJson().integer("zoom", uint64_t(z)).number("radius_m", r));
+      a.object("skyview", InfoJson()
+                              .integer("directions", uint64_t(p.meta.skyview_directions))
+                              .number("radius_m", p.meta.skyview_radius_m)
+                              .objects("radius_by_zoom", by_zoom));
+    }
     print_info_json(package_info_json(*p.reader, path, "analysis").object("analysis", a));
     return;
   }
@@ -46,6 +78,7 @@ void print_analysis_info(const std::string& path, bool json) {
   std::printf("analysis: %s; from terrain %s; %d x %d samples per block\n",
               layer_list(p.meta.layers).c_str(), p.meta.terrain.c_str(), p.block_size,
               p.block_size);
+  if (p.meta.skyview_directions > 0) std::printf("%s\n", skyview_line(p.meta).c_str());
 }
 
 int validate_analysis_package(const std::string& path) {

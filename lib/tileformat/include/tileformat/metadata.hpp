@@ -111,7 +111,12 @@ struct AnalysisMetadata {
   double height_step = 0;             // globe:height_step of that terrain
   int skyview_directions = 0;         // globe:skyview_directions (with the skyview layer)
   double skyview_radius_m = 0;        // globe:skyview_radius_m
-  std::string flow_method;            // globe:flow_method (with the flow layers): "fill", "carve"
+  // globe:skyview_radius_by_zoom, "Z:METRES,...": per zoom, the radius every
+  // sample's rays reach (skyview_radius_m, or less where the zooms above run
+  // out); geodetic tilings: rows within 80 degrees of the equator. Empty in
+  // packages made before 2026-11-28.
+  std::vector<std::pair<int, double>> skyview_radius_by_zoom;
+  std::string flow_method;  // globe:flow_method (with the flow layers): "fill", "carve"
 };
 
 // Points for charts (§11.4).
