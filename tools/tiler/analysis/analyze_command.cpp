@@ -76,7 +76,9 @@ int run_analyze(const std::vector<std::string>& args) {
                s.skyview.directions = CliArgs::to_int("--skyview-directions", v, 4, 360);
              });
   cli.option("--skyview-radius", "METRES",
-             "how far the sky-view scan looks for the horizon (default 10000)",
+             "how far the sky-view scan looks for the horizon (default 10000); past two blocks "
+             "around a block the rays go on in the coarser zooms, so only a terrain without "
+             "its top zooms (--min-zoom) cuts it: info says what radius each zoom reaches",
              [&](const std::string& v) {
                s.skyview.radius_m = CliArgs::to_double("--skyview-radius", v);
                if (!(s.skyview.radius_m > 0 && s.skyview.radius_m <= 1e6))
