@@ -121,6 +121,16 @@ struct Ramp {
   double west, north;               // a 2 x 2 degree DEM of 0.01 degree pixels
   bool east;                        // rising eastwards (else southwards)
   std::vector<std::string> bboxes;  // extracts to check ("" = the whole zoom)
+  // Far-field variants: 65-sample blocks put a 100 km sky-view radius past
+  // the halo (128 samples, about 40 km), so rays go on in the coarser zooms
+  // (wrapping across the antimeridian, next to the pole); a plane's horizon
+  // is the same at any distance, so a misplaced coarse sample shows.
+  // (At zoom 10, as fine as zoom 8 with 257: the source's 0.01 degrees
+  // upsampled, where bilinear keeps the ramp linear; downsampled, GDAL's
+  // widened kernel does not.)
+  int block = 257;
+  double radius_m = 1000;
+  int zoom = 8;
 };
 
 void PrintTo(const Ramp& r, std::ostream* os) {
@@ -138,9 +148,12 @@ TEST_P(AnalyzeGeodetic, RampSlopesFollowTheEllipsoid) {
                     ana = (dir / "a.mbtiles").string();
   write_dem(src, 200, 200, gt, "EPSG:4326", GDT_Float32,
             [&](int x, int y) { return ramp.east ? 1000 + 5.0 * x : 2000 - 5.0 * y; });
-  ASSERT_TRUE(build_terrain("--tiling geodetic --max-zoom 8", src, pkg, dir.path()));
-  ASSERT_EQ(run(tiler() + " analyze -q --layers slope,skyview --skyview-radius 1000 " + pkg +
-                    " -o " + ana,
+  const std::string zoom = std::to_string(ramp.zoom);
+  ASSERT_TRUE(build_terrain(
+      "--tiling geodetic --max-zoom " + zoom + " --block-size " + std::to_string(ramp.block), src,
+      pkg, dir.path()));
+  ASSERT_EQ(run(tiler() + " analyze -q --layers slope,skyview --skyview-radius " +
+                    std::to_string(int(ramp.radius_m)) + " " + pkg + " -o " + ana,
                 dir.path())
                 .exit_code,
             0);
@@ -148,13 +161,14 @@ TEST_P(AnalyzeGeodetic, RampSlopesFollowTheEllipsoid) {
   double worst = 0, worst_sky = 0;
   for (const std::string& bbox : ramp.bboxes) {
     const std::string out = (dir / "slope.tif").string();
-    const RunResult e = run(tiler() + " extract --force " + ana + " --zoom 8 --layer slope" +
-                                (bbox.empty() ? "" : " --bbox=" + bbox) + " -o " + out,
-                            dir.path());
+    const RunResult e =
+        run(tiler() + " extract --force " + ana + " --zoom " + zoom + " --layer slope" +
+                (bbox.empty() ? "" : " --bbox=" + bbox) + " -o " + out,
+            dir.path());
     ASSERT_EQ(e.exit_code, 0) << e.err;
     const Raster r = read_raster(out);
     const std::string sky_out = (dir / "sky.tif").string();
-    ASSERT_EQ(run(tiler() + " extract --force " + ana + " --zoom 8 --layer skyview" +
+    ASSERT_EQ(run(tiler() + " extract --force " + ana + " --zoom " + zoom + " --layer skyview" +
                       (bbox.empty() ? "" : " --bbox=" + bbox) + " -o " + sky_out,
                   dir.path())
                   .exit_code,
@@ -216,7 +230,17 @@ INSTANTIATE_TEST_SUITE_P(
     Ramps, AnalyzeGeodetic,
     ::testing::Values(Ramp{"north_60n", 10, 61, false, {""}}, Ramp{"east_60n", 10, 61, true, {""}},
                       Ramp{"north_88n", 10, 89, false, {""}}, Ramp{"east_88s", 10, -87, true, {""}},
-                      Ramp{"east_antimeridian", 179, 1, true, {"179,-1,180,1", "-180,-1,-179,1"}}),
+                      Ramp{"east_antimeridian", 179, 1, true, {"179,-1,180,1", "-180,-1,-179,1"}},
+                      Ramp{"east_antimeridian_far",
+                           179,
+                           1,
+                           true,
+                           {"179,-1,180,1", "-180,-1,-179,1"},
+                           65,
+                           100000,
+                           10},
+                      Ramp{"east_88s_far", 10, -87, true, {""}, 65, 100000, 10},
+                      Ramp{"north_60n_far", 10, 61, false, {""}, 65, 100000, 10}),
     [](const auto& info) { return std::string(info.param.name); });
 
 TEST(Analyze, ThreadCountsGiveIdenticalBytes) {
