@@ -4,14 +4,17 @@
 #   build:  globe-vectorize points of PLACES synthetic places (Gaussian
 #           clusters over Europe, 5 integer fields) against globe-vectorize
 #           lines of as many vertices (make_synthetic_lines: PLACES/10 walks of
-#           10 vertices), CPU seconds (user + system) and peak RSS;
+#           10 vertices), CPU seconds (user + system) and peak RSS; and
+#           against tippecanoe (bench/fetch_tippecanoe.sh) clustering the
+#           same CSV at the same distance and zooms, values summed;
 #   charts: the chart pass (GPU time of the instanced draw) for 10 k, 100 k
 #           and 1 M places on screen at 1280 x 720 (uniform over 2 x 2
 #           degrees, --merge-px 0 so every zoom holds every place, 4-8 px
 #           pies), straight down over a flat terrain, and the terrain pass of
 #           the same frame: charts_ms, terrain_ms, their ratio.
 # Usage: bench/points.sh [PLACES] [CHART_COUNTS...]  (default 1000000; 10000 100000 1000000)
-# Needs: scripts/build.sh done. Scratch: bench/scratch/points (kept for reruns).
+# Needs: scripts/build.sh done; fetches tippecanoe (bench/fetch_tippecanoe.sh).
+# Scratch: bench/scratch/points (kept for reruns).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 places=${1:-1000000}
@@ -56,6 +59,17 @@ lns=$(usage $B/tools/vectorize/globe-vectorize lines -q --force "$lines" -o "$sc
 echo "$pts $lns" | awk -v n="$places" '{
   printf "build  %d places: points %.2f s CPU (%.2f wall), peak RSS %.0f MB; lines of %d vertices: %.2f s CPU (%.2f wall), peak RSS %.0f MB; ratio %.2f\n",
     n, $3, $1, $2 / 1024, n, $6, $4, $5 / 1024, $3 / $6 }'
+# tippecanoe on the same CSV, the same zooms, its clustering at the same
+# distance (pixels of a 256 px tile: -r1 keeps every place until clustered),
+# the values summed: the issue's goal is points <= 0.5 x its CPU.
+zmax=$(sqlite3 "$scratch/points.mbtiles" "select value from metadata where name = 'maxzoom'")
+tip=$(usage "$(bench/fetch_tippecanoe.sh)" -q -f -o "$scratch/tippecanoe.mbtiles" -Z0 -z"$zmax" \
+  -r1 --cluster-distance=40 -l places --accumulate-attribute=a:sum \
+  --accumulate-attribute=b:sum --accumulate-attribute=c:sum --accumulate-attribute=d:sum \
+  --accumulate-attribute=e:sum "$scratch/places$places.csv")
+echo "$pts $tip" | awk -v z="$zmax" '{
+  printf "       same places, z0-%d: tippecanoe --cluster-distance=40 %.2f s CPU (%.2f wall), peak RSS %.0f MB; points / tippecanoe CPU %.2f (goal <= 0.5)\n",
+    z, $6, $4, $5 / 1024, $3 / $6 }'
 $B/tools/vectorize/globe-vectorize info "$scratch/points.mbtiles" | sed -n '/places per zoom/,$p'
 
 # Charts: a flat 2 x 2 degree terrain, N uniform places, one view over all.
