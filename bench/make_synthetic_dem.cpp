@@ -1,7 +1,10 @@
 // Writes a synthetic DEM for benchmarks: Int16 GeoTIFF (tiled, DEFLATE), UTM
 // zone 32N, 10 m pixels, ridged multi-octave terrain from a hash-based value
 // noise (deterministic). Rows are generated and written in strips, so memory
-// stays small for any size. Usage: make_synthetic_dem SIZE OUT.tif
+// stays small for any size. Usage: make_synthetic_dem SIZE OUT.tif [STRETCH]
+// STRETCH (default 1) scales the noise's frequencies: 16 puts relief of
+// hundreds of metres between neighbouring samples, like a global 5' DEM's
+// mountains (bench/make_global.sh --relief adds it to the smooth grid).
 #include <cpl_string.h>
 #include <gdal.h>
 #include <ogr_srs_api.h>
@@ -32,8 +35,8 @@ double value_noise(double x, double y) {
   return (a + (b - a) * sx) + ((c + (d - c) * sx) - (a + (b - a) * sx)) * sy;
 }
 
-double terrain(double x, double y) {
-  double h = 0, amp = 1200, freq = 1.0 / 2048;
+double terrain(double x, double y, double stretch) {
+  double h = 0, amp = 1200, freq = stretch / 2048;
   for (int o = 0; o < 9; ++o) {
     h += amp * (1 - std::abs(2 * value_noise(x * freq, y * freq) - 1));
     amp *= 0.45;
@@ -45,11 +48,12 @@ double terrain(double x, double y) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 3) {
-    std::fprintf(stderr, "usage: make_synthetic_dem SIZE OUT.tif\n");
+  if (argc != 3 && argc != 4) {
+    std::fprintf(stderr, "usage: make_synthetic_dem SIZE OUT.tif [STRETCH]\n");
     return 2;
   }
   const int size = std::atoi(argv[1]);
+  const double stretch = argc == 4 ? std::atof(argv[3]) : 1.0;
   GDALAllRegister();
   char** opts = nullptr;
   opts = CSLSetNameValue(opts, "TILED", "YES");
@@ -75,7 +79,7 @@ int main(int argc, char** argv) {
     const int rows = std::min(strip, size - y0);
     for (int r = 0; r < rows; ++r)
       for (int x = 0; x < size; ++x)
-        buf[static_cast<size_t>(r) * size + x] = static_cast<int16_t>(terrain(x, y0 + r));
+        buf[static_cast<size_t>(r) * size + x] = static_cast<int16_t>(terrain(x, y0 + r, stretch));
     if (GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Write, 0, y0, size, rows, buf.data(), size, rows,
                      GDT_Int16, 0, 0) != CE_None) {
       std::fprintf(stderr, "write failed\n");

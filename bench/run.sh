@@ -31,6 +31,8 @@ grid_of() { # tif -> "xmin ymin xmax ymax width height"
 }
 
 row() { # name dem [tiler options...]
+  # BENCH_ROWS=REGEX runs only the rows whose name matches.
+  [[ -n "${BENCH_ROWS:-}" && ! "$1" =~ $BENCH_ROWS ]] && return 0
   local name=$1 dem=$2; shift 2
   local pkg="$scratch/$name.mbtiles"
   local t_tiler t_warp zmax grid crs step
@@ -78,6 +80,11 @@ row etopo20_geodetic samples/data/etopo20.tif --tiling geodetic
 row synth_4096 "$scratch/synth_4096.tif"
 row global_5min_geodetic "$scratch/global_5min.tif" --tiling geodetic
 row global_5min_webmercator "$scratch/global_5min.tif"
+# The same with real relief's roughness (hundreds of metres between neighbouring
+# samples, as a global 5' DEM has in its mountains): bench/make_global.sh --relief.
+[ -f "$scratch/global_5min_relief.tif" ] || bench/make_global.sh --relief "$scratch/global_5min_relief.tif"
+row global_5min_relief_geodetic "$scratch/global_5min_relief.tif" --tiling geodetic
+row global_5min_relief_webmercator "$scratch/global_5min_relief.tif"
 
 if [ "${1:-}" != "quick" ]; then
   [ -f "$scratch/synth_32768.tif" ] || "$gen" 32768 "$scratch/synth_32768.tif"
