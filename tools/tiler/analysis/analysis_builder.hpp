@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "analysis/flow/flow_solver.hpp"
+#include "analysis/flow/flow_method.hpp"
 #include "analysis/sky_view.hpp"
 #include "kit/build_options.hpp"
 #include "kit/progress.hpp"

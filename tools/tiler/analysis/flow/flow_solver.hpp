@@ -25,17 +25,12 @@
 #include <string>
 
 #include "analysis/flow/flow_grid.hpp"
+#include "analysis/flow/flow_method.hpp"
 #include "analysis/flow/flow_pyramid.hpp"
 #include "kit/progress.hpp"
 #include "runtime/terrain_package.hpp"
 
 namespace globe::flow {
-
-// How water crosses depressions and flats (--flow-method): fill them
-// (priority-flood, flats and filled depressions routed; out of core), or
-// carve through their rims (least-cost routing in height order from the
-// data's edge; the whole grid in memory).
-enum class FlowMethod { kFill, kCarve };
 
 struct FlowSettings {
   FlowMethod method = FlowMethod::kFill;
