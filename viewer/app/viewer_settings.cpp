@@ -264,7 +264,7 @@ void declare_map_options(CliArgs& cli, ViewerSettings& s) {
              });
 }
 
-// Line, bundle and chart layers: --style … --chart-thinning.
+// Line, bundle and chart layers: --style … --chart-thinning (heatmaps below).
 void declare_layer_options(CliArgs& cli, ViewerSettings& s) {
   cli.option("--style", "FILE.json",
              "line styles by class name, over the package's own (docs/viewer.md); the window "
@@ -345,6 +345,10 @@ void declare_layer_options(CliArgs& cli, ViewerSettings& s) {
              s.charts_given = true;
              s.charts.thinning = ChartThinning::kOn;
            });
+}
+
+// Heatmaps of a point or line package: --heatmap … --heatmap-opacity.
+void declare_heatmap_options(CliArgs& cli, ViewerSettings& s) {
   cli.option("--heatmap", "count|FIELD",
              "a heatmap of the places instead of charts: their kernel density per pixel over "
              "the terrain, weighted by the source places each stands for (count) or by a field; "
@@ -459,6 +463,7 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
   declare_shading_options(cli, s);
   declare_map_options(cli, s);
   declare_layer_options(cli, s);
+  declare_heatmap_options(cli, s);
   declare_output_options(cli, s);
   auto positional = cli.parse_command(args, 1, 11, "package");
   if (!positional) return std::nullopt;
