@@ -135,6 +135,37 @@ TEST(Metadata, BadKeysAreFormatErrorsNamingThem) {
   expect_error(keys, "globe:scheme is missing");
 }
 
+// The sky view's radius per zoom (globe:skyview_radius_by_zoom) round-trips,
+// is absent from packages made before it, and a malformed list is an error
+// naming the key.
+TEST(Metadata, AnalysisSkyviewRadiusByZoom) {
+  AnalysisMetadata m;
+  m.common = sample_common(kAnalysisFormat);
+  m.block_size = 257;
+  m.layers = {AnalysisLayer::kSkyview};
+  m.terrain = "t.mbtiles";
+  m.height_step = 0.01;
+  m.skyview_directions = 16;
+  m.skyview_radius_m = 10000;
+  m.skyview_radius_by_zoom = {{2, 7620}, {3, 10000}};
+  MetadataMap keys = to_metadata(m);
+  EXPECT_EQ(keys["globe:skyview_radius_by_zoom"], "2:7620,3:10000");
+  const AnalysisMetadata back = read_analysis_metadata(keys);
+  EXPECT_EQ(back.skyview_radius_by_zoom, m.skyview_radius_by_zoom);
+  keys.erase("globe:skyview_radius_by_zoom");
+  EXPECT_TRUE(read_analysis_metadata(keys).skyview_radius_by_zoom.empty());
+  for (const char* bad : {"3", "3:", ":10", "a:10", "3:ten", "3:10,", "3:-1", "99:10", "3:10 "}) {
+    keys["globe:skyview_radius_by_zoom"] = bad;
+    try {
+      read_analysis_metadata(keys);
+      ADD_FAILURE() << "no error for '" << bad << "'";
+    } catch (const FormatError& e) {
+      EXPECT_NE(std::string(e.what()).find("globe:skyview_radius_by_zoom"), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 TEST(Metadata, PackageKindFollowsFormat) {
   EXPECT_EQ(package_kind_of_format(kMBlockFormat), PackageKind::kTerrain);
   EXPECT_EQ(package_kind_of_format(kLineClustersFormat), PackageKind::kLines);

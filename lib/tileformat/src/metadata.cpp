@@ -305,9 +305,10 @@ AnalysisMetadata read_analysis_metadata(const MetadataMap& meta) {
     m.skyview_directions = k.integer("globe:skyview_directions");
     m.skyview_radius_m = k.number("globe:skyview_radius_m");
     const std::string by_zoom = k.find("globe:skyview_radius_by_zoom").value_or("");
-    for (size_t start = 0; start < by_zoom.size();) {
-      const size_t comma = std::min(by_zoom.find(',', start), by_zoom.size());
-      const std::string item = by_zoom.substr(start, comma - start);
+    // Items as in globe:analysis_layers: a trailing comma is an empty item.
+    for (size_t at = 0; !by_zoom.empty() && at <= by_zoom.size();) {
+      const size_t comma = std::min(by_zoom.find(',', at), by_zoom.size());
+      const std::string item = by_zoom.substr(at, comma - at);
       const size_t colon = std::min(item.find(':'), item.size());
       int z = -1;
       double r = -1;
@@ -318,7 +319,7 @@ AnalysisMetadata read_analysis_metadata(const MetadataMap& meta) {
           rr.ptr != b + item.size() || z < 0 || z > 40 || !(r >= 0))
         throw FormatError("9", "globe:skyview_radius_by_zoom: '" + item + "' is not ZOOM:METRES");
       m.skyview_radius_by_zoom.emplace_back(z, r);
-      start = comma + 1;
+      at = comma + 1;
     }
   }
   m.flow_method = k.find("globe:flow_method").value_or("");
