@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <utility>
 
 #include "line_fixtures.hpp"
 #include "point_fixtures.hpp"
@@ -119,6 +120,33 @@ TEST(InfoCli, JsonOfEveryKindIsWhatThePackageHolds) {
   const JsonValue p = info_json(vectorize(), points);
   expect_shared_part(p, points, "points", "points");
   EXPECT_EQ(p.find("points")->find("places")->number(), 3);
+
+  // Each tool reads its own kinds; given another's, every verb names the
+  // file, the kind and the tool that reads it, and writes nothing.
+  const std::pair<std::string, std::string> wrong[] = {{vectorize(), terrain},
+                                                       {vectorize(), image},
+                                                       {vectorize(), analysis},
+                                                       {tiler(), lines},
+                                                       {tiler(), points}};
+  const char* kind_of[] = {"a terrain", "an image", "an analysis", "a line-cluster", "a point"};
+  for (size_t k = 0; k < std::size(wrong); ++k) {
+    const auto& [tool, package] = wrong[k];
+    const bool tiler_reads = tool == vectorize();
+    const std::string reader = tiler_reads ? "globe-tiler" : "globe-vectorize";
+    const std::string self = tiler_reads ? "globe-vectorize" : "globe-tiler";
+    const std::string out = (dir / "wrong.out").string();
+    for (const std::string verb : {"info", "validate", "extract"}) {
+      const RunResult r = run(tool + " " + verb + " " + package +
+                                  (verb == "extract" ? " --zoom 0 -o " + out : std::string()),
+                              dir.path());
+      EXPECT_EQ(r.exit_code, 1) << verb << " " << package << ": " << r.err;
+      EXPECT_NE(r.err.find(package + ": " + kind_of[k] + " package, which " + self + " " + verb +
+                           " does not read; run " + reader + " " + verb + " " + package),
+                std::string::npos)
+          << r.err;
+      EXPECT_FALSE(fs::exists(out));
+    }
+  }
 }
 
 }  // namespace

@@ -3,9 +3,13 @@
 // errors naming them, and the JSON reader follows RFC 8259.
 #include <gtest/gtest.h>
 
+#include <set>
+#include <utility>
+
 #include "tileformat/error.hpp"
 #include "tileformat/json.hpp"
 #include "tileformat/metadata.hpp"
+#include "tileformat/package_kinds.hpp"
 
 using namespace tileformat;
 
@@ -171,6 +175,35 @@ TEST(Metadata, PackageKindFollowsFormat) {
   EXPECT_EQ(package_kind_of_format(kLineClustersFormat), PackageKind::kLines);
   EXPECT_EQ(package_kind_of_format("webp"), PackageKind::kImage);
   EXPECT_FALSE(package_kind_of_format("pbf").has_value());
+}
+
+// One descriptor per kind, in PackageKind order, each naming the tool that
+// inspects it and the command that makes it; each own format is recognised
+// as its kind and no other.
+TEST(Metadata, EveryKindHasOneDescriptor) {
+  const std::pair<PackageKind, const char*> formats[] = {{PackageKind::kTerrain, kMBlockFormat},
+                                                         {PackageKind::kImage, "png"},
+                                                         {PackageKind::kLines, kLineClustersFormat},
+                                                         {PackageKind::kAnalysis, kAnalysisFormat},
+                                                         {PackageKind::kPoints, kPointsFormat}};
+  ASSERT_EQ(package_kinds().size(), std::size(formats));
+  std::set<std::string> names, keys;
+  for (size_t i = 0; i < package_kinds().size(); ++i) {
+    const PackageKindDescriptor& d = package_kinds()[i];
+    EXPECT_EQ(static_cast<size_t>(d.kind), i);
+    EXPECT_EQ(&describe(d.kind), &d);
+    EXPECT_TRUE(names.insert(d.name).second) << d.name;
+    EXPECT_TRUE(keys.insert(d.info_key).second) << d.info_key;
+    EXPECT_TRUE(std::string(d.tool) == "globe-tiler" || std::string(d.tool) == "globe-vectorize");
+    EXPECT_EQ(std::string(d.maker).rfind(d.tool, 0), 0u) << d.maker;
+    EXPECT_NE(std::string(d.extract).find(std::string(d.tool) + " extract"), std::string::npos);
+    EXPECT_EQ(package_kind_name(d.kind), std::string(d.name));
+  }
+  for (const auto& [kind, format] : formats) {
+    EXPECT_EQ(package_kind_of_format(format), kind) << format;
+    for (const PackageKindDescriptor& d : package_kinds())
+      EXPECT_EQ(d.is_format(format), d.kind == kind) << d.name << " " << format;
+  }
 }
 
 TEST(Json, ReadsEveryValueKindAndEscape) {

@@ -151,23 +151,6 @@ int GlobeTilesDataset::Identify(GDALOpenInfo* info) {
          EQUAL(CPLGetExtension(info->pszFilename), "mbtiles");
 }
 
-// What to run instead, for the package kinds GDAL cannot read as rasters.
-const char* instead(tileformat::PackageKind kind) {
-  switch (kind) {
-    case tileformat::PackageKind::kLines:
-      return "its lines: globe-vectorize extract PACKAGE --zoom Z -o OUT.gpkg";
-    case tileformat::PackageKind::kPoints:
-      return "its places: globe-vectorize extract PACKAGE --zoom Z -o OUT.gpkg";
-    case tileformat::PackageKind::kAnalysis:
-      return "a layer: globe-tiler extract PACKAGE --layer NAME --zoom Z -o OUT.tif";
-    case tileformat::PackageKind::kImage:
-      return "a zoom as GeoTIFF: globe-tiler extract PACKAGE --zoom Z -o OUT.tif";
-    case tileformat::PackageKind::kTerrain:
-      break;
-  }
-  return "";
-}
-
 GDALDataset* GlobeTilesDataset::Open(GDALOpenInfo* info) {
   if (!Identify(info) || info->eAccess == GA_Update) return nullptr;
   std::unique_ptr<tileformat::PackageReader> reader;
@@ -189,7 +172,7 @@ GDALDataset* GlobeTilesDataset::Open(GDALOpenInfo* info) {
              "%s: a GlobeEngine %s package%s, not a raster GDAL can read; to get %s",
              info->pszFilename, tileformat::package_kind_name(*kind),
              *kind == tileformat::PackageKind::kImage ? " in a tiling other than web mercator" : "",
-             instead(*kind));
+             tileformat::describe(*kind).extract);
     return nullptr;
   }
   auto package = std::make_shared<Package>();

@@ -8,23 +8,6 @@ std::string article(const std::string& noun) {
   return (std::string("aeiou").find(noun[0]) != std::string::npos ? "an " : "a ") + noun;
 }
 
-// The command that makes packages of `kind`.
-const char* maker(tileformat::PackageKind kind) {
-  switch (kind) {
-    case tileformat::PackageKind::kTerrain:
-      return "globe-tiler terrain";
-    case tileformat::PackageKind::kImage:
-      return "globe-tiler imagery";
-    case tileformat::PackageKind::kAnalysis:
-      return "globe-tiler analyze";
-    case tileformat::PackageKind::kLines:
-      return "globe-vectorize lines or bundle";
-    case tileformat::PackageKind::kPoints:
-      return "globe-vectorize points";
-  }
-  return "?";
-}
-
 }  // namespace
 
 std::unique_ptr<tileformat::PackageReader> open_package(const std::string& path) {
@@ -54,7 +37,7 @@ std::unique_ptr<tileformat::PackageReader> open_package_of_kind(const std::strin
     const std::string is = actual ? article(tileformat::package_kind_name(*actual)) + " package"
                                   : "a package of format '" + fmt + "', not made by these tools";
     throw InputError(path + ": " + is + ", where " + article(tileformat::package_kind_name(kind)) +
-                     " package is needed (made by " + maker(kind) + ")");
+                     " package is needed (made by " + tileformat::describe(kind).maker + ")");
   }
   return reader;
 }

@@ -13,31 +13,6 @@
 
 namespace tileformat {
 
-std::optional<PackageKind> package_kind_of_format(const std::string& format) {
-  if (format == kMBlockFormat) return PackageKind::kTerrain;
-  if (format == kLineClustersFormat) return PackageKind::kLines;
-  if (format == kAnalysisFormat) return PackageKind::kAnalysis;
-  if (format == kPointsFormat) return PackageKind::kPoints;
-  if (parse_image_format(format)) return PackageKind::kImage;
-  return std::nullopt;
-}
-
-const char* package_kind_name(PackageKind kind) {
-  switch (kind) {
-    case PackageKind::kTerrain:
-      return "terrain";
-    case PackageKind::kImage:
-      return "image";
-    case PackageKind::kLines:
-      return "line-cluster";
-    case PackageKind::kPoints:
-      return "point";
-    case PackageKind::kAnalysis:
-      return "analysis";
-  }
-  return "?";
-}
-
 std::string build_description(const std::string& what, const std::string& program,
                               const std::vector<InputFile>& inputs) {
   std::string first = inputs.empty() ? std::string() : inputs[0].name;

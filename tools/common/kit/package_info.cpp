@@ -37,11 +37,11 @@ void print_package_info(tileformat::PackageReader& reader, const std::string& pa
 }
 
 InfoJson package_info_json(tileformat::PackageReader& reader, const std::string& path,
-                           const std::string& kind) {
+                           tileformat::PackageKind kind) {
   InfoJson info;
   std::error_code ec;
   info.text("package", path)
-      .text("kind", kind)
+      .text("kind", tileformat::describe(kind).info_key)
       .integer("file_bytes", std::filesystem::file_size(path, ec));
   InfoJson meta;
   for (const auto& [k, v] : reader.metadata())
@@ -68,6 +68,12 @@ InfoJson package_info_json(tileformat::PackageReader& reader, const std::string&
 
 void print_info_json(const InfoJson& info) {
   std::printf("%s\n", info.str().c_str());
+}
+
+void print_kind_info_json(tileformat::PackageReader& reader, const std::string& path,
+                          tileformat::PackageKind kind, const InfoJson& section) {
+  print_info_json(
+      package_info_json(reader, path, kind).object(tileformat::describe(kind).info_key, section));
 }
 
 }  // namespace globe

@@ -52,7 +52,7 @@ std::string skyview_line(const tileformat::AnalysisMetadata& m) {
 
 }  // namespace
 
-void print_analysis_info(const std::string& path, bool json) {
+int analysis_info(const std::string& path, bool json) {
   AnalysisPackage p = open_analysis_package(path);
   if (json) {
     std::vector<InfoJson> layers;
@@ -71,17 +71,18 @@ void print_analysis_info(const std::string& path, bool json) {
                               .number("radius_m", p.meta.skyview_radius_m)
                               .objects("radius_by_zoom", by_zoom));
     }
-    print_info_json(package_info_json(*p.reader, path, "analysis").object("analysis", a));
-    return;
+    print_kind_info_json(*p.reader, path, tileformat::PackageKind::kAnalysis, a);
+    return kExitOk;
   }
   print_package_info(*p.reader, path);
   std::printf("analysis: %s; from terrain %s; %d x %d samples per block\n",
               layer_list(p.meta.layers).c_str(), p.meta.terrain.c_str(), p.block_size,
               p.block_size);
   if (p.meta.skyview_directions > 0) std::printf("%s\n", skyview_line(p.meta).c_str());
+  return kExitOk;
 }
 
-int validate_analysis_package(const std::string& path) {
+int validate_analysis(const std::string& path) {
   AnalysisPackage p = open_analysis_package(path);
   ValidationReport r;
   if (p.reader->application_id() != tileformat::kApplicationId)

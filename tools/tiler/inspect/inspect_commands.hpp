@@ -1,6 +1,6 @@
-// The package-kind-specific halves of `info`, `validate` and `extract`: the
-// commands parse their arguments, open the package, and dispatch on its
-// `format` (terrain or image) to these.
+// The package-kind-specific halves of `globe-tiler info`, `validate` and
+// `extract` (inspect_commands.cpp calls them through its table of kinds),
+// and what the raster extracts share (extract_tiff.cpp).
 #pragma once
 
 #include <array>
@@ -10,24 +10,22 @@
 #include <vector>
 
 #include "geo/gdal_dataset.hpp"
+#include "kit/kind_inspection.hpp"
 #include "tileformat/package.hpp"
 #include "tileformat/tiling.hpp"
 
 namespace globe {
 
-struct ExtractRequest {
-  std::string package, output;
-  int zoom = 0;
-  std::optional<std::vector<double>> bbox;
-  bool force = false;
-  std::string layer;  // analysis packages: the layer to write
-};
-
-int validate_image_package(const std::string& path);
-void print_image_info(const std::string& path, bool json);
+// One function per kind and verb (the rows of inspect_commands.cpp's table);
+// the same signatures as KindInspection's.
+int terrain_info(const std::string& path, bool json);
+int validate_terrain(const std::string& path);
+int extract_terrain(const ExtractRequest& request);
+int image_info(const std::string& path, bool json);
+int validate_image(const std::string& path);
 int extract_image(const ExtractRequest& request);
-int validate_analysis_package(const std::string& path);
-void print_analysis_info(const std::string& path, bool json);
+int analysis_info(const std::string& path, bool json);
+int validate_analysis(const std::string& path);
 int extract_analysis(const ExtractRequest& request);
 
 // Shared by both extracts: the tiles of the zoom (inside --bbox) and the

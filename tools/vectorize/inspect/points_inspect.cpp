@@ -1,5 +1,5 @@
 // `globe-vectorize info | validate | extract` of a point package (docs/points.md):
-// the line commands hand point packages to these.
+// the rows of inspect_commands.cpp's table for point packages.
 //  - info: metadata, fields, per zoom the tiles, places, aggregates and
 //    cluster-grid entries (tile headers, and the places' counts);
 //  - validate: decodes every tile (every §11 check of the decoder) and
@@ -12,12 +12,11 @@
 //    the finest zoom's (values are float32: within 1e-5 relative).
 //  - extract: one zoom's places as points in the tiling CRS, with their id,
 //    count, tile, properties and one field per value.
-#include "inspect/points_inspect.hpp"
-
 #include <cmath>
 #include <cstdio>
 #include <map>
 
+#include "inspect/inspect_kinds.hpp"
 #include "io/vector_writer.hpp"
 #include "kit/package_info.hpp"
 #include "kit/validation_report.hpp"
@@ -78,7 +77,7 @@ int points_info(const std::string& path, bool json) {
         .text("label_field", m.label_field)
         .integer("places", m.features)
         .objects("per_zoom", per_zoom);
-    print_info_json(package_info_json(*p.reader, path, "points").object("points", points));
+    print_kind_info_json(*p.reader, path, tileformat::PackageKind::kPoints, points);
     return kExitOk;
   }
   print_package_info(*p.reader, path);
@@ -200,7 +199,9 @@ int points_validate(const std::string& path) {
   return r.exit_code();
 }
 
-uint64_t points_extract(const std::string& path, int zoom, VectorWriter& out) {
+int points_extract(const ExtractRequest& rq) {
+  const std::string& path = rq.package;
+  const int zoom = rq.zoom;
   PointPackage p = open_point_package(path);
   if (zoom < p.meta.common.min_zoom || zoom > p.meta.common.max_zoom)
     throw UsageError("--zoom " + std::to_string(zoom) + ": the package holds zooms " +
@@ -210,6 +211,9 @@ uint64_t points_extract(const std::string& path, int zoom, VectorWriter& out) {
   for (const std::string& f : p.meta.fields)
     names.push_back(
         f == "place_id" || f == "places" || f == "tile" || f == "properties" ? f + "_value" : f);
+  VectorWriter out(rq.output,
+                   rq.force ? tileformat::IfExists::kOverwrite : tileformat::IfExists::kFail,
+                   p.meta.common.tiling.crs);
   out.set_value_fields(names);
   tileformat::FeatureTableReader features(*p.reader);
   const tileformat::Tiling& tiling = p.meta.common.tiling;
@@ -235,7 +239,11 @@ uint64_t points_extract(const std::string& path, int zoom, VectorWriter& out) {
         }
       },
       zoom);
-  return n;
+  out.commit();
+  if (!rq.quiet)
+    std::fprintf(stderr, "globe-vectorize: wrote %s: %llu places of zoom %d\n", rq.output.c_str(),
+                 static_cast<unsigned long long>(n), zoom);
+  return kExitOk;
 }
 
 }  // namespace globe

@@ -18,26 +18,12 @@
 
 #include "tileformat/analysis_block.hpp"
 #include "tileformat/image_tile.hpp"
+#include "tileformat/package_kinds.hpp"
 #include "tileformat/tiling.hpp"
 
 namespace tileformat {
 
 using MetadataMap = std::map<std::string, std::string>;
-
-// `format` values of our own kinds (imagery uses png, jpg or webp).
-inline constexpr const char* kMBlockFormat = "application/vnd.globe.mblock";
-inline constexpr const char* kLineClustersFormat = "application/vnd.globe.lineclusters";
-inline constexpr const char* kAnalysisFormat = "application/vnd.globe.analysis";
-inline constexpr const char* kPointsFormat = "application/vnd.globe.points";
-
-// The kinds of package; the `format` key tells them apart.
-enum class PackageKind { kTerrain, kImage, kLines, kAnalysis, kPoints };
-
-// The kind whose `format` value this is (terrain and lines by their media
-// type, imagery by png/jpg/webp), or nullopt.
-std::optional<PackageKind> package_kind_of_format(const std::string& format);
-// "terrain", "image", "line-cluster", "analysis" or "point", for messages.
-const char* package_kind_name(PackageKind kind);
 
 struct InputFile {
   std::string name;  // as given on the command line

@@ -1,24 +1,24 @@
-// `globe-tiler validate PACKAGE`: decodes every tile and checks the schema and
-// the invariants; image packages: image_validate.cpp. Terrain (docs/tileformat.md §3, §5, §6):
+// `globe-tiler info`, `validate` and `extract` for terrain packages.
+// validate decodes every tile and checks the schema and the invariants
+// (docs/tileformat.md §3, §5, §6):
 //   - shared edge samples and edge split-vertex errors equal in both blocks;
 //   - a coarse sample equals the finer sample at the same position;
 //   - vertex errors are saturated (>= their children's) within each block.
 // Report on stdout. Exit 0 valid, 5 warnings only, 1 errors.
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <optional>
 
 #include "inspect/inspect_commands.hpp"
+#include "kit/package_info.hpp"
 #include "kit/validation_report.hpp"
-#include "runtime/cli_args.hpp"
 #include "runtime/errors.hpp"
-#include "runtime/image_package.hpp"
-#include "runtime/package_open.hpp"
 #include "runtime/terrain_package.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/kpatch.hpp"
 #include "tileformat/mblock.hpp"
-#include "tiler_commands.hpp"
 
 namespace globe {
 namespace {
@@ -61,18 +61,7 @@ void check_saturation(const KPatchLayout& l, const MBlock& b, const std::string&
 
 }  // namespace
 
-int run_validate(const std::vector<std::string>& args) {
-  CliArgs cli(
-      "globe-tiler validate",
-      "globe-tiler validate PACKAGE\n\nDecodes every tile of a terrain or image package and "
-      "checks schema and invariants.\n"
-      "Exit 0: valid; 5: warnings only; 1: errors.");
-  auto positional = cli.parse_command(args, 1, 1, "PACKAGE");
-  if (!positional) return kExitOk;
-  const std::string& path = (*positional)[0];
-  const auto kind = package_kind(path);
-  if (kind == tileformat::PackageKind::kImage) return validate_image_package(path);
-  if (kind == tileformat::PackageKind::kAnalysis) return validate_analysis_package(path);
+int validate_terrain(const std::string& path) {
   TerrainPackage p = open_terrain_package(path);
   ValidationReport r;
   if (p.reader->application_id() != tileformat::kApplicationId)
@@ -160,6 +149,46 @@ int run_validate(const std::vector<std::string>& args) {
               static_cast<unsigned long long>(r.errors),
               static_cast<unsigned long long>(r.warnings));
   return r.exit_code();
+}
+
+int terrain_info(const std::string& path, bool json) {
+  TerrainPackage p = open_terrain_package(path);
+  if (json) {
+    InfoJson terrain;
+    terrain.text("tiling", tileformat::scheme_name(p.tiling.scheme))
+        .integer("block_size", uint64_t(p.block_size))
+        .integer("kpatch_lattice", uint64_t(p.lattice))
+        .number("height_step_m", p.step_m)
+        .integer("min_zoom", uint64_t(p.min_zoom))
+        .integer("max_zoom", uint64_t(p.max_zoom));
+    print_kind_info_json(*p.reader, path, tileformat::PackageKind::kTerrain, terrain);
+    return kExitOk;
+  }
+  print_package_info(*p.reader, path);
+  return kExitOk;
+}
+
+int extract_terrain(const ExtractRequest& rq) {
+  if (!rq.layer.empty()) throw UsageError("--layer applies to analysis packages only");
+  TerrainPackage p = open_terrain_package(rq.package);
+  const ExtractTiles t = tiles_to_extract(*p.reader, p.tiling, rq, p.min_zoom, p.max_zoom);
+  const SampleGrid grid = write_block_samples(
+      rq, p.tiling, t, p.block_size, GDT_Float64, [&](TileId id, std::vector<double>& samples) {
+        tileformat::MBlock b;
+        try {
+          b = tileformat::decode_mblock(*p.reader->tile(id));
+        } catch (const tileformat::FormatError& e) {
+          throw InputError(rq.package + ": tile " + id.str() + ": " + e.what());
+        }
+        for (int y = 0; y < b.size; ++y)
+          for (int x = 0; x < b.size; ++x)
+            samples[size_t(y) * b.size + x] =
+                b.is_valid(x, y) ? b.height(x, y) : std::numeric_limits<double>::quiet_NaN();
+      });
+  std::fprintf(stderr, "globe-tiler: wrote %s: %llu x %llu samples from %zu tiles of zoom %d\n",
+               rq.output.c_str(), static_cast<unsigned long long>(grid.width),
+               static_cast<unsigned long long>(grid.height), t.ids.size(), rq.zoom);
+  return kExitOk;
 }
 
 }  // namespace globe

@@ -1,53 +1,17 @@
-// `globe-tiler extract PACKAGE --zoom Z [--bbox W,S,E,N] -o OUT.tif`: one zoom
-// of a package as a GeoTIFF in the tiling CRS, so GDAL can check the package
-// against its sources. Terrain: the decoded heights (pixel centres on the
-// block samples); imagery: the tile pixels, colour + alpha.
-#include <cmath>
-#include <cstdio>
+// What every raster kind's `globe-tiler extract` shares: the tiles of the
+// zoom (inside --bbox), block samples written as one GeoTIFF band, and the
+// GeoTIFF written under a temporary name until committed.
 #include <filesystem>
 #include <limits>
 
 #include "geo/gdal_dataset.hpp"
 #include "geo/spatial_ref.hpp"
 #include "inspect/inspect_commands.hpp"
-#include "runtime/cli_args.hpp"
 #include "runtime/errors.hpp"
-#include "runtime/image_package.hpp"
-#include "runtime/package_open.hpp"
-#include "runtime/terrain_package.hpp"
-#include "tileformat/error.hpp"
-#include "tileformat/mblock.hpp"
-#include "tiler_commands.hpp"
 
 namespace globe {
 
 using tileformat::TileId;
-namespace {
-
-int extract_terrain(const ExtractRequest& rq) {
-  TerrainPackage p = open_terrain_package(rq.package);
-  const ExtractTiles t = tiles_to_extract(*p.reader, p.tiling, rq, p.min_zoom, p.max_zoom);
-  const SampleGrid grid = write_block_samples(
-      rq, p.tiling, t, p.block_size, GDT_Float64, [&](TileId id, std::vector<double>& samples) {
-        tileformat::MBlock b;
-        try {
-          b = tileformat::decode_mblock(*p.reader->tile(id));
-        } catch (const tileformat::FormatError& e) {
-          throw InputError(rq.package + ": tile " + id.str() + ": " + e.what());
-        }
-        for (int y = 0; y < b.size; ++y)
-          for (int x = 0; x < b.size; ++x)
-            samples[size_t(y) * b.size + x] =
-                b.is_valid(x, y) ? b.height(x, y) : std::numeric_limits<double>::quiet_NaN();
-      });
-  std::fprintf(stderr, "globe-tiler: wrote %s: %llu x %llu samples from %zu tiles of zoom %d\n",
-               rq.output.c_str(), static_cast<unsigned long long>(grid.width),
-               static_cast<unsigned long long>(grid.height), t.ids.size(), rq.zoom);
-  return kExitOk;
-}
-
-}  // namespace
-
 SampleGrid write_block_samples(
     const ExtractRequest& rq, const tileformat::Tiling& tiling, const ExtractTiles& t,
     int block_size, GDALDataType type,
@@ -143,42 +107,6 @@ void ExtractTiff::commit() {
   std::filesystem::rename(temp_, output_, ec);
   if (ec) throw OutputError(output_ + ": cannot rename into place: " + ec.message());
   committed_ = true;
-}
-
-int run_extract(const std::vector<std::string>& args) {
-  ExtractRequest rq;
-  std::optional<int> zoom;
-  CliArgs cli("globe-tiler extract",
-              "globe-tiler extract PACKAGE --zoom Z [--bbox W,S,E,N] -o OUT.tif\n\n"
-              "Writes one zoom of a package as a GeoTIFF in the tiling CRS. Terrain: the decoded\n"
-              "heights as Float64, NaN (nodata) where there is no data. Imagery: the tile pixels,\n"
-              "gray or RGB plus an alpha band. Analysis: one layer (--layer) as Float32.");
-  cli.option("--zoom", "Z", "zoom level to extract",
-             [&](const std::string& v) { zoom = CliArgs::to_int("--zoom", v, 0, 30); });
-  cli.option("--bbox", "W,S,E,N", "only tiles intersecting this lon/lat box",
-             [&](const std::string& v) { rq.bbox = CliArgs::to_doubles("--bbox", v, 4); });
-  cli.option("--layer", "NAME",
-             "analysis packages: the layer to write (slope, aspect, profile_curvature, "
-             "plan_curvature), Float32 in its unit, NaN where it has no value",
-             [&](const std::string& v) { rq.layer = v; });
-  cli.option("-o,--output", "OUT.tif", "output GeoTIFF",
-             [&](const std::string& v) { rq.output = v; });
-  cli.flag("--force", "replace an existing output", [&] { rq.force = true; });
-  auto positional = cli.parse_command(args, 1, 1, "PACKAGE");
-  if (!positional) return kExitOk;
-  if (!zoom) throw UsageError("--zoom is required");
-  if (rq.output.empty()) throw UsageError("no output given; add -o OUT.tif");
-  rq.package = (*positional)[0];
-  rq.zoom = *zoom;
-  std::error_code ec;
-  if (std::filesystem::exists(rq.output, ec) && !rq.force)
-    throw OutputError(rq.output + ": output exists; pass --force to replace it");
-  gdal_init();
-  const auto kind = package_kind(rq.package);
-  if (kind == tileformat::PackageKind::kImage) return extract_image(rq);
-  if (kind == tileformat::PackageKind::kAnalysis) return extract_analysis(rq);
-  if (!rq.layer.empty()) throw UsageError("--layer applies to analysis packages only");
-  return extract_terrain(rq);
 }
 
 }  // namespace globe
