@@ -219,6 +219,38 @@ TEST(Architecture, IncludesNameTheirFolder) {
     EXPECT_EQ(joined(matches(dir, bare)), "") << "include these by their folder";
 }
 
+// info, validate and extract find a package's kind in their tool's table of
+// kinds (kit/kind_inspection), never by testing the kind themselves: adding
+// a kind adds a row (docs/architecture.md, "A new package kind").
+TEST(Architecture, InspectionDispatchesThroughTheTableOfKinds) {
+  auto dispatch = [](const std::string& l) {
+    return has_any(l, {"package_kind(", "package_kind_of_format(", "kind == ", "kind != "});
+  };
+  for (const char* dir : {"tools/tiler/inspect", "tools/vectorize/inspect"})
+    EXPECT_EQ(joined(matches(dir, dispatch)), "")
+        << dir << " tells kinds apart itself; add a row to its inspect_commands.cpp table";
+}
+
+// The scene and the headless run draw, resize, poll and report the layers
+// over the terrain through SceneLayer, not by kind (docs/architecture.md,
+// "A new viewer layer"); only construction names the kinds.
+TEST(Architecture, SceneDrivesItsLayersThroughOneInterface) {
+  auto by_kind = [](const std::string& l) {
+    return has_any(l, {"images_->", "charts_->", "scene.lines()", "scene.charts()",
+                       "scene.images()"}) ||
+           (l.find("lines_->") != std::string::npos &&
+            l.find("lines_->enable_heatmap") == std::string::npos);
+  };
+  for (const char* file : {"terrain_scene.cpp", "headless_run.cpp"}) {
+    std::vector<std::string> hits;
+    std::istringstream in(read_file(kSource / "viewer/app" / file));
+    std::string line;
+    for (int n = 1; std::getline(in, line); ++n)
+      if (by_kind(line)) hits.push_back(std::string(file) + ":" + std::to_string(n) + ": " + line);
+    EXPECT_EQ(joined(hits), "") << "drive the layers through SceneLayer";
+  }
+}
+
 TEST(Architecture, EachCApiIsCalledOnlyFromItsWrapper) {
   auto gdal = [](const std::string& l) {
     return calls_c_api(l, {"GDAL", "OGR", "OSR", "OCT", "CPL", "CSL", "VSI"});

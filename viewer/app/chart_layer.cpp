@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <sstream>
 #include <unordered_map>
 
@@ -105,11 +106,11 @@ void ChartLayer::next_kind() {
   dirty_ = true;
 }
 
-bool ChartLayer::reload_style(Reload when) {
+bool ChartLayer::reload_style(bool always) {
   if (!settings_.style) return false;
   std::error_code ec;
   const auto t = std::filesystem::last_write_time(*settings_.style, ec);
-  if (ec || (when == Reload::kIfChanged && t == style_time_)) return false;
+  if (ec || (!always && t == style_time_)) return false;
   style_time_ = t;
   try {
     style_ = read_chart_style(cache_.package().meta.fields, settings_.style);
@@ -283,10 +284,18 @@ void ChartLayer::queue_legend() {
   }
 }
 
-double ChartLayer::draw(GLuint input_fbo, const GBuffer& g, const View& view,
-                        const WorldFrame& world, const TerrainRenderer& terrain,
-                        const TerrainHeights& heights, double exaggeration, glm::vec3 sun,
-                        Loading loading) {
+double ChartLayer::draw(const LayerPass& pass) {
+  const GLuint input_fbo = pass.below_fbo;
+  const GBuffer& g = pass.g;
+  const View& view = pass.view;
+  const WorldFrame& world = pass.world;
+  const TerrainRenderer& terrain = pass.terrain;
+  const TerrainHeights& heights = pass.heights;
+  const double exaggeration = pass.shading.exaggeration;
+  const Loading loading = pass.loading;
+  const double az = pass.shading.sun_azimuth_deg * std::numbers::pi / 180,
+               alt = pass.shading.sun_altitude_deg * std::numbers::pi / 180;
+  const glm::vec3 sun(std::sin(az) * std::cos(alt), std::cos(az) * std::cos(alt), std::sin(alt));
   const tileformat::PointMetadata& m = cache_.package().meta;
   PointTileSelection sel;
   sel.roots = roots_;
@@ -405,6 +414,19 @@ std::string ChartLayer::describe(int x, int y) {
 
 ChartLayerStats ChartLayer::stats() const {
   return {cache_.stats(), drawn_.size(), instances_.size(), thinned_};
+}
+
+std::string ChartLayer::stats_json(double ms) const {
+  const ChartLayerStats cs = stats();
+  char text[512];
+  std::snprintf(
+      text, sizeof text,
+      ", \"charts_ms\": %.3f, \"chart_tiles\": %zu, \"charts\": %zu, \"charts_thinned\": %zu, "
+      "\"point_tiles_loaded\": %llu, \"point_bytes\": %llu, \"broken_point_tiles\": %llu",
+      ms, cs.tiles, cs.charts, cs.thinned, static_cast<unsigned long long>(cs.cache.loaded),
+      static_cast<unsigned long long>(cs.cache.resident_bytes),
+      static_cast<unsigned long long>(cs.cache.broken));
+  return text;
 }
 
 }  // namespace globe::viewer

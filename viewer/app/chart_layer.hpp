@@ -14,6 +14,7 @@
 
 #include "app/chart_style.hpp"
 #include "app/line_layer.hpp"
+#include "app/scene_layer.hpp"
 #include "data/point_cache.hpp"
 #include "render/chart_renderer.hpp"
 #include "render/text_overlay.hpp"
@@ -44,25 +45,31 @@ struct ChartLayerStats {
   size_t tiles = 0, charts = 0, thinned = 0;
 };
 
-class ChartLayer {
+class ChartLayer final : public SceneLayer {
  public:
+  static constexpr double kBudgetShare = 0.125;  // of the viewer's tile budget
   // Throws InputError for a bad style file, a package with more fields than
   // charts draw, or a chart kind that needs shares over a signed package.
   // cross and world: how the package's tiling maps to the terrain's frame.
   ChartLayer(PointPackage package, const ChartSettings& settings, uint64_t budget_bytes, int width,
              int height, CrsCross cross, const WorldFrame& world);
-  ~ChartLayer();
+  ~ChartLayer() override;
 
-  void resize(int width, int height) {
+  void resize(int width, int height) override {
     renderer_.resize(width, height), width_ = width, height_ = height;
   }
-  // The chart pass over `input_fbo`'s colour (the terrain, imagery and lines
-  // so far); Loading::kSettle waits for every selected tile. Returns the GPU
-  // time of the charts in ms.
-  double draw(GLuint input_fbo, const GBuffer& g, const View& view, const WorldFrame& world,
-              const TerrainRenderer& terrain, const TerrainHeights& heights, double exaggeration,
-              glm::vec3 sun, Loading loading);
-  GLuint output_fbo() const { return renderer_.output_fbo(); }
+  // The chart pass over the image so far (the terrain, imagery and lines),
+  // lit by the sun; Loading::kSettle waits for every selected tile. Returns
+  // the GPU time of the charts in ms.
+  double draw(const LayerPass& pass) override;
+  GLuint output_fbo() const override { return renderer_.output_fbo(); }
+  GLuint output_texture() const override { return renderer_.output_texture(); }
+  // describe(x, y); highlight is not used.
+  bool picks() const override { return true; }
+  std::string pick(int x, int y, bool highlight) override {
+    (void)highlight;
+    return describe(x, y);
+  }
 
   // The place whose chart covers pixel (x, y) (from the top-left) in the
   // last frame: "label: field value, ..." ("" for none).
@@ -71,12 +78,12 @@ class ChartLayer {
   ChartKind kind() const { return settings_.kind; }
   // Cycles pie, bar, stacked, column (skipping those the values cannot show).
   void next_kind();
-  enum class Reload { kIfChanged, kAlways };
-  // Re-reads the style file if it changed (kAlways: even if not); a broken
+  // Re-reads the style file if it changed (always: even if not); a broken
   // file keeps the current style (the error goes to stderr).
-  bool reload_style(Reload when);  // true: the style changed
+  bool reload_style(bool always) override;  // true: the style changed
   ChartLayerStats stats() const;
-  bool loading() { return cache_.loader_busy(); }  // tiles still being read
+  bool loading() override { return cache_.loader_busy(); }  // tiles still being read
+  std::string stats_json(double ms) const override;
 
  private:
   struct PlaceRef {

@@ -41,75 +41,22 @@ std::pair<int, int> pixel_of(const View& view, const WorldFrame& world, double l
   return {static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y))};
 }
 
-// --stats: the line, image and chart layers' part of the JSON object (each
-// with its median pass time in ms).
-void print_layer_stats(TerrainScene& scene, double lines_ms, double images_ms, double charts_ms) {
-  if (LineLayer* lines = scene.lines()) {
-    const LineLayerStats ls = lines->stats();
-    std::printf(
-        ", \"lines\": \"%s\", \"lines_ms\": %.3f, \"line_tiles_used\": %zu, "
-        "\"line_tiles_resident\": %zu, \"line_tiles_empty\": %zu, \"line_bytes\": %llu, "
-        "\"line_budget_bytes\": %llu, \"line_tiles_loaded\": %llu, \"line_evictions\": %llu, "
-        "\"broken_line_tiles\": %llu, \"line_bytes_read\": %llu",
-        lines->mode() == LineMode::kDeferred   ? "deferred"
-        : lines->mode() == LineMode::kGeometry ? "geometry"
-                                               : "lifted",
-        lines_ms, ls.tiles_used, ls.cache.resident, ls.cache.known_empty,
-        static_cast<unsigned long long>(ls.cache.resident_bytes),
-        static_cast<unsigned long long>(ls.cache.budget_bytes),
-        static_cast<unsigned long long>(ls.cache.loaded),
-        static_cast<unsigned long long>(ls.cache.evictions),
-        static_cast<unsigned long long>(ls.cache.broken),
-        static_cast<unsigned long long>(ls.cache.bytes_read));
-  }
-  if (const ImageLayers* images = scene.images()) {
-    ImageCacheStats sum;
-    for (const ImageCacheStats& s : images->stats()) {
-      sum.slots += s.slots, sum.resident += s.resident, sum.known_absent += s.known_absent;
-      sum.loaded += s.loaded, sum.broken += s.broken, sum.bytes_read += s.bytes_read;
-      sum.evictions += s.evictions;
-    }
-    std::printf(
-        ", \"image_layers\": %zu, \"images_ms\": %.3f, \"image_passes\": %d, "
-        "\"image_tiles_resident\": %zu, \"image_tiles_absent\": %zu, "
-        "\"image_tiles_loaded\": %llu, \"image_evictions\": %llu, "
-        "\"broken_image_tiles\": %llu, \"image_bytes_read\": %llu",
-        images->size(), images_ms, images->passes(), sum.resident, sum.known_absent,
-        static_cast<unsigned long long>(sum.loaded), static_cast<unsigned long long>(sum.evictions),
-        static_cast<unsigned long long>(sum.broken),
-        static_cast<unsigned long long>(sum.bytes_read));
-  }
-  if (ChartLayer* charts = scene.charts()) {
-    const ChartLayerStats cs = charts->stats();
-    std::printf(
-        ", \"charts_ms\": %.3f, \"chart_tiles\": %zu, \"charts\": %zu, \"charts_thinned\": %zu, "
-        "\"point_tiles_loaded\": %llu, \"point_bytes\": %llu, \"broken_point_tiles\": %llu",
-        charts_ms, cs.tiles, cs.charts, cs.thinned,
-        static_cast<unsigned long long>(cs.cache.loaded),
-        static_cast<unsigned long long>(cs.cache.resident_bytes),
-        static_cast<unsigned long long>(cs.cache.broken));
-  }
-}
-
 // --pick: what lies at each pixel (or where each lon/lat lands) in frame
 // `f`, one line each on stdout; a picked line is highlighted by drawing the
 // last pose (`last`) again into `f`.
 void run_picks(const ViewerSettings& settings, TerrainScene& scene, const CameraPose& last,
                FrameResult& f) {
-  if (!scene.charts() && !scene.lines())
-    throw UsageError("--pick finds charts or lines; give a point or line package too");
+  SceneLayer* layer = scene.picking_layer();  // the topmost: charts over lines
+  if (!layer) throw UsageError("--pick finds charts or lines; give a point or line package too");
   // Every pick reads the frame drawn; the last one's highlight shows in the next.
   for (size_t i = 0; i < settings.picks.size(); ++i) {
     const ViewerSettings::PickAt& at = settings.picks[i];
     const auto [x, y] = at.geographic ? pixel_of(f.view, scene.world(), at.a, at.b)
                                       : std::pair(int(at.a), int(at.b));
-    if (scene.charts())
-      std::printf("%s\n", scene.charts()->describe(x, y).c_str());
-    else
-      std::printf("%s\n", scene.lines()->pick(x, y, i + 1 == settings.picks.size()).c_str());
+    std::printf("%s\n", layer->pick(x, y, i + 1 == settings.picks.size()).c_str());
   }
-  // The last picked line is highlighted in the snapshot: one more frame.
-  if (!scene.charts() && !scene.lines()->highlighted().empty())
+  // A highlighted pick shows in the snapshot: one more frame.
+  if (layer->picked_highlight())
     f = scene.frame(last, Loading::kSettle, TerrainScene::Output::kDraw);
 }
 
@@ -136,7 +83,8 @@ int run_headless(const ViewerSettings& settings) {
 
   // Whether any pose's frame showed terrain (read outside the timed frames).
   double ground = 0, most_ground = 0;
-  std::vector<double> frame_ms, terrain_ms, select_ms, lines_ms, images_ms, charts_ms;
+  std::vector<double> frame_ms, terrain_ms, select_ms;
+  std::vector<std::vector<double>> layer_ms(scene.layers().size());
   uint64_t max_resident = scene.cache().stats().resident_bytes;
   for (size_t i = 0; i < poses.size(); ++i) {
     const int frames = settings.stats ? settings.frames : 1;
@@ -147,9 +95,8 @@ int run_headless(const ViewerSettings& settings) {
       frame_ms.push_back(
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       terrain_ms.push_back(f.terrain_ms);
-      lines_ms.push_back(f.lines_ms);
-      images_ms.push_back(f.images_ms);
-      charts_ms.push_back(f.charts_ms);
+      for (size_t l = 0; l < f.layer_ms.size(); ++l)
+        layer_ms[l].push_back(f.layer_ms[l]);
       select_ms.push_back(f.select_ms);
       max_resident = std::max(max_resident, scene.cache().stats().resident_bytes);
     }
@@ -200,7 +147,8 @@ int run_headless(const ViewerSettings& settings) {
     const DataRanges& dr = scene.data_ranges();
     std::printf(", \"slope_ramp_top_deg\": %.2f, \"skyview_ramp_low\": %.4f", dr.slope_top_deg,
                 dr.sky_low);
-    print_layer_stats(scene, median(lines_ms), median(images_ms), median(charts_ms));
+    for (size_t l = 0; l < scene.layers().size(); ++l)
+      std::printf("%s", scene.layers()[l]->stats_json(median(layer_ms[l])).c_str());
     std::printf("}\n");
   }
   if (most_ground == 0 && scene.cache().stats().broken > 0) {

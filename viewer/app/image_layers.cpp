@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 
 #include "camera/layer_tiling.hpp"
 #include "camera/proj_crs.hpp"
@@ -186,8 +187,18 @@ size_t ImageLayers::upload_loaded() {
   return n;
 }
 
-double ImageLayers::draw(const GBuffer& g, const View& view, const WorldFrame& world,
-                         ImageLighting lighting, float light_norm, Loading loading) {
+double ImageLayers::draw(const LayerPass& pass) {
+  const GBuffer& g = pass.g;
+  const View& view = pass.view;
+  const WorldFrame& world = pass.world;
+  const Loading loading = pass.loading;
+  const ShadingSettings& sh = pass.shading;
+  const bool lens = sh.lens_shows == ShadingSettings::LensShows::kImages;
+  renderer_.set_lens_only(float(sh.lens_x), float(sh.lens_y), float(lens ? sh.lens_radius : 0.0));
+  const ImageLighting lighting =
+      pass.imagery_unlit ? ImageLighting::kUnlit : ImageLighting::kHillshade;
+  const double sun_z = std::sin(sh.sun_altitude_deg * std::numbers::pi / 180);
+  const float light_norm = static_cast<float>(0.12 + 0.88 * std::max(sun_z, 0.05));
   std::vector<const ImageCache*> caches;
   std::vector<ImageLayerFrame> frames;
   for (const Layer& l : layers_) {
@@ -221,6 +232,39 @@ double ImageLayers::draw(const GBuffer& g, const View& view, const WorldFrame& w
       if (l.cache->loader_busy()) l.cache->wait_for_loader();
   }
   return ms;
+}
+
+bool ImageLayers::loading() {
+  for (Layer& l : layers_)
+    if (l.cache->loader_busy()) return true;
+  return false;
+}
+
+size_t ImageLayers::waiting() const {
+  size_t n = 0;
+  for (const ImageCacheStats& st : stats())
+    n += st.loading;
+  return n;
+}
+
+std::string ImageLayers::stats_json(double ms) const {
+  ImageCacheStats sum;
+  for (const ImageCacheStats& s : stats()) {
+    sum.slots += s.slots, sum.resident += s.resident, sum.known_absent += s.known_absent;
+    sum.loaded += s.loaded, sum.broken += s.broken, sum.bytes_read += s.bytes_read;
+    sum.evictions += s.evictions;
+  }
+  char text[640];
+  std::snprintf(
+      text, sizeof text,
+      ", \"image_layers\": %zu, \"images_ms\": %.3f, \"image_passes\": %d, "
+      "\"image_tiles_resident\": %zu, \"image_tiles_absent\": %zu, "
+      "\"image_tiles_loaded\": %llu, \"image_evictions\": %llu, "
+      "\"broken_image_tiles\": %llu, \"image_bytes_read\": %llu",
+      size(), ms, passes(), sum.resident, sum.known_absent,
+      static_cast<unsigned long long>(sum.loaded), static_cast<unsigned long long>(sum.evictions),
+      static_cast<unsigned long long>(sum.broken), static_cast<unsigned long long>(sum.bytes_read));
+  return text;
 }
 
 std::vector<ImageCacheStats> ImageLayers::stats() const {

@@ -9,15 +9,16 @@
 #include <string>
 #include <vector>
 
-#include "app/line_layer.hpp"
+#include "app/scene_layer.hpp"
 #include "camera/world_frame.hpp"
 #include "data/image_cache.hpp"
 #include "render/image_renderer.hpp"
 
 namespace globe::viewer {
 
-class ImageLayers {
+class ImageLayers final : public SceneLayer {
  public:
+  static constexpr double kBudgetShare = 0.25;  // of the viewer's tile budget
   // Opens the image packages (bottom first) and checks each against the
   // terrain; throws InputError naming the file, warns of an image whose
   // bounds miss `terrain_lonlat` (when known). budget_bytes is shared by all
@@ -25,24 +26,24 @@ class ImageLayers {
   ImageLayers(const std::vector<std::string>& paths, const std::vector<double>& opacities,
               const WorldFrame& world, const tileformat::Bounds* terrain_lonlat,
               uint64_t budget_bytes, int width, int height);
-  ~ImageLayers();
+  ~ImageLayers() override;
 
   size_t size() const { return layers_.size(); }
-  void resize(int width, int height) { renderer_.resize(width, height); }
+  void resize(int width, int height) override { renderer_.resize(width, height); }
   double opacity(size_t i) const { return layers_[i].opacity; }
   void set_opacity(size_t i, double v);
   bool visible(size_t i) const { return layers_[i].visible; }
   void set_visible(size_t i, bool v) { layers_.at(i).visible = v; }
-  // Draws the imagery over g's colour; Loading::kSettle keeps loading until
-  // no visible tile is missing. Returns the GPU time of the last pass in ms.
-  double draw(const GBuffer& g, const View& view, const WorldFrame& world, ImageLighting lighting,
-              float light_norm, Loading loading);
-  GLuint output_fbo() const { return renderer_.output_fbo(); }
-  // Images only inside this circle (a magic lens; radius 0: everywhere).
-  void set_lens_only(double x, double y, double radius) {
-    renderer_.set_lens_only(float(x), float(y), float(radius));
-  }
-  GLuint output_texture() const { return renderer_.output_texture(); }
+  // Draws the imagery over the image so far, lit by the sun (unlit with
+  // --shading imagery), inside the lens if it shows images; Loading::kSettle
+  // keeps loading until no visible tile is missing. Returns the GPU time of
+  // the last pass in ms.
+  double draw(const LayerPass& pass) override;
+  GLuint output_fbo() const override { return renderer_.output_fbo(); }
+  GLuint output_texture() const override { return renderer_.output_texture(); }
+  bool loading() override;
+  size_t waiting() const override;
+  std::string stats_json(double ms) const override;
   std::vector<ImageCacheStats> stats() const;
   int passes() const { return passes_; }  // imagery passes the last draw took
 

@@ -118,11 +118,11 @@ std::vector<NamedLineStyle> LineLayer::read_styles() const {
   return styles;
 }
 
-bool LineLayer::reload_style(Reload when) {
+bool LineLayer::reload_style(bool always) {
   if (!style_path_) return false;
   std::error_code ec;
   const auto t = std::filesystem::last_write_time(*style_path_, ec);
-  if (when == Reload::kIfChanged && (ec || t == style_time_)) return false;
+  if (!always && (ec || t == style_time_)) return false;
   style_time_ = t;
   try {
     std::vector<NamedLineStyle> styles = read_styles();
@@ -166,9 +166,16 @@ void LineLayer::set_mode(LineMode m) {
   mode_ = m;
 }
 
-double LineLayer::draw(const GBuffer& g, const View& view, const WorldFrame& world,
-                       double exaggeration, const TerrainHeights& terrain, Loading loading,
-                       GLuint under_fbo) {
+double LineLayer::draw(const LayerPass& pass) {
+  const GBuffer& g = pass.g;
+  const View& view = pass.view;
+  const WorldFrame& world = pass.world;
+  const double exaggeration = pass.shading.exaggeration;
+  const TerrainHeights& terrain = pass.heights;
+  const ShadingSettings& sh = pass.shading;
+  const bool lens = sh.lens_shows == ShadingSettings::LensShows::kLines;
+  renderer_.set_lens_only(float(sh.lens_x), float(sh.lens_y), float(lens ? sh.lens_radius : 0.0));
+  set_height_range(pass.height_lo, pass.height_hi);
   double ms = 0;
   int idle_rounds = 0;
   for (int round = 0;; ++round) {
@@ -184,13 +191,13 @@ double LineLayer::draw(const GBuffer& g, const View& view, const WorldFrame& wor
     for (const tileformat::TileId& id : fb.requests)
       news = cache_.request(id) || news;
     cache_.flush_requests();
-    if (loading == Loading::kAsReady || (!news && !cache_.loader_busy())) break;
+    if (pass.loading == Loading::kAsReady || (!news && !cache_.loader_busy())) break;
     // Tiles that cannot get room in the budget are asked for again and again.
     idle_rounds = loaded == 0 ? idle_rounds + 1 : 0;
     if (idle_rounds > 3 || round > 200) break;
     if (cache_.loader_busy()) cache_.wait_for_loader();
   }
-  if (heat_) return draw_heatmap(g, view, world, exaggeration, terrain, under_fbo);
+  if (heat_) return draw_heatmap(g, view, world, exaggeration, terrain, pass.below_fbo);
   if (!legend_.empty()) {
     queue_bundle_legend(legend_, styles_, height_, overlay_);
     overlay_.draw(renderer_.output_fbo(), width_, height_);
@@ -346,6 +353,32 @@ std::string LineLayer::pick(int x, int y, bool highlight) {
     highlighted_ = lit;
     cache_.set_highlight({lit, static_cast<uint32_t>(package_styles_.size())});
   }
+  return text;
+}
+
+}  // namespace globe::viewer
+
+namespace globe::viewer {
+
+std::string LineLayer::stats_json(double ms) const {
+  const LineLayerStats ls = stats();
+  char text[768];
+  std::snprintf(
+      text, sizeof text,
+      ", \"lines\": \"%s\", \"lines_ms\": %.3f, \"line_tiles_used\": %zu, "
+      "\"line_tiles_resident\": %zu, \"line_tiles_empty\": %zu, \"line_bytes\": %llu, "
+      "\"line_budget_bytes\": %llu, \"line_tiles_loaded\": %llu, \"line_evictions\": %llu, "
+      "\"broken_line_tiles\": %llu, \"line_bytes_read\": %llu",
+      mode_ == LineMode::kDeferred   ? "deferred"
+      : mode_ == LineMode::kGeometry ? "geometry"
+                                     : "lifted",
+      ms, ls.tiles_used, ls.cache.resident, ls.cache.known_empty,
+      static_cast<unsigned long long>(ls.cache.resident_bytes),
+      static_cast<unsigned long long>(ls.cache.budget_bytes),
+      static_cast<unsigned long long>(ls.cache.loaded),
+      static_cast<unsigned long long>(ls.cache.evictions),
+      static_cast<unsigned long long>(ls.cache.broken),
+      static_cast<unsigned long long>(ls.cache.bytes_read));
   return text;
 }
 

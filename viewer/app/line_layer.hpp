@@ -16,6 +16,7 @@
 
 #include "app/bundle_legend.hpp"
 #include "app/heat_samples.hpp"
+#include "app/scene_layer.hpp"
 #include "data/line_cache.hpp"
 #include "render/chart_renderer.hpp"
 #include "render/line_renderer.hpp"
@@ -23,18 +24,14 @@
 
 namespace globe::viewer {
 
-// Whether a frame waits for the tiles it needs: kSettle keeps selecting and
-// loading until nothing the view needs is missing (headless snapshots);
-// kAsReady never waits for I/O (interactive windows).
-enum class Loading { kSettle, kAsReady };
-
 struct LineLayerStats {
   LineCacheStats cache;
   size_t tiles_used = 0;  // records the last frame read
 };
 
-class LineLayer {
+class LineLayer final : public SceneLayer {
  public:
+  static constexpr double kBudgetShare = 0.25;  // of the viewer's tile budget
   // Throws InputError if the style file is unreadable or wrong.
   // cross: how the terrain's CRS reaches the package's tiling; lines in
   // another tiling draw per pixel only (LineMode::kDeferred).
@@ -42,39 +39,37 @@ class LineLayer {
             LineMode mode, uint64_t budget_bytes, int width, int height,
             CrsCross cross = CrsCross::kSame);
 
-  void resize(int width, int height) {
+  void resize(int width, int height) override {
     renderer_.resize(width, height);
+    if (heat_) heat_->resize(width, height);
     width_ = width, height_ = height;
   }
-  // The line pass over `g`; Loading::kSettle: keep loading until no visible
-  // tile is missing (headless). Returns the GPU time of the last pass in ms.
-  // With a heatmap, its colours go over `under_fbo`'s colour instead of the
-  // lines (terrain.frame must be set).
-  double draw(const GBuffer& g, const View& view, const WorldFrame& world, double exaggeration,
-              const TerrainHeights& terrain, Loading loading, GLuint under_fbo = 0);
-  GLuint output_fbo() const { return heat_ ? heat_->output_fbo() : renderer_.output_fbo(); }
+  // The line pass over the image so far (inside the lens if it shows lines;
+  // classes coloured by height over pass.height_lo..hi); Loading::kSettle:
+  // keep loading until no visible tile is missing (headless). Returns the GPU
+  // time of the last pass in ms. With a heatmap, its colours go over the
+  // image so far instead of the lines.
+  double draw(const LayerPass& pass) override;
+  GLuint output_fbo() const override {
+    return heat_ ? heat_->output_fbo() : renderer_.output_fbo();
+  }
+  GLuint output_texture() const override {
+    return heat_ ? heat_->output_texture() : renderer_.output_texture();
+  }
   // A heatmap of the lines instead of the lines (docs/viewer.md "Heatmaps"):
   // the density of their length, weighted by the bundle weight classes'
   // middles (a bundled-flows package) or 1.
   void enable_heatmap(const HeatRadius& radius, const HeatmapStyle& style, const WorldFrame& world);
-  // Lines only inside this circle (a magic lens; radius 0: everywhere).
-  void set_lens_only(double x, double y, double radius) {
-    renderer_.set_lens_only(float(x), float(y), float(radius));
-  }
-
-  enum class Reload { kIfChanged, kAlways };
-  // Re-reads the style file if it changed since the last read (kAlways: even
+  // Re-reads the style file if it changed since the last read (always: even
   // if not). A broken file keeps the current styles; the error goes to stderr.
-  bool reload_style(Reload when);  // true: the styles changed
-  // The terrain's height range (metres): where the built-in height ramp and a
-  // colour file's percentages lie for classes coloured by height.
-  void set_height_range(double lo, double hi);
+  bool reload_style(bool always) override;  // true: the styles changed
   LineMode mode() const { return mode_; }
   // Keeps the mode (and says so on stderr) where the lines cannot be drawn
   // in `m`: geometry and lifted lines need the terrain's tiling.
   void set_mode(LineMode m);
   LineLayerStats stats() const { return {cache_.stats(), tiles_used_}; }
-  bool loading() { return cache_.loader_busy(); }  // tiles still being read
+  bool loading() override { return cache_.loader_busy(); }  // tiles still being read
+  std::string stats_json(double ms) const override;
 
   // The line drawn on top at pixel (x, y) (from the top-left) in the last
   // frame: "" where there is none (deferred mode only). Otherwise its
@@ -82,7 +77,9 @@ class LineLayer {
   // package (tileformat §7.5) a bundle highlights every bundle of the
   // connections through it. Picking where no line is clears the highlight.
   // highlight false: only the description (picks that read one frame).
-  std::string pick(int x, int y, bool highlight = true);
+  bool picks() const override { return true; }
+  std::string pick(int x, int y, bool highlight) override;
+  bool picked_highlight() const override { return !highlighted_.empty(); }
   // The feature ids drawn highlighted (sorted; empty: none).
   const std::vector<uint64_t>& highlighted() const { return highlighted_; }
 
@@ -94,6 +91,9 @@ class LineLayer {
     std::map<uint64_t, std::vector<uint64_t>> bundles_of;      // connection -> bundles
   };
   std::vector<NamedLineStyle> read_styles() const;
+  // The terrain's height range (metres): where the built-in height ramp and a
+  // colour file's percentages lie for classes coloured by height.
+  void set_height_range(double lo, double hi);
   size_t upload_loaded();
   std::optional<uint64_t> feature_at(int x, int y);
   double draw_heatmap(const GBuffer& g, const View& view, const WorldFrame& world,

@@ -83,13 +83,13 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
     throw UsageError("--shading imagery: give an image package too");
   if (set.images.empty() && !settings_.image_opacity.empty())
     throw UsageError("--image-opacity: give an image package too");
-  // With lines, a quarter of the budget holds line tiles; with imagery,
-  // another quarter holds image tiles; with charts, an eighth holds point
-  // tiles.
+  // Each layer holds its share of the budget (LineLayer::kBudgetShare …);
+  // the terrain's blocks hold the rest.
   const uint64_t budget = settings_.cache_mb << 20;
-  const uint64_t line_budget = lines ? budget / 4 : 0;
-  const uint64_t image_budget = set.images.empty() ? 0 : budget / 4;
-  const uint64_t point_budget = points ? budget / 8 : 0;
+  auto share = [&](bool present, double s) { return present ? uint64_t(budget * s) : 0; };
+  const uint64_t line_budget = share(lines.has_value(), LineLayer::kBudgetShare);
+  const uint64_t image_budget = share(!set.images.empty(), ImageLayers::kBudgetShare);
+  const uint64_t point_budget = share(points.has_value(), ChartLayer::kBudgetShare);
   if (package.max_zoom > 21)
     throw InputError(path + ": maxzoom " + std::to_string(package.max_zoom) +
                      " is deeper than the viewer's integer vertex frame supports (21)");
@@ -146,25 +146,45 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
     if (p.tiling.scheme == tileformat::Scheme::kWebMercator) finest /= 111320.0;  // ~degrees
     caps_ = std::make_unique<PolarCaps>(*world_, ll, finest, p.meta.fill_height);
   }
+  // The layers, bottom first: imagery, lines, charts.
+  auto add = [this](auto layer) {
+    auto* typed = layer.get();
+    layers_.push_back(std::move(layer));
+    return typed;
+  };
   if (!set.images.empty())
-    images_ = std::make_unique<ImageLayers>(
+    images_ = add(std::make_unique<ImageLayers>(
         set.images, settings_.image_opacity, *world_,
         cache_->package().meta.common.has_bounds ? &cache_->package().meta.common.lonlat : nullptr,
-        image_budget, settings_.width, settings_.height);
-  if (lines)
-    lines_ = std::make_unique<LineLayer>(*set.lines, std::move(*lines), settings_.style,
-                                         settings_.line_mode, line_budget, settings_.width,
-                                         settings_.height, line_cross);
-  if (lines_ && settings_.charts.heatmap && !points)  // a heatmap of the lines
-    lines_->enable_heatmap(
-        {settings_.charts.heat_radius, settings_.charts.heat_radius_m},
-        heatmap_style(settings_.charts.heat_opacity, settings_.charts.heat_colormap), *world_);
+        image_budget, settings_.width, settings_.height));
+  if (lines) {
+    lines_ = add(std::make_unique<LineLayer>(*set.lines, std::move(*lines), settings_.style,
+                                             settings_.line_mode, line_budget, settings_.width,
+                                             settings_.height, line_cross));
+    if (settings_.charts.heatmap && !points)  // a heatmap of the lines
+      lines_->enable_heatmap(
+          {settings_.charts.heat_radius, settings_.charts.heat_radius_m},
+          heatmap_style(settings_.charts.heat_opacity, settings_.charts.heat_colormap), *world_);
+  }
   if (points)
-    charts_ = std::make_unique<ChartLayer>(std::move(*points), settings_.charts, point_budget,
-                                           settings_.width, settings_.height, point_cross, *world_);
+    charts_ =
+        add(std::make_unique<ChartLayer>(std::move(*points), settings_.charts, point_budget,
+                                         settings_.width, settings_.height, point_cross, *world_));
 }
 
 TerrainScene::~TerrainScene() = default;
+
+TerrainHeights TerrainScene::terrain_heights(const View& view) {
+  const TerrainPackage& p = package();
+  TerrainHeights h{renderer_->heights_texture(), cache_->resident_slots(), p.min_zoom, p.max_zoom,
+                   p.block_size};
+  h.frame = renderer_.get();
+  h.lift_m = settings_.lift_m ? *settings_.lift_m : 0.03 * glm::length(view.eye);
+  h.error_px = settings_.max_error_px;
+  h.relief_world = (selector_->top_height_m(*cache_) - selector_->bottom_height_m(*cache_)) *
+                   world_->height_scale() * settings_.shading.exaggeration;
+  return h;
+}
 
 std::string TerrainScene::shading_problem(const ShadingSettings& shading) const {
   return shading_needs(shading, analysis_path_, analysis_layers_);
@@ -172,19 +192,25 @@ std::string TerrainScene::shading_problem(const ShadingSettings& shading) const 
 
 void TerrainScene::resize(int width, int height) {
   renderer_->resize(width, height);
-  if (images_) images_->resize(width, height);
-  if (lines_) lines_->resize(width, height);
-  if (charts_) charts_->resize(width, height);
+  for (const auto& layer : layers_)
+    layer->resize(width, height);
 }
 
 GLuint TerrainScene::output_fbo() const {
-  if (charts_) return charts_->output_fbo();
-  return below_charts_fbo();
+  return layers_.empty() ? renderer_->gbuffer().fbo : layers_.back()->output_fbo();
 }
 
-GLuint TerrainScene::below_charts_fbo() const {
-  if (lines_) return lines_->output_fbo();
-  return images_ ? images_->output_fbo() : renderer_->gbuffer().fbo;
+bool TerrainScene::loading() {
+  if (cache_->loader_busy()) return true;
+  for (const auto& layer : layers_)
+    if (layer->loading()) return true;
+  return false;
+}
+
+SceneLayer* TerrainScene::picking_layer() {
+  for (auto it = layers_.rbegin(); it != layers_.rend(); ++it)
+    if ((*it)->picks()) return it->get();
+  return nullptr;
 }
 
 std::vector<uint8_t> TerrainScene::read_pixels() const {
@@ -361,51 +387,19 @@ FrameResult TerrainScene::frame(const CameraPose& asked, Loading loading, Output
     caps_->draw(renderer_->gbuffer(), f.view, *world_,
                 glm::vec3(grey * 0.92f + 0.08f, grey * 0.94f + 0.06f, grey * 0.96f + 0.04f));
   }
-  GBuffer g = renderer_->gbuffer();
-  // A lens that shows the images or the lines: those only inside it.
-  using Shows = ShadingSettings::LensShows;
-  const ShadingSettings& sh = settings_.shading;
-  auto lens_only = [&](Shows what) { return sh.lens_shows == what ? sh.lens_radius : 0.0; };
-  if (images_) images_->set_lens_only(sh.lens_x, sh.lens_y, lens_only(Shows::kImages));
-  if (lines_) lines_->set_lens_only(sh.lens_x, sh.lens_y, lens_only(Shows::kLines));
-  if (images_) {
-    const double sun_z = std::sin(settings_.shading.sun_altitude_deg * std::numbers::pi / 180);
-    f.images_ms =
-        images_->draw(g, f.view, *world_,
-                      settings_.imagery_unlit ? ImageLighting::kUnlit : ImageLighting::kHillshade,
-                      static_cast<float>(0.12 + 0.88 * std::max(sun_z, 0.05)), loading);
-    g.color = images_->output_texture();  // lines draw over the imagery
-  }
-  if (lines_) {
-    TerrainHeights heights;
-    if (lines_->mode() != LineMode::kDeferred || settings_.charts.heatmap) {
-      heights = {renderer_->heights_texture(), cache_->resident_slots(), package().min_zoom,
-                 package().max_zoom, package().block_size};
-      heights.frame = renderer_.get();
-      heights.lift_m = settings_.lift_m ? *settings_.lift_m : 0.03 * glm::length(f.view.eye);
-      heights.error_px = settings_.max_error_px;
-      heights.relief_world =
-          (selector_->top_height_m(*cache_) - selector_->bottom_height_m(*cache_)) *
-          world_->height_scale() * settings_.shading.exaggeration;
-    }
-    const auto [height_lo, height_hi] = ramp_->data_range();
-    lines_->set_height_range(height_lo, height_hi);
-    // A heatmap of the lines goes over the terrain (and imagery) as it is.
-    const GLuint under = images_ ? images_->output_fbo() : renderer_->gbuffer().fbo;
-    f.lines_ms =
-        lines_->draw(g, f.view, *world_, settings_.shading.exaggeration, heights, loading, under);
-  }
-  if (charts_) {
-    TerrainHeights heights{renderer_->heights_texture(), cache_->resident_slots(),
-                           package().min_zoom, package().max_zoom, package().block_size};
-    heights.relief_world =
-        (selector_->top_height_m(*cache_) - selector_->bottom_height_m(*cache_)) *
-        world_->height_scale() * settings_.shading.exaggeration;
-    const double az = settings_.shading.sun_azimuth_deg * std::numbers::pi / 180,
-                 alt = settings_.shading.sun_altitude_deg * std::numbers::pi / 180;
-    const glm::vec3 sun(std::sin(az) * std::cos(alt), std::cos(az) * std::cos(alt), std::sin(alt));
-    f.charts_ms = charts_->draw(below_charts_fbo(), renderer_->gbuffer(), f.view, *world_,
-                                *renderer_, heights, settings_.shading.exaggeration, sun, loading);
+  // Each layer draws over the image so far: the terrain's colour, then the
+  // layer before's output.
+  const TerrainHeights heights = terrain_heights(f.view);
+  LayerPass pass{
+      renderer_->gbuffer(), renderer_->gbuffer().fbo, f.view, *world_, *renderer_, heights,
+      settings_.shading};
+  std::tie(pass.height_lo, pass.height_hi) = ramp_->data_range();
+  pass.imagery_unlit = settings_.imagery_unlit;
+  pass.loading = loading;
+  for (const auto& layer : layers_) {
+    f.layer_ms.push_back(layer->draw(pass));
+    pass.below_fbo = layer->output_fbo();
+    pass.g.color = layer->output_texture();
   }
   return f;
 }

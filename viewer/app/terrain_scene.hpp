@@ -17,6 +17,7 @@
 #include "app/image_layers.hpp"
 #include "app/line_layer.hpp"
 #include "app/relief_scale.hpp"
+#include "app/scene_layer.hpp"
 #include "app/viewer_settings.hpp"
 #include "camera/camera.hpp"
 #include "camera/world_frame.hpp"
@@ -34,7 +35,8 @@ struct FrameResult {
   View view;
   std::vector<Patch> patches;
   SelectionStats selection;
-  double select_ms = 0, terrain_ms = 0, images_ms = 0, lines_ms = 0, charts_ms = 0;
+  double select_ms = 0, terrain_ms = 0;
+  std::vector<double> layer_ms;  // GPU ms of each layer's pass, in the order of layers()
 };
 
 class TerrainScene {
@@ -60,17 +62,19 @@ class TerrainScene {
   }
 
   TerrainRenderer& renderer() { return *renderer_; }
-  LineLayer* lines() { return lines_.get(); }
-  ChartLayer* charts() { return charts_.get(); }
-  ImageLayers* images() { return images_.get(); }
+  // The layers over the terrain, in drawing order (imagery, lines, charts).
+  const std::vector<std::unique_ptr<SceneLayer>>& layers() const { return layers_; }
+  // The topmost layer that picks (nullptr: none).
+  SceneLayer* picking_layer();
+  // The layers by kind, for the window's keys that act on one (nullptr: none).
+  LineLayer* lines() { return lines_; }
+  ChartLayer* charts() { return charts_; }
+  ImageLayers* images() { return images_; }
   // The finished image (terrain, imagery and lines): framebuffer and pixels.
   GLuint output_fbo() const;
   std::vector<uint8_t> read_pixels() const;
   // Whether any layer is still reading tiles (the window keeps drawing).
-  bool loading() {
-    return cache_->loader_busy() || (lines_ && lines_->loading()) ||
-           (charts_ && charts_->loading());
-  }
+  bool loading();
   // The fraction of the last frame's pixels that show terrain.
   double ground_fraction() const {
     return viewer::ground_fraction(renderer_->gbuffer().fbo, renderer_->width(),
@@ -93,7 +97,7 @@ class TerrainScene {
   std::string shading_problem(const ShadingSettings& shading) const;
 
  private:
-  GLuint below_charts_fbo() const;  // the image the charts draw over
+  TerrainHeights terrain_heights(const View& view);  // for the layers' passes
   void upload_loaded();
   void load_now(const std::vector<tileformat::TileId>& tiles);  // waits for them
   void sample_heights();  // fixes the elevation ramp's data range
@@ -110,9 +114,10 @@ class TerrainScene {
   std::unique_ptr<WorldFrame> world_;
   std::unique_ptr<TerrainRenderer> renderer_;
   std::unique_ptr<PolarCaps> caps_;
-  std::unique_ptr<ImageLayers> images_;
-  std::unique_ptr<LineLayer> lines_;
-  std::unique_ptr<ChartLayer> charts_;
+  std::vector<std::unique_ptr<SceneLayer>> layers_;  // drawn in this order
+  ImageLayers* images_ = nullptr;                    // those of layers_ by kind
+  LineLayer* lines_ = nullptr;
+  ChartLayer* charts_ = nullptr;
   std::unique_ptr<ElevationRamp> ramp_;
   std::unique_ptr<GroundProbe> ground_;
   bool raised_ = false;                       // the last frame's pose was raised above the ground

@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <numbers>
+#include <numeric>
 
 #include "app/image_file.hpp"
 #include "app/terrain_scene.hpp"
@@ -96,7 +97,7 @@ void WindowSession::on_button(int button, bool down, double x, double y) {
     if (down)
       press_x_ = x, press_y_ = y;
     else if (scene_ && scene_->lines() && std::hypot(x - press_x_, y - press_y_) < 4)
-      picked_ = scene_->lines()->pick(int(x), int(y));
+      picked_ = scene_->lines()->pick(int(x), int(y), true);
   }
   if (button == GLFW_MOUSE_BUTTON_RIGHT) drag_pan_ = down;
   last_x_ = x, last_y_ = y;
@@ -189,8 +190,8 @@ bool WindowSession::ramp_key(int key) {
       ramp.reset();
       break;
     case GLFW_KEY_F5:
-      if (scene_->charts()) scene_->charts()->reload_style(ChartLayer::Reload::kAlways);
-      if (scene_->lines()) scene_->lines()->reload_style(LineLayer::Reload::kAlways);
+      for (const auto& layer : scene_->layers())
+        layer->reload_style(true);
       if (!ramp.reload(ElevationRamp::Reload::kAlways)) return true;
       break;
     default:
@@ -275,8 +276,9 @@ void WindowSession::try_shading(const ShadingSettings& next) {
 
 bool WindowSession::reload_edited_files() {
   TerrainScene& s = *scene_;
-  bool edited = s.lines() && s.lines()->reload_style(LineLayer::Reload::kIfChanged);
-  edited = (s.charts() && s.charts()->reload_style(ChartLayer::Reload::kIfChanged)) || edited;
+  bool edited = false;
+  for (const auto& layer : s.layers())
+    edited = layer->reload_style(false) || edited;
   if (s.ramp().reload(ElevationRamp::Reload::kIfChanged)) {
     s.apply_ramp();
     edited = true;
@@ -337,10 +339,9 @@ void WindowSession::draw(int width, int height) {
                                 TerrainScene::Output::kDraw);
   last_view_ = f.view;
   have_view_ = true;
-  size_t waiting = f.selection.waiting;  // blocks and image tiles not in yet
-  if (const ImageLayers* im = s.images())
-    for (const ImageCacheStats& st : im->stats())
-      waiting += st.loading;
+  size_t waiting = f.selection.waiting;  // blocks and layer tiles not in yet
+  for (const auto& layer : s.layers())
+    waiting += layer->waiting();
   frames_due_ = waiting > 0 || s.loading() ? kSettleFrames : std::max(0, frames_due_ - 1);
   if (screenshot_pending_) {
     const std::string name = "globe-view-" + std::to_string(++screenshot_) + ".png";
@@ -360,9 +361,9 @@ void WindowSession::set_title(const FrameResult& f, double ms, size_t waiting) {
   TerrainScene& s = *scene_;
   char title[320];
   std::snprintf(title, sizeof title,
-                "globe-view  %.1f ms (lines %.1f)  %zu patches  %zu k triangles  %zu blocks  "
+                "globe-view  %.1f ms (layers %.1f)  %zu patches  %zu k triangles  %zu blocks  "
                 "waiting %zu",
-                ms, f.lines_ms, f.patches.size(),
+                ms, std::accumulate(f.layer_ms.begin(), f.layer_ms.end(), 0.0), f.patches.size(),
                 f.patches.size() * s.renderer().triangles_per_patch() / 1000,
                 s.cache().stats().resident, waiting);
   if (const ImageLayers* im = s.images()) {

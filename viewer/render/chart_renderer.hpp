@@ -79,6 +79,7 @@ class ChartRenderer {
                       const TerrainRenderer& terrain, const TerrainHeights& heights,
                       const HeatmapStyle& style, double exaggeration);
   GLuint output_fbo() const { return fbo_; }
+  GLuint output_texture() const { return color_; }
   // The pick id under pixel (x, y) (y from the top) of the last draw; 0 for
   // none.
   uint32_t pick(int x, int y) const;

@@ -76,6 +76,7 @@ class LineRenderer {
               const LineCache& cache, const TerrainHeights& terrain, LineMode mode, uint32_t frame,
               LineFeedback& feedback);
   GLuint output_fbo() const { return fbo_; }
+  GLuint output_texture() const { return output_; }
   // A magic lens showing the lines (deferred mode): only inside the circle
   // (centre in pixels from the top-left); radius 0: everywhere.
   void set_lens_only(float x, float y, float radius) { lens_only_ = {x, y, radius}; }
