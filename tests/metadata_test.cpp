@@ -202,7 +202,7 @@ TEST(Metadata, EveryKindHasOneDescriptor) {
   for (const auto& [kind, format] : formats) {
     EXPECT_EQ(package_kind_of_format(format), kind) << format;
     for (const PackageKindDescriptor& d : package_kinds())
-      EXPECT_EQ(d.is_format(format), d.kind == kind) << d.name << " " << format;
+      EXPECT_EQ(is_format_of(d, format), d.kind == kind) << d.name << " " << format;
   }
 }
 

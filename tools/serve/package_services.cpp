@@ -407,9 +407,12 @@ std::unique_ptr<PackageService> open_service(const std::string& path, const std:
       return std::make_unique<LineService>(path, name);
     case tileformat::PackageKind::kPoints:
       return std::make_unique<PointService>(path, name);
-    default:
+    case tileformat::PackageKind::kAnalysis:
       throw InputError(path +
                        ": analysis packages have no web format yet; serve the terrain package");
+    default:  // a kind without a service
+      throw InputError(path + ": " + tileformat::package_kind_name(*kind) +
+                       " packages have no web format yet");
   }
 }
 

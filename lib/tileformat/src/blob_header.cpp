@@ -13,6 +13,12 @@ struct Header {
   uint32_t body_size;
 };
 
+bool known_kind(uint16_t kind) {
+  for (const BlobKindName& k : kBlobKinds)
+    if (static_cast<uint16_t>(k.kind) == kind) return true;
+  return false;
+}
+
 Header parse(std::span<const uint8_t> blob, ByteReader& r) {
   auto magic = r.bytes(4);
   for (int i = 0; i < 4; ++i)
@@ -22,7 +28,7 @@ Header parse(std::span<const uint8_t> blob, ByteReader& r) {
     r.fail("format version " + std::to_string(h.version) +
            " is not supported (this reader knows 1.." + std::to_string(kFormatVersion) +
            "; upgrade the reader)");
-  if (h.kind < 1 || h.kind > 5) r.fail("unknown blob kind " + std::to_string(h.kind));
+  if (!known_kind(h.kind)) r.fail("unknown blob kind " + std::to_string(h.kind));
   if (blob.size() - kBlobHeaderSize < h.body_size)
     r.fail("truncated: header declares " + std::to_string(h.body_size) + " body bytes, blob has " +
            std::to_string(blob.size() - kBlobHeaderSize));
@@ -33,18 +39,8 @@ Header parse(std::span<const uint8_t> blob, ByteReader& r) {
 }  // namespace
 
 std::string blob_kind_name(BlobKind kind) {
-  switch (kind) {
-    case BlobKind::kMBlock:
-      return "mblock";
-    case BlobKind::kImage:
-      return "image";
-    case BlobKind::kAnalysis:
-      return "analysis block";
-    case BlobKind::kLineClusters:
-      return "lineclusters";
-    case BlobKind::kPoints:
-      return "points";
-  }
+  for (const BlobKindName& k : kBlobKinds)
+    if (k.kind == kind) return k.name;
   return "unknown(" + std::to_string(static_cast<int>(kind)) + ")";
 }
 

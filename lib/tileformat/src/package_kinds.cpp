@@ -4,52 +4,32 @@
 #include "tileformat/image_tile.hpp"
 
 namespace tileformat {
+
 namespace {
-
-bool is_terrain(const std::string& f) {
-  return f == kMBlockFormat;
+// describe() indexes the table by the enumerator.
+consteval bool rows_in_kind_order() {
+  for (size_t i = 0; i < std::size(kPackageKinds); ++i)
+    if (static_cast<size_t>(kPackageKinds[i].kind) != i) return false;
+  return true;
 }
-bool is_image(const std::string& f) {
-  return parse_image_format(f).has_value();
-}
-bool is_lines(const std::string& f) {
-  return f == kLineClustersFormat;
-}
-bool is_analysis(const std::string& f) {
-  return f == kAnalysisFormat;
-}
-bool is_points(const std::string& f) {
-  return f == kPointsFormat;
-}
-
-// One row per kind, in PackageKind order (checked by describe()'s test).
-constexpr PackageKindDescriptor kKinds[] = {
-    {PackageKind::kTerrain, "terrain", "terrain", "globe-tiler terrain", "globe-tiler",
-     "its heights: globe-tiler extract PACKAGE --zoom Z -o OUT.tif", is_terrain},
-    {PackageKind::kImage, "image", "image", "globe-tiler imagery", "globe-tiler",
-     "a zoom as GeoTIFF: globe-tiler extract PACKAGE --zoom Z -o OUT.tif", is_image},
-    {PackageKind::kLines, "line-cluster", "lines", "globe-vectorize lines or bundle",
-     "globe-vectorize", "its lines: globe-vectorize extract PACKAGE --zoom Z -o OUT.gpkg",
-     is_lines},
-    {PackageKind::kAnalysis, "analysis", "analysis", "globe-tiler analyze", "globe-tiler",
-     "a layer: globe-tiler extract PACKAGE --layer NAME --zoom Z -o OUT.tif", is_analysis},
-    {PackageKind::kPoints, "point", "points", "globe-vectorize points", "globe-vectorize",
-     "its places: globe-vectorize extract PACKAGE --zoom Z -o OUT.gpkg", is_points},
-};
-
+static_assert(rows_in_kind_order(), "kPackageKinds rows must follow PackageKind's order");
 }  // namespace
 
 std::span<const PackageKindDescriptor> package_kinds() {
-  return kKinds;
+  return kPackageKinds;
 }
 
 const PackageKindDescriptor& describe(PackageKind kind) {
-  return kKinds[static_cast<size_t>(kind)];
+  return kPackageKinds[static_cast<size_t>(kind)];
+}
+
+bool is_format_of(const PackageKindDescriptor& kind, const std::string& format) {
+  return kind.format ? format == kind.format : parse_image_format(format).has_value();
 }
 
 std::optional<PackageKind> package_kind_of_format(const std::string& format) {
-  for (const PackageKindDescriptor& d : kKinds)
-    if (d.is_format(format)) return d.kind;
+  for (const PackageKindDescriptor& d : kPackageKinds)
+    if (is_format_of(d, format)) return d.kind;
   return std::nullopt;
 }
 

@@ -7,14 +7,15 @@
 
 namespace globe {
 
-const KindInspection& inspection_for(const std::string& path, std::span<const KindInspection> table,
+const KindInspection& inspection_for(const std::string& path,
+                                     std::span<const KindInspection* const> table,
                                      const std::string& command) {
   const std::string format = package_format(*open_package(path), path);
   const std::optional<tileformat::PackageKind> kind = tileformat::package_kind_of_format(format);
   if (!kind)
     throw InputError(path + ": a package of format '" + format + "', not made by these tools");
-  for (const KindInspection& row : table)
-    if (row.kind == *kind) return row;
+  for (const KindInspection* row : table)
+    if (row->kind == *kind) return *row;
   const tileformat::PackageKindDescriptor& d = tileformat::describe(*kind);
   const std::string verb = command.substr(command.rfind(' ') + 1);
   throw InputError(path + ": " +
@@ -24,7 +25,8 @@ const KindInspection& inspection_for(const std::string& path, std::span<const Ki
 }
 
 int run_info_command(const std::string& tool, const std::string& kinds,
-                     std::span<const KindInspection> table, const std::vector<std::string>& args) {
+                     std::span<const KindInspection* const> table,
+                     const std::vector<std::string>& args) {
   bool json = false;
   const std::string command = tool + " info";
   CliArgs cli(command, command + " PACKAGE [--json]\n\nPrints a " + kinds +
@@ -39,7 +41,7 @@ int run_info_command(const std::string& tool, const std::string& kinds,
 }
 
 int run_validate_command(const std::string& tool, const std::string& kinds,
-                         std::span<const KindInspection> table,
+                         std::span<const KindInspection* const> table,
                          const std::vector<std::string>& args) {
   const std::string command = tool + " validate";
   CliArgs cli(command, command + " PACKAGE\n\nDecodes every tile of a " + kinds +

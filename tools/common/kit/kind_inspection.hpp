@@ -1,8 +1,9 @@
 // What a tool's `info`, `validate` and `extract` do for each package kind it
-// reads: one row per kind (tools/tiler/inspect/inspected_kinds.cpp,
-// tools/vectorize/inspect/inspected_kinds.cpp). The commands parse their
-// arguments, find the package's row and call it; a kind the tool does not
-// read is an error that names the tool that does (tileformat's descriptor).
+// reads: one KindInspection per kind, defined in the kind's own file
+// (tools/tiler/inspect/terrain_inspect.cpp …) and listed in the tool's table
+// (inspect/inspect_commands.cpp). The commands parse their arguments, find
+// the package's row and call it; a kind the tool does not read is an error
+// that names the tool that does (tileformat's descriptor).
 #pragma once
 
 #include <optional>
@@ -37,16 +38,18 @@ struct KindInspection {
 // The row for the package at `path`. Throws InputError naming the file if it
 // is not a package of ours, or if `table` has no row for its kind; then the
 // message names `command` and the tool that reads the kind.
-const KindInspection& inspection_for(const std::string& path, std::span<const KindInspection> table,
+const KindInspection& inspection_for(const std::string& path,
+                                     std::span<const KindInspection* const> table,
                                      const std::string& command);
 
 // `TOOL info PACKAGE [--json]` and `TOOL validate PACKAGE` over a tool's
 // table; `tool` is the program name ("globe-tiler"), `kinds` the help's
 // list of kinds ("terrain, image or analysis").
 int run_info_command(const std::string& tool, const std::string& kinds,
-                     std::span<const KindInspection> table, const std::vector<std::string>& args);
+                     std::span<const KindInspection* const> table,
+                     const std::vector<std::string>& args);
 int run_validate_command(const std::string& tool, const std::string& kinds,
-                         std::span<const KindInspection> table,
+                         std::span<const KindInspection* const> table,
                          const std::vector<std::string>& args);
 
 }  // namespace globe

@@ -50,8 +50,6 @@ std::string skyview_line(const tileformat::AnalysisMetadata& m) {
   return s;
 }
 
-}  // namespace
-
 int analysis_info(const std::string& path, bool json) {
   AnalysisPackage p = open_analysis_package(path);
   if (json) {
@@ -143,5 +141,11 @@ int extract_analysis(const ExtractRequest& rq) {
                static_cast<unsigned long long>(grid.height), t.ids.size(), rq.zoom);
   return kExitOk;
 }
+
+}  // namespace
+
+// This kind's row of the tool's table (inspect/inspect_commands.cpp).
+extern const KindInspection kAnalysisInspection{tileformat::PackageKind::kAnalysis, analysis_info,
+                                                validate_analysis, extract_analysis};
 
 }  // namespace globe

@@ -26,6 +26,7 @@
 #include "tileformat/error.hpp"
 
 namespace globe {
+namespace {
 
 int validate_image(const std::string& path) {
   using tileformat::ImageFormat;
@@ -172,5 +173,11 @@ int extract_image(const ExtractRequest& rq) {
                static_cast<unsigned long long>(h), ids.size(), rq.zoom);
   return kExitOk;
 }
+
+}  // namespace
+
+// This kind's row of the tool's table (inspect/inspect_commands.cpp).
+extern const KindInspection kImageInspection{tileformat::PackageKind::kImage, image_info,
+                                             validate_image, extract_image};
 
 }  // namespace globe

@@ -11,13 +11,14 @@
 #include "tiler_commands.hpp"
 
 namespace globe {
+
+// Each in its kind's file: terrain_inspect.cpp, image_inspect.cpp, analysis_inspect.cpp.
+extern const KindInspection kTerrainInspection, kImageInspection, kAnalysisInspection;
+
 namespace {
 
-constexpr KindInspection kTilerKinds[] = {
-    {tileformat::PackageKind::kTerrain, terrain_info, validate_terrain, extract_terrain},
-    {tileformat::PackageKind::kImage, image_info, validate_image, extract_image},
-    {tileformat::PackageKind::kAnalysis, analysis_info, validate_analysis, extract_analysis},
-};
+constexpr const KindInspection* kTilerKinds[] = {&kTerrainInspection, &kImageInspection,
+                                                 &kAnalysisInspection};
 constexpr const char* kKindList = "terrain, image or analysis";
 
 }  // namespace

@@ -1,6 +1,7 @@
-// The package-kind-specific halves of `globe-tiler info`, `validate` and
-// `extract` (inspect_commands.cpp calls them through its table of kinds),
-// and what the raster extracts share (extract_tiff.cpp).
+// What the raster kinds' `globe-tiler extract` share (extract_tiff.cpp):
+// the tiles to extract, block samples as a GeoTIFF band, the GeoTIFF written
+// under a temporary name. Each kind's info, validate and extract are in its
+// own file (terrain_inspect.cpp …), one row of inspect_commands.cpp's table.
 #pragma once
 
 #include <array>
@@ -15,18 +16,6 @@
 #include "tileformat/tiling.hpp"
 
 namespace globe {
-
-// One function per kind and verb (the rows of inspect_commands.cpp's table);
-// the same signatures as KindInspection's.
-int terrain_info(const std::string& path, bool json);
-int validate_terrain(const std::string& path);
-int extract_terrain(const ExtractRequest& request);
-int image_info(const std::string& path, bool json);
-int validate_image(const std::string& path);
-int extract_image(const ExtractRequest& request);
-int analysis_info(const std::string& path, bool json);
-int validate_analysis(const std::string& path);
-int extract_analysis(const ExtractRequest& request);
 
 // Shared by both extracts: the tiles of the zoom (inside --bbox) and the
 // range they span; throws InputError if there are none, UsageError if the

@@ -59,8 +59,6 @@ void check_saturation(const KPatchLayout& l, const MBlock& b, const std::string&
   }
 }
 
-}  // namespace
-
 int validate_terrain(const std::string& path) {
   TerrainPackage p = open_terrain_package(path);
   ValidationReport r;
@@ -190,5 +188,11 @@ int extract_terrain(const ExtractRequest& rq) {
                static_cast<unsigned long long>(grid.height), t.ids.size(), rq.zoom);
   return kExitOk;
 }
+
+}  // namespace
+
+// This kind's row of the tool's table (inspect/inspect_commands.cpp).
+extern const KindInspection kTerrainInspection{tileformat::PackageKind::kTerrain, terrain_info,
+                                               validate_terrain, extract_terrain};
 
 }  // namespace globe

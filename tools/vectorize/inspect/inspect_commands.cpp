@@ -1,19 +1,19 @@
 // `globe-vectorize info`, `validate` and `extract`: the kinds of package
 // globe-vectorize reads, one row each (adding a kind adds a row), and the
 // commands that parse their arguments and call the package's row.
-#include "inspect/inspect_kinds.hpp"
 #include "kit/kind_inspection.hpp"
 #include "runtime/cli_args.hpp"
 #include "runtime/errors.hpp"
 #include "vectorize_commands.hpp"
 
 namespace globe {
+
+// Each in its kind's file: lines_inspect.cpp, points_inspect.cpp.
+extern const KindInspection kLinesInspection, kPointsInspection;
+
 namespace {
 
-constexpr KindInspection kVectorizeKinds[] = {
-    {tileformat::PackageKind::kLines, lines_info, lines_validate, lines_extract},
-    {tileformat::PackageKind::kPoints, points_info, points_validate, points_extract},
-};
+constexpr const KindInspection* kVectorizeKinds[] = {&kLinesInspection, &kPointsInspection};
 constexpr const char* kKindList = "line-cluster or point";
 
 }  // namespace

@@ -18,8 +18,8 @@
 #include <cstdio>
 #include <map>
 
-#include "inspect/inspect_kinds.hpp"
 #include "io/vector_writer.hpp"
+#include "kit/kind_inspection.hpp"
 #include "kit/package_info.hpp"
 #include "kit/validation_report.hpp"
 #include "runtime/errors.hpp"
@@ -85,8 +85,6 @@ void print_bundle_info(const std::string& json, const std::string& path) {
                     hi->number());
     }
 }
-
-}  // namespace
 
 int lines_info(const std::string& path, bool json) {
   LinePackage p = open_line_package(path);
@@ -287,5 +285,11 @@ int lines_extract(const ExtractRequest& rq) {
                  static_cast<unsigned long long>(out.points()), zoom);
   return kExitOk;
 }
+
+}  // namespace
+
+// This kind's row of the tool's table (inspect/inspect_commands.cpp).
+extern const KindInspection kLinesInspection{tileformat::PackageKind::kLines, lines_info,
+                                             lines_validate, lines_extract};
 
 }  // namespace globe

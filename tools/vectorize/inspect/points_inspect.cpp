@@ -16,8 +16,8 @@
 #include <cstdio>
 #include <map>
 
-#include "inspect/inspect_kinds.hpp"
 #include "io/vector_writer.hpp"
+#include "kit/kind_inspection.hpp"
 #include "kit/package_info.hpp"
 #include "kit/validation_report.hpp"
 #include "runtime/errors.hpp"
@@ -53,8 +53,6 @@ std::map<int, ZoomTotals> zoom_totals(PointPackage& p) {
   });
   return zooms;
 }
-
-}  // namespace
 
 int points_info(const std::string& path, bool json) {
   PointPackage p = open_point_package(path);
@@ -245,5 +243,11 @@ int points_extract(const ExtractRequest& rq) {
                  static_cast<unsigned long long>(n), zoom);
   return kExitOk;
 }
+
+}  // namespace
+
+// This kind's row of the tool's table (inspect/inspect_commands.cpp).
+extern const KindInspection kPointsInspection{tileformat::PackageKind::kPoints, points_info,
+                                              points_validate, points_extract};
 
 }  // namespace globe

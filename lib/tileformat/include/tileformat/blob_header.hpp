@@ -18,6 +18,18 @@ enum class BlobKind : uint16_t {
   kPoints = 5
 };
 
+// Every blob kind and its name in messages (adding a kind: its enumerator
+// and its row).
+struct BlobKindName {
+  BlobKind kind;
+  const char* name;
+};
+inline constexpr BlobKindName kBlobKinds[] = {{BlobKind::kMBlock, "mblock"},
+                                              {BlobKind::kImage, "image"},
+                                              {BlobKind::kLineClusters, "lineclusters"},
+                                              {BlobKind::kAnalysis, "analysis block"},
+                                              {BlobKind::kPoints, "points"}};
+
 inline constexpr uint16_t kFormatVersion = 1;
 inline constexpr size_t kBlobHeaderSize = 12;
 

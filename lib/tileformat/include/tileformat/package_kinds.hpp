@@ -3,7 +3,8 @@
 // and which tool inspects it. Code that must tell the kinds apart (package
 // openers, `info`, `validate`, `extract`, the GDAL driver's hints) reads this
 // table instead of switching on the kind; adding a kind adds one row here
-// (docs/architecture.md, "A new package kind").
+// (docs/architecture.md, "A new package kind"): its enumerator and its row
+// below.
 #pragma once
 
 #include <optional>
@@ -28,12 +29,29 @@ struct PackageKindDescriptor {
   const char* maker;     // the command that makes it: "globe-tiler terrain"
   const char* tool;      // the tool whose info, validate and extract read it
   const char* extract;   // what `extract` writes of it, e.g. "its lines: globe-vectorize …"
-  bool (*is_format)(const std::string& format);  // whether a `format` value is this kind's
+  const char* format;    // its `format` value; nullptr: an image format (png, jpg, webp)
+};
+
+// One row per kind, in PackageKind order (Metadata.EveryKindHasOneDescriptor).
+inline constexpr PackageKindDescriptor kPackageKinds[] = {
+    {PackageKind::kTerrain, "terrain", "terrain", "globe-tiler terrain", "globe-tiler",
+     "its heights: globe-tiler extract PACKAGE --zoom Z -o OUT.tif", kMBlockFormat},
+    {PackageKind::kImage, "image", "image", "globe-tiler imagery", "globe-tiler",
+     "a zoom as GeoTIFF: globe-tiler extract PACKAGE --zoom Z -o OUT.tif", nullptr},
+    {PackageKind::kLines, "line-cluster", "lines", "globe-vectorize lines or bundle",
+     "globe-vectorize", "its lines: globe-vectorize extract PACKAGE --zoom Z -o OUT.gpkg",
+     kLineClustersFormat},
+    {PackageKind::kAnalysis, "analysis", "analysis", "globe-tiler analyze", "globe-tiler",
+     "a layer: globe-tiler extract PACKAGE --layer NAME --zoom Z -o OUT.tif", kAnalysisFormat},
+    {PackageKind::kPoints, "point", "points", "globe-vectorize points", "globe-vectorize",
+     "its places: globe-vectorize extract PACKAGE --zoom Z -o OUT.gpkg", kPointsFormat},
 };
 
 // Every kind, in PackageKind order.
 std::span<const PackageKindDescriptor> package_kinds();
 const PackageKindDescriptor& describe(PackageKind kind);
+// Whether a `format` value is this kind's.
+bool is_format_of(const PackageKindDescriptor& kind, const std::string& format);
 
 // The kind whose `format` value this is (terrain and lines by their media
 // type, imagery by png/jpg/webp), or nullopt.
