@@ -125,27 +125,7 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
   if (selector_->root_tiles().empty())
     throw InputError(path + ": no tiles at minzoom " + std::to_string(cache_->package().min_zoom) +
                      "; the package is empty or its metadata is wrong");
-  renderer_ =
-      std::make_unique<TerrainRenderer>(cache_->package().block_size, cache_->package().lattice,
-                                        static_cast<int>(cache_->slot_count()), settings_.width,
-                                        settings_.height, set.analysis.has_value());
-  auto holds = [&](tileformat::AnalysisLayer l) {
-    return std::find(analysis_layers_.begin(), analysis_layers_.end(), l) != analysis_layers_.end();
-  };
-  renderer_->set_gradient_from_layers(holds(tileformat::AnalysisLayer::kSlope) &&
-                                      holds(tileformat::AnalysisLayer::kAspect));
-  ranges_ = measure_data_ranges(path, set.analysis,
-                                [this](tileformat::TileId id) { return block_spacing_m(id); });
-  renderer_->set_data_ranges(static_cast<float>(ranges_.slope_top_deg),
-                             static_cast<float>(ranges_.sky_low));
-  if (world_->globe()) {
-    const TerrainPackage& p = cache_->package();
-    const tileformat::Bounds ll =
-        p.meta.common.has_bounds ? p.meta.common.lonlat : p.tiling.lonlat_limits();
-    double finest = p.tiling.sample_spacing(p.max_zoom, p.block_size - 1);
-    if (p.tiling.scheme == tileformat::Scheme::kWebMercator) finest /= 111320.0;  // ~degrees
-    caps_ = std::make_unique<PolarCaps>(*world_, ll, finest, p.meta.fill_height);
-  }
+  make_renderer(path, set.analysis);
   // The layers, bottom first: imagery, lines, charts.
   auto add = [this](auto layer) {
     auto* typed = layer.get();
@@ -173,6 +153,31 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
 }
 
 TerrainScene::~TerrainScene() = default;
+
+void TerrainScene::make_renderer(const std::string& path,
+                                 const std::optional<std::string>& analysis) {
+  renderer_ =
+      std::make_unique<TerrainRenderer>(cache_->package().block_size, cache_->package().lattice,
+                                        static_cast<int>(cache_->slot_count()), settings_.width,
+                                        settings_.height, analysis.has_value());
+  auto holds = [&](tileformat::AnalysisLayer l) {
+    return std::find(analysis_layers_.begin(), analysis_layers_.end(), l) != analysis_layers_.end();
+  };
+  renderer_->set_gradient_from_layers(holds(tileformat::AnalysisLayer::kSlope) &&
+                                      holds(tileformat::AnalysisLayer::kAspect));
+  ranges_ = measure_data_ranges(path, analysis,
+                                [this](tileformat::TileId id) { return block_spacing_m(id); });
+  renderer_->set_data_ranges(static_cast<float>(ranges_.slope_top_deg),
+                             static_cast<float>(ranges_.sky_low));
+  if (world_->globe()) {
+    const TerrainPackage& p = cache_->package();
+    const tileformat::Bounds ll =
+        p.meta.common.has_bounds ? p.meta.common.lonlat : p.tiling.lonlat_limits();
+    double finest = p.tiling.sample_spacing(p.max_zoom, p.block_size - 1);
+    if (p.tiling.scheme == tileformat::Scheme::kWebMercator) finest /= 111320.0;  // ~degrees
+    caps_ = std::make_unique<PolarCaps>(*world_, ll, finest, p.meta.fill_height);
+  }
+}
 
 TerrainHeights TerrainScene::terrain_heights(const View& view) {
   const TerrainPackage& p = package();

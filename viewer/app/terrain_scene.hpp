@@ -98,6 +98,9 @@ class TerrainScene {
 
  private:
   TerrainHeights terrain_heights(const View& view);  // for the layers' passes
+  // The terrain renderer, told the data's ranges and the analysis layers it
+  // shades with, and the polar caps on the globe.
+  void make_renderer(const std::string& path, const std::optional<std::string>& analysis);
   void upload_loaded();
   void load_now(const std::vector<tileformat::TileId>& tiles);  // waits for them
   void sample_heights();  // fixes the elevation ramp's data range
