@@ -53,15 +53,20 @@ OutputError build_write_error(const std::string& output, const std::exception& e
   return OutputError(what + " (nothing was written to " + output + ")");
 }
 
-uint64_t commit_package(tileformat::PackageWriter& writer, const std::string& path) {
+void commit_package(tileformat::PackageWriter& writer, const std::string& path,
+                    std::chrono::steady_clock::time_point start, PackageSummary& sum) {
   try {
     writer.commit();
   } catch (const tileformat::PackageError& e) {
     throw OutputError(e.what());
   }
+  sum.tiles = writer.tiles_written();
+  sum.unique_blobs = writer.unique_blobs();
+  sum.blob_bytes = writer.blob_bytes();
   std::error_code ec;
   const auto bytes = std::filesystem::file_size(path, ec);
-  return ec ? 0 : bytes;
+  sum.file_bytes = ec ? 0 : bytes;
+  sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace globe

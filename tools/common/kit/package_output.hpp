@@ -2,6 +2,7 @@
 // turned into OutputError (exit code 3: exists, unwritable, disk full).
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -45,7 +46,17 @@ void write_package_tiles(const std::string& output, Write&& write) {
   }
 }
 
-// Commits (renames to the final name) and returns the final file's size.
-uint64_t commit_package(tileformat::PackageWriter& writer, const std::string& path);
+// What every build and merge says of the package it wrote; each command's
+// summary derives from it and adds its own counts.
+struct PackageSummary {
+  uint64_t tiles = 0, unique_blobs = 0, blob_bytes = 0, file_bytes = 0;
+  double seconds = 0;  // the whole build
+};
+
+// Commits (renames to the final name) and fills `sum`'s PackageSummary part:
+// the writer's tiles, unique blobs and their bytes, the final file's size
+// and the seconds since `start`.
+void commit_package(tileformat::PackageWriter& writer, const std::string& path,
+                    std::chrono::steady_clock::time_point start, PackageSummary& sum);
 
 }  // namespace globe

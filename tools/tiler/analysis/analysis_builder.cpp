@@ -306,10 +306,8 @@ AnalysisSummary build_analysis(const AnalysisSettings& s, Progress& progress) {
       writer->set_metadata(tileformat::to_metadata(
           shard_metadata(s, *shard, meta.common.min_zoom, meta.common.center_zoom)));
   });
+  commit_package(*writer, s.output, t0, sum);
   sum.tiles = items.size();
-  sum.unique_blobs = writer->unique_blobs();
-  sum.file_bytes = commit_package(*writer, s.output);
-  sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return sum;
 }
 

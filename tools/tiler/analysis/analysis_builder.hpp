@@ -8,6 +8,8 @@
 // resumable (docs/analysis.md).
 #pragma once
 
+#include "kit/package_output.hpp"
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -28,9 +30,7 @@ struct AnalysisSettings : BuildOptions {
   flow::FlowMethod flow_method = flow::FlowMethod::kFill;  // --flow-method
 };
 
-struct AnalysisSummary {
-  uint64_t tiles = 0, unique_blobs = 0, file_bytes = 0;
-  double seconds = 0;
+struct AnalysisSummary : PackageSummary {
   std::string flow_note;  // with the flow layers: how the solve went
 };
 

@@ -23,10 +23,7 @@ AnalysisSummary merge_analysis(ShardSet& shards, const BuildOptions& o, Progress
   if (writer->tiles_written() == 0)
     throw InputError("the shards hold no tiles; nothing written to " + o.output);
   writer->set_metadata(shards.merged_metadata(o.output, shard.min_zoom, o.command_line));
-  sum.tiles = writer->tiles_written();
-  sum.unique_blobs = writer->unique_blobs();
-  sum.file_bytes = commit_package(*writer, o.output);
-  sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  commit_package(*writer, o.output, start, sum);
   return sum;
 }
 

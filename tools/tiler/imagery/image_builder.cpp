@@ -20,6 +20,7 @@
 #include "raster/data_probe.hpp"
 #include "raster/raster_metadata.hpp"
 #include "raster/raster_stages.hpp"
+#include "raster/staged_package.hpp"
 #include "raster/tile_groups.hpp"
 #include "runtime/errors.hpp"
 #include "tileformat/error.hpp"
@@ -48,32 +49,21 @@ class Builder {
 
   ImageSummary run() {
     const auto start = std::chrono::steady_clock::now();
-    std::unique_ptr<tileformat::PackageWriter> writer = create_package(s_, progress_);
-    write_package_tiles(s_.output, [&] {
-      StagingStore stage(
-          s_.output + ".staging", writer->key_hash(),
-          writer->resumed() ? tileformat::Resume::kContinue : tileformat::Resume::kStartAfresh);
-      // (Its statement ends before the writer closes the file.)
-      std::optional<tileformat::ShardTableWriter> parts;
-      if (shard_) {
-        parts.emplace(*writer);
-        parts->put_roots(shard_->roots);
-        parts_ = &*parts;
-      }
-      levels(*writer, stage, plan_.max_zoom, shard_ ? shard_->split_zoom : plan_.min_zoom);
-      parts_ = nullptr;
-    });
+    std::unique_ptr<tileformat::PackageWriter> writer =
+        write_staged_package(s_, progress_, [&](tileformat::PackageWriter& w, StagingStore& stage) {
+          with_shard_table(w, shard_, [&](tileformat::ShardTableWriter* parts) {
+            parts_ = parts;
+            levels(w, stage, plan_.max_zoom, shard_ ? shard_->split_zoom : plan_.min_zoom);
+            parts_ = nullptr;
+          });
+        });
     if (writer->tiles_written() == 0 && !shard_)  // a shard may hold no data
       throw InputError(plan_.sources[0].path +
                        ": every pixel in the requested area is transparent (nodata, mask or "
                        "alpha)" +
                        (s_.bbox ? "; check --bbox" : "") + "; nothing written");
     write_metadata(*writer);
-    sum_.tiles = writer->tiles_written();
-    sum_.unique_blobs = writer->unique_blobs();
-    sum_.blob_bytes = writer->blob_bytes();
-    sum_.file_bytes = commit_package(*writer, s_.output);
-    sum_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    commit_package(*writer, s_.output, start, sum_);
     return sum_;
   }
 

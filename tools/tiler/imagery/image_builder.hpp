@@ -7,6 +7,8 @@
 // batches consumed in tile order, so output is identical for any -j.
 #pragma once
 
+#include "kit/package_output.hpp"
+
 #include <cstdint>
 
 #include "imagery/image_plan.hpp"
@@ -17,10 +19,8 @@
 
 namespace globe {
 
-struct ImageSummary {
-  uint64_t tiles = 0, unique_blobs = 0, blob_bytes = 0, file_bytes = 0;
+struct ImageSummary : PackageSummary {
   uint64_t png = 0, jpeg = 0, webp = 0;  // tiles per encoding
-  double seconds = 0;
 };
 
 // The part of an image shard's table (tileformat/shard_table.hpp) the merge

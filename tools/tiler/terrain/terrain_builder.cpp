@@ -15,6 +15,7 @@
 #include "raster/data_probe.hpp"
 #include "raster/raster_metadata.hpp"
 #include "raster/raster_stages.hpp"
+#include "raster/staged_package.hpp"
 #include "raster/tile_groups.hpp"
 #include "runtime/errors.hpp"
 #include "terrain/block_fill.hpp"
@@ -62,32 +63,21 @@ class Builder {
 
   BuildSummary run() {
     const auto start = std::chrono::steady_clock::now();
-    std::unique_ptr<tileformat::PackageWriter> writer = create_package(s_, progress_);
-    write_package_tiles(s_.output, [&] {
-      StagingStore stage(
-          s_.output + ".staging", writer->key_hash(),
-          writer->resumed() ? tileformat::Resume::kContinue : tileformat::Resume::kStartAfresh);
-      // (Its statement ends before the writer closes the file.)
-      std::optional<tileformat::ShardTableWriter> parts;
-      if (shard_) {
-        parts.emplace(*writer);
-        parts->put_roots(shard_->roots);
-        parts_ = &*parts;
-      }
-      levels(*writer, stage, plan_.max_zoom, shard_ ? shard_->split_zoom : plan_.min_zoom);
-      parts_ = nullptr;
-    });
+    std::unique_ptr<tileformat::PackageWriter> writer =
+        write_staged_package(s_, progress_, [&](tileformat::PackageWriter& w, StagingStore& stage) {
+          with_shard_table(w, shard_, [&](tileformat::ShardTableWriter* parts) {
+            parts_ = parts;
+            levels(w, stage, plan_.max_zoom, shard_ ? shard_->split_zoom : plan_.min_zoom);
+            parts_ = nullptr;
+          });
+        });
     if (writer->tiles_written() == 0 && !shard_)  // a shard may hold no data
       throw InputError(plan_.sources[0].path + ": no tile holds valid data in the requested area" +
                        (s_.bbox ? " (check --bbox)" : "") + "; nothing written");
     write_metadata(*writer);
     BuildSummary sum;
-    sum.tiles = writer->tiles_written();
-    sum.unique_blobs = writer->unique_blobs();
-    sum.blob_bytes = writer->blob_bytes();
+    commit_package(*writer, s_.output, start, sum);
     sum.samples = sum.tiles * static_cast<uint64_t>(size_) * size_;
-    sum.file_bytes = commit_package(*writer, s_.output);
-    sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return sum;
   }
 

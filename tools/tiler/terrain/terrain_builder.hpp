@@ -12,6 +12,8 @@
 // batches and consumed in tile order, so output is identical for any -j.
 #pragma once
 
+#include "kit/package_output.hpp"
+
 #include <cstdint>
 
 #include "kit/progress.hpp"
@@ -22,10 +24,8 @@
 
 namespace globe {
 
-struct BuildSummary {
-  uint64_t tiles = 0, unique_blobs = 0, blob_bytes = 0, file_bytes = 0;
+struct BuildSummary : PackageSummary {
   uint64_t samples = 0;  // samples stored (tiles * size^2)
-  double seconds = 0;
 };
 
 // The whole build, or with settings.shard one shard of it: the subtrees

@@ -8,6 +8,7 @@
 
 #include "kit/package_output.hpp"
 #include "kit/parallel_batches.hpp"
+#include "raster/staged_package.hpp"
 #include "runtime/package_open.hpp"
 #include "terrain/error_tree.hpp"
 #include "terrain/terrain_stages.hpp"
@@ -41,31 +42,24 @@ class Merger {
 
   BuildSummary run() {
     const auto start = std::chrono::steady_clock::now();
-    std::unique_ptr<tileformat::PackageWriter> writer = create_package(o_, progress_);
     int coarsest = shards_.split_zoom();
-    write_package_tiles(o_.output, [&] {
-      StagingStore stage(
-          o_.output + ".staging", writer->key_hash(),
-          writer->resumed() ? tileformat::Resume::kContinue : tileformat::Resume::kStartAfresh);
-      const bool above_done = writer->resumed() && stage.checkpoint().has_value();
-      for (int z = meta_.common.max_zoom; z >= shards_.split_zoom(); --z)
-        copy_zoom(*writer, z);
-      if (shards_.split_zoom() > shard_.min_zoom) {
-        if (!above_done) seed(stage);
-        coarsest = build_terrain_levels(plan(), settings(), *writer, stage,
-                                        shards_.split_zoom() - 1, progress_);
-      }
-    });
+    std::unique_ptr<tileformat::PackageWriter> writer =
+        write_staged_package(o_, progress_, [&](tileformat::PackageWriter& w, StagingStore& stage) {
+          const bool above_done = w.resumed() && stage.checkpoint().has_value();
+          for (int z = meta_.common.max_zoom; z >= shards_.split_zoom(); --z)
+            copy_zoom(w, z);
+          if (shards_.split_zoom() > shard_.min_zoom) {
+            if (!above_done) seed(stage);
+            coarsest = build_terrain_levels(plan(), settings(), w, stage, shards_.split_zoom() - 1,
+                                            progress_);
+          }
+        });
     if (writer->tiles_written() == 0)
       throw InputError("the shards hold no tiles; nothing written to " + o_.output);
     writer->set_metadata(shards_.merged_metadata(o_.output, coarsest, o_.command_line));
     BuildSummary sum;
-    sum.tiles = writer->tiles_written();
-    sum.unique_blobs = writer->unique_blobs();
-    sum.blob_bytes = writer->blob_bytes();
+    commit_package(*writer, o_.output, start, sum);
     sum.samples = sum.tiles * uint64_t(meta_.block_size) * uint64_t(meta_.block_size);
-    sum.file_bytes = commit_package(*writer, o_.output);
-    sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return sum;
   }
 

@@ -146,10 +146,7 @@ class Builder {
     tileformat::LineMetadata meta = line_metadata(s_, frame_, plan_, classes_, facts_);
     meta.bundle_json = bundle_json();
     writer->set_metadata(tileformat::to_metadata(meta));
-    sum_.tiles = writer->tiles_written();
-    sum_.unique_blobs = writer->unique_blobs();
-    sum_.file_bytes = commit_package(*writer, s_.output);
-    sum_.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    commit_package(*writer, s_.output, start, sum_);
     return sum_;
   }
 

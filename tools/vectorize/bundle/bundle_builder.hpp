@@ -10,6 +10,8 @@
 // encode tiles. Each stage is deterministic for any thread count.
 #pragma once
 
+#include "kit/package_output.hpp"
+
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -20,7 +22,7 @@
 
 namespace globe {
 
-struct BundleSummary {
+struct BundleSummary : PackageSummary {
   uint64_t rows = 0, connections = 0, bad_rows = 0, zero_weights = 0;
   uint64_t routed = 0, unrouted = 0, bundles = 0;
   uint64_t unsnapped = 0, same_node = 0, disconnected = 0;  // unrouted, by reason
@@ -30,10 +32,8 @@ struct BundleSummary {
   uint64_t hidden_at_min_zoom = 0;  // flows the significance filter hides at the coarsest zoom
   uint64_t never_drawn = 0;         // flows lighter than --min-weight
   int min_zoom = 0, max_zoom = 0;
-  uint64_t tiles = 0, unique_blobs = 0, file_bytes = 0;
   std::vector<std::string> bad_row_examples;
   std::vector<std::pair<std::string, double>> stage_seconds;  // in order
-  double seconds = 0;
 };
 
 BundleSummary build_bundles(const BundleSettings& settings, Progress& progress);

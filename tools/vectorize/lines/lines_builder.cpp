@@ -97,10 +97,7 @@ class Builder {
     if (shard_)
       writer->set_metadata(tileformat::to_metadata(
           shard_metadata(s_, shard_->plan(), meta.common.min_zoom, meta.common.center_zoom)));
-    sum_.tiles = writer->tiles_written();
-    sum_.unique_blobs = writer->unique_blobs();
-    sum_.file_bytes = commit_package(*writer, s_.output);
-    sum_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    commit_package(*writer, s_.output, start, sum_);
     return sum_;
   }
 

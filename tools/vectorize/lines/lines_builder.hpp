@@ -12,6 +12,8 @@
 // for any -j.
 #pragma once
 
+#include "kit/package_output.hpp"
+
 #include <cstdint>
 
 #include "kit/progress.hpp"
@@ -19,15 +21,13 @@
 
 namespace globe {
 
-struct LinesSummary {
+struct LinesSummary : PackageSummary {
   uint64_t features_read = 0, features_kept = 0, features_skipped = 0;
   uint64_t bad_parts = 0;  // NaN, degenerate or untransformable parts
   uint64_t antimeridian_cuts = 0;
-  uint64_t tiles = 0, unique_blobs = 0, file_bytes = 0;
   uint64_t segments = 0, max_zoom_segments = 0, points = 0;
   uint64_t spilled_runs = 0, spilled_bytes = 0;
   int min_zoom = 0, max_zoom = 0;
-  double seconds = 0;
 };
 
 LinesSummary build_lines(const LinesSettings& settings, Progress& progress);

@@ -96,10 +96,7 @@ class Builder {
       sum_.coarsest_places = level.size();
     });
     writer->set_metadata(tileformat::to_metadata(metadata()));
-    sum_.tiles = writer->tiles_written();
-    sum_.unique_blobs = writer->unique_blobs();
-    sum_.file_bytes = commit_package(*writer, s_.output);
-    sum_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    commit_package(*writer, s_.output, start, sum_);
     return sum_;
   }
 

@@ -12,6 +12,8 @@
 // Output is identical for any -j.
 #pragma once
 
+#include "kit/package_output.hpp"
+
 #include <cstdint>
 
 #include "kit/progress.hpp"
@@ -19,16 +21,14 @@
 
 namespace globe {
 
-struct PointsSummary {
+struct PointsSummary : PackageSummary {
   uint64_t features_read = 0, places = 0;
   uint64_t skipped_no_point = 0;     // features without a point (empty geometry)
   uint64_t skipped_unprojected = 0;  // outside the tiling or not transformable
   uint64_t skipped_outside = 0;      // outside --bbox
   uint64_t empty_values = 0;         // null values read as 0
-  uint64_t tiles = 0, unique_blobs = 0, file_bytes = 0;
-  uint64_t coarsest_places = 0;  // places at the coarsest zoom
+  uint64_t coarsest_places = 0;      // places at the coarsest zoom
   int min_zoom = 0, max_zoom = 0;
-  double seconds = 0;
 };
 
 PointsSummary build_points(const PointsSettings& settings, Progress& progress);

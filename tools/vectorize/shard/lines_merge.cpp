@@ -42,10 +42,7 @@ LinesSummary merge_lines(ShardSet& shards, const BuildOptions& o, Progress& prog
   sum.features_kept = meta.features;
   sum.min_zoom = shard.min_zoom;
   sum.max_zoom = meta.common.max_zoom;
-  sum.tiles = writer->tiles_written();
-  sum.unique_blobs = writer->unique_blobs();
-  sum.file_bytes = commit_package(*writer, o.output);
-  sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  commit_package(*writer, o.output, start, sum);
   return sum;
 }
 
