@@ -1,9 +1,32 @@
-// The cluster grid's cell lists (see cell_lists.hpp).
+// The ids and cluster-grid lists of line and point tiles (see cell_lists.hpp).
 #include "internal/cell_lists.hpp"
 
 #include <string>
 
+#include "tileformat/error.hpp"
+
 namespace tileformat {
+
+void write_increasing_ids(ByteWriter& out, std::span<const uint64_t> ids, const char* section,
+                          const char* what) {
+  for (size_t i = 0; i < ids.size(); ++i) {
+    if (i > 0 && ids[i] <= ids[i - 1])
+      throw FormatError(section, std::string(what) + " ids not strictly increasing");
+    out.varint(ids[i] - (i ? ids[i - 1] + 1 : 0));
+  }
+}
+
+std::vector<uint64_t> read_increasing_ids(ByteReader& r, uint32_t count, const char* what) {
+  std::vector<uint64_t> ids(count);
+  uint64_t prev = 0;
+  for (uint32_t i = 0; i < count; ++i) {
+    const uint64_t d = r.varint();
+    const uint64_t id = i ? prev + 1 + d : d;
+    if (i && id <= prev) r.fail(std::string(what) + " id overflow");
+    ids[i] = prev = id;
+  }
+  return ids;
+}
 
 void write_cell_lists(ByteWriter& out, const std::vector<uint32_t>& offsets,
                       const std::vector<uint32_t>& items) {

@@ -99,12 +99,7 @@ uint32_t LineTile::cell_of(double x, double y) const {
 
 std::vector<uint8_t> encode_line_tile(const LineTile& t, int zstd_level) {
   ByteWriter p;  // §7.2 payload
-  uint64_t prev_id = 0;
-  for (size_t i = 0; i < t.feature_ids.size(); ++i) {
-    if (i > 0 && t.feature_ids[i] <= prev_id) fail("7.2", "feature ids not strictly increasing");
-    p.varint(t.feature_ids[i] - (i ? prev_id + 1 : 0));
-    prev_id = t.feature_ids[i];
-  }
+  write_increasing_ids(p, t.feature_ids, "7.2", "line tile: feature");
   uint32_t next_vertex = 0;
   for (const LineRun& r : t.runs) {
     if (r.vertex_count < 2 || r.first_vertex != next_vertex || r.feature >= t.feature_ids.size())
@@ -175,14 +170,7 @@ LineTile decode_line_tile(std::span<const uint8_t> blob) {
   t.grid = h.grid;
   t.reach = h.reach;
   ByteReader r(raw, "line tile payload", "7.2");
-  t.feature_ids.resize(h.features);
-  uint64_t prev = 0;
-  for (uint32_t i = 0; i < h.features; ++i) {
-    const uint64_t d = r.varint();
-    const uint64_t id = i ? prev + 1 + d : d;
-    if (id < prev || (i && id == prev)) r.fail("feature id overflow");
-    t.feature_ids[i] = prev = id;
-  }
+  t.feature_ids = read_increasing_ids(r, h.features, "feature");
   t.runs.resize(h.runs);
   uint64_t vertex_total = 0;
   for (LineRun& run : t.runs) {

@@ -83,10 +83,10 @@ std::vector<uint8_t> encode_point_tile(const PointTile& t, int zstd_level) {
   if (t.values.size() != t.places.size() * t.fields)
     fail("11.2", "values do not match places x fields");
   ByteWriter p;  // §11.2 payload
-  for (size_t i = 0; i < t.places.size(); ++i) {
-    if (i > 0 && t.places[i].id <= t.places[i - 1].id) fail("11.2", "place ids not increasing");
-    p.varint(t.places[i].id - (i ? t.places[i - 1].id + 1 : 0));
-  }
+  std::vector<uint64_t> ids(t.places.size());
+  for (size_t i = 0; i < ids.size(); ++i)
+    ids[i] = t.places[i].id;
+  write_increasing_ids(p, ids, "11.2", "point tile: place");
   for (const Place& pl : t.places) {
     if (pl.count < 1) fail("11.2", "a place stands for at least one source place");
     p.varint(pl.count - 1);
@@ -146,13 +146,9 @@ PointTile decode_point_tile(std::span<const uint8_t> blob) {
   t.fields = h.fields;
   ByteReader r(raw, "point tile payload", "11.2");
   t.places.resize(h.places);
-  uint64_t prev = 0;
-  for (uint32_t i = 0; i < h.places; ++i) {
-    const uint64_t d = r.varint();
-    const uint64_t id = i ? prev + 1 + d : d;
-    if (i && id <= prev) r.fail("place id overflow");
-    t.places[i].id = prev = id;
-  }
+  const std::vector<uint64_t> ids = read_increasing_ids(r, h.places, "place");
+  for (uint32_t i = 0; i < h.places; ++i)
+    t.places[i].id = ids[i];
   for (Place& pl : t.places) {
     const uint64_t c = r.varint();
     if (c >= 0xffffffffu) r.fail("place count out of range");
