@@ -46,25 +46,42 @@ void predict_residuals(const int32_t* q, int size, uint32_t* out) {
   }
 }
 
-// Inverse of predict_residuals; false if a height leaves the quantization range.
-bool reconstruct(const uint32_t* residual, int size, int32_t* q) {
-  bool ok = true;
-  auto put = [&](int32_t* dst, int64_t v) {
-    ok &= v <= kMaxQuantum && v >= -kMaxQuantum;
-    *dst = static_cast<int32_t>(v);
-  };
-  put(q, unzigzag(residual[0]));
-  for (int x = 1; x < size; ++x)
-    put(q + x, int64_t{q[x - 1]} + unzigzag(residual[x]));
-  for (int y = 1; y < size && ok; ++y) {
-    int32_t* row = q + static_cast<size_t>(y) * size;
-    const int32_t* up = row - size;
-    const uint32_t* r = residual + static_cast<size_t>(y) * size;
-    put(row, int64_t{up[0]} + unzigzag(r[0]));
-    for (int x = 1; x < size; ++x)
-      put(row + x, int64_t{row[x - 1]} + up[x] - up[x - 1] + unzigzag(r[x]));
+// Inverse of predict_residuals; false if a height leaves the quantization
+// range. Each row is a running sum kept in a register (in 64 bits, so a
+// hostile row cannot overflow it) and checked against the range once, at
+// its end, before the next row reads it (every decoded block runs this).
+// range: the min and max of all heights, if asked for.
+bool reconstruct(const uint32_t* residual, int size, int32_t* q, MBlockStats* range = nullptr) {
+  const size_t n = static_cast<size_t>(size);
+  int64_t all_lo = INT64_MAX, all_hi = INT64_MIN;
+  for (size_t y = 0; y < n; ++y) {
+    int32_t* row = q + y * n;
+    const int32_t* up = y ? row - n : nullptr;
+    const uint32_t* r = residual + y * n;
+    int64_t acc = (up ? up[0] : 0) + int64_t{unzigzag(r[0])};
+    int64_t lo = acc, hi = acc;
+    row[0] = static_cast<int32_t>(acc);
+    if (up) {
+      for (size_t x = 1; x < n; ++x) {
+        acc += int64_t{up[x]} - up[x - 1] + unzigzag(r[x]);
+        row[x] = static_cast<int32_t>(acc);
+        lo = std::min(lo, acc);
+        hi = std::max(hi, acc);
+      }
+    } else {
+      for (size_t x = 1; x < n; ++x) {
+        acc += unzigzag(r[x]);
+        row[x] = static_cast<int32_t>(acc);
+        lo = std::min(lo, acc);
+        hi = std::max(hi, acc);
+      }
+    }
+    if (lo < -kMaxQuantum || hi > kMaxQuantum) return false;
+    all_lo = std::min(all_lo, lo);
+    all_hi = std::max(all_hi, hi);
   }
-  return ok;
+  if (range) *range = {static_cast<int32_t>(all_lo), static_cast<int32_t>(all_hi)};
+  return true;
 }
 
 bool valid_size(int size, int lattice) {
@@ -219,10 +236,20 @@ std::vector<uint8_t> encode_residuals(const std::vector<uint32_t>& residual, int
   return residual_section(residual, coding, level);
 }
 
-std::vector<uint32_t> decode_residuals(ByteReader& r, size_t n) {
+// A thread's residuals while it decodes, kept between blocks so that block
+// after block touches no new pages; grids larger than kScratchSamples use
+// their own (the scratch keeps its capacity).
+constexpr size_t kScratchSamples = size_t{1025} * 1025;
+std::vector<uint32_t>& residual_scratch() {
+  thread_local std::vector<uint32_t> scratch;
+  return scratch;
+}
+
+// §5.2 into `residual` (resized).
+void decode_residuals(ByteReader& r, size_t n, std::vector<uint32_t>& residual) {
   r.set_section("5.2");
   const int coding = r.u8();
-  std::vector<uint32_t> residual(n);
+  residual.resize(n);
   if (coding == 0) {
     const int planes = r.u8();
     if (planes < 1 || planes > 4) r.fail("invalid byte-plane count " + std::to_string(planes));
@@ -245,7 +272,7 @@ std::vector<uint32_t> decode_residuals(ByteReader& r, size_t n) {
             residual[i] |= uint32_t{plane[i]} << (8 * p);
         }
     }
-    return residual;
+    return;
   }
   if (coding != 1 && coding != 2 && coding != 4)
     r.fail("unknown height coding " + std::to_string(coding));
@@ -260,7 +287,6 @@ std::vector<uint32_t> decode_residuals(ByteReader& r, size_t n) {
                   : coding == 2 ? unpack<2>(packed, exc_bytes, residual)
                                 : unpack<4>(packed, exc_bytes, residual);
   if (!ok) r.fail("the exceptions do not match the escaped samples");
-  return residual;
 }
 
 // Skips §5.2 without decompressing it.
@@ -293,18 +319,22 @@ std::vector<uint8_t> encode_error_tree(int depth, const std::vector<uint32_t>& e
 }  // namespace
 
 MBlockStats mblock_stats(const MBlock& block) {
+  // Branch-free, so the loop vectorizes (every decoded block with a mask
+  // checks its stored min/max through this).
   int32_t lo = INT32_MAX, hi = INT32_MIN;
+  const int32_t* q = block.q.data();
+  const size_t n = block.q.size();
   if (block.valid.empty()) {
-    for (int32_t v : block.q) {
-      lo = std::min(lo, v);
-      hi = std::max(hi, v);
+    for (size_t i = 0; i < n; ++i) {
+      lo = std::min(lo, q[i]);
+      hi = std::max(hi, q[i]);
     }
   } else {
-    for (size_t i = 0; i < block.q.size(); ++i)
-      if (block.valid[i]) {
-        lo = std::min(lo, block.q[i]);
-        hi = std::max(hi, block.q[i]);
-      }
+    const uint8_t* valid = block.valid.data();
+    for (size_t i = 0; i < n; ++i) {
+      lo = std::min(lo, valid[i] ? q[i] : INT32_MAX);
+      hi = std::max(hi, valid[i] ? q[i] : INT32_MIN);
+    }
   }
   return lo > hi ? MBlockStats{0, 0} : MBlockStats{lo, hi};
 }
@@ -381,7 +411,9 @@ HeightGrid decode_height_grid(std::span<const uint8_t> bytes) {
   const uint8_t flags = r.u8();
   if (g.size < 1 || (flags & ~kFlagMask)) r.fail("invalid grid header");
   const size_t n = static_cast<size_t>(g.size) * g.size;
-  const std::vector<uint32_t> residual = decode_residuals(r, n);
+  std::vector<uint32_t> local;
+  std::vector<uint32_t>& residual = n <= kScratchSamples ? residual_scratch() : local;
+  decode_residuals(r, n, residual);
   g.q.resize(n);
   if (!reconstruct(residual.data(), g.size, g.q.data()))
     r.fail("a height is outside the quantization range");
@@ -413,9 +445,12 @@ MBlock decode_mblock(std::span<const uint8_t> blob) {
   if (qmin > qmax || qmin < -kMaxQuantum || qmax > kMaxQuantum) r.fail("invalid min/max");
 
   const size_t n = static_cast<size_t>(b.size) * b.size;
-  const std::vector<uint32_t> residual = decode_residuals(r, n);
+  std::vector<uint32_t> local;
+  std::vector<uint32_t>& residual = n <= kScratchSamples ? residual_scratch() : local;
+  decode_residuals(r, n, residual);
   b.q.resize(n);
-  if (!reconstruct(residual.data(), b.size, b.q.data()))
+  MBlockStats all;  // of every sample: the block's stats where it has no mask
+  if (!reconstruct(residual.data(), b.size, b.q.data(), &all))
     r.fail("a height is outside the quantization range");
   if (flags & kFlagMask) {
     r.set_section("5.3");
@@ -435,7 +470,7 @@ MBlock decode_mblock(std::span<const uint8_t> blob) {
   for (size_t i = 0; i < count; ++i)
     b.vertex_error[i] = get_u32(err_bytes.data() + 4 * i);
   r.expect_end();
-  const MBlockStats s = mblock_stats(b);
+  const MBlockStats s = b.valid.empty() ? all : mblock_stats(b);
   if (s.qmin != qmin || s.qmax != qmax) r.fail("stored min/max do not match the heights");
   return b;
 }
