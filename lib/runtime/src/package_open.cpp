@@ -10,6 +10,10 @@ std::string article(const std::string& noun) {
 
 }  // namespace
 
+std::string a_package_of(tileformat::PackageKind kind) {
+  return article(tileformat::package_kind_name(kind)) + " package";
+}
+
 std::unique_ptr<tileformat::PackageReader> open_package(const std::string& path) {
   try {
     return std::make_unique<tileformat::PackageReader>(path);
@@ -34,10 +38,10 @@ std::unique_ptr<tileformat::PackageReader> open_package_of_kind(const std::strin
   const std::string fmt = package_format(*reader, path);
   const std::optional<tileformat::PackageKind> actual = tileformat::package_kind_of_format(fmt);
   if (actual != kind) {
-    const std::string is = actual ? article(tileformat::package_kind_name(*actual)) + " package"
+    const std::string is = actual ? a_package_of(*actual)
                                   : "a package of format '" + fmt + "', not made by these tools";
-    throw InputError(path + ": " + is + ", where " + article(tileformat::package_kind_name(kind)) +
-                     " package is needed (made by " + tileformat::describe(kind).maker + ")");
+    throw InputError(path + ": " + is + ", where " + a_package_of(kind) + " is needed (made by " +
+                     tileformat::describe(kind).maker + ")");
   }
   return reader;
 }

@@ -18,10 +18,8 @@ const KindInspection& inspection_for(const std::string& path,
     if (row->kind == *kind) return *row;
   const tileformat::PackageKindDescriptor& d = tileformat::describe(*kind);
   const std::string verb = command.substr(command.rfind(' ') + 1);
-  throw InputError(path + ": " +
-                   (std::string("aeiou").find(d.name[0]) == std::string::npos ? "a " : "an ") +
-                   d.name + " package, which " + command + " does not read; run " + d.tool + " " +
-                   verb + " " + path);
+  throw InputError(path + ": " + a_package_of(*kind) + ", which " + command +
+                   " does not read; run " + d.tool + " " + verb + " " + path);
 }
 
 int run_info_command(const std::string& tool, const std::string& kinds,

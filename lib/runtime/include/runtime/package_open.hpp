@@ -21,6 +21,8 @@ std::string package_format(const tileformat::PackageReader& reader, const std::s
 // The kind of the package at `path` (nullopt: a format none of our kinds
 // has); throws InputError if it is missing, not a package or has no format.
 std::optional<tileformat::PackageKind> package_kind(const std::string& path);
+// "a terrain package", "an analysis package": the kind in messages.
+std::string a_package_of(tileformat::PackageKind kind);
 // Throws InputError if `path` is missing, not a package, or not of `kind`.
 std::unique_ptr<tileformat::PackageReader> open_package_of_kind(const std::string& path,
                                                                 tileformat::PackageKind kind);
