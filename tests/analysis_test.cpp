@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <string_view>
 
 #include "raster_fixtures.hpp"
 #include "test_support.hpp"
@@ -141,6 +142,14 @@ class AnalyzeGeodetic : public ::testing::TestWithParam<Ramp> {};
 
 TEST_P(AnalyzeGeodetic, RampSlopesFollowTheEllipsoid) {
   const Ramp& ramp = GetParam();
+#ifdef GLOBE_ADDRESS_SANITIZER
+  // Under ASan + UBSan (scripts/sanitize.sh) the far-field ramps are left to
+  // the plain build (8-10x slower there, 67 s of CI's time): the sanitized
+  // build runs the same far-field scan in AnalyzeSkyview's brute-force cases
+  // and the near ramps here (docs/ci.md).
+  if (std::string_view(ramp.name).ends_with("_far"))
+    GTEST_SKIP() << "far-field ramps run in the plain build";
+#endif
   TempDir dir;
   const double a = 6378137.0, e2 = 6.69437999014e-3, deg = std::numbers::pi / 180;
   const double gt[6] = {ramp.west, 0.01, 0, ramp.north, 0, -0.01};

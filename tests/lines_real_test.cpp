@@ -61,6 +61,12 @@ uint64_t check_cluster_contract(const std::string& pkg, int zoom) {
 
 TEST_P(RealLines, BuildsValidatesAndKeepsTheContracts) {
   const RealSet& set = GetParam();
+#ifdef GLOBE_ADDRESS_SANITIZER
+  // Under ASan + UBSan the largest set (69 s there, 13 s in the plain build)
+  // is left to the plain build; the three others run the same pipeline under
+  // the sanitizers (docs/ci.md).
+  if (set.name == "efas_rivers") GTEST_SKIP() << "the largest set runs in the plain build";
+#endif
   TempDir dir;
   const std::string input = sample(set.file).string();
   const std::string pkg = (dir / (set.name + ".mbtiles")).string();
