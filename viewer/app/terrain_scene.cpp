@@ -392,6 +392,7 @@ FrameResult TerrainScene::frame(const CameraPose& asked, Loading loading, Output
     caps_->draw(renderer_->gbuffer(), f.view, *world_,
                 glm::vec3(grey * 0.92f + 0.08f, grey * 0.94f + 0.06f, grey * 0.96f + 0.04f));
   }
+  if (layers_.empty()) return f;  // terrain alone: no resident-block table to gather
   // Each layer draws over the image so far: the terrain's colour, then the
   // layer before's output.
   const TerrainHeights heights = terrain_heights(f.view);
