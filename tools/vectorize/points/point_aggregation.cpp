@@ -3,179 +3,200 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
-#include <unordered_map>
 
 namespace globe {
 
-void PlaceSet::reserve(size_t n) {
-  x_.reserve(n);
-  y_.reserve(n);
-  id_.reserve(n);
-  count_.reserve(n);
-  sums_.reserve(n * size_t(fields_));
-}
-
-void PlaceSet::add(double x, double y, uint64_t id, uint32_t count, std::span<const double> sums) {
-  x_.push_back(x);
-  y_.push_back(y);
-  id_.push_back(id);
-  count_.push_back(count);
-  sums_.insert(sums_.end(), sums.begin(), sums.end());
-}
-
-double PlaceSet::weight(size_t i) const {
-  double w = 0;
-  for (double v : sums(i))
-    w += std::abs(v);
-  return w > 0 ? w : double(count(i));
-}
-
-namespace {
-
-// Places bucketed into square cells of at least the radius (columns wrap on
-// the global tilings), so a place's neighbours within the radius lie in the
-// 3 x 3 cells around its own.
-class CellIndex {
- public:
-  CellIndex(const PlaceSet& places, double radius, Wrap wrap) : wrap_(wrap) {
-    size_x_ = size_y_ = radius;
-    if (wrap.width > 0) {
-      columns_ = std::max<int64_t>(1, static_cast<int64_t>(std::floor(wrap.width / radius)));
-      size_x_ = wrap.width / double(columns_);
-    }
-    order_.resize(places.size());
-    std::iota(order_.begin(), order_.end(), uint32_t{0});
-    std::vector<uint64_t> keys(places.size());
-    for (size_t i = 0; i < places.size(); ++i)
-      keys[i] = key(column(places.x(i)), row(places.y(i)));
-    std::sort(order_.begin(), order_.end(), [&](uint32_t a, uint32_t b) {
-      return keys[a] != keys[b] ? keys[a] < keys[b] : a < b;
-    });
-    for (size_t k = 0; k < order_.size();) {
-      size_t end = k;
-      while (end < order_.size() && keys[order_[end]] == keys[order_[k]])
-        ++end;
-      cells_.emplace(keys[order_[k]], std::pair(uint32_t(k), uint32_t(end)));
-      k = end;
-    }
+CellWindow::CellWindow(double radius, Wrap wrap)
+    : wrap_(wrap), r2_(radius * radius), size_x_(radius), size_y_(radius) {
+  if (wrap.width > 0) {
+    columns_ = std::max<int64_t>(1, static_cast<int64_t>(std::floor(wrap.width / radius)));
+    size_x_ = wrap.width / double(columns_);
   }
+}
 
-  // Calls fn(j) for every place in the cells around (x, y).
-  template <typename Fn>
-  void near(double x, double y, Fn fn) const {
-    const int64_t cx = column(x), cy = row(y);
-    int64_t seen[3] = {INT64_MIN, INT64_MIN, INT64_MIN};
-    for (int dx = -1; dx <= 1; ++dx) {
-      int64_t c = cx + dx;
-      if (columns_ > 0) c = ((c % columns_) + columns_) % columns_;
-      if (c == seen[0] || c == seen[1]) continue;  // few columns: each once
-      seen[dx + 1] = c;
-      for (int64_t r = cy - 1; r <= cy + 1; ++r) {
-        auto it = cells_.find(key(c, r));
-        if (it == cells_.end()) continue;
-        for (uint32_t k = it->second.first; k < it->second.second; ++k)
-          fn(order_[k]);
+int64_t CellWindow::column(double x) const {
+  const int64_t c = static_cast<int64_t>(std::floor((x - wrap_.west) / size_x_));
+  return columns_ > 0 ? std::clamp<int64_t>(c, 0, columns_ - 1) : c;
+}
+
+int64_t CellWindow::row(double y) const {
+  return static_cast<int64_t>(std::floor(y / size_y_));
+}
+
+void CellWindow::add(uint64_t seq, double x, double y) {
+  if (keys_.empty()) first_ = seq;
+  const uint64_t k = key(column(x), row(y));
+  keys_.push_back(k);
+  cells_[k].push_back(seq);
+}
+
+void CellWindow::drop_before(uint64_t seq) {
+  while (!keys_.empty() && first_ < seq) {
+    // The oldest place is the first of its cell.
+    auto it = cells_.find(keys_.front());
+    it->second.erase(it->second.begin());
+    if (it->second.empty()) cells_.erase(it);
+    keys_.pop_front();
+    ++first_;
+  }
+}
+
+BandMerger::BandMerger(double radius, Wrap wrap, std::function<void(const Place&)> emit)
+    : cells_(radius, wrap), wrap_(wrap), emit_(std::move(emit)) {}
+
+void BandMerger::add_band(int64_t band, std::vector<Place>&& places) {
+  for (Place& p : places) {
+    const uint64_t seq = first_ + slots_.size();
+    cells_.add(seq, p.x, p.y);
+    const double w = p.weight();
+    slots_.push_back({std::move(p), w, band});
+    undecided_.push_back(seq);
+  }
+  peak_ = std::max(peak_, slots_.size());
+  last_band_ = band;
+  // Places in earlier bands have every neighbour loaded now.
+  decide(band);
+  int64_t decided_through = last_band_;
+  for (uint64_t seq : undecided_)
+    decided_through = std::min(decided_through, slot(seq).band - 1);
+  emit_and_drop(decided_through);
+}
+
+void BandMerger::finish() {
+  decide(INT64_MAX);
+  for (; next_emit_ < first_ + slots_.size(); ++next_emit_)
+    if (slot(next_emit_).state == State::kCentre) emit_centre(next_emit_);
+  first_ += slots_.size();
+  slots_.clear();
+  cells_.drop_before(first_);
+}
+
+// Decides, in merge order, the undecided places of bands below `below_band`
+// whose heavier neighbours are all decided.
+void BandMerger::decide(int64_t below_band) {
+  std::vector<uint64_t> candidates, waiting;
+  for (uint64_t seq : undecided_)
+    (slot(seq).band < below_band ? candidates : waiting).push_back(seq);
+  std::sort(candidates.begin(), candidates.end(),
+            [&](uint64_t a, uint64_t b) { return before(slot(a), slot(b)); });
+  for (uint64_t seq : candidates) {
+    Slot& s = slot(seq);
+    bool blocked = false, any_centre = false;
+    uint64_t best = 0;
+    cells_.near(s.place.x, s.place.y, [&](uint64_t q) {
+      if (q == seq || blocked) return;
+      const Slot& t = slot(q);
+      if (!before(t, s) || !cells_.within(s.place.x, s.place.y, t.place.x, t.place.y)) return;
+      if (t.state == State::kUndecided) {
+        blocked = true;
+      } else if (t.state == State::kCentre && (!any_centre || before(t, slot(best)))) {
+        any_centre = true;
+        best = q;
       }
-    }
-  }
-
-  // x offset from a to b, the short way round on the global tilings.
-  double dx(double a, double b) const {
-    double d = b - a;
-    if (wrap_.width > 0) {
-      if (d > wrap_.width / 2) d -= wrap_.width;
-      if (d < -wrap_.width / 2) d += wrap_.width;
-    }
-    return d;
-  }
-
- private:
-  int64_t column(double x) const {
-    const int64_t c = static_cast<int64_t>(std::floor((x - wrap_.west) / size_x_));
-    return columns_ > 0 ? std::clamp<int64_t>(c, 0, columns_ - 1) : c;
-  }
-  int64_t row(double y) const { return static_cast<int64_t>(std::floor(y / size_y_)); }
-  static uint64_t key(int64_t c, int64_t r) {
-    return (static_cast<uint64_t>(c) << 32) ^ (static_cast<uint64_t>(r) & 0xffffffffu);
-  }
-
-  Wrap wrap_;
-  double size_x_ = 1, size_y_ = 1;
-  int64_t columns_ = 0;  // > 0: columns wrap
-  std::vector<uint32_t> order_;
-  std::unordered_map<uint64_t, std::pair<uint32_t, uint32_t>> cells_;
-};
-
-}  // namespace
-
-PlaceSet merge_places(const PlaceSet& in, double radius, Wrap wrap) {
-  const CellIndex index(in, radius, wrap);
-  std::vector<uint32_t> order(in.size());
-  std::iota(order.begin(), order.end(), uint32_t{0});
-  std::vector<double> weights(in.size());
-  for (size_t i = 0; i < in.size(); ++i)
-    weights[i] = in.weight(i);
-  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-    return weights[a] != weights[b] ? weights[a] > weights[b] : in.id(a) < in.id(b);
-  });
-  const int fields = in.fields();
-  std::vector<char> taken(in.size(), 0);
-  PlaceSet out(fields);
-  std::vector<double> sums(fields);
-  std::vector<uint32_t> members;
-  const double r2 = radius * radius;
-  for (uint32_t i : order) {
-    if (taken[i]) continue;
-    members.clear();
-    index.near(in.x(i), in.y(i), [&](uint32_t j) {
-      if (taken[j]) return;
-      const double dx = index.dx(in.x(i), in.x(j)), dy = in.y(j) - in.y(i);
-      if (dx * dx + dy * dy <= r2) members.push_back(j);
     });
-    // Members in index order, so the sums do not depend on the cells' order.
-    std::sort(members.begin(), members.end());
-    std::fill(sums.begin(), sums.end(), 0.0);
-    double wx = 0, wy = 0, wsum = 0;
-    uint64_t id = in.id(i);
-    uint64_t count = 0;
-    for (uint32_t j : members) {
-      taken[j] = 1;
-      const double w = weights[j];
-      wx += w * index.dx(in.x(i), in.x(j));
-      wy += w * (in.y(j) - in.y(i));
-      wsum += w;
-      id = std::min(id, in.id(j));
-      count += in.count(j);
-      for (int f = 0; f < fields; ++f)
-        sums[f] += in.sums(j)[f];
+    if (blocked) {
+      waiting.push_back(seq);
+    } else if (any_centre) {
+      s.state = State::kMember;
+      s.owner = best;
+    } else {
+      s.state = State::kCentre;
     }
-    double x = in.x(i) + wx / wsum;
-    if (wrap.width > 0) {
-      if (x < wrap.west) x += wrap.width;
-      if (x >= wrap.west + wrap.width) x -= wrap.width;
-    }
-    out.add(x, in.y(i) + wy / wsum, id,
-            static_cast<uint32_t>(std::min<uint64_t>(count, 0xfffffffeu)), sums);
   }
-  return out;
+  undecided_ = std::move(waiting);
 }
 
-double crowded_share(const PlaceSet& in, double radius, Wrap wrap) {
-  if (in.size() == 0) return 0;
-  const CellIndex index(in, radius, wrap);
-  const double r2 = radius * radius;
-  uint64_t crowded = 0;
-  for (size_t i = 0; i < in.size(); ++i) {
-    bool near = false;
-    index.near(in.x(i), in.y(i), [&](uint32_t j) {
-      if (near || j == i) return;
-      const double dx = index.dx(in.x(i), in.x(j)), dy = in.y(j) - in.y(i);
-      near = dx * dx + dy * dy <= r2;
-    });
-    crowded += near;
+void BandMerger::emit_centre(uint64_t seq) {
+  const Slot& c = slot(seq);
+  members_.clear();
+  cells_.near(c.place.x, c.place.y, [&](uint64_t q) {
+    const Slot& t = slot(q);
+    if (q == seq || (t.state == State::kMember && t.owner == seq)) members_.push_back(q);
+  });
+  // Members in id order, so the sums do not depend on the cells' order.
+  std::sort(members_.begin(), members_.end(),
+            [&](uint64_t a, uint64_t b) { return slot(a).place.id < slot(b).place.id; });
+  Place out;
+  out.sums.assign(c.place.sums.size(), 0.0);
+  double wx = 0, wy = 0, wsum = 0;
+  uint64_t count = 0;
+  out.id = c.place.id;
+  for (uint64_t q : members_) {
+    const Slot& t = slot(q);
+    wx += t.weight * cells_.dx(c.place.x, t.place.x);
+    wy += t.weight * (t.place.y - c.place.y);
+    wsum += t.weight;
+    out.id = std::min(out.id, t.place.id);
+    count += t.place.count;
+    for (size_t f = 0; f < out.sums.size(); ++f)
+      out.sums[f] += t.place.sums[f];
   }
-  return double(crowded) / double(in.size());
+  out.x = c.place.x + wx / wsum;
+  if (wrap_.width > 0) {
+    if (out.x < wrap_.west) out.x += wrap_.width;
+    if (out.x >= wrap_.west + wrap_.width) out.x -= wrap_.width;
+  }
+  out.y = c.place.y + wy / wsum;
+  out.count = static_cast<uint32_t>(std::min<uint64_t>(count, 0xfffffffeu));
+  emit_(out);
+}
+
+// Every place of bands up to `decided_through` is decided: the centres of the
+// bands before it have all their members (which lie within a band of them)
+// and go out; the places two bands back are no one's neighbours or members
+// any more.
+void BandMerger::emit_and_drop(int64_t decided_through) {
+  if (decided_through == INT64_MIN) return;
+  for (; next_emit_ < first_ + slots_.size() && slot(next_emit_).band < decided_through;
+       ++next_emit_)
+    if (slot(next_emit_).state == State::kCentre) emit_centre(next_emit_);
+  while (!slots_.empty() && slots_.front().band < decided_through - 1) {
+    slots_.pop_front();
+    ++first_;
+  }
+  cells_.drop_before(first_);
+}
+
+double crowded_share(PlaceSource& places, double radius, Wrap wrap,
+                     const std::function<int64_t(const Place&)>& band) {
+  struct At {
+    double x, y;
+    int64_t band;
+  };
+  CellWindow cells(radius, wrap);
+  std::deque<At> window;
+  uint64_t first = 0, next_eval = 0, total = 0, crowded = 0;
+  // Counts the places of bands up to `through` that have a neighbour.
+  const auto evaluate = [&](int64_t through) {
+    for (; next_eval < first + window.size() && window[next_eval - first].band <= through;
+         ++next_eval) {
+      const At& a = window[next_eval - first];
+      bool near = false;
+      cells.near(a.x, a.y, [&](uint64_t q) {
+        if (near || q == next_eval) return;
+        const At& b = window[q - first];
+        near = cells.within(a.x, a.y, b.x, b.y);
+      });
+      crowded += near;
+    }
+  };
+  Place p;
+  while (places.next(p)) {
+    const int64_t b = band(p);
+    if (b >= INT64_MIN + 3) {
+      evaluate(b - 2);
+      while (!window.empty() && window.front().band <= b - 3 && first < next_eval) {
+        window.pop_front();
+        ++first;
+      }
+      cells.drop_before(first);
+    }
+    cells.add(first + window.size(), p.x, p.y);
+    window.push_back({p.x, p.y, b});
+    ++total;
+  }
+  evaluate(INT64_MAX);
+  return total == 0 ? 0 : double(crowded) / double(total);
 }
 
 }  // namespace globe

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "io/vector_frame.hpp"
@@ -52,8 +53,7 @@ class Builder {
       : s_(s),
         progress_(progress),
         threads_(s.worker_threads()),
-        fields_(static_cast<int>(s.fields.size())),
-        places_(fields_) {}
+        fields_(static_cast<int>(s.fields.size())) {}
 
   PointsSummary run() {
     const auto start = std::chrono::steady_clock::now();
@@ -78,22 +78,35 @@ class Builder {
       // A resumed build reads and aggregates again but keeps the committed
       // features table (filled in the first transaction) and tiles.
       tileformat::FeatureTableWriter features(*writer);
-      read(reader, features);
+      auto read_places =
+          std::make_unique<PlaceSorter>(s_.output + ".scratch-read", s_.memory_mb << 20, fields_);
+      read(reader, features, *read_places);
       writer->checkpoint();
       tiling_ = frame_tiling(frame_, extent_);
       area_ = frame_area(frame_, tiling_, s_);
-      keep_area();
       if (tiling_.wraps_x()) wrap_ = {tiling_.extent().width(), tiling_.extent().min_x};
-      plan_zooms();
+      auto source = std::make_unique<PlaceFile>(s_.output + ".scratch-places", fields_);
+      keep_area(*read_places, *source);
+      read_places.reset();  // its last run, in memory
+      plan_zooms(*source);
       skip_ = writer->resumed() ? writer->tiles_written() : 0;
-      PlaceSet level = merge(places_, sum_.max_zoom);
-      places_ = PlaceSet(fields_);  // the source places are not needed any more
+      // The finest zoom: the source places merged at its radius; then each
+      // zoom's tiles, while its places merge into the next coarser zoom's.
+      auto level = level_sorter(sum_.max_zoom);
+      source->rewind();
+      sweep(*source, sum_.places, std::nullopt, sum_.max_zoom, level.get(), *writer);
+      source.reset();
       for (int z = sum_.max_zoom;; --z) {
-        write_level(z, level, *writer);
-        if (z == sum_.min_zoom) break;
-        level = merge(level, z - 1);
+        level->finish();
+        auto coarser = z > sum_.min_zoom ? level_sorter(z - 1) : nullptr;
+        sweep(*level, level->size(), z,
+              z > sum_.min_zoom ? std::optional<int>(z - 1) : std::nullopt, coarser.get(), *writer);
+        if (z == sum_.min_zoom) {
+          sum_.coarsest_places = level->size();
+          break;
+        }
+        level = std::move(coarser);
       }
-      sum_.coarsest_places = level.size();
     });
     writer->set_metadata(tileformat::to_metadata(metadata()));
     commit_package(*writer, s_.output, start, sum_);
@@ -120,7 +133,7 @@ class Builder {
     }
   }
 
-  void read(VectorReader& reader, tileformat::FeatureTableWriter& features) {
+  void read(VectorReader& reader, tileformat::FeatureTableWriter& features, PlaceSorter& out) {
     std::vector<LineProjector> projectors;
     for (const VectorLayerInfo& l : reader.layers())
       projectors.emplace_back(frame_.frame, *l.crs, frame_.target ? &*frame_.target : nullptr);
@@ -129,7 +142,8 @@ class Builder {
       total += std::max<int64_t>(0, l.feature_count);
     progress_.begin("read places", static_cast<uint64_t>(total));
     VectorFeature vf;
-    std::vector<double> values(fields_);
+    Place place;
+    place.sums.resize(size_t(fields_));
     while (reader.next(vf)) {
       ++sum_.features_read;
       progress_.advance();
@@ -170,17 +184,20 @@ class Builder {
           throw InputError(where + ": " + s_.fields[f] + " is " + number_text(v) +
                            ", a negative value; pies and stacked bars show shares of a whole. "
                            "Pass --signed to keep negative values (bar and column charts)");
-        values[f] = v;
+        place.sums[f] = v;
       }
       const uint64_t id = ++kept_;
       if (!features.complete())
         features.add(static_cast<int64_t>(id), layer.name, vf.properties_json);
-      places_.add(at.x, at.y, id, 1, values);
+      place.x = at.x;
+      place.y = at.y;
+      place.id = id;
+      out.add(place);
       extent_ = {std::min(extent_.min_x, at.x), std::min(extent_.min_y, at.y),
                  std::max(extent_.max_x, at.x), std::max(extent_.max_y, at.y)};
     }
     progress_.end();
-    if (places_.size() == 0) {
+    if (out.size() == 0) {
       std::string names;
       for (const VectorLayerInfo& l : reader.layers())
         names += (names.empty() ? "" : ", ") + l.source + " layer '" + l.name + "'";
@@ -193,43 +210,46 @@ class Builder {
   }
 
   // Drops the places outside --bbox (the tiling's extent holds every
-  // projected place).
-  void keep_area() {
-    PlaceSet kept(fields_);
-    kept.reserve(places_.size());
-    for (size_t i = 0; i < places_.size(); ++i) {
-      if (places_.x(i) < area_.min_x || places_.x(i) > area_.max_x || places_.y(i) < area_.min_y ||
-          places_.y(i) > area_.max_y) {
+  // projected place), keeping the rest in sweep order.
+  void keep_area(PlaceSorter& in, PlaceFile& out) {
+    progress_.begin("sort places", 0);
+    in.finish();
+    Place p;
+    while (in.next(p)) {
+      if (p.x < area_.min_x || p.x > area_.max_x || p.y < area_.min_y || p.y > area_.max_y) {
         ++sum_.skipped_outside;
         continue;
       }
-      kept.add(places_.x(i), places_.y(i), places_.id(i), places_.count(i), places_.sums(i));
+      out.append(p);
     }
-    if (kept.size() == 0)
+    out.rewind();
+    progress_.end();
+    if (out.size() == 0)
       throw InputError(s_.inputs[0] + ": no place falls in the requested area (check --bbox); " +
                        "nothing written");
-    sum_.places = kept.size();
-    places_ = std::move(kept);
+    sum_.places = out.size();
   }
 
-  double radius(int z) const { return s_.merge_px * tiling_.tile_size(z) / kTilePx; }
-
-  void plan_zooms() {
+  void plan_zooms(PlaceFile& source) {
     sum_.min_zoom = s_.min_zoom.value_or(0);
     if (s_.max_zoom) {
       sum_.max_zoom = *s_.max_zoom;
     } else {
       // The share of crowded places and the places per tile fall as the
-      // zoom grows: bisect.
+      // zoom grows: bisect (each step two passes over the sorted places).
       int lo = sum_.min_zoom, hi = std::max(sum_.min_zoom, kDefaultMaxZoomCap);
       progress_.begin("choose the finest zoom", 0);
       while (lo < hi) {
         const int mid = (lo + hi) / 2;
-        if (double(places_.size()) < kFewestPlacesPerTile * double(tiles_holding(mid)) ||
-            crowded_share(places_, radius(mid), wrap_) <= kCrowdedShare)
-          hi = mid;
-        else
-          lo = mid + 1;
+        source.rewind();
+        bool fine = double(sum_.places) < kFewestPlacesPerTile * double(tiles_holding(source, mid));
+        if (!fine) {
+          source.rewind();
+          const int bz = band_zoom(mid);
+          fine = crowded_share(source, radius(mid), wrap_,
+                               [&](const Place& p) { return band_of(p, bz); }) <= kCrowdedShare;
+        }
+        (fine ? hi : lo) = fine ? mid : mid + 1;
       }
       progress_.end();
       sum_.max_zoom = lo;
@@ -239,103 +259,224 @@ class Builder {
                        std::to_string(sum_.max_zoom));
   }
 
-  // How many tiles of zoom z the source places lie in.
-  size_t tiles_holding(int z) const {
-    const double ts = tiling_.tile_size(z);
-    std::vector<uint64_t> keys(places_.size());
-    for (size_t i = 0; i < places_.size(); ++i)
-      keys[i] =
-          tile_key({z, uint32_t(std::max(0.0, std::floor((places_.x(i) - tiling_.origin_x) / ts))),
-                    uint32_t(std::max(0.0, std::floor((tiling_.origin_y - places_.y(i)) / ts)))});
-    std::sort(keys.begin(), keys.end());
-    return size_t(std::unique(keys.begin(), keys.end()) - keys.begin());
+  // A place's tile row at zoom z (clamped to the tiling) and column.
+  uint64_t tile_row(const Place& p, int z) const {
+    const double ny = double(tiling_.tiles_y(z));
+    return uint64_t(
+        std::clamp(std::floor((tiling_.origin_y - p.y) / tiling_.tile_size(z)), 0.0, ny - 1));
+  }
+  uint64_t tile_column(const Place& p, int z) const {
+    const double nx = double(tiling_.tiles_x(z));
+    return uint64_t(
+        std::clamp(std::floor((p.x - tiling_.origin_x) / tiling_.tile_size(z)), 0.0, nx - 1));
   }
 
-  PlaceSet merge(const PlaceSet& in, int z) {
-    progress_.begin("aggregate zoom " + std::to_string(z), 0);
-    PlaceSet out = merge_places(in, radius(z), wrap_);
+  // How many tiles of zoom z the places (in sweep order) lie in.
+  uint64_t tiles_holding(PlaceSource& places, int z) const {
+    uint64_t tiles = 0, row = UINT64_MAX;
+    std::vector<uint64_t> columns;
+    const auto count_row = [&] {
+      std::sort(columns.begin(), columns.end());
+      tiles += uint64_t(std::unique(columns.begin(), columns.end()) - columns.begin());
+      columns.clear();
+    };
+    Place p;
+    size_t unique_size = 0;
+    while (places.next(p)) {
+      const uint64_t r = tile_row(p, z);
+      if (r != row) {
+        count_row();
+        row = r;
+        unique_size = 0;
+      }
+      columns.push_back(tile_column(p, z));
+      if (columns.size() > 2 * unique_size + 4096) {  // at most the row's tiles held
+        std::sort(columns.begin(), columns.end());
+        columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
+        unique_size = columns.size();
+      }
+    }
+    count_row();
+    return tiles;
+  }
+
+  double radius(int z) const { return s_.merge_px * tiling_.tile_size(z) / kTilePx; }
+
+  // The zoom whose tile rows are the bands for merging at zoom z: the finest
+  // whose rows are at least the radius high (so places two bands apart are
+  // never neighbours); below 0 when even the roots are lower (one band).
+  int band_zoom(int z) const {
+    const double r = radius(z);
+    int bz = z;
+    if (std::ldexp(tiling_.tile_size(0), -bz) >= r) {
+      while (bz < z + 24 && std::ldexp(tiling_.tile_size(0), -(bz + 1)) >= r)
+        ++bz;
+    } else {
+      while (bz >= 0 && std::ldexp(tiling_.tile_size(0), -bz) < r)
+        --bz;
+    }
+    return bz;
+  }
+  int64_t band_of(const Place& p, int bz) const {
+    return bz < 0 ? 0 : static_cast<int64_t>(tile_row(p, bz));
+  }
+
+  std::unique_ptr<PlaceSorter> level_sorter(int z) const {
+    // Two levels are sorting at once: the one read and the one filled.
+    return std::make_unique<PlaceSorter>(s_.output + ".scratch-zoom" + std::to_string(z),
+                                         (s_.memory_mb << 20) / 2, fields_);
+  }
+
+  // One pass over a zoom's places (in sweep order), band by band: writes the
+  // tiles of `write_zoom` and merges the places for `merge_zoom` into `out`.
+  void sweep(PlaceSource& in, uint64_t count, std::optional<int> write_zoom,
+             std::optional<int> merge_zoom, PlaceSorter* out, tileformat::PackageWriter& writer) {
+    int bz = merge_zoom ? band_zoom(*merge_zoom) : *write_zoom;
+    if (write_zoom) bz = std::min(bz, *write_zoom);  // bands hold whole tiles
+    std::optional<BandMerger> merger;
+    if (merge_zoom)
+      merger.emplace(radius(*merge_zoom), wrap_, [&](const Place& p) { out->add(p); });
+    std::optional<ZoomTiles> tiles;
+    if (write_zoom) tiles.emplace(*this, *write_zoom, writer);
+    progress_.begin(write_zoom ? "zoom " + std::to_string(*write_zoom) + " tiles"
+                               : "aggregate zoom " + std::to_string(*merge_zoom),
+                    count);
+    std::vector<Place> band;
+    int64_t current = 0;
+    const auto flush = [&] {
+      if (band.empty()) return;
+      progress_.advance(band.size());
+      if (tiles) tiles->add_band(band);
+      if (merger) merger->add_band(current, std::move(band));
+      band.clear();
+    };
+    Place p;
+    while (in.next(p)) {
+      const int64_t b = write_zoom && bz >= 0
+                            ? int64_t(tile_row(p, *write_zoom) >> (*write_zoom - bz))
+                            : band_of(p, bz);
+      if (b != current) flush();
+      current = b;
+      band.push_back(std::move(p));
+    }
+    flush();
+    if (merger) {
+      merger->finish();
+      sum_.peak_merge_places = std::max<uint64_t>(sum_.peak_merge_places, merger->peak_places());
+    }
+    if (tiles) tiles->finish();
     progress_.end();
-    return out;
   }
 
-  struct Item {
-    uint64_t key;    // tile_key of its tile
-    uint64_t id;     // the place's id (order within a tile)
-    uint32_t index;  // into the level
-    tileformat::PlacePosition at;
-  };
+  // The tiles of one zoom, written band by band (tiles in key order within a
+  // band), encoded in parallel batches.
+  class ZoomTiles {
+   public:
+    ZoomTiles(Builder& b, int z, tileformat::PackageWriter& writer)
+        : b_(b), z_(z), writer_(writer), stats_{z, 0, 0, 0} {
+      reach_ = static_cast<uint32_t>(std::min<double>(
+          b.s_.extent, std::ceil((b.s_.chart_max_px / 2 + 1) * b.s_.extent / kTilePx)));
+    }
 
-  void write_level(int z, const PlaceSet& level, tileformat::PackageWriter& writer) {
-    const double ts = tiling_.tile_size(z), unit = ts / s_.extent;
-    const double nx = double(tiling_.tiles_x(z)), ny = double(tiling_.tiles_y(z));
-    std::vector<Item> items(level.size());
-    for (uint32_t i = 0; i < level.size(); ++i) {
-      const double tx = std::clamp(std::floor((level.x(i) - tiling_.origin_x) / ts), 0.0, nx - 1);
-      const double ty = std::clamp(std::floor((tiling_.origin_y - level.y(i)) / ts), 0.0, ny - 1);
-      const double ux = (level.x(i) - (tiling_.origin_x + tx * ts)) / unit;
-      const double uy = ((tiling_.origin_y - ty * ts) - level.y(i)) / unit;
-      const auto coord = [&](double u) {
-        return static_cast<int32_t>(std::clamp<long long>(std::llround(u), 0, s_.extent));
-      };
-      items[i] = {
-          tile_key({z, uint32_t(tx), uint32_t(ty)}), level.id(i), i, {coord(ux), coord(uy)}};
+    void add_band(const std::vector<Place>& band) {
+      const double ts = b_.tiling_.tile_size(z_), unit = ts / b_.s_.extent;
+      const size_t first = items_.size();
+      for (const Place& p : band) {
+        const uint64_t tx = b_.tile_column(p, z_), ty = b_.tile_row(p, z_);
+        const double ux = (p.x - (b_.tiling_.origin_x + double(tx) * ts)) / unit;
+        const double uy = ((b_.tiling_.origin_y - double(ty) * ts) - p.y) / unit;
+        const auto coord = [&](double u) {
+          return static_cast<int32_t>(std::clamp<long long>(std::llround(u), 0, b_.s_.extent));
+        };
+        items_.push_back({tile_key({z_, uint32_t(tx), uint32_t(ty)}),
+                          p.id,
+                          p.count,
+                          uint32_t(values_.size()),
+                          {coord(ux), coord(uy)}});
+        for (double v : p.sums)
+          values_.push_back(b_.s_.aggregate == tileformat::PointAggregate::kSum ? v : v / p.count);
+      }
+      std::sort(items_.begin() + std::ptrdiff_t(first), items_.end(),
+                [](const Item& a, const Item& b) {
+                  return a.key != b.key ? a.key < b.key : a.id < b.id;
+                });
+      for (size_t k = first; k < items_.size();) {
+        size_t end = k;
+        while (end < items_.size() && items_[end].key == items_[k].key)
+          ++end;
+        tiles_.emplace_back(k, end);
+        k = end;
+      }
+      stats_.places += band.size();
+      if (items_.size() >= kBatchPlaces) flush();
     }
-    std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
-      return a.key != b.key ? a.key < b.key : a.id < b.id;
-    });
-    std::vector<std::pair<size_t, size_t>> tiles;  // item ranges
-    for (size_t k = 0; k < items.size();) {
-      size_t end = k;
-      while (end < items.size() && items[end].key == items[k].key)
-        ++end;
-      tiles.emplace_back(k, end);
-      k = end;
+
+    void finish() {
+      flush();
+      b_.zooms_.insert(b_.zooms_.begin(), stats_);
     }
-    tileformat::PointZoomStats stats{z, level.size(), 0, 0};
-    const uint32_t reach = static_cast<uint32_t>(
-        std::min<double>(s_.extent, std::ceil((s_.chart_max_px / 2 + 1) * s_.extent / kTilePx)));
-    progress_.begin("zoom " + std::to_string(z) + " tiles", tiles.size());
-    parallel_batches<NoInputs, std::vector<uint8_t>>(
-        tiles.size(), threads_, size_t(64 * threads_), [](size_t, size_t) { return NoInputs{}; },
-        [&](size_t t, int, const NoInputs&) {
-          tileformat::PointTile tile;
-          tile.extent = static_cast<uint32_t>(s_.extent);
-          tile.grid = static_cast<uint32_t>(s_.cluster_grid);
-          tile.reach = reach;
-          tile.fields = static_cast<uint32_t>(fields_);
-          for (size_t k = tiles[t].first; k < tiles[t].second; ++k) {
-            const Item& it = items[k];
-            const uint32_t count = level.count(it.index);
-            tile.places.push_back({it.id, count, it.at});
-            for (double v : level.sums(it.index))
-              tile.values.push_back(static_cast<float>(
-                  s_.aggregate == tileformat::PointAggregate::kSum ? v : v / count));
-          }
-          tileformat::build_point_grid(tile);
-          return tileformat::encode_point_tile(tile, kZstdLevel);
-        },
-        [&](size_t t, std::vector<uint8_t>&& blob) {
-          for (size_t k = tiles[t].first; k < tiles[t].second; ++k) {
-            double total = 0;
-            for (double v : level.sums(items[k].index)) {
-              const double shown = s_.aggregate == tileformat::PointAggregate::kSum
-                                       ? v
-                                       : v / level.count(items[k].index);
-              total += std::abs(shown);
-              stats.max_value = std::max(stats.max_value, std::abs(shown));
+
+   private:
+    // Points tiles hold few places: batches of this many keep both cores busy.
+    static constexpr size_t kBatchPlaces = 1 << 16;
+    struct Item {
+      uint64_t key;     // tile_key of its tile
+      uint64_t id;      // the place's id (order within a tile)
+      uint32_t count;   // source places
+      uint32_t values;  // its shown values in values_
+      tileformat::PlacePosition at;
+    };
+
+    void flush() {
+      const int fields = b_.fields_;
+      parallel_batches<NoInputs, std::vector<uint8_t>>(
+          tiles_.size(), b_.threads_, size_t(64 * b_.threads_),
+          [](size_t, size_t) { return NoInputs{}; },
+          [&](size_t t, int, const NoInputs&) {
+            tileformat::PointTile tile;
+            tile.extent = static_cast<uint32_t>(b_.s_.extent);
+            tile.grid = static_cast<uint32_t>(b_.s_.cluster_grid);
+            tile.reach = reach_;
+            tile.fields = static_cast<uint32_t>(fields);
+            for (size_t k = tiles_[t].first; k < tiles_[t].second; ++k) {
+              const Item& it = items_[k];
+              tile.places.push_back({it.id, it.count, it.at});
+              for (int f = 0; f < fields; ++f)
+                tile.values.push_back(static_cast<float>(values_[it.values + size_t(f)]));
             }
-            stats.max_total = std::max(stats.max_total, total);
-          }
-          if (skip_ > 0)
-            --skip_;
-          else
-            writer.put_tile(key_tile(items[tiles[t].first].key), blob);
-          progress_.advance();
-        },
-        [](size_t) {});
-    progress_.end();
-    zooms_.insert(zooms_.begin(), stats);
-  }
+            tileformat::build_point_grid(tile);
+            return tileformat::encode_point_tile(tile, kZstdLevel);
+          },
+          [&](size_t t, std::vector<uint8_t>&& blob) {
+            for (size_t k = tiles_[t].first; k < tiles_[t].second; ++k) {
+              double total = 0;
+              for (int f = 0; f < fields; ++f) {
+                const double shown = values_[items_[k].values + size_t(f)];
+                total += std::abs(shown);
+                stats_.max_value = std::max(stats_.max_value, std::abs(shown));
+              }
+              stats_.max_total = std::max(stats_.max_total, total);
+            }
+            if (b_.skip_ > 0)
+              --b_.skip_;
+            else
+              writer_.put_tile(key_tile(items_[tiles_[t].first].key), blob);
+          },
+          [](size_t) {});
+      items_.clear();
+      values_.clear();
+      tiles_.clear();
+    }
+
+    Builder& b_;
+    const int z_;
+    tileformat::PackageWriter& writer_;
+    tileformat::PointZoomStats stats_;
+    uint32_t reach_;
+    std::vector<Item> items_;
+    std::vector<double> values_;
+    std::vector<std::pair<size_t, size_t>> tiles_;  // item ranges
+  };
 
   tileformat::PointMetadata metadata() const {
     tileformat::PointMetadata m;
@@ -364,7 +505,6 @@ class Builder {
   Bounds extent_{1e300, 1e300, -1e300, -1e300};  // the places, tiling CRS
   Bounds area_;
   Wrap wrap_;
-  PlaceSet places_;
   uint64_t kept_ = 0;                              // ids given
   uint64_t skip_ = 0;                              // tiles a resumed package already holds
   std::vector<tileformat::PointZoomStats> zooms_;  // min..max zoom

@@ -28,6 +28,7 @@ struct PointsSummary : PackageSummary {
   uint64_t skipped_outside = 0;      // outside --bbox
   uint64_t empty_values = 0;         // null values read as 0
   uint64_t coarsest_places = 0;      // places at the coarsest zoom
+  uint64_t peak_merge_places = 0;    // the most places a merge held at once
   int min_zoom = 0, max_zoom = 0;
 };
 

@@ -75,6 +75,12 @@ int run_points(const std::vector<std::string>& args) {
                if (4096 % s.cluster_grid != 0)
                  throw UsageError("--cluster-grid must divide 4096 (1, 2, 4, ... 256)");
              });
+  cli.option("--memory-mb", "MB",
+             "memory for sorting places before spilling to disk (default 128); the places "
+             "themselves are never all held",
+             [&](const std::string& v) {
+               s.memory_mb = static_cast<size_t>(CliArgs::to_int("--memory-mb", v, 1, 1 << 20));
+             });
   declare_run_options(cli, s);
   if (!parse_build_command(cli, s, args, "globe-vectorize points",
                            "input vector file (see --help)"))
@@ -98,7 +104,8 @@ int run_points(const std::vector<std::string>& args) {
     << sum.skipped_outside << " outside --bbox; " << sum.empty_values
     << " empty values read as 0), zoom " << sum.min_zoom << ".." << sum.max_zoom << " ("
     << sum.coarsest_places << " charts at zoom " << sum.min_zoom << "), " << sum.tiles << " tiles ("
-    << sum.unique_blobs << " unique), " << sum.file_bytes << " bytes, " << sum.seconds << " s";
+    << sum.unique_blobs << " unique), " << sum.file_bytes << " bytes, " << sum.seconds
+    << " s; merging held at most " << sum.peak_merge_places << " places";
   progress.note(o.str());
   return kExitOk;
 }
