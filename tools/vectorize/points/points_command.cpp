@@ -76,7 +76,7 @@ int run_points(const std::vector<std::string>& args) {
                  throw UsageError("--cluster-grid must divide 4096 (1, 2, 4, ... 256)");
              });
   cli.option("--memory-mb", "MB",
-             "memory for sorting places before spilling to disk (default 128); the places "
+             "memory for sorting places before spilling to disk (default 64); the places "
              "themselves are never all held",
              [&](const std::string& v) {
                s.memory_mb = static_cast<size_t>(CliArgs::to_int("--memory-mb", v, 1, 1 << 20));

@@ -29,7 +29,7 @@ struct PointsSettings : BuildOptions {
   double chart_max_px = 48;  // the largest chart the cluster grids allow for
   int cluster_grid = 16;
   int extent = 4096;
-  size_t memory_mb = 128;  // --memory-mb: for sorting places (the rest spills to disk)
+  size_t memory_mb = 64;  // --memory-mb: for sorting places (the rest spills to disk)
 };
 
 }  // namespace globe

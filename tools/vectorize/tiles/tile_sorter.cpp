@@ -2,6 +2,7 @@
 #include "tiles/tile_sorter.hpp"
 
 #include <algorithm>
+#include <new>
 #include <tuple>
 
 #include "kit/scratch_file.hpp"
@@ -38,11 +39,23 @@ TileSorter::TileSorter(std::string scratch_prefix, size_t memory_budget_bytes)
 TileSorter::~TileSorter() = default;
 
 void TileSorter::add(uint64_t key, uint64_t seq, uint32_t sub, std::span<const uint8_t> payload) {
+  if (!entries_.empty() &&
+      arena_.size() + payload.size() + (entries_.size() + 1) * sizeof(Entry) > budget_)
+    spill();
+  if (entries_.capacity() == 0) {
+    // Address space for the whole budget up front, so the buffers never
+    // reallocate (a reallocation holds the old and the new buffer at once);
+    // only the pages written count. Where that much cannot be reserved, the
+    // buffers grow as they fill.
+    try {
+      arena_.reserve(budget_);
+      entries_.reserve(budget_ / sizeof(Entry));
+    } catch (const std::bad_alloc&) {
+    }
+  }
   entries_.push_back({key, seq, sub, static_cast<uint32_t>(payload.size()), arena_.size()});
   arena_.insert(arena_.end(), payload.begin(), payload.end());
   ++records_;
-  // Allocated (not used) bytes, so vector growth cannot overshoot the budget.
-  if (arena_.capacity() + entries_.capacity() * sizeof(Entry) > budget_) spill();
 }
 
 void TileSorter::sort_memory() {
