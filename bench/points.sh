@@ -7,6 +7,8 @@
 #           10 vertices), CPU seconds (user + system) and peak RSS; and
 #           against tippecanoe (bench/fetch_tippecanoe.sh) clustering the
 #           same CSV at the same distance and zooms, values summed;
+#   memory: the same build of POINTS_SCALE (default 4) times the places,
+#           peak RSS against the first (flat: near 1);
 #   charts: the chart pass (GPU time of the instanced draw) for 10 k, 100 k
 #           and 1 M places on screen at 1280 x 720 (uniform over 2 x 2
 #           degrees, --merge-px 0 so every zoom holds every place, 4-8 px
@@ -71,6 +73,18 @@ echo "$pts $tip" | awk -v z="$zmax" '{
   printf "       same places, z0-%d: tippecanoe --cluster-distance=40 %.2f s CPU (%.2f wall), peak RSS %.0f MB; points / tippecanoe CPU %.2f (goal <= 0.5)\n",
     z, $6, $4, $5 / 1024, $3 / $6 }'
 $B/tools/vectorize/globe-vectorize info "$scratch/points.mbtiles" | sed -n '/places per zoom/,$p'
+# Memory flat: POINTS_SCALE (default 4) times the places, the same clusters
+# and zooms: peak RSS against the run above (0 skips it).
+scale=${POINTS_SCALE:-4}
+if [ "$scale" -gt 0 ]; then
+  big=$((places * scale))
+  synthetic "$big" "$scratch/places$big.csv"
+  pbig=$(usage $B/tools/vectorize/globe-vectorize points -q --force "$scratch/places$big.csv" \
+    --xy lon,lat --fields a,b,c,d,e --max-zoom "$zmax" -o "$scratch/points_big.mbtiles")
+  echo "$pts $pbig" | awk -v n="$places" -v b="$big" '{
+    printf "memory %d places: points %.2f s CPU (%.2f wall), peak RSS %.0f MB; peak RSS ÷ %d places: %.2f\n",
+      b, $6, $4, $5 / 1024, n, $5 / $2 }'
+fi
 
 # Charts: a flat 2 x 2 degree terrain, N uniform places, one view over all.
 gdal_create -q -of GTiff -outsize 200 200 -bands 1 -ot Float32 -burn 200 -a_srs EPSG:4326 \
