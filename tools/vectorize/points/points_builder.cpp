@@ -249,7 +249,10 @@ class Builder {
           fine = crowded_share(source, radius(mid), wrap_,
                                [&](const Place& p) { return band_of(p, bz); }) <= kCrowdedShare;
         }
-        (fine ? hi : lo) = fine ? mid : mid + 1;
+        if (fine)
+          hi = mid;
+        else
+          lo = mid + 1;
       }
       progress_.end();
       sum_.max_zoom = lo;
