@@ -249,6 +249,12 @@ TEST(CrashSafety, AnalyzeResumesToTheSameBytes) {
 // (docs/points.md "Memory and speed"): killed after any commit, it resumes
 // to the same bytes. 1 MB of sort memory makes every sort spill.
 TEST(CrashSafety, PointsKilledAfterEveryCommitResumeToTheSameBytes) {
+#ifdef GLOBE_ADDRESS_SANITIZER
+  // 18 s under ASan + UBSan (10 s in the plain build): left to the plain
+  // build; the sanitizers see the same spilling sorts and band merges in
+  // PointsCli.OutputIsTheSameForAnyThreadCountAndMemory (docs/ci.md).
+  GTEST_SKIP() << "runs in the plain build";
+#endif
   const TempDir data("-places");
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> lon(-10, 30), lat(35, 60);
