@@ -49,8 +49,7 @@ PlaceSorter::PlaceSorter(std::string scratch_prefix, size_t memory_budget_bytes,
 void PlaceSorter::add(const Place& place) {
   tileformat::ByteWriter w;
   encode(place, w);
-  payload_ = w.take();
-  sorter_.add(descending_y_key(place.y), place.id, 0, payload_);
+  sorter_.add(descending_y_key(place.y), place.id, 0, w.take());
 }
 
 void PlaceSorter::finish() {

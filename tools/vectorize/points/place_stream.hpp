@@ -52,7 +52,6 @@ class PlaceSorter : public PlaceSource {
   int fields_;
   TileGroup group_;
   size_t at_ = 0;  // next record of group_
-  std::vector<uint8_t> payload_;
 };
 
 // Places appended in sweep order, read back as often as needed.

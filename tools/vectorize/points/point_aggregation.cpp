@@ -183,14 +183,12 @@ double crowded_share(PlaceSource& places, double radius, Wrap wrap,
   Place p;
   while (places.next(p)) {
     const int64_t b = band(p);
-    if (b >= INT64_MIN + 3) {
-      evaluate(b - 2);
-      while (!window.empty() && window.front().band <= b - 3 && first < next_eval) {
-        window.pop_front();
-        ++first;
-      }
-      cells.drop_before(first);
+    evaluate(b - 2);
+    while (!window.empty() && window.front().band <= b - 3 && first < next_eval) {
+      window.pop_front();
+      ++first;
     }
+    cells.drop_before(first);
     cells.add(first + window.size(), p.x, p.y);
     window.push_back({p.x, p.y, b});
     ++total;

@@ -142,7 +142,7 @@ class BandMerger {
 
 // The share of places (read in sweep order from `places`) that have another
 // place within `radius`: what merging at that radius would touch (for
-// choosing the finest zoom). `band` gives a place's band (as for
+// choosing the finest zoom). `band` gives a place's band, 0 or more (as for
 // BandMerger).
 double crowded_share(PlaceSource& places, double radius, Wrap wrap,
                      const std::function<int64_t(const Place&)>& band);
