@@ -162,3 +162,21 @@ TEST(TerrainOptions, LocalTilingInAnotherCrs) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--t_srs applies to --tiling local only"), std::string::npos);
 }
+
+TEST(TerrainOptions, FineStepOnHighGroundKeepsDoublePrecision) {
+  // Heights near 5000 m at --precision 0.0001: single precision would round
+  // them by up to 3 steps (5000 * 2^-24 m), so the warp must stay in double
+  // and every sample be gdalwarp's (-ot Float64) within half a step.
+  TempDir dir;
+  const auto path = (dir / "high.tif").string();
+  write_dem(path, 200, 160, kGt, "EPSG:4326", GDT_Float64, [](int x, int y) {
+    return 5000.0 + 30.0 * std::sin(x * 0.05) + 0.7 * y + 0.0001234 * x * y;
+  });
+  const auto pkg = (dir / "p.mbtiles").string();
+  build(dir, "--precision 0.0001 " + path + " -o " + pkg);
+  const Raster ours = extract(dir, pkg, std::stoi(metadata(pkg).at("maxzoom")), "z.tif");
+  const Raster ref = gdalwarp_reference({path}, ours, "bilinear", dir.path());
+  const HeightComparison c = compare_heights(ours, ref);
+  EXPECT_GT(c.compared, 10000u);
+  EXPECT_LE(c.max_diff, 0.0001 / 2 + 1e-7) << "p99.9 " << c.p999;
+}

@@ -17,6 +17,11 @@
 namespace globe {
 namespace {
 
+// Band types whose every value single precision holds exactly.
+bool exact_in_single(GDALDataType type) {
+  return type == GDT_Byte || type == GDT_UInt16 || type == GDT_Int16 || type == GDT_Float32;
+}
+
 void check_settings(const TerrainSettings& s) {
   check_tiling_options(s, "");
   const int steps = s.block_size - 1;
@@ -61,7 +66,7 @@ DemPlan plan_terrain(const TerrainSettings& s) {
 
   // 1. Inputs: CRS, georeferencing, nodata, value range.
   double min_h = std::numeric_limits<double>::infinity(), max_h = -min_h;
-  bool all_integer = true;
+  bool all_integer = true, all_single = true;
   std::vector<RasterSource> rasters;
   for (const auto& path : s.inputs) {
     GdalDataset ds = GdalDataset::open_raster(path);
@@ -70,6 +75,7 @@ DemPlan plan_terrain(const TerrainSettings& s) {
     src.nodata = s.nodata ? s.nodata : ds.nodata(1);
     src.integer_type = ds.integer_type(1);
     all_integer = all_integer && src.integer_type;
+    all_single = all_single && exact_in_single(ds.data_type(1));
 
     if (s.nodata) ds.set_nodata(1, *s.nodata);  // this handle's statistics only
     std::optional<std::array<double, 2>> mm = ds.min_max(1, Scan::kApproximate);
@@ -99,6 +105,11 @@ DemPlan plan_terrain(const TerrainSettings& s) {
                      " m do not fit with --precision " + std::to_string(plan.step_m) +
                      "; use a larger --precision");
   plan.fill_q = static_cast<int32_t>(std::llround(min_h / plan.step_m));
+  // Single precision rounds a height h by up to h * 2^-24. Below
+  // step * 2^16 that is under 1/256 of a step, and stays under 1/64 where
+  // the approximate statistics miss heights up to 4x larger: it moves a
+  // sample across a rounding boundary only within that distance of it.
+  plan.warp_single = all_single && max_abs <= std::ldexp(plan.step_m, 16);
 
   // 3. Tiling, data areas, resolution and zooms.
   static_cast<Footprint&>(plan) = plan_footprint(rasters, s, "", TileGrid{plan.steps, true});

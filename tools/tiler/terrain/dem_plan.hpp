@@ -25,6 +25,10 @@ struct DemPlan : Footprint {  // tiling, data areas, resolution, zooms
   int steps = 256;      // block size - 1
   double step_m = 1.0;  // quantization step
   int32_t fill_q = 0;   // height (quanta) for holes at block corners
+  // Whether the warp may work in single precision (twice as fast in GDAL's
+  // kernel): the inputs' values are exact in it and its rounding stays far
+  // below the step (see plan_terrain).
+  bool warp_single = false;
 };
 
 DemPlan plan_terrain(const TerrainSettings& settings);

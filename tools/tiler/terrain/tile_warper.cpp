@@ -21,7 +21,7 @@ TileWarper::TileWarper(const DemPlan& plan, const std::string& resampling) : pla
   spec.target_crs = plan.tiling.crs;
   spec.resampling = resampling;
   spec.bands = 1;
-  spec.type = GDT_Float64;
+  spec.type = plan.warp_single ? GDT_Float32 : GDT_Float64;
   spec.max_width = spec.max_height = plan.steps * kMaxGroup + 1;
   warper_ = std::make_unique<RasterWarper>(
       std::move(sources), std::move(spec),
@@ -47,8 +47,15 @@ void TileWarper::warp(tileformat::TileId first, int cols, int rows, Window& out)
   const tileformat::Bounds b = plan_.tiling.tile_bounds(first);
   // Pixel centres on the samples: the first centre is the tile's corner.
   const std::array<double, 6> gt = {b.min_x - sp / 2, sp, 0, b.max_y + sp / 2, 0, -sp};
-  out.heights.assign(size_t(out.width) * out.height, std::numeric_limits<double>::quiet_NaN());
-  warper_->warp(gt, out.width, out.height, "tile " + first.str(), out.heights.data());
+  const size_t samples = size_t(out.width) * out.height;
+  if (!plan_.warp_single) {
+    out.heights.assign(samples, std::numeric_limits<double>::quiet_NaN());
+    warper_->warp(gt, out.width, out.height, "tile " + first.str(), out.heights.data());
+    return;
+  }
+  single_.assign(samples, std::numeric_limits<float>::quiet_NaN());
+  warper_->warp(gt, out.width, out.height, "tile " + first.str(), single_.data());
+  out.heights.assign(single_.begin(), single_.end());
 }
 
 }  // namespace globe

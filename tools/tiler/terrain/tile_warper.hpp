@@ -44,6 +44,7 @@ class TileWarper {
   const DemPlan& plan_;
   std::vector<GdalDataset> opened_;  // the inputs; must outlive the wrappers
   std::unique_ptr<RasterWarper> warper_;
+  std::vector<float> single_;  // the window in single precision (plan.warp_single)
 };
 
 }  // namespace globe
