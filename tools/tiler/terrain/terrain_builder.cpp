@@ -170,8 +170,15 @@ class Builder {
     return TileId{id.z, static_cast<uint32_t>(x), static_cast<uint32_t>(y)};
   }
 
+  struct FinalOut {
+    std::vector<uint8_t> block, errors;  // both empty: the tile holds no data
+    std::vector<uint8_t> quarter;        // for the parent; empty at the coarsest zoom
+  };
   struct RawOut {
     std::vector<uint8_t> block, edges;  // both empty: no valid sample
+    // The finest zoom: the tile finished in its warp group (`block` empty),
+    // when the group holds the neighbours whose edges it takes.
+    std::optional<FinalOut> final;
   };
 
   // Pass 1: raw samples of every tile of zoom z, from item `first` on.
@@ -234,7 +241,10 @@ class Builder {
         [&](size_t i, std::vector<RawOut>&& outs) {
           for (size_t k = 0; k < outs.size(); ++k) {
             const TileId id = groups[i].members[k];
-            if (in_region(id))
+            if (in_region(id) && outs[k].final) {
+              stage.put(Stage::kEdges, id, outs[k].edges);  // for the neighbouring groups
+              store_final(stage, id, *outs[k].final);
+            } else if (in_region(id))
               store_raw(stage, id, outs[k]);
             else if (in_halo(id) && !outs[k].edges.empty())
               stage.put(kHaloEdges, id, outs[k].edges);
@@ -253,6 +263,12 @@ class Builder {
     stage.put(Stage::kRaw, id, out.block);
     stage.put(Stage::kEdges, id, out.edges);
   }
+  static void store_final(StagingStore& stage, TileId id, const FinalOut& out) {
+    if (out.block.empty()) return;
+    stage.put(Stage::kFinal, id, out.block);
+    stage.put(Stage::kNodeErrors, id, out.errors);
+    if (!out.quarter.empty()) stage.put(Stage::kQuarter, id, out.quarter);
+  }
 
   std::vector<RawOut> warp_group(TileId first, int cols, int rows,
                                  const std::vector<TileId>& members, int worker) {
@@ -262,7 +278,7 @@ class Builder {
     const int n = plan_.steps;
     const std::vector<double>& h = win.heights;
     const size_t stride = size_t(win.width);
-    std::vector<RawOut> outs;
+    std::vector<std::optional<Block>> blocks;  // per member; none without valid samples
     for (const TileId& id : members) {
       // Samples a tile does not own (the last column and row, where a
       // neighbour exists) stay invalid here and come from it in pass 2.
@@ -284,8 +300,36 @@ class Builder {
           b.valid[size_t(y) * size_ + x] = 1;
           ++valid;
         }
-      outs.push_back(valid == 0 ? RawOut{}
-                                : RawOut{encode_scratch(b, size_), pack_edges(b, size_)});
+      blocks.push_back(valid == 0 ? std::nullopt : std::optional<Block>(std::move(b)));
+    }
+    // Pass 2 here for each tile whose east, south and south-east neighbours
+    // (where they exist) are members: their first rows and columns are in
+    // `blocks`, so its raw block need not be staged. The rest wait for the
+    // neighbouring groups.
+    auto member = [&](TileId t) {
+      const auto it = std::find(members.begin(), members.end(), t);
+      return it == members.end() ? -1 : static_cast<int>(it - members.begin());
+    };
+    std::vector<RawOut> outs(members.size());
+    for (size_t k = 0; k < members.size(); ++k) {
+      if (!blocks[k]) continue;
+      outs[k].edges = pack_edges(*blocks[k], size_);
+    }
+    for (size_t k = 0; k < members.size(); ++k) {
+      if (!blocks[k]) continue;
+      const TileId id = members[k];
+      std::map<TileId, Block> edges;
+      bool inside = in_region(id);
+      for (auto [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}, std::pair{1, 1}})
+        if (auto nb = neighbour(id, dx, dy)) {
+          const int m = member(*nb);
+          inside = inside && m >= 0 && in_region(*nb);
+          if (inside && blocks[m]) edges.emplace(*nb, unpack_edges(outs[m].edges, size_));
+        }
+      if (inside)
+        outs[k].final = finalize(id, *blocks[k], edges, {});
+      else
+        outs[k].block = encode_scratch(*blocks[k], size_);
     }
     return outs;
   }
@@ -325,7 +369,7 @@ class Builder {
         }
       }
     if (valid == 0) return {};
-    return RawOut{encode_scratch(b, size_), pack_edges(b, size_)};
+    return RawOut{encode_scratch(b, size_), pack_edges(b, size_), std::nullopt};
   }
 
   // Pass 2: shared edges from the owners, hole filling, node errors.
@@ -358,14 +402,10 @@ class Builder {
           return in;
         },
         [&](size_t i, int, const Inputs& in) {
-          return finalize(tiles[i], in.raw.at(tiles[i]), in.edges, in.child_err);
+          return finalize(tiles[i], decode_scratch(in.raw.at(tiles[i])), in.edges, in.child_err);
         },
         [&](size_t i, FinalOut&& out) {
-          if (!out.block.empty()) {
-            stage.put(Stage::kFinal, tiles[i], out.block);
-            stage.put(Stage::kNodeErrors, tiles[i], out.errors);
-            if (!out.quarter.empty()) stage.put(Stage::kQuarter, tiles[i], out.quarter);
-          }
+          store_final(stage, tiles[i], out);
           progress_.advance();
         },
         [&](size_t done) {
@@ -422,15 +462,9 @@ class Builder {
     return e;
   }
 
-  struct FinalOut {
-    std::vector<uint8_t> block, errors;  // both empty: the tile holds no data
-    std::vector<uint8_t> quarter;        // for the parent; empty at the coarsest zoom
-  };
-  FinalOut finalize(TileId id, const std::vector<uint8_t>& raw,
-                    const std::map<TileId, Block>& edges,
+  FinalOut finalize(TileId id, Block b, const std::map<TileId, Block>& edges,
                     const std::map<TileId, std::vector<uint8_t>>& child_err) const {
     const int n = plan_.steps;
-    Block b = decode_scratch(raw);
     // The last column and row belong to the east / south neighbours (first
     // column / row there), the far corner to the first of the south-east,
     // east and south neighbours that exists; at the tiling's edges, where
