@@ -276,7 +276,6 @@ class Builder {
     TileWarper::Window win;
     warpers_[worker]->warp(first, cols, rows, win);
     const int n = plan_.steps;
-    const std::vector<double>& h = win.heights;
     const size_t stride = size_t(win.width);
     std::vector<std::optional<Block>> blocks;  // per member; none without valid samples
     for (const TileId& id : members) {
@@ -289,7 +288,7 @@ class Builder {
       size_t valid = 0;
       for (int y = 0; y < own.rows; ++y)
         for (int x = 0; x < own.cols; ++x) {
-          const double v = h[(oy + y) * stride + ox + x];
+          const double v = win.at((oy + y) * stride + ox + x);
           if (!std::isfinite(v)) continue;  // nodata, and infinite heights: holes
           const double qv = std::round(v / plan_.step_m);
           if (!(std::abs(qv) <= tileformat::kMaxQuantum))
@@ -302,6 +301,7 @@ class Builder {
         }
       blocks.push_back(valid == 0 ? std::nullopt : std::optional<Block>(std::move(b)));
     }
+    win = {};  // the blocks hold what is needed
     // Pass 2 here for each tile whose east, south and south-east neighbours
     // (where they exist) are members: their first rows and columns are in
     // `blocks`, so its raw block need not be staged. The rest wait for the
@@ -324,12 +324,14 @@ class Builder {
         if (auto nb = neighbour(id, dx, dy)) {
           const int m = member(*nb);
           inside = inside && m >= 0 && in_region(*nb);
-          if (inside && blocks[m]) edges.emplace(*nb, unpack_edges(outs[m].edges, size_));
+          if (inside && !outs[m].edges.empty())  // empty: no valid sample there
+            edges.emplace(*nb, unpack_edges(outs[m].edges, size_));
         }
       if (inside)
-        outs[k].final = finalize(id, *blocks[k], edges, {});
+        outs[k].final = finalize(id, std::move(*blocks[k]), edges, {});
       else
         outs[k].block = encode_scratch(*blocks[k], size_);
+      blocks[k].reset();
     }
     return outs;
   }

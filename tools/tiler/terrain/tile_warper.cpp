@@ -48,14 +48,15 @@ void TileWarper::warp(tileformat::TileId first, int cols, int rows, Window& out)
   // Pixel centres on the samples: the first centre is the tile's corner.
   const std::array<double, 6> gt = {b.min_x - sp / 2, sp, 0, b.max_y + sp / 2, 0, -sp};
   const size_t samples = size_t(out.width) * out.height;
-  if (!plan_.warp_single) {
+  if (plan_.warp_single) {
+    out.heights.clear();
+    out.single.assign(samples, std::numeric_limits<float>::quiet_NaN());
+    warper_->warp(gt, out.width, out.height, "tile " + first.str(), out.single.data());
+  } else {
+    out.single.clear();
     out.heights.assign(samples, std::numeric_limits<double>::quiet_NaN());
     warper_->warp(gt, out.width, out.height, "tile " + first.str(), out.heights.data());
-    return;
   }
-  single_.assign(samples, std::numeric_limits<float>::quiet_NaN());
-  warper_->warp(gt, out.width, out.height, "tile " + first.str(), single_.data());
-  out.heights.assign(single_.begin(), single_.end());
 }
 
 }  // namespace globe

@@ -33,9 +33,13 @@ class TileWarper {
   // data. Each sample is warped by exactly one tile, so samples shared by
   // neighbours cannot round to two different quanta. cols, rows <=
   // kMaxGroup. Throws InputError on read failures.
+  // Heights in the plan's working precision (plan.warp_single: `single`,
+  // else `heights`).
   struct Window {
     int width = 0, height = 0;
     std::vector<double> heights;
+    std::vector<float> single;
+    double at(size_t i) const { return single.empty() ? heights[i] : single[i]; }
   };
   void warp(tileformat::TileId first, int cols, int rows, Window& out);
   static constexpr int kMaxGroup = 4;
@@ -44,7 +48,6 @@ class TileWarper {
   const DemPlan& plan_;
   std::vector<GdalDataset> opened_;  // the inputs; must outlive the wrappers
   std::unique_ptr<RasterWarper> warper_;
-  std::vector<float> single_;  // the window in single precision (plan.warp_single)
 };
 
 }  // namespace globe
