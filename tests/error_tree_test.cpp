@@ -1,11 +1,13 @@
 // Error trees: exact zero on planes, exact deviation on a bump, saturation,
-// and identical edge-vertex errors computed from either side of an edge.
+// identical edge-vertex errors computed from either side of an edge, and every
+// node's error on rough terrain against a brute force over the node's samples.
 #include <gtest/gtest.h>
 
 #include <random>
 
 #include "terrain/error_tree.hpp"
 #include "tileformat/kpatch.hpp"
+#include "tileformat/mblock.hpp"
 
 using tileformat::KPatchLayout;
 
@@ -87,4 +89,112 @@ TEST(ErrorTree, EdgeVertexErrorsMatchAcrossNeighbours) {
         EXPECT_GE(centre, va[la.vedge_vertex(m, cy, cx)]);
         EXPECT_GE(centre, va[la.vedge_vertex(m, cy, cx + 1)]);
       }
+}
+
+namespace {
+
+// Brute force: each node's error is the largest |surface - sample| over the
+// valid samples in its closed triangle, rounded up to whole quanta, and then
+// the largest of its own and its descendants'. The surface is the node's
+// lattice (L steps along each leg, every cell split along the diagonal from
+// its second to its third corner); each sample is located by solving for its
+// lattice coordinates, so cell edges need no ownership rules (the surface is
+// continuous). Exact: coordinates times ww = |leg step|^2 are integers, and
+// 64 bits hold every product for these 65 x 65 blocks (ww <= 16).
+std::vector<uint32_t> brute_force_errors(const KPatchLayout& l, const std::vector<int32_t>& q,
+                                         const std::vector<uint8_t>& valid) {
+  const int size = l.steps() + 1, L = l.lattice();
+  const auto& nodes = l.nodes();
+  std::vector<uint32_t> err(nodes.size(), 0);
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    const auto& n = nodes[i];
+    if (n.depth == l.depth()) continue;  // draws every sample
+    const int ux = (n.b.x - n.apex.x) / L, uy = (n.b.y - n.apex.y) / L;
+    const int vx = (n.c.x - n.apex.x) / L, vy = (n.c.y - n.apex.y) / L;
+    const int64_t ww = ux * ux + uy * uy;
+    auto h = [&](int64_t ci, int64_t cj) {
+      return int64_t{q[(n.apex.y + ci * uy + cj * vy) * size + n.apex.x + ci * ux + cj * vx]};
+    };
+    int64_t worst = 0;
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) {
+        if (!valid.empty() && !valid[y * size + x]) continue;
+        const int64_t a = int64_t{x - n.apex.x} * ux + int64_t{y - n.apex.y} * uy;
+        const int64_t b = int64_t{x - n.apex.x} * vx + int64_t{y - n.apex.y} * vy;
+        if (a < 0 || b < 0 || a + b > L * ww) continue;  // outside the triangle
+        int64_t ci = std::min<int64_t>(a / ww, L - 1), cj = std::min<int64_t>(b / ww, L - 1);
+        if (ci + cj > L - 1) {  // on the hypotenuse: the cell below it
+          if (ci > 0)
+            --ci;
+          else
+            --cj;
+        }
+        const int64_t fa = a - ci * ww, fb = b - cj * ww;  // in [0, ww]
+        int64_t surface;                                   // times ww
+        if (fa + fb <= ww)
+          surface =
+              h(ci, cj) * ww + fa * (h(ci + 1, cj) - h(ci, cj)) + fb * (h(ci, cj + 1) - h(ci, cj));
+        else
+          surface = h(ci + 1, cj + 1) * ww + (ww - fb) * (h(ci + 1, cj) - h(ci + 1, cj + 1)) +
+                    (ww - fa) * (h(ci, cj + 1) - h(ci + 1, cj + 1));
+        int64_t d = surface - int64_t{q[y * size + x]} * ww;
+        worst = std::max(worst, d < 0 ? -d : d);
+      }
+    err[i] = static_cast<uint32_t>((worst + ww - 1) / ww);
+  }
+  for (size_t i = nodes.size(); i-- > 0;)  // children follow their parents
+    for (int32_t c : nodes[i].children)
+      if (c >= 0) err[i] = std::max(err[i], err[c]);
+  return err;
+}
+
+// Random heights within +-amplitude, or (bowl) a paraboloid of that depth
+// with +-3 quanta of noise: there the coarse nodes' own errors are the
+// largest, so saturation from below cannot hide a wrong one.
+void expect_brute_force(int32_t amplitude, unsigned seed, bool holes, bool bowl = false) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int32_t> height(-amplitude, amplitude), noise(-3, 3);
+  std::vector<int32_t> q(kSize * kSize);
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const double r2 = (x - 29.0) * (x - 29.0) + (y - 37.0) * (y - 37.0);
+      q[y * kSize + x] =
+          bowl ? static_cast<int32_t>(amplitude * (r2 / 4096.0 - 1.0)) + noise(rng) : height(rng);
+    }
+  std::vector<uint8_t> valid;
+  if (holes) {
+    valid.assign(q.size(), 1);
+    for (auto& v : valid)
+      v = rng() % 5 != 0;
+  }
+  for (int diagonal : {0, 1}) {
+    const KPatchLayout l(kSteps, 16, diagonal);
+    const auto got = globe::node_errors(l, q, valid, {});
+    const auto want = brute_force_errors(l, q, valid);
+    ASSERT_EQ(got.size(), want.size());
+    for (size_t i = 0; i < got.size(); ++i)
+      ASSERT_EQ(got[i], want[i]) << "node " << i << " depth " << l.nodes()[i].depth
+                                 << ", heights within +-" << amplitude << (bowl ? " (bowl)" : "");
+  }
+}
+
+}  // namespace
+
+// Heights of a few metres, of tens of kilometres at a centimetre step (the
+// arithmetic in 32 bits at every depth), of 2^25 quanta (64 bits at the
+// coarsest depths, 32 below) and of the largest quantum the format allows.
+TEST(ErrorTree, EveryNodeMatchesBruteForceOnRoughTerrain) {
+  expect_brute_force(300, 1, false);
+  expect_brute_force(300, 8, false, true);
+  expect_brute_force(int32_t{1} << 28, 9, false, true);
+  expect_brute_force(3'000'000, 2, false);
+  expect_brute_force(int32_t{1} << 25, 3, false);
+  expect_brute_force(tileformat::kMaxQuantum, 4, false);
+}
+
+TEST(ErrorTree, EveryNodeMatchesBruteForceWithHoles) {
+  expect_brute_force(300, 5, true);
+  expect_brute_force(300, 10, true, true);
+  expect_brute_force(int32_t{1} << 25, 6, true);
+  expect_brute_force(tileformat::kMaxQuantum, 7, true);
 }

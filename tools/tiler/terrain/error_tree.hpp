@@ -37,8 +37,10 @@ std::vector<uint32_t> vertex_errors(const tileformat::KPatchLayout& layout,
                                     const Neighbourhood& nb);
 
 // Exact max deviation (quanta) of node `index` drawn as its lattice from the
-// valid samples under it.
+// valid samples under it; max_abs_q bounds |q| over the block (it picks the
+// width of the arithmetic, not the result).
 double lattice_deviation(const tileformat::KPatchLayout& layout, size_t index,
-                         const std::vector<int32_t>& q, const std::vector<uint8_t>& valid);
+                         const std::vector<int32_t>& q, const std::vector<uint8_t>& valid,
+                         int64_t max_abs_q);
 
 }  // namespace globe
