@@ -203,9 +203,14 @@ std::vector<uint8_t> residual_section(const std::vector<uint32_t>& residual, int
   w.u32(count);
   // Packing has done most of the modelling: above level 6 zstd gains 0.4 %
   // on these streams for 35 % more time (measured on etopo20, a 5' global
-  // grid and a synthetic 10 m DEM).
+  // grid and a synthetic 10 m DEM). Two-bit residuals take only matches of 6
+  // bytes (24 residuals) or more: 1.3-2.0 % smaller streams on jacksboro, the
+  // 5' grids and the synthetic DEM, in about the same time. Four-bit ones
+  // keep the level's own search: it is better on smooth grids, worse on rough
+  // ones, and no cheap test told them apart (2026-11-28).
   const int packed_level = std::min(level, kMaxPackedLevel);
-  auto main = zstd_compress(packed, packed_level);
+  auto main = zstd_compress(packed, packed_level,
+                            coding == 2 ? ZstdSearch::kLongMatches : ZstdSearch::kLevelDefault);
   w.u32(static_cast<uint32_t>(main.size()));
   w.bytes(main);
   auto exc = zstd_compress(exceptions, packed_level);

@@ -36,6 +36,8 @@ std::vector<uint8_t> zstd_compress(std::span<const uint8_t> in, int level, ZstdS
   if (search == ZstdSearch::kLazy) {
     check(ZSTD_CCtx_setParameter(c, ZSTD_c_strategy, ZSTD_lazy));
     check(ZSTD_CCtx_setParameter(c, ZSTD_c_minMatch, 4));
+  } else if (search == ZstdSearch::kLongMatches) {
+    check(ZSTD_CCtx_setParameter(c, ZSTD_c_minMatch, 6));
   }
   const size_t n = ZSTD_compress2(c, out.data(), out.size(), in.data(), in.size());
   check(n);
