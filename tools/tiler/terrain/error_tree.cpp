@@ -107,8 +107,9 @@ double lattice_deviation(const KPatchLayout& layout, size_t index, const std::ve
   const Point wu{(n.b.x - n.apex.x) / L, (n.b.y - n.apex.y) / L};
   const Point wv{(n.c.x - n.apex.x) / L, (n.c.y - n.apex.y) / L};
   const LatticePattern& p = pattern(wu, wv, size);
-  // |corner * ww| + |a * da| + |b * db| + |h * ww| <= 6 * ww * max|q|, as a,
-  // b < ww and |da|, |db| <= 2 * max|q|: int32_t holds every term and sum below.
+  // |corner * ww| + |s.a * da| + |s.b * db| + |h * ww| <= 6 * ww * max|q|, as
+  // the weights s.a, s.b are at most ww and |da|, |db| <= 2 * max|q|: below
+  // 2^31, int32_t holds every term and partial sum.
   const bool narrow = 6 * p.ww * max_abs_q < (int64_t{1} << 31);
   const int64_t d = narrow ? scaled_deviation<int32_t>(n, p, L, size, q, valid)
                            : scaled_deviation<int64_t>(n, p, L, size, q, valid);
