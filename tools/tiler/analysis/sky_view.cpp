@@ -136,8 +136,6 @@ void SkyViewScan::row(const HeightLevels& levels, int y, int size, double* out) 
       a = lo;
       b = hi;
       if (a > b) break;
-      const float* r0 = w.row(yy) + s.ix;
-      const float* r1 = w.row(yy + 1) + s.ix;
       const float tx = float(s.tx), ty = float(s.ty), inv = float(s.inv_distance);
       const int c0 = a + s.ix, c1 = b + s.ix + 1;  // the window columns read
       // What the kernels touch: samples a..b of the row's vectors, columns
@@ -148,7 +146,8 @@ void SkyViewScan::row(const HeightLevels& levels, int y, int size, double* out) 
       const size_t count = size_t(b - a + 1);
       if (!w.all_valid(yy, c0, c1) || !w.all_valid(yy + 1, c0, c1))
         end_rays(w.valid_row(yy) + c0, w.valid_row(yy + 1) + c0, ended.data() + a, count, kNever);
-      step_tangents(r0 + a, r1 + a, h0 + a, ended.data() + a, best.data() + a, count, tx, ty, inv);
+      step_tangents(w.row(yy) + c0, w.row(yy + 1) + c0, h0 + a, ended.data() + a, best.data() + a,
+                    count, tx, ty, inv);
     }
     for (size_t x = 0; x < n; ++x) {
       if (ended[x] == 0 && left[x] != kAtOwnZoom) {  // on in the coarser zooms
