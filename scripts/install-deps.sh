@@ -11,8 +11,8 @@ packages=(
   clang libclang-rt-14-dev
   # libraries (see README "Dependencies")
   libgdal-dev libproj-dev libtiff-dev libzstd-dev libsqlite3-dev libpng-dev zlib1g-dev
-  # globe-serve: HTTP from cpp-httplib
-  libcpp-httplib-dev
+  # globe-serve: HTTP from GNU libmicrohttpd (docs/serve.md "HTTP")
+  libmicrohttpd-dev
   # viewer image tile decoding without GDAL
   libjpeg62-turbo-dev libwebp-dev
   googletest libgtest-dev
@@ -20,6 +20,8 @@ packages=(
   libglm-dev libglfw3-dev libosmesa6-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   # command-line tools used by samples/fetch.sh, tests and benchmarks
   gdal-bin sqlite3 unzip ca-certificates curl time bc xz-utils
+  # tests/http_conformance/: the clients globe-serve is checked through
+  wget
   # tests/data/hostile/make_hostile.sh, samples/fetch.sh's conversions
   python3
   # gdal2tiles.py (imagery benchmark peer)

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <fstream>
 
+#include "serve/http_semantics.hpp"
 #include "serve/url_route.hpp"
 #include "tileformat/analysis_block.hpp"
 #include "tileformat/error.hpp"
@@ -176,6 +177,24 @@ void url_route(std::span<const uint8_t> data) {
     for (char c : r.name)
       if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-'))
         fail("url_route: a package name with a character outside [A-Za-z0-9._-]");
+  // The same bytes as request header values (http_semantics.hpp): ranges
+  // always inside the body, never more bytes than it has unless single.
+  namespace http = globe::serve::http;
+  for (const uint64_t size :
+       {uint64_t{0}, uint64_t{1}, uint64_t{6000}, data.size() + uint64_t{1}}) {
+    const http::RangeRequest rr = http::parse_range(path, size);
+    uint64_t total = 0;
+    for (const http::ByteRange& b : rr.ranges) {
+      if (b.first > b.last || b.last >= size) fail("http_semantics: a range outside the body");
+      total += b.length();
+    }
+    if (rr.kind == http::RangeRequest::Kind::kRanges &&
+        (rr.ranges.empty() || (rr.ranges.size() > 1 && total > size)))
+      fail("http_semantics: an empty or amplifying range set");
+  }
+  http::none_match_fails(path, "\"abc\"");
+  http::if_range_holds(path, "\"abc\"", "Sun, 29 Nov 2026 00:00:00 GMT");
+  http::accepts_gzip(path);
 }
 
 }  // namespace globe_fuzz

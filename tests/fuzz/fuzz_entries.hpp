@@ -27,7 +27,9 @@ void point_tile(std::span<const uint8_t> data);
 void analysis_block(std::span<const uint8_t> data);
 // The bytes as a request path for globe-serve's parse_route: never throws;
 // a tile route has a zoom <= 30 and a valid name; a library path has no
-// "." or ".." segment; anything else is a 400 or 404.
+// "." or ".." segment; anything else is a 400 or 404. The same bytes as
+// request header values (Range, If-None-Match, If-Range, Accept-Encoding):
+// ranges inside the body, never an amplifying set.
 void url_route(std::span<const uint8_t> data);
 // The bytes as a package file at `scratch_path`: open, read the metadata,
 // summaries, and every tile, decoding it by the package's format.

@@ -1,9 +1,12 @@
-// The one wrapper of cpp-httplib (Debian's libcpp-httplib-dev): an HTTP/1.1
-// server on one address and port, a pool of worker threads, every request
-// (any method, any path) handed to one handler as plain structs. Byte ranges
-// (206, 416) are applied by the library to whatever the handler answers;
-// read and write timeouts bound slow clients; the library bounds the request
-// line and each header to 8 KiB.
+// The one wrapper of GNU libmicrohttpd (Debian's libmicrohttpd-dev): an
+// HTTP/1.1 server on one address and port, a pool of worker threads each
+// polling its share of the connections (epoll), every request (any method,
+// any path) handed to one handler as plain structs. The library moves bytes
+// only: it parses requests, bounds their size and time, keeps connections
+// alive, drops the body of HEAD answers and writes Content-Length. What the
+// answer means — ranges, conditionals, gzip, ETags — is the handler's
+// (request_handler.cpp with http_semantics.hpp), so it is written once and
+// tested without a network (docs/serve.md "HTTP" says why this library).
 #pragma once
 
 #include <cstdint>
@@ -20,12 +23,16 @@ struct HttpRequest {
   std::string method;                          // "GET", "HEAD", ...
   std::string path;                            // percent-decoded, no query
   std::map<std::string, std::string> query;    // decoded parameters
-  std::map<std::string, std::string> headers;  // names in lower case
+  std::map<std::string, std::string> headers;  // names in lower case; repeats joined by ", "
   std::string header(const std::string& lower_name) const {
     const auto it = headers.find(lower_name);
     return it == headers.end() ? std::string() : it->second;
   }
 };
+
+// Reads up to `length` bytes at `offset` into `out`; the count read (0 at the
+// end), or -1 on an error.
+using StreamReader = std::function<int64_t(uint64_t offset, char* out, uint64_t length)>;
 
 struct HttpResponse {
   int status = 200;
@@ -33,19 +40,24 @@ struct HttpResponse {
   std::string body;
   std::vector<std::pair<std::string, std::string>> headers;
   bool compressible = false;  // gzip it for clients that accept gzip
-  // A body read on demand (a large file): its size and a reader of
-  // [offset, offset + length) into `out`; returns false on a read error.
+  // A body read on demand (a file) instead of `body`: the representation's
+  // size and its reader; the bytes sent are [send_offset, send_offset +
+  // send_length) (the whole file until a range says otherwise).
   uint64_t stream_size = 0;
-  std::function<bool(uint64_t offset, uint64_t length, std::string& out)> stream;
+  StreamReader stream;
+  uint64_t send_offset = 0, send_length = 0;
+  // Validators of a streamed file, from its identity (size, time), set by
+  // whoever opened it; in-memory bodies get an ETag from their bytes.
+  std::string etag, last_modified;
 };
 
 struct HttpServerOptions {
   std::string bind = "127.0.0.1";
   int port = 8080;  // 0: any free port
-  // The library gives each connection a thread for its whole keep-alive
-  // life: threads bound the connections served at once, not the cores used.
-  int threads = 64;
-  int timeout_s = 10;  // read and write timeouts
+  // Worker threads, each polling its share of the connections: they bound
+  // the requests worked on at once (and their memory), not the connections.
+  int threads = 2;
+  int timeout_s = 10;  // a connection idle this long (mid-request too) is closed
 };
 
 class HttpServer {
@@ -53,8 +65,8 @@ class HttpServer {
   using Handler = std::function<HttpResponse(const HttpRequest&)>;
   HttpServer(const HttpServerOptions& options, Handler handler);
   ~HttpServer();
-  // Binds; returns the port. Throws std::runtime_error naming the address
-  // when it cannot.
+  // Binds and listens; returns the port. Throws std::runtime_error naming the
+  // address when it cannot.
   int bind();
   // Serves until stop() (from another thread or a signal handler's thread).
   void run();

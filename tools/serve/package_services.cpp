@@ -1,7 +1,6 @@
 // The services of the package kinds (see package_services.hpp).
 #include "serve/package_services.hpp"
 
-#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -20,6 +19,7 @@
 #include "runtime/package_open.hpp"
 #include "runtime/point_package.hpp"
 #include "runtime/terrain_package.hpp"
+#include "serve/file_body.hpp"
 #include "tileformat/image_tile.hpp"
 #include "tileformat/json.hpp"
 #include "web/line_mvt.hpp"
@@ -332,19 +332,17 @@ class PointService : public PackageService {
   std::mutex mutex_;
 };
 
-// A PMTiles v3 archive: its bytes, read on demand (ranges by the HTTP layer).
+// A PMTiles v3 archive: its bytes, read on demand (ranges, validators:
+// file_body.hpp and the request handler).
 class PmtilesService : public PackageService {
  public:
-  PmtilesService(const std::string& path, const std::string& name) : path_(path), name_(name) {
-    fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd_ < 0) throw InputError(path + ": cannot open (" + std::strerror(errno) + ")");
+  PmtilesService(const std::string& path, const std::string& name)
+      : file_(OpenFile::open(path)), name_(name) {
+    if (!file_) throw InputError(path + ": cannot open (" + std::strerror(errno) + ")");
     unsigned char h[127];
-    if (::pread(fd_, h, sizeof h, 0) != ssize_t(sizeof h) || std::memcmp(h, "PMTiles", 7) != 0 ||
-        h[7] != 3) {
-      ::close(fd_);
+    if (::pread(file_->fd(), h, sizeof h, 0) != ssize_t(sizeof h) ||
+        std::memcmp(h, "PMTiles", 7) != 0 || h[7] != 3)
       throw InputError(path + ": not a PMTiles v3 archive (the header's magic or version)");
-    }
-    size_ = uint64_t(::lseek(fd_, 0, SEEK_END));
     auto i32 = [&](int at) {
       return int32_t(uint32_t(h[at]) | uint32_t(h[at + 1]) << 8 | uint32_t(h[at + 2]) << 16 |
                      uint32_t(h[at + 3]) << 24);
@@ -352,7 +350,6 @@ class PmtilesService : public PackageService {
     min_zoom = h[100], max_zoom = h[101];
     west = i32(102) / 1e7, south = i32(106) / 1e7, east = i32(110) / 1e7, north = i32(114) / 1e7;
   }
-  ~PmtilesService() override { ::close(fd_); }
   std::string kind() const override { return "pmtiles"; }
   HttpResponse tilejson(const std::string&, const HttpRequest&) override {
     return text_response(404, name_ +
@@ -363,24 +360,12 @@ class PmtilesService : public PackageService {
   HttpResponse answer(const Route& r, const HttpRequest&, const std::string&) override {
     if (r.kind != Route::Kind::kPmtiles)
       return text_response(404, name_ + " is a PMTiles archive: /" + name_ + ".pmtiles");
-    HttpResponse out;
-    out.content_type = "application/vnd.pmtiles";
-    out.stream_size = size_;
-    const int fd = fd_;
-    out.stream = [fd](uint64_t offset, uint64_t length, std::string& chunk) {
-      chunk.resize(length);
-      const ssize_t n = ::pread(fd, chunk.data(), length, off_t(offset));
-      if (n <= 0) return false;
-      chunk.resize(size_t(n));
-      return true;
-    };
-    return out;
+    return file_response(file_, "application/vnd.pmtiles");
   }
 
  private:
-  std::string path_, name_;
-  int fd_ = -1;
-  uint64_t size_ = 0;
+  std::shared_ptr<const OpenFile> file_;
+  std::string name_;
 };
 
 }  // namespace

@@ -1,14 +1,13 @@
 // Requests to answers (see request_handler.hpp).
 #include "serve/request_handler.hpp"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <span>
 
+#include "serve/file_body.hpp"
+#include "serve/http_semantics.hpp"
 #include "serve/preview_pages.hpp"
 #include "serve/url_route.hpp"
 #include "tileformat/fnv1a.hpp"
@@ -45,34 +44,6 @@ std::string host_of(const HttpRequest& req, const std::string& fallback) {
   return h;
 }
 
-// Whether a Range header can be satisfied from `size` bytes (RFC 9110
-// 14.1.2: some range starts before the end, or a suffix range is not
-// empty). The HTTP library slices the body but, for bodies read on demand,
-// does not refuse ranges past the end.
-bool satisfiable(const std::string& range, uint64_t size) {
-  if (range.rfind("bytes=", 0) != 0) return true;  // not a byte range: ignored
-  size_t at = 6;
-  while (at <= range.size()) {
-    const size_t comma = range.find(',', at);
-    std::string part =
-        range.substr(at, comma == std::string::npos ? std::string::npos : comma - at);
-    part.erase(0, part.find_first_not_of(' '));
-    const size_t dash = part.find('-');
-    if (dash != std::string::npos) {
-      const std::string first = part.substr(0, dash), last = part.substr(dash + 1);
-      const bool digits = first.find_first_not_of("0123456789") == std::string::npos &&
-                          last.find_first_not_of("0123456789") == std::string::npos &&
-                          first.size() <= 19 && last.size() <= 19;
-      if (digits && first.empty() && !last.empty() && std::stoull(last) > 0 && size > 0)
-        return true;
-      if (digits && !first.empty() && std::stoull(first) < size) return true;
-    }
-    if (comma == std::string::npos) break;
-    at = comma + 1;
-  }
-  return false;
-}
-
 }  // namespace
 
 RequestHandler::RequestHandler(PackageRegistry& registry, HandlerOptions options)
@@ -93,22 +64,10 @@ HttpResponse RequestHandler::library_file(const std::string& file) {
       p[lib_root_.size()] != '/')
     return text_response(404, "no such library file");
   if (!fs::is_regular_file(path, ec)) return text_response(404, "no such library file");
-  const uint64_t size = fs::file_size(path, ec);
-  if (ec || size > (uint64_t{256} << 20)) return text_response(404, "no such library file");
-  HttpResponse out;
-  out.content_type = content_type_of(path);
-  out.stream_size = size;
+  const std::shared_ptr<const OpenFile> f = OpenFile::open(path.string());
+  if (!f || f->size() > (uint64_t{256} << 20)) return text_response(404, "no such library file");
+  HttpResponse out = file_response(f, content_type_of(path));
   out.headers.push_back({"Cache-Control", "public, max-age=86400"});
-  out.stream = [p](uint64_t offset, uint64_t length, std::string& chunk) {
-    const int fd = ::open(p.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) return false;
-    chunk.resize(length);
-    const ssize_t n = ::pread(fd, chunk.data(), length, off_t(offset));
-    ::close(fd);
-    if (n <= 0) return false;
-    chunk.resize(size_t(n));
-    return true;
-  };
   return out;
 }
 
@@ -147,56 +106,147 @@ HttpResponse RequestHandler::route(const HttpRequest& req) {
   return found.service->answer(r, req, base);
 }
 
+namespace {
+
+bool has_header(const HttpResponse& r, const char* name) {
+  for (const auto& [k, v] : r.headers)
+    if (k == name) return true;
+  return false;
+}
+
+// The bytes [first, last] of the answer's body, streamed or in memory.
+bool body_slice(const HttpResponse& r, const http::ByteRange& range, std::string& out) {
+  if (!r.stream) {
+    out = r.body.substr(size_t(range.first), size_t(range.length()));
+    return true;
+  }
+  out.resize(size_t(range.length()));
+  for (uint64_t got = 0; got < range.length();) {
+    const int64_t n = r.stream(range.first + got, out.data() + got, range.length() - got);
+    if (n <= 0) return false;
+    got += uint64_t(n);
+  }
+  return true;
+}
+
+// Multipart answers are assembled in memory; past this a file's ranges are
+// answered with the whole file instead (RFC 9110 §14.2 allows ignoring Range).
+constexpr uint64_t kMultipartBytes = uint64_t{16} << 20;
+
+}  // namespace
+
+// RFC 9110 on a 200 answer with a body (docs/serve.md "HTTP"): the
+// representation (gzip or not), its validators and caching, then
+// If-None-Match (304), then Range with If-Range (206, multipart, 416). Only
+// GET takes ranges; HEAD gets GET's headers (the library drops the body).
+void RequestHandler::finish(const HttpRequest& req, HttpResponse& out) {
+  const bool gzip =
+      out.compressible && !out.stream && http::accepts_gzip(req.header("accept-encoding"));
+  if (!out.stream) {
+    const std::span<const uint8_t> bytes(reinterpret_cast<const uint8_t*>(out.body.data()),
+                                         out.body.size());
+    char tag[40];
+    std::snprintf(tag, sizeof tag, "\"%016llx%s\"",
+                  static_cast<unsigned long long>(tileformat::fnv1a(bytes)), gzip ? "-gz" : "");
+    out.etag = tag;
+  }
+  if (!out.etag.empty()) out.headers.push_back({"ETag", out.etag});
+  if (!has_header(out, "Cache-Control"))
+    out.headers.push_back({"Cache-Control", "public, max-age=60"});
+  if (out.compressible) out.headers.push_back({"Vary", "Accept-Encoding"});
+  if (gzip) {
+    const std::vector<uint8_t> z =
+        web::gzip({reinterpret_cast<const uint8_t*>(out.body.data()), out.body.size()}, 6);
+    out.body.assign(z.begin(), z.end());
+    out.headers.push_back({"Content-Encoding", "gzip"});
+  }
+  if (http::none_match_fails(req.header("if-none-match"), out.etag)) {
+    // 304: the validators and caching fields (RFC 9110 §15.4.5), no body;
+    // its Content-Length, if any, must be what the 200 would send (§8.6):
+    // the HTTP layer writes send_length there.
+    std::vector<std::pair<std::string, std::string>> kept;
+    for (auto& h : out.headers)
+      if (h.first == "ETag" || h.first == "Cache-Control" || h.first == "Vary")
+        kept.push_back(std::move(h));
+    out.status = 304;
+    out.send_length = out.stream ? out.stream_size : out.body.size();
+    out.headers = std::move(kept);
+    out.body.clear();
+    out.stream = nullptr;
+    out.content_type.clear();
+    return;
+  }
+  if (!out.last_modified.empty()) out.headers.push_back({"Last-Modified", out.last_modified});
+  out.headers.push_back({"Accept-Ranges", "bytes"});
+  const std::string range = req.header("range");
+  if (req.method != "GET" || range.empty() ||
+      !http::if_range_holds(req.header("if-range"), out.etag, out.last_modified))
+    return;
+  const uint64_t size = out.stream ? out.stream_size : out.body.size();
+  const http::RangeRequest r = http::parse_range(range, size);
+  if (r.kind == http::RangeRequest::Kind::kWhole) return;
+  if (r.kind == http::RangeRequest::Kind::kUnsatisfiable) {
+    HttpResponse refused = text_response(
+        416, "range not satisfiable: the body has " + std::to_string(size) + " bytes");
+    refused.headers = {{"Content-Range", http::unsatisfied_range(size)}, {"ETag", out.etag}};
+    out = std::move(refused);
+    return;
+  }
+  if (r.ranges.size() == 1) {
+    const http::ByteRange& one = r.ranges.front();
+    out.status = 206;
+    out.headers.push_back({"Content-Range", http::content_range(one, size)});
+    if (out.stream) {
+      out.send_offset = one.first;
+      out.send_length = one.length();
+    } else {
+      out.body = out.body.substr(size_t(one.first), size_t(one.length()));
+    }
+    return;
+  }
+  uint64_t total = 0;
+  for (const http::ByteRange& b : r.ranges)
+    total += b.length();
+  if (total > kMultipartBytes) return;
+  std::vector<std::string> parts(r.ranges.size());
+  for (size_t i = 0; i < parts.size(); ++i)
+    if (!body_slice(out, r.ranges[i], parts[i])) {
+      out = text_response(500, "cannot read the file");
+      return;
+    }
+  std::string boundary;
+  std::string body = http::multipart_byteranges(r.ranges, parts, size, out.content_type, boundary);
+  out.status = 206;
+  out.stream = nullptr;
+  out.body = std::move(body);
+  out.content_type = "multipart/byteranges; boundary=" + boundary;
+}
+
 HttpResponse RequestHandler::operator()(const HttpRequest& req) {
   const auto start = std::chrono::steady_clock::now();
   HttpResponse out;
   if (req.method == "OPTIONS") {
     out = text_response(204, "");
     out.headers.push_back({"Access-Control-Allow-Methods", "GET, HEAD, OPTIONS"});
-    out.headers.push_back(
-        {"Access-Control-Allow-Headers", "Range, Accept, Accept-Encoding, If-None-Match"});
+    out.headers.push_back({"Access-Control-Allow-Headers",
+                           "Range, Accept, Accept-Encoding, If-None-Match, If-Range"});
   } else if (req.method != "GET" && req.method != "HEAD") {
     out = text_response(405, req.method + " is not served; GET and HEAD are");
     out.headers.push_back({"Allow", "GET, HEAD, OPTIONS"});
   } else {
     out = route(req);
   }
-  if (out.stream && !req.header("range").empty() &&
-      !satisfiable(req.header("range"), out.stream_size)) {
-    const uint64_t size = out.stream_size;
-    out = text_response(416, "");
-    out.headers.push_back({"Content-Range", "bytes */" + std::to_string(size)});
-  }
+  if (out.status == 200 && (out.stream || !out.body.empty())) finish(req, out);
+  if (out.status == 204) out.content_type.clear();
   out.headers.push_back({"Access-Control-Allow-Origin", "*"});
-  out.headers.push_back({"Access-Control-Expose-Headers", "ETag, Content-Range, Content-Length"});
-  if (out.status == 200 && !out.stream && !out.body.empty()) {
-    const bool gzip =
-        out.compressible && req.header("accept-encoding").find("gzip") != std::string::npos;
-    const std::span<const uint8_t> bytes(reinterpret_cast<const uint8_t*>(out.body.data()),
-                                         out.body.size());
-    char tag[40];
-    std::snprintf(tag, sizeof tag, "\"%016llx%s\"",
-                  static_cast<unsigned long long>(tileformat::fnv1a(bytes)), gzip ? "-gz" : "");
-    out.headers.push_back({"ETag", tag});
-    bool has_cache_control = false;
-    for (const auto& [k, v] : out.headers)
-      has_cache_control = has_cache_control || k == "Cache-Control";
-    if (!has_cache_control) out.headers.push_back({"Cache-Control", "public, max-age=60"});
-    if (out.compressible) out.headers.push_back({"Vary", "Accept-Encoding"});
-    if (req.header("if-none-match") == tag) {
-      out.status = 304;
-      out.body.clear();
-    } else if (gzip) {
-      const std::vector<uint8_t> z = web::gzip(bytes, 6);
-      out.body.assign(z.begin(), z.end());
-      out.headers.push_back({"Content-Encoding", "gzip"});
-    }
-  }
+  out.headers.push_back(
+      {"Access-Control-Expose-Headers", "ETag, Content-Range, Content-Length, Accept-Ranges"});
   if (options_.log) {
     const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    std::fprintf(stderr, "%s %s %d %zu %.1f ms\n", req.method.c_str(), req.path.c_str(), out.status,
-                 out.stream ? size_t(out.stream_size) : out.body.size(), ms);
+    std::fprintf(
+        stderr, "%s %s %d %llu %.1f ms\n", req.method.c_str(), req.path.c_str(), out.status,
+        static_cast<unsigned long long>(out.stream ? out.send_length : out.body.size()), ms);
   }
   return out;
 }

@@ -1,6 +1,7 @@
 // Every request globe-serve answers (docs/serve.md): the route, then the
-// package service or page; and what every answer carries: CORS, ETag (with
-// 304 for If-None-Match), Cache-Control, gzip for clients that accept it.
+// package service or page; and what every answer carries: CORS, and on an
+// answer with a body its ETag, Cache-Control, gzip for clients that accept
+// it, 304 for If-None-Match, byte ranges with If-Range (http_semantics.hpp).
 #pragma once
 
 #include <string>
@@ -27,6 +28,7 @@ class RequestHandler {
  private:
   HttpResponse route(const HttpRequest& request);
   HttpResponse library_file(const std::string& file);
+  static void finish(const HttpRequest& request, HttpResponse& answer);
 
   PackageRegistry& registry_;
   HandlerOptions options_;
