@@ -249,6 +249,57 @@ TEST(Serve, HttpContractEtagCorsRangesPages) {
   EXPECT_EQ(http_get(port, "/lib/demo/escape.js").status, 404) << "a symlink out of the libraries";
 }
 
+// The HTTP contract as the clients people use meet it (issue 55): the
+// black-box checker tests/http_conformance/check_http.py, written from RFC
+// 9110 without the server's code (and itself proven against nginx), runs
+// its cases — ranges past the end, suffix and open ranges, 416, several
+// ranges, If-Range, HEAD, If-None-Match lists, gzip once — over raw
+// HTTP/1.1, curl, wget, Python urllib and GDAL's /vsicurl/ against every
+// kind of answer: a PMTiles archive under pmtiles.js's 16 KiB first read
+// and a large one, tiles cut on the fly and stored, MVT, JSON, pages and a
+// library file.
+TEST(Serve, ClientsPeopleUseGetRfc9110Answers) {
+  TempDir dir("serve-rfc");
+  const fs::path pkg = dir / "surf.mbtiles";
+  fs::copy_file(surface_dem() / "geodetic.mbtiles", pkg);
+  const fs::path& v = vector_packages();
+  ASSERT_TRUE(
+      run_all({tiler() + " export -q " + (surface_dem() / "mercator.mbtiles").string() +
+                   " --format terrarium -o " + (dir / "dem.pmtiles").string(),
+               vectorize() + " export -q " + (v / "roads.mbtiles").string() + " -o " +
+                   (dir / "small.pmtiles").string(),
+               "gdal_translate -q -ot Byte -scale " + (surface_dem() / "surface.tif").string() +
+                   " " + (dir / "gray.tif").string(),
+               tiler() + " imagery -q " + (dir / "gray.tif").string() + " --format png -o " +
+                   (dir / "img.mbtiles").string()},
+              dir.path()));
+  ASSERT_LT(fs::file_size(dir / "small.pmtiles"), 16384u)
+      << "must be under pmtiles.js's first read";
+  fs::create_directories(dir / "libs" / "demo");
+  std::ofstream(dir / "libs" / "demo" / "lib.js") << "export const x = 1;\n";
+  ServeProcess server({pkg.string(), (dir / "dem.pmtiles").string(),
+                       (dir / "small.pmtiles").string(), (dir / "img.mbtiles").string(),
+                       (v / "roads.mbtiles").string(), "--web-libs", (dir / "libs").string()},
+                      dir.path());
+  ASSERT_GT(server.port(), 0) << server.log();
+  const std::string base = "http://127.0.0.1:" + std::to_string(server.port());
+  const std::string dem = "/dem.pmtiles=" + (dir / "dem.pmtiles").string();
+  const std::string small = "/small.pmtiles=" + (dir / "small.pmtiles").string();
+  const RunResult r = run(
+      "python3 " + std::string(GLOBE_SOURCE_DIR) + "/tests/http_conformance/check_http.py --base " +
+          base + " --timeout 10 --clients raw,curl,wget,urllib,gdal --gdalinfo /img/0/0/0.png" +
+          " --gdal-read " + small + " --gdal-read " + dem + " " + small + " " + dem +
+          " /surf.json /surf/layer.json /surf/0/1/0.terrain '/surf/0/1/0.terrain?extensions="
+          "octvertexnormals' '/surf/0/0/0.png?encoding=terrarium' /img/0/0/0.png"
+          " /roads/4/8/5.pbf /roads/style.json /roads.json / '/view/cesium.html?pkg=surf'"
+          " /lib/demo/lib.js",
+      dir.path());
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find(" passed, 0 failed"), std::string::npos) << r.out;
+  std::cerr << "check_http.py: " << r.out.substr(r.out.rfind('\n', r.out.size() - 2) + 1);
+  ASSERT_TRUE(server.alive()) << server.log();
+}
+
 // A hostile corpus against a running server: traversal in every spelling,
 // overlong request lines and headers, bad ranges, huge and non-numeric
 // coordinates, junk bytes, half-closed and silent connections. Nothing
