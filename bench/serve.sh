@@ -13,13 +13,18 @@
 #   synthetic: the 4096^2 DEM (bench/make_synthetic_dem.cpp), webmercator
 #   bluemarble: samples/data/bluemarble.tif as JPEG image tiles
 #   airways: samples/data/airways.geojson as a line package, zooms 0..8
+#   * memory: 100 clients asking every tile of the two finest zooms once from
+#     a fresh server with --cache-mb 256: peak RSS against the bound of issue
+#     55, --cache-mb + 256 MB;
 # Usage: bench/serve.sh [CLIENTS]   (default 8). Needs scripts/build.sh and samples/fetch.sh.
+# GLOBE_SERVE=PATH benchmarks another globe-serve build (e.g. an older one
+# side by side).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 B=build
 T=$B/tools/tiler/globe-tiler
 V=$B/tools/vectorize/globe-vectorize
-S=$B/tools/serve/globe-serve
+S=${GLOBE_SERVE:-$B/tools/serve/globe-serve}
 clients=${1:-8}
 scratch=$(realpath -m bench/scratch/serve)
 mkdir -p "$scratch"
@@ -120,6 +125,14 @@ for kind in rq rp; do
   echo "  globe-serve        $(clients=200 load "$scratch/$kind.txt")"
   stop_serve
 done
+# Memory: 100 clients at once, each tile of the two finest zooms asked once
+# (every one cut anew), --cache-mb 256.
+start_serve "$pkg" --cache-mb 256
+(cd "$scratch/qm" && find "$zq" "$((zq - 1))" -name "*.terrain" | sort |
+  sed "s|^|${url}synthetic/|; s|\$|?extensions=octvertexnormals|") > "$scratch/m.txt"
+echo "memory, 100 clients, every tile of zooms $((zq - 1))..$zq new ($(wc -l < "$scratch/m.txt")), --cache-mb 256 (bound 512 MB):"
+echo "  globe-serve        $(clients=100 load "$scratch/m.txt")"
+stop_serve
 start_nginx "$scratch/qm"
 urls "$scratch/qm" terrain "$nurl" "" > "$scratch/n.txt"
 echo "  nginx, exported .terrain files  $(load "$scratch/n.txt")"

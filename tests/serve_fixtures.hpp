@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <fstream>
 #include <map>
 #include <string>
 #include <thread>
@@ -92,6 +93,14 @@ class ServeProcess {
   }
   int port() const { return port_; }
   std::string log() const { return read_file(log_path_); }
+  // A line of /proc/PID/status in megabytes ("VmRSS", "VmHWM": the peak);
+  // -1 if the server is gone.
+  double memory_mb(const std::string& field) const {
+    std::ifstream in("/proc/" + std::to_string(pid_) + "/status");
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind(field + ":", 0) == 0) return std::atof(line.c_str() + field.size() + 1) / 1024;
+    return -1;
+  }
 
  private:
   fs::path log_path_;

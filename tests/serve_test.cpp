@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <fstream>
 #include <mutex>
 #include <random>
@@ -423,6 +424,59 @@ TEST(Serve, RefusesDuplicateNamesMissingFilesAndBusyPorts) {
                              dir.path());
   EXPECT_EQ(busy.exit_code, 3) << busy.err;
   EXPECT_NE(busy.err.find("cannot listen"), std::string::npos) << busy.err;
+}
+
+// Memory under load (issue 55): 100 clients at once ask every tile of the
+// three finest zooms — none asked before — of a fresh server with 64 worker
+// threads and --cache-mb 64. What the server comes to hold beyond its start
+// is its caches and the tiles its cores are cutting (one per core at most,
+// one heap per core), not a working set per thread: growth <= the cache +
+// 128 MB. (The thread-per-connection server before grew by about 235 MB.)
+// Every answer is a tile.
+TEST(Serve, MemoryUnderOneHundredClientsIsTheCacheNotTheThreads) {
+#ifdef GLOBE_ADDRESS_SANITIZER
+  GTEST_SKIP() << "ASan's shadow memory and quarantine: the plain build checks the bound";
+#endif
+  TempDir dir("serve-memory");
+  // 2048 x 1024 samples, 8 by 4 degrees: 165 tiles in the three finest zooms.
+  const Surface wide{6, 14, 44, 48, 1.0 / 256, 800, 600, 2 * kPi / 3, 2 * kPi / 2};
+  wide.write((dir / "wide.tif").string());
+  ASSERT_TRUE(run_all({tiler() + " terrain -q " + (dir / "wide.tif").string() + " -o " +
+                       (dir / "wide.mbtiles").string()},
+                      dir.path()));
+  ServeProcess server(
+      {(dir / "wide.mbtiles").string(), "-j", "64", "--cache-mb", "64", "--timeout", "60"},
+      dir.path());
+  ASSERT_GT(server.port(), 0) << server.log();
+  const int port = server.port();
+  const HttpReply layer = http_get(port, "/wide/layer.json");
+  ASSERT_EQ(layer.status, 200);
+  const auto available = tileformat::JsonValue::parse(layer.body).find("available")->array();
+  std::vector<std::string> targets;
+  for (size_t z = available.size() - 3; z < available.size(); ++z)
+    for (const auto& r : available[z].array())
+      for (int x = int(r.find("startX")->number()); x <= int(r.find("endX")->number()); ++x)
+        for (int y = int(r.find("startY")->number()); y <= int(r.find("endY")->number()); ++y)
+          targets.push_back("/wide/" + std::to_string(z) + "/" + std::to_string(x) + "/" +
+                            std::to_string(y) + ".terrain?extensions=octvertexnormals");
+  ASSERT_GT(targets.size(), 100u);
+  const double start_mb = server.memory_mb("VmRSS");
+  constexpr int kClients = 100;
+  std::atomic<int> wrong{0};
+  std::vector<std::thread> clients;
+  for (int c = 0; c < kClients; ++c)
+    clients.emplace_back([&, c] {
+      for (size_t i = size_t(c); i < targets.size(); i += kClients)
+        if (http_get(port, targets[i], "", "GET", 60000).status != 200) ++wrong;
+    });
+  for (std::thread& t : clients)
+    t.join();
+  EXPECT_EQ(wrong, 0);
+  const double peak_mb = server.memory_mb("VmHWM");
+  std::cerr << targets.size() << " new tiles to " << kClients << " clients: RSS " << start_mb
+            << " MB at start, " << peak_mb << " MB at the peak\n";
+  EXPECT_LE(peak_mb - start_mb, 64 + 128) << "grew past its cache (--cache-mb 64) + 128 MB";
+  ASSERT_TRUE(server.alive()) << server.log();
 }
 
 // A bounded load on 127.0.0.1: 200 clients at once, each fetching random

@@ -12,6 +12,7 @@
 #include <thread>
 #include <vector>
 
+#include "kit/heap_tuning.hpp"
 #include "runtime/cli_args.hpp"
 #include "runtime/error_report.hpp"
 #include "runtime/errors.hpp"
@@ -35,7 +36,7 @@ int serve(const std::vector<std::string>& args) {
   serve::HandlerOptions handler;
   serve::ServiceOptions services;
   handler.lib_dir = default_web_libs();
-  http.threads = int(std::max(64u, 16 * std::thread::hardware_concurrency()));
+  http.threads = int(std::max(4u, 2 * std::thread::hardware_concurrency()));
   CliArgs cli("globe-serve",
               "globe-serve PACKAGE... [--bind ADDR] [--port N] [-j N]\n\n"
               "Serves packages over HTTP, each under its file stem NAME (docs/serve.md):\n"
@@ -54,9 +55,9 @@ int serve(const std::vector<std::string>& args) {
   cli.option("--port", "N", "port (default 8080; 0: any free port, printed on stdout)",
              [&](const std::string& v) { http.port = CliArgs::to_int("--port", v, 0, 65535); });
   cli.option("-j,--threads", "N",
-             "connections served at once, a thread each while it is kept alive (default: 16 per "
-             "core, at least 64)",
-             [&](const std::string& v) { http.threads = CliArgs::to_int("-j", v, 1, 4096); });
+             "worker threads, each serving its share of the connections (default: 2 per core, at "
+             "least 4); tiles are cut on at most one thread per core whatever this is",
+             [&](const std::string& v) { http.threads = CliArgs::to_int("-j", v, 1, 1024); });
   cli.option(
       "--timeout", "S",
       "seconds a client may take to send a request or read the answer "
@@ -87,6 +88,7 @@ int serve(const std::vector<std::string>& args) {
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
   std::signal(SIGPIPE, SIG_IGN);
 
+  one_heap_per_core();
   serve::PackageRegistry registry(*inputs, services);
   serve::HttpServer* server_ptr = nullptr;
   serve::RequestHandler handle(registry, handler);
