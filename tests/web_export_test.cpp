@@ -226,6 +226,48 @@ TEST(ExportDem, BadInputIsRefusedAndLeavesNothing) {
   EXPECT_NO_THROW(pmr::validate_archive(read_file(out)));
 }
 
+// A folder output named with a trailing slash is the same folder (issue 55:
+// `-o out/` made `out/.tmp` inside the output, did all the work, then found
+// `out` existing and exited 3 with an empty folder). Written the first time,
+// refused the second before anything is made (no temporary folder), replaced
+// with --force; for quantized-mesh, Terrarium and MVT folders alike.
+TEST(ExportFolders, ATrailingSlashNamesTheSameFolder) {
+  const fs::path& d = surface_dem();
+  TempDir dir;
+  std::ofstream(dir / "line.geojson")
+      << R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
+      << R"("geometry":{"type":"LineString","coordinates":[[7.0,46.9],[8.2,47.6]]}}]})";
+  ASSERT_EQ(run(vectorize() + " lines -q " + (dir / "line.geojson").string() +
+                    " --max-zoom 5 -o " + (dir / "line.mbtiles").string(),
+                dir.path())
+                .exit_code,
+            0);
+  const std::vector<std::pair<std::string, std::string>> exports = {
+      {tiler() + " export -q " + (d / "geodetic.mbtiles").string() + " --format quantized-mesh",
+       "qm"},
+      {tiler() + " export -q " + (d / "mercator.mbtiles").string() + " --format terrarium", "dem"},
+      {vectorize() + " export -q " + (dir / "line.mbtiles").string(), "mvt"}};
+  for (const auto& [command, name] : exports) {
+    const fs::path out = dir / name;
+    const RunResult first = run(command + " -o " + out.string() + "/", dir.path());
+    ASSERT_EQ(first.exit_code, 0) << command << "\n" << first.err;
+    ASSERT_TRUE(fs::is_directory(out)) << name;
+    EXPECT_TRUE(fs::exists(out / "metadata.json")) << name;
+    EXPECT_FALSE(fs::exists(out / ".tmp")) << name;
+    size_t files = 0;
+    for (const auto& e : fs::recursive_directory_iterator(out))
+      files += e.is_regular_file() ? 1 : 0;
+    EXPECT_GT(files, 2u) << name << ": the tiles are in the folder";
+    const RunResult again = run(command + " -o " + out.string() + "/", dir.path());
+    EXPECT_EQ(again.exit_code, 3) << name << "\n" << again.err;
+    EXPECT_NE(again.err.find("output exists; pass --force"), std::string::npos) << again.err;
+    EXPECT_FALSE(fs::exists(dir / (name + ".tmp"))) << name << ": refused before any work";
+    EXPECT_EQ(run(command + " --force -o " + out.string() + "//", dir.path()).exit_code, 0)
+        << name;
+    EXPECT_TRUE(fs::exists(out / "metadata.json")) << name;
+  }
+}
+
 // An image package's tiles, exported to PMTiles, are the package's bytes
 // (read from the package here, the exporter's input), tile for tile.
 TEST(ExportImages, PmtilesHoldThePackagesTilesByteForByte) {

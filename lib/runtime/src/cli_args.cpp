@@ -126,6 +126,13 @@ std::string CliArgs::help() const {
   return out.str();
 }
 
+std::string CliArgs::to_output_path(const std::string& v) {
+  std::string path = v;
+  while (path.size() > 1 && path.back() == '/')
+    path.pop_back();
+  return path;
+}
+
 int CliArgs::to_int(const std::string& option, const std::string& v, int lo, int hi) {
   size_t used = 0;
   long long x = 0;

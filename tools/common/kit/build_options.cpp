@@ -11,7 +11,7 @@ void declare_area_options(CliArgs& cli, BuildOptions& o, const std::string& s_sr
                           const std::string& max_zoom_help) {
   cli.option("-o,--output", "OUT.mbtiles",
              "output package (written as OUT.mbtiles.tmp, renamed when complete)",
-             [&o](const std::string& v) { o.output = v; });
+             [&o](const std::string& v) { o.output = CliArgs::to_output_path(v); });
   cli.option(
       "--tiling", "SCHEME",
       "webmercator (default, EPSG:3857), geodetic (EPSG:4326, 2x1 roots) or local",

@@ -26,7 +26,7 @@ bool parse_merge_command(CliArgs& cli, BuildOptions& o, const std::vector<std::s
                          const std::string& program) {
   cli.option("-o,--output", "OUT.mbtiles",
              "merged package (written as OUT.mbtiles.tmp, renamed when complete)",
-             [&o](const std::string& v) { o.output = v; });
+             [&o](const std::string& v) { o.output = CliArgs::to_output_path(v); });
   declare_run_options(cli, o);
   if (!parse_build_command(cli, o, args, program, "shard package (see --help)")) return false;
   for (const std::string& in : o.inputs)

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "kit/package_output.hpp"
+#include "runtime/cli_args.hpp"
 #include "runtime/errors.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/json.hpp"
@@ -223,8 +224,9 @@ OutputKind output_kind(const std::string& path) {
   return OutputKind::kDirectory;
 }
 
-std::unique_ptr<TileOutput> TileOutput::open(const std::string& path, bool force,
+std::unique_ptr<TileOutput> TileOutput::open(const std::string& given, bool force,
                                              const std::string& extension, bool tms_rows) {
+  const std::string path = CliArgs::to_output_path(given);  // "out/": the folder "out"
   if (output_kind(path) != OutputKind::kDirectory) check_output_folder(path);
   switch (output_kind(path)) {
     case OutputKind::kPmtiles:

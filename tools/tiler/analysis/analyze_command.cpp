@@ -118,7 +118,7 @@ int run_analyze(const std::vector<std::string>& args) {
                  throw UsageError("--flow-method: give fill or carve, not '" + v + "'");
              });
   cli.option("-o,--output", "OUT.mbtiles", "output analysis package",
-             [&](const std::string& v) { s.output = v; });
+             [&](const std::string& v) { s.output = CliArgs::to_output_path(v); });
   declare_run_options(cli, s);
   declare_shard_options(cli, s);
   if (!parse_build_command(cli, s, args, "globe-tiler analyze", "TERRAIN.mbtiles")) return kExitOk;

@@ -118,7 +118,7 @@ int run_export(const std::vector<std::string>& args) {
                  throw UsageError("--tile-size: 256 or 512");
              });
   cli.option("-o,--output", "OUT", "OUT.pmtiles, OUT.mbtiles or a folder",
-             [&](const std::string& v) { o.output = v; });
+             [&](const std::string& v) { o.output = CliArgs::to_output_path(v); });
   declare_run_options(cli, o);
   if (!parse_build_command(cli, o, args, "globe-tiler export", "PACKAGE")) return kExitOk;
   if (o.inputs.size() != 1) throw UsageError("give exactly one package to export");

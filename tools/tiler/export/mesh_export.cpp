@@ -37,6 +37,8 @@ ExportSummary export_quantized_mesh(const MeshExportSettings& s, Progress& progr
                      ": CesiumJS reads quantized-mesh from a folder with layer.json (or a server); "
                      "give -o DIR or -o OUT.mbtiles");
 
+  // Opened first: an existing output is refused before any work is done.
+  std::unique_ptr<TileOutput> out = TileOutput::open(s.output, s.force, "terrain", true);
   const std::vector<std::vector<TileId>> plan = web::mesh_tile_plan(pkg);
   std::vector<TileId> tiles;
   for (const std::vector<TileId>& level : plan)
@@ -58,7 +60,6 @@ ExportSummary export_quantized_mesh(const MeshExportSettings& s, Progress& progr
     sources.push_back(std::make_unique<web::MeshTileSource>(blocks, own_errors));
 
   // Each tile alone: its errors from the blocks of it and its neighbours.
-  std::unique_ptr<TileOutput> out = TileOutput::open(s.output, s.force, "terrain", true);
   web::MeshTileOptions options;
   options.normals = s.normals;
   options.error_scale = s.error_scale;

@@ -48,7 +48,7 @@ int run_extract(const std::vector<std::string>& args) {
              "plan_curvature), Float32 in its unit, NaN where it has no value",
              [&](const std::string& v) { rq.layer = v; });
   cli.option("-o,--output", "OUT.tif", "output GeoTIFF",
-             [&](const std::string& v) { rq.output = v; });
+             [&](const std::string& v) { rq.output = CliArgs::to_output_path(v); });
   cli.flag("--force", "replace an existing output", [&] { rq.force = true; });
   auto positional = cli.parse_command(args, 1, 1, "PACKAGE");
   if (!positional) return kExitOk;

@@ -39,7 +39,7 @@ int run_export(const std::vector<std::string>& args) {
   cli.option("--style-json", "STYLE.json", "also write a MapLibre style (version 8) for the tiles",
              [&](const std::string& v) { s.style_json = v; });
   cli.option("-o,--output", "OUT", "OUT.pmtiles, OUT.mbtiles or a folder",
-             [&](const std::string& v) { o.output = v; });
+             [&](const std::string& v) { o.output = CliArgs::to_output_path(v); });
   declare_run_options(cli, o);
   if (!parse_build_command(cli, o, args, "globe-vectorize export", "PACKAGE")) return kExitOk;
   if (o.inputs.size() != 1)

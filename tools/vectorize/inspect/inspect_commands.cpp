@@ -37,7 +37,7 @@ int run_lines_extract(const std::vector<std::string>& args) {
   cli.option("--zoom", "Z", "zoom level to extract",
              [&](const std::string& v) { zoom = CliArgs::to_int("--zoom", v, 0, 30); });
   cli.option("-o,--output", "OUT.gpkg", "output file",
-             [&](const std::string& v) { rq.output = v; });
+             [&](const std::string& v) { rq.output = CliArgs::to_output_path(v); });
   cli.flag("--force", "replace an existing output", [&] { rq.force = true; });
   cli.flag("-q,--quiet", "no summary on stderr", [&] { rq.quiet = true; });
   auto positional = cli.parse_command(args, 1, 1, "PACKAGE");

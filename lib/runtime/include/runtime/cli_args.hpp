@@ -36,6 +36,10 @@ class CliArgs {
                                                         const std::string& what);
 
   // Value parsers that throw UsageError naming the option.
+  // An output path as the user meant it: without trailing slashes, so "out/"
+  // names the folder (or file) "out" and temporary names beside it
+  // ("out.tmp") do not land inside it.
+  static std::string to_output_path(const std::string& v);
   static int to_int(const std::string& option, const std::string& v, int lo, int hi);
   static double to_double(const std::string& option, const std::string& v);
   static std::vector<double> to_doubles(const std::string& option, const std::string& v, size_t n);
