@@ -304,6 +304,39 @@ TEST(ViewerAnalysis, SlopeAndAspectComeFromThePackageWhenItHasThem) {
   }
 }
 
+// A broken analysis tile no longer takes its terrain block down (issue 55:
+// the finest zoom of the analysis package made unreadable left the view
+// without that zoom's terrain, and no picture): the terrain is drawn, the
+// analysis from the parent's samples, each broken tile named with the
+// analysis package.
+TEST(ViewerAnalysis, BrokenAnalysisTilesAreDrawnFromTheirParent) {
+  TempDir dir;
+  const std::string pkg = (dir / "broken.mbtiles").string();
+  fs::copy_file(packages().all, pkg);
+  const RunResult s = run("sqlite3 " + pkg +
+                              " \"UPDATE blobs SET tile_data = randomblob(100) WHERE blob_id IN "
+                              "(SELECT blob_id FROM map WHERE zoom_level = (SELECT max(zoom_level) "
+                              "FROM map));\"",
+                          dir.path());
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  auto shot = [&](const std::string& name, const std::string& analysis, std::string* err) {
+    const std::string png = (dir / (name + ".png")).string();
+    const RunResult r = view(
+        packages().terrain + " " + analysis + " --shading slope --snapshot " + png, dir.path());
+    EXPECT_EQ(r.exit_code, 0) << name << "\n" << r.err;
+    *err = r.err;
+    int w = 0, h = 0;
+    return read_rgb(png, w, h);
+  };
+  std::string intact_err, err;
+  const auto intact = shot("intact", packages().all, &intact_err),
+             broken = shot("broken", pkg, &err);
+  EXPECT_NE(err.find("broken.mbtiles: tile "), std::string::npos) << err;
+  EXPECT_NE(err.find("drawing its parent's samples there"), std::string::npos) << err;
+  ASSERT_EQ(broken.size(), intact.size());
+  EXPECT_GE(psnr(broken, intact), 30) << err;
+}
+
 TEST(ViewerAnalysis, MissingLayersAndOtherTilingsAreClearErrors) {
   TempDir dir;
   const std::string& t = packages().terrain;

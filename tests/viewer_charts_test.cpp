@@ -305,3 +305,46 @@ TEST(ViewerCharts, ThinningDropsChartsOnLargerOnes) {
   EXPECT_GT(thinned, 0) << "no chart of the east coast fell on another";
   EXPECT_EQ(kept + thinned, all);
 }
+
+// Broken point tiles (issue 55): the flights' two coarsest zooms made
+// unreadable; over the US, where the view wants them, the charts of their
+// children are drawn (before: none at all), and the broken tiles are named.
+TEST(ViewerCharts, BrokenPointTilesAreDrawnFromTheirChildren) {
+  const Packages& k = packages();
+  TempDir dir;
+  const std::string pkg = (dir / "broken.mbtiles").string();
+  fs::copy_file(k.flights, pkg);
+  const RunResult s = run("sqlite3 " + pkg +
+                              " \"UPDATE blobs SET tile_data = randomblob(100) WHERE blob_id IN "
+                              "(SELECT blob_id FROM map WHERE zoom_level <= 1);\"",
+                          dir.path());
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  const std::string style = write_style(dir.path(), R"({"legend": false})");
+  auto shot = [&](const std::string& name, const std::string& points, std::string* err = nullptr) {
+    const std::string png = (dir / (name + ".png")).string();
+    const RunResult r = run(viewer() + " --platform osmesa " + k.world + " " +
+                                (points.empty() ? "" : points + " --chart-style " + style) +
+                                " --size 240x150 --camera=-97,39,3000000,0,0 --snapshot " + png,
+                            dir.path());
+    EXPECT_EQ(r.exit_code, 0) << name << "\n" << r.err;
+    if (err) *err = r.err;
+    int w = 0, h = 0;
+    return r.exit_code == 0 ? read_rgb(png, w, h) : std::vector<uint8_t>(240 * 150 * 3);
+  };
+  std::string err;
+  const auto bare = shot("bare", ""), intact = shot("intact", k.flights),
+             broken = shot("broken", pkg, &err);
+  auto chart_pixels = [&](const std::vector<uint8_t>& rgb) {
+    size_t n = 0;
+    for (size_t i = 0; i < rgb.size(); i += 3)
+      n += std::abs(rgb[i] - bare[i]) + std::abs(rgb[i + 1] - bare[i + 1]) +
+               std::abs(rgb[i + 2] - bare[i + 2]) >
+           30;
+    return n;
+  };
+  EXPECT_NE(err.find("broken.mbtiles: point tile 0/0/0"), std::string::npos) << err;
+  EXPECT_NE(err.find("the charts of its finer or coarser tiles are drawn there"),
+            std::string::npos);
+  EXPECT_GT(chart_pixels(intact), 300u);
+  EXPECT_GE(chart_pixels(broken), chart_pixels(intact) / 2) << err;
+}

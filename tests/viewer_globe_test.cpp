@@ -5,10 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <numbers>
+#include <regex>
 
 #include "render_fixtures.hpp"
 #include "test_support.hpp"
+#include "tileformat/json.hpp"
 
 namespace {
 
@@ -53,6 +56,112 @@ RunResult view(const std::string& args, const fs::path& dir) {
 
 bool is_sky(const std::vector<uint8_t>& rgb, size_t i) {
   return globe_test::is_sky(&rgb[3 * i]);
+}
+
+// A package with broken tiles is drawn around them (issue 55: the three
+// coarsest tiles of a global package made unreadable blanked the globe,
+// exit 6). Each zoom's tiles in turn (etopo20 geodetic has zooms 0..2, so
+// the top three and the finest), and the three coarsest alone, become
+// random bytes: from orbit and over the Alps the frame shows as much ground
+// as the intact package's (>= 0.99 x its ground_fraction), exits 0, and
+// names each broken tile it met once. (Samples nest across zooms, so a
+// tile remade from its children is exact; from its parent, interpolated.)
+TEST(ViewerGlobe, BrokenTilesAreDrawnFromTheirChildrenOrParent) {
+  TempDir dir;
+  const std::map<std::string, std::string> cameras = {
+      {"orbit", "--fit"}, {"alps", "--camera=8,40,700000,0,60 --exaggeration 20"}};
+  auto ground = [&](const std::string& pkg, const std::string& camera, std::string* err) {
+    const RunResult r = view(pkg + " " + camera + " --size 160x90 --stats --frames 1", dir.path());
+    EXPECT_EQ(r.exit_code, 0) << pkg << " " << camera << "\n" << r.err;
+    if (err) *err = r.err;
+    const auto stats = tileformat::JsonValue::parse(r.out);
+    return stats.find("ground_fraction")->number();
+  };
+  std::map<std::string, double> intact;
+  for (const auto& [name, camera] : cameras)
+    intact[name] = ground(globes().geodetic, camera, nullptr);
+  const std::vector<std::pair<std::string, std::string>> breaks = {
+      {"the three coarsest tiles",
+       "blob_id IN (SELECT blob_id FROM map ORDER BY zoom_level, tile_column, tile_row LIMIT 3)"},
+      {"zoom 0", "blob_id IN (SELECT blob_id FROM map WHERE zoom_level = 0)"},
+      {"zoom 1", "blob_id IN (SELECT blob_id FROM map WHERE zoom_level = 1)"},
+      {"zoom 2 (the finest)", "blob_id IN (SELECT blob_id FROM map WHERE zoom_level = 2)"}};
+  for (const auto& [what, where] : breaks) {
+    const std::string pkg = (dir / "broken.mbtiles").string();
+    fs::remove(pkg);
+    fs::copy_file(globes().geodetic, pkg);
+    const RunResult s = run("sqlite3 " + pkg + " \"UPDATE blobs SET tile_data = randomblob(500) " +
+                                "WHERE " + where + ";\"",
+                            dir.path());
+    ASSERT_EQ(s.exit_code, 0) << s.err;
+    size_t named_here = 0;
+    for (const auto& [name, camera] : cameras) {
+      std::string err;
+      const double g = ground(pkg, camera, &err);
+      EXPECT_GE(g, 0.99 * intact[name])
+          << what << ", " << name << ": " << g << " against " << intact[name] << "\n"
+          << err;
+      std::map<std::string, int> named;
+      const std::regex tile("tile ([0-9]+/[0-9]+/[0-9]+): ");
+      for (auto m = std::sregex_iterator(err.begin(), err.end(), tile); m != std::sregex_iterator();
+           ++m)
+        ++named[(*m)[1]];
+      named_here += named.size();
+      for (const auto& [id, times] : named)
+        EXPECT_EQ(times, 1) << what << ", " << name << ": tile " << id << " named " << times
+                            << " times\n"
+                            << err;
+    }
+    EXPECT_GT(named_here, 0u) << what << ": no broken tile named";
+  }
+}
+
+// Image and line tiles too (issue 55): the two coarsest zooms of Blue
+// Marble and of the contours broken, from orbit, where the view wants those
+// zooms: the image is drawn from their children (as the intact frame, within
+// 40 dB PSNR; the terrain alone is below 15 dB), the lines from their finer
+// tiles kept a pixel wide (at least 70 % of the intact frame's line pixels).
+// Before, both layers vanished (nothing coarser to fall back to).
+TEST(ViewerGlobe, BrokenImageAndLineTilesAreDrawnFromFinerTiles) {
+  TempDir dir;
+  auto broken_copy = [&](const std::string& from, const std::string& name) {
+    const std::string pkg = (dir / name).string();
+    fs::copy_file(from, pkg);
+    const RunResult s = run("sqlite3 " + pkg +
+                                " \"UPDATE blobs SET tile_data = randomblob(300) WHERE blob_id IN "
+                                "(SELECT blob_id FROM map WHERE zoom_level <= 1);\"",
+                            dir.path());
+    EXPECT_EQ(s.exit_code, 0) << s.err;
+    return pkg;
+  };
+  const std::string images = broken_copy(globes().bluemarble, "images.mbtiles"),
+                    lines = broken_copy(globes().contours, "lines.mbtiles");
+  auto shot = [&](const std::string& name, const std::string& layers, std::string* err = nullptr) {
+    const std::string png = (dir / (name + ".png")).string();
+    const RunResult r = view(
+        globes().geodetic + " " + layers + " --fit --size 160x90 --snapshot " + png, dir.path());
+    EXPECT_EQ(r.exit_code, 0) << name << "\n" << r.err;
+    if (err) *err = r.err;
+    int w = 0, h = 0;
+    return read_rgb(png, w, h);
+  };
+  std::string image_err, line_err;
+  const auto bare = shot("bare", ""), image_intact = shot("image", globes().bluemarble),
+             image_broken = shot("image-broken", images, &image_err);
+  EXPECT_NE(image_err.find("images.mbtiles: image tile 0/0/0"), std::string::npos) << image_err;
+  EXPECT_GE(psnr(image_broken, image_intact), 40) << image_err;
+  EXPECT_LT(psnr(bare, image_intact), 15);
+  auto yellow = [](const std::vector<uint8_t>& rgb) {  // the contours' #ffd92f
+    size_t n = 0;
+    for (size_t i = 0; i + 2 < rgb.size(); i += 3)
+      n += rgb[i] > 200 && rgb[i + 1] > 170 && rgb[i + 2] < 120;
+    return n;
+  };
+  const auto line_intact = shot("lines", globes().contours),
+             line_broken = shot("lines-broken", lines, &line_err);
+  EXPECT_NE(line_err.find("lines.mbtiles: line tile 0/0/0"), std::string::npos) << line_err;
+  EXPECT_GT(yellow(line_intact), 500u);
+  EXPECT_GE(yellow(line_broken), yellow(line_intact) * 7 / 10) << line_err;
 }
 
 TEST(ViewerGlobe, FitShowsTheWholeDiscFromOrbit) {

@@ -237,8 +237,8 @@ TEST(ExportFolders, ATrailingSlashNamesTheSameFolder) {
   std::ofstream(dir / "line.geojson")
       << R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
       << R"("geometry":{"type":"LineString","coordinates":[[7.0,46.9],[8.2,47.6]]}}]})";
-  ASSERT_EQ(run(vectorize() + " lines -q " + (dir / "line.geojson").string() +
-                    " --max-zoom 5 -o " + (dir / "line.mbtiles").string(),
+  ASSERT_EQ(run(vectorize() + " lines -q " + (dir / "line.geojson").string() + " --max-zoom 5 -o " +
+                    (dir / "line.mbtiles").string(),
                 dir.path())
                 .exit_code,
             0);
@@ -262,8 +262,7 @@ TEST(ExportFolders, ATrailingSlashNamesTheSameFolder) {
     EXPECT_EQ(again.exit_code, 3) << name << "\n" << again.err;
     EXPECT_NE(again.err.find("output exists; pass --force"), std::string::npos) << again.err;
     EXPECT_FALSE(fs::exists(dir / (name + ".tmp"))) << name << ": refused before any work";
-    EXPECT_EQ(run(command + " --force -o " + out.string() + "//", dir.path()).exit_code, 0)
-        << name;
+    EXPECT_EQ(run(command + " --force -o " + out.string() + "//", dir.path()).exit_code, 0) << name;
     EXPECT_TRUE(fs::exists(out / "metadata.json")) << name;
   }
 }

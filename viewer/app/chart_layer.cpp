@@ -310,16 +310,21 @@ double ChartLayer::draw(const LayerPass& pass) {
     // The frame's tiles are marked used before loaded ones come in, so
     // making room for those never evicts a tile this frame draws.
     cache_.begin_frame();
-    tiles = select_point_tiles(sel, view, world);
+    tiles = stand_in_tiles(
+        select_point_tiles(sel, view, world), m.common.min_zoom, m.common.max_zoom,
+        [this](TileId id) { return cache_.exists(id); },
+        [this](TileId id) { return cache_.broken(id); });
     for (const TileId& id : tiles)
       cache_.get(id);
     cache_.flush_requests();
     if (cache_.take_loaded() > 0) dirty_ = true;  // tiles the instances lack may have come
-    bool missing = false;
-    for (const TileId& id : tiles)
+    bool missing = false, broken = false;
+    for (const TileId& id : tiles) {
       missing = missing || cache_.loading(id);
-    if (loading == Loading::kAsReady || !missing) break;
-    cache_.wait_for_loader();
+      broken = broken || cache_.broken(id);  // found broken now: select its stand-ins
+    }
+    if (loading == Loading::kAsReady || (!missing && !broken)) break;
+    if (missing) cache_.wait_for_loader();
   }
   if (settings_.heatmap) {  // ground points move with the view origin: every frame
     build_heat(tiles, view, world);

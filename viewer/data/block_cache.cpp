@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "data/block_substitute.hpp"
 #include "tileformat/analysis_block.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/kpatch.hpp"
@@ -17,50 +18,134 @@ using tileformat::TileId;
 
 namespace {
 
-// The analysis block of tile `id` (no layers where the package has no tile).
-tileformat::AnalysisBlock read_analysis(const AnalysisSource& a, TileId id, int block_size) {
-  const auto blob = a.reader->tile(id);
-  tileformat::AnalysisBlock b;
-  if (blob) {
-    try {
-      b = tileformat::decode_analysis_block(*blob);
-    } catch (const tileformat::FormatError& e) {
-      throw std::runtime_error(a.path + ": " + e.what());
-    }
-    if (b.size != block_size)
-      throw tileformat::FormatError("9", a.path + ": block size differs from the terrain's");
-  } else {
-    b.size = block_size;
+// A terrain blob as a grid of heights (metres) and its vertex errors.
+SampleGrid height_grid(std::span<const uint8_t> blob, int block_size, int lattice,
+                       std::vector<uint32_t>* vertex_error) {
+  tileformat::MBlock b = tileformat::decode_mblock(blob);
+  if (b.size != block_size || b.lattice != lattice)
+    throw tileformat::FormatError("§5", "block size or lattice differs from the metadata");
+  SampleGrid g;
+  g.size = block_size;
+  g.values.resize(b.q.size());
+  g.mask.assign(b.q.size(), 255);
+  for (size_t i = 0; i < b.q.size(); ++i) {
+    g.values[i] = static_cast<float>(b.q[i] * b.step);
+    if (!b.valid.empty() && !b.valid[i]) g.mask[i] = 0;
   }
-  return b;
+  if (vertex_error) *vertex_error = std::move(b.vertex_error);
+  return g;
 }
 
-// Runs on the loader thread.
-auto decode_block(int block_size, int lattice, const std::optional<AnalysisSource>& analysis) {
-  return [block_size, lattice, &analysis](TileId id, std::span<const uint8_t> blob) {
-    tileformat::MBlock b = tileformat::decode_mblock(blob);
-    if (b.size != block_size || b.lattice != lattice)
-      throw tileformat::FormatError("§5", "block size or lattice differs from the metadata");
-    const size_t n = b.q.size();
+// The analysis texels and flow texels of a block as one grid (4 +
+// kFlowTexel channels).
+SampleGrid analysis_grid(const tileformat::AnalysisBlock& b, int block_size) {
+  const std::vector<float> texels = analysis_texels(b), flow = flow_texels(b);
+  SampleGrid g;
+  g.size = block_size;
+  g.channels = 4 + kFlowTexel;
+  const size_t n = size_t(block_size) * block_size;
+  g.values.resize(n * g.channels);
+  g.mask.assign(n, 255);
+  for (size_t i = 0; i < n; ++i) {
+    std::copy_n(texels.begin() + long(4 * i), 4, g.values.begin() + long(i * g.channels));
+    std::copy_n(flow.begin() + long(kFlowTexel * i), kFlowTexel,
+                g.values.begin() + long(i * g.channels + 4));
+  }
+  return g;
+}
+
+// The analysis grid of tile `id`; a tile the package lacks has no layers.
+SampleGrid read_analysis_grid(const AnalysisSource& a, TileId id, int block_size) {
+  const auto blob = a.reader->tile(id);
+  tileformat::AnalysisBlock b;
+  b.size = block_size;
+  if (blob) {
+    b = tileformat::decode_analysis_block(*blob);
+    if (b.size != block_size)
+      throw tileformat::FormatError("9", "block size differs from the terrain's");
+  }
+  return analysis_grid(b, block_size);
+}
+
+// What a stand-in is made of, for the warning.
+const char* stand_name(Stand s) {
+  return s == Stand::kChildren ? "drawing its children's samples there"
+                               : "drawing its parent's samples there";
+}
+
+// Runs on the loader thread. A block that cannot be read is drawn from a
+// stand-in (block_substitute.hpp) and reported once; so is its analysis.
+auto decode_block(const TerrainPackage& pkg, const std::optional<AnalysisSource>& analysis) {
+  const size_t errors =
+      tileformat::kpatch_vertex_count(tileformat::kpatch_depth(pkg.block_size - 1, pkg.lattice));
+  return [&pkg, &analysis, errors](TileId id, std::span<const uint8_t> blob) {
     DecodedBlock d;
     d.block.id = id;
-    d.block.heights.resize(n);
-    d.block.mask.assign(n, 255);
+    SampleGrid g;
+    try {
+      g = height_grid(blob, pkg.block_size, pkg.lattice, &d.meta.vertex_error);
+    } catch (const std::exception& e) {
+      SubstituteSource source{pkg.block_size, pkg.min_zoom, pkg.max_zoom, [&](TileId t) {
+                                std::optional<SampleGrid> out;
+                                if (pkg.tiling.contains(t))
+                                  if (const auto b = pkg.reader->tile(t))
+                                    out = height_grid(*b, pkg.block_size, pkg.lattice, nullptr);
+                                return out;
+                              }};
+      auto [stand, from] = substitute_grid(source, id);
+      if (!stand) throw;  // nothing to draw there: the tile stays broken
+      g = std::move(*stand);
+      // Its vertex errors are unknown: zero, and where it stands for its
+      // children the selection splits through it to them.
+      d.meta.vertex_error.assign(errors, 0);
+      d.meta.split_through = from == Stand::kChildren;
+      d.warning = std::string(e.what()) + "; " + stand_name(from);
+    }
+    const size_t n = g.values.size();
+    d.block.heights = std::move(g.values);
+    d.block.mask = std::move(g.mask);
+    // Over all samples (a block's holes are filled), a stand-in's valid ones.
+    const bool stand_in = !d.warning.empty();
     float lo = 0, hi = 0;
+    bool any = false;
     for (size_t i = 0; i < n; ++i) {
-      const float h = static_cast<float>(b.q[i] * b.step);
-      d.block.heights[i] = h;
-      lo = i == 0 ? h : std::min(lo, h);
-      hi = i == 0 ? h : std::max(hi, h);
-      if (!b.valid.empty() && !b.valid[i]) d.block.mask[i] = 0;
+      if (stand_in && !d.block.mask[i]) continue;
+      const float h = d.block.heights[i];
+      lo = any ? std::min(lo, h) : h;
+      hi = any ? std::max(hi, h) : h;
+      any = true;
     }
     d.meta.min_h = lo;
     d.meta.max_h = hi;
-    d.meta.vertex_error = std::move(b.vertex_error);
     if (analysis) {
-      const tileformat::AnalysisBlock a = read_analysis(*analysis, id, block_size);
-      d.block.analysis = analysis_texels(a);
-      d.block.flow = flow_texels(a);
+      SampleGrid a;
+      try {
+        a = read_analysis_grid(*analysis, id, pkg.block_size);
+      } catch (const std::exception& e) {
+        SubstituteSource source{
+            pkg.block_size, pkg.min_zoom, pkg.max_zoom, [&](TileId t) {
+              return std::optional<SampleGrid>(read_analysis_grid(*analysis, t, pkg.block_size));
+            }};
+        auto [stand, from] = substitute_grid(source, id);
+        if (stand) {
+          a = std::move(*stand);
+        } else {  // no analysis there: no layers' defaults
+          tileformat::AnalysisBlock none;
+          none.size = pkg.block_size;
+          a = analysis_grid(none, pkg.block_size);
+        }
+        d.analysis_warning =
+            std::string(e.what()) + "; " +
+            (stand ? stand_name(from) : "drawing the terrain without its analysis there");
+      }
+      d.block.analysis.resize(n * 4);
+      d.block.flow.resize(n * kFlowTexel);
+      for (size_t i = 0; i < n; ++i) {
+        std::copy_n(a.values.begin() + long(i * a.channels), 4,
+                    d.block.analysis.begin() + long(4 * i));
+        std::copy_n(a.values.begin() + long(i * a.channels + 4), kFlowTexel,
+                    d.block.flow.begin() + long(kFlowTexel * i));
+      }
     }
     return d;
   };
@@ -81,8 +166,7 @@ BlockCache::BlockCache(const std::string& path, TerrainPackage package, uint64_t
   stats_.budget_bytes = budget_bytes;
   for (int s = static_cast<int>(slots_) - 1; s >= 0; --s)
     free_slots_.push_back(s);
-  loader_ = std::make_unique<Loader>(
-      *package_.reader, decode_block(package_.block_size, package_.lattice, analysis_));
+  loader_ = std::make_unique<Loader>(*package_.reader, decode_block(package_, analysis_));
 }
 
 BlockCache::~BlockCache() = default;
@@ -156,13 +240,24 @@ std::vector<LoadedBlock> BlockCache::take_loaded() {
     Entry& e = entries_[id];
     stats_.bytes_read += d.bytes;
     if (!d.ok) {
-      std::fprintf(stderr, "globe-view: warning: %s: tile %s: %s; drawing a coarser level there\n",
+      std::fprintf(stderr,
+                   "globe-view: warning: %s: tile %s: %s; nothing to draw in its stead (no "
+                   "readable children or parent)\n",
                    path_.c_str(), id.str().c_str(), d.error.c_str());
       e.state = BlockState::kBroken;
       free_slots_.push_back(slot);
       ++stats_.broken;
       continue;
     }
+    // A stand-in (the tile itself is broken), or a broken analysis tile:
+    // named once, however often the block is evicted and loaded again.
+    for (const std::string* w : {&d.value.warning, &d.value.analysis_warning})
+      if (!w->empty() && warned_.insert({id, w == &d.value.warning}).second) {
+        std::fprintf(stderr, "globe-view: warning: %s: tile %s: %s\n",
+                     w == &d.value.warning || !analysis_ ? path_.c_str() : analysis_->path.c_str(),
+                     id.str().c_str(), w->c_str());
+        if (w == &d.value.warning) ++stats_.broken;
+      }
     e.state = BlockState::kResident;
     e.block = std::move(d.value.meta);
     e.block.slot = slot;

@@ -10,13 +10,16 @@
 // by evicting a block that the current frame did not use (LRU), so the
 // budget holds however far the camera flies.
 //
-// Corrupt tiles are reported once (warning on stderr) and stay non-resident,
-// so the selection keeps drawing their coarser ancestor.
+// A tile that cannot be read is drawn from a stand-in made of its children's
+// or its parent's samples (block_substitute.hpp), reported once on stderr;
+// one with neither stays broken (a hole of its footprint). Its analysis
+// likewise.
 #pragma once
 
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -42,6 +45,9 @@ struct ResidentBlock {
   float min_h = 0, max_h = 0;          // metres, over all samples (holes are filled)
   std::vector<uint32_t> vertex_error;  // quanta, per split vertex (tileformat §6)
   uint64_t last_used_frame = 0;
+  // A stand-in for a broken tile made from its children (block_substitute.hpp):
+  // its errors are unknown, so the selection splits through it to them.
+  bool split_through = false;
 };
 
 // A decoded block waiting for upload into `slot`.
@@ -65,6 +71,9 @@ struct AnalysisSource {
 struct DecodedBlock {
   LoadedBlock block;
   ResidentBlock meta;
+  // Why the block is a stand-in (block_substitute.hpp), and why its analysis
+  // is; empty when read as it is.
+  std::string warning, analysis_warning;
 };
 
 struct CacheStats {
@@ -126,6 +135,7 @@ class BlockCache {
   std::vector<int> free_slots_;
   std::vector<std::pair<double, tileformat::TileId>> wanted_;
   CacheStats stats_;
+  std::set<std::pair<tileformat::TileId, bool>> warned_;  // (tile, terrain or analysis)
   std::optional<AnalysisSource> analysis_;
   std::unique_ptr<Loader> loader_;  // last: stops before what it reads
 };

@@ -124,7 +124,8 @@ std::vector<std::pair<uint32_t, ImageMips>> ImageCache::take_loaded() {
     stats_.bytes_read += d.bytes;
     if (!d.ok) {
       std::fprintf(stderr,
-                   "globe-view: warning: %s: image tile %s: %s; the coarser image is shown there\n",
+                   "globe-view: warning: %s: image tile %s: %s; the image of its finer or coarser "
+                   "tiles is shown there\n",
                    path_.c_str(), id.str().c_str(), d.error.c_str());
       ++stats_.broken;
       it->second.value = kImageBroken;

@@ -7,7 +7,8 @@
 // least recently used tile the last frame did not read. Tiles the package
 // lacks are known as absent (their pixels show the layer below); tiles that
 // fail to decode are reported once on stderr and known as broken (their
-// pixels show the nearest coarser tile).
+// pixels show the finer tiles under them, one or two zooms down, where the
+// package has them, else the nearest coarser tile: issue 55).
 #pragma once
 
 #include <cstdint>

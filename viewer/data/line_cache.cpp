@@ -170,10 +170,14 @@ std::vector<uint32_t> LineCache::take_loaded() {
     it->second.loading = false;
     stats_.bytes_read += d.bytes;
     if (!d.ok) {
-      std::fprintf(stderr, "globe-view: warning: %s: line tile %s: %s; its lines are not drawn\n",
+      std::fprintf(stderr,
+                   "globe-view: warning: %s: line tile %s: %s; the lines of its coarser or finer "
+                   "tiles are drawn there\n",
                    path_.c_str(), id.str().c_str(), d.error.c_str());
       ++stats_.broken;
-      it->second.record = static_cast<int>(new_record(id));
+      const uint32_t r = new_record(id);
+      records_[r].broken = true;
+      it->second.record = static_cast<int>(r);
       continue;
     }
     const uint64_t size = std::max<size_t>(d.value.words.size(), 1);

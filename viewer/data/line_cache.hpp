@@ -4,9 +4,10 @@
 // tile exists, decodes it on a loader thread into the words the shader reads
 // (tile_words layout below), places it in the GPU arena (evicting the least
 // recently used tiles that the last frame did not touch), and gives it a
-// record. Tiles the package does not have, and corrupt ones (reported once on
-// stderr), get an empty record so the shader stops asking; their pixels show
-// no lines and the frame goes on.
+// record. Tiles the package does not have get an empty record so the shader
+// stops asking; their pixels show no lines. Corrupt ones (reported once on
+// stderr) get a broken record: the shader draws the coarser tiles over them,
+// or where there are none the finer tiles under them (issue 55).
 //
 // Tile words (all u32): cell offsets (C*C + 1, relative to the cell list),
 // the cell list (segment indices), then 6 words per segment: ax, ay, bx, by
@@ -63,6 +64,7 @@ std::optional<uint64_t> segment_feature(const tileformat::LineTile& tile, uint32
 struct LineRecord {
   tileformat::TileId id;
   bool empty = true;              // absent from the package or broken: no lines here
+  bool broken = false;            // broken: its coarser or finer tiles are drawn instead
   uint64_t offset = 0, size = 0;  // arena range, in words
   DecodedLineTile tile;           // words dropped after upload; counts kept
 };

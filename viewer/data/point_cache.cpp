@@ -51,6 +51,11 @@ bool PointCache::loading(TileId id) const {
   return it != entries_.end() && it->second.state == State::kLoading;
 }
 
+bool PointCache::broken(TileId id) const {
+  auto it = entries_.find(id);
+  return it != entries_.end() && it->second.state == State::kBroken;
+}
+
 void PointCache::flush_requests() {
   loader_->submit_coarsest_first(wanted_);
 }
@@ -80,9 +85,11 @@ size_t PointCache::take_loaded() {
     if (it == entries_.end()) continue;
     if (!d.ok) {
       ++stats_.broken;
-      std::fprintf(stderr, "globe-view: %s: tile %s: %s; its charts are left out\n",
+      std::fprintf(stderr,
+                   "globe-view: warning: %s: point tile %s: %s; the charts of its finer or "
+                   "coarser tiles are drawn there\n",
                    package_.reader->path().c_str(), d.job.id.str().c_str(), d.error.c_str());
-      it->second.state = State::kAbsent;
+      it->second.state = State::kBroken;
       continue;
     }
     const uint64_t bytes = tile_bytes(d.value);

@@ -4,7 +4,8 @@
 // tiles stay resident (take_loaded) until the budget needs room, when the
 // least recently used ones the last frame did not use go. Tiles the package
 // does not have are known absent; corrupt ones are reported once on stderr
-// and treated as absent, so the frame goes on without their charts.
+// and known as broken (the chart layer draws their children or parent:
+// stand_in_tiles in render/point_tile_selection.hpp).
 #pragma once
 
 #include <cstdint>
@@ -43,6 +44,8 @@ class PointCache {
   const tileformat::PointTile* get(tileformat::TileId id);
   // Whether the tile is on its way (queued or being decoded).
   bool loading(tileformat::TileId id) const;
+  // Whether the tile could not be read (reported once on stderr).
+  bool broken(tileformat::TileId id) const;
   // Sends this frame's loads to the loader thread.
   void flush_requests();
   // Makes the decoded tiles resident; returns how many.
@@ -53,7 +56,7 @@ class PointCache {
 
  private:
   using Loader = TileLoader<tileformat::PointTile>;
-  enum class State { kLoading, kResident, kAbsent };
+  enum class State { kLoading, kResident, kAbsent, kBroken };
   struct Entry {
     State state = State::kLoading;
     std::shared_ptr<const tileformat::PointTile> tile;

@@ -54,6 +54,19 @@ int table_lookup(int L, int z, ivec2 t) {
   }
   return -1;
 }
+// The tile of zoom z holding reference-zoom tile g, in its own column past
+// the antimeridian too.
+ivec2 tile_column(int L, int z, ivec2 g) {
+  ivec2 t = g >> (u_ref_zoom[L] - z);
+  if (u_wrap[L] > 0) {
+    int n = u_wrap[L] << z;
+    t.x = ((t.x % n) + n) % n;
+  }
+  return t;
+}
+int tile_at(int L, int z, ivec2 g) {
+  return table_lookup(L, z, tile_column(L, z, g));
+}
 // Grid value (image CRS relative to the grid's anchor) at grid position g;
 // false outside the grid.
 bool grid_at(int L, vec2 g, out vec2 v) {
@@ -109,32 +122,36 @@ void main() {
     vec2 fl = floor(p);
     ivec2 g = u_base[L] + ivec2(fl);
     int v = -1, zz = z;
-    vec2 local;
     bool ask = true;  // request the wanted tile, or the first unknown one past a broken tile
+    bool finer = true;  // below the first broken tile, its children are tried once
     for (; zz >= u_min_zoom[L]; --zz) {
-      int s = ref - zz;
-      ivec2 t = g >> s;
-      ivec2 tw = t;  // the tile's own column, past the antimeridian too
-      if (u_wrap[L] > 0) {
-        int n = u_wrap[L] << zz;
-        tw.x = ((t.x % n) + n) % n;
-      }
-      int e = table_lookup(L, zz, tw);
+      int e = tile_at(L, zz, g);
       if (e == -1) {
-        if (ask) request(zz, tw, uint(L));
+        if (ask) request(zz, tile_column(L, zz, g), uint(L));
         ask = false;
         continue;
       }
-      if (e == int(0xFFFFFFFDu)) {  // broken: the coarser tile
+      if (e == int(0xFFFFFFFDu)) {  // broken: the finer tiles under it, then the coarser
         ask = true;
+        if (finer) {
+          finer = false;
+          for (int zf = zz + 1; zf <= min(zz + 2, u_max_zoom[L]) && v < 0; ++zf) {
+            int ef = tile_at(L, zf, g);
+            if (ef == -1) request(zf, tile_column(L, zf, g), uint(L));
+            if (ef == -1 || ef == int(0xFFFFFFFEu)) break;
+            if (ef != int(0xFFFFFFFDu)) v = ef, zz = zf;
+          }
+          if (v >= 0) break;
+        }
         continue;
       }
       if (e == int(0xFFFFFFFEu)) break;     // absent: the layers below show
       v = e;
-      local = (vec2(g - (t << s)) + (p - fl)) / float(1 << s);
       break;
     }
     if (v < 0) continue;
+    int s = ref - zz;
+    vec2 local = (vec2(g - ((g >> s) << s)) + (p - fl)) / float(1 << s);
     used[u_slot_offset[L] + uint(v)] = u_frame;
     float scale = exp2(float(zz - ref));
     vec4 img = textureGrad(u_images[L], vec3(local, float(v)), Jt[0] * scale, Jt[1] * scale);

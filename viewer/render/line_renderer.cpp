@@ -232,7 +232,11 @@ void LineRenderer::upload_tables(const LineCache& cache) {
     const uint32_t off = static_cast<uint32_t>(r.offset);
     gpu[2 * i] = {off, off + cells, off + cells + r.tile.cell_entries, r.tile.grid};
     gpu[2 * i + 1] = {std::bit_cast<uint32_t>(float(r.tile.extent)),
-                      std::bit_cast<uint32_t>(float(r.tile.reach)), r.empty ? 1u : 0u, 0u};
+                      std::bit_cast<uint32_t>(float(r.tile.reach)),
+                      r.broken  ? 2u
+                      : r.empty ? 1u
+                                : 0u,
+                      0u};
   }
   fill_buffer(records_, gpu.size() * sizeof(glm::uvec4), gpu.data());
   const auto table = build_tile_table(entries);

@@ -164,13 +164,34 @@ void main() {
   int wanted = int(floor(zoom_bias - log2(footprint)));  // may lie past the package's zooms
   int z = clamp(wanted, u_min_zoom, u_max_zoom);
 
-  int rec = -1, zz = z;
+  // The wanted tile, else the coarser ones. Past a broken tile (record flag
+  // 2) the next coarser unknown one is asked for too; where no coarser tile
+  // can be drawn, the finer ones under the broken tile are (one or two zooms
+  // down: a tile's cells reach only as far as its own zoom's widest line, so
+  // finer tiles draw wide lines thinner, and are the last resort).
+  int rec = -1, zz = z, broken_z = -1;
   vec2 local;
+  bool ask = true;
   for (; zz >= u_min_zoom; --zz) {
     ivec2 t = tile_of(u_ref, zz, p, local);
     rec = line_table_lookup(zz, t);
+    if (rec >= 0 && records[2 * rec + 1].z == 2u) {
+      if (broken_z < 0) broken_z = zz;
+      rec = -1;
+      ask = true;
+      continue;
+    }
     if (rec >= 0) break;
-    if (zz == z) request(zz, t, 0u);
+    if (ask) request(zz, t, 0u);
+    ask = false;
+  }
+  for (int zf = broken_z + 1; rec < 0 && broken_z >= 0 && zf <= min(broken_z + 2, u_max_zoom);
+       ++zf) {
+    ivec2 tf = tile_of(u_ref, zf, p, local);
+    int r = line_table_lookup(zf, tf);
+    if (r < 0) request(zf, tf, 0u);
+    if (r < 0 || records[2 * r + 1].z == 1u) break;
+    if (records[2 * r + 1].z == 0u) rec = r, zz = zf;
   }
   if (rec < 0) return;
   used[rec] = u_frame;
@@ -225,7 +246,9 @@ void main() {
     // within `reach` of the segment, so the cell that lists it is the one
     // the pixel looks in (tileformat §7.3).
     vec2 n_s = len2 > 1e-12 ? normalize(vec2(-ab.y, ab.x)) : vec2(0.7071068);
-    float limit = max(reach_m / length(J * n_s) - 0.5, 0.0);
+    // (A finer tile standing in for a broken one reaches less than a pixel
+    // here: its lines are kept a pixel wide, where its cells list them.)
+    float limit = max(reach_m / length(J * n_s) - 0.5, zz > z ? 0.5 : 0.0);
     if (outer > limit) {
       hw *= limit / outer;
       outer = limit;

@@ -125,7 +125,7 @@ bool PatchSelector::active(const KeyPoint& v, int level) {
       result =
           dist <= 0 ||
           std::max(error, geometric) * view_->pixels_per_radian / dist > settings_.max_error_px ||
-          hyp > kMaxSpanPerDistance * dist;
+          hyp > kMaxSpanPerDistance * dist || block->split_through;
     } else if (exists) {
       ++stats_.waiting;
       for (const TileId& id : missing)

@@ -9,7 +9,11 @@
 //     its diamond lies in tiles the package does not have (no data: splitting
 //     only removes empty triangles), and
 //   - both of its 4-8 parents are active.
-// A node is split iff its split vertex is active. The closure under parents
+// A node is split iff its split vertex is active. A block standing in for a
+// broken tile with its children's samples (data/block_substitute.hpp) has
+// no errors of its own: its vertices are active, so the selection reaches
+// the children wherever the closure lets it, and draws the stand-in only
+// where it does not. The closure under parents
 // makes the mesh conforming by construction; saturated errors and nested
 // bounding spheres make the rule reach tau where data is resident. A block
 // that is not resident yet simply keeps its region coarser.

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <queue>
+#include <set>
 
 #include <glm/glm.hpp>
 
@@ -102,6 +103,49 @@ std::vector<TileId> select_point_tiles(const PointTileSelection& s, const View& 
   for (const Measured& m : chosen)
     out.push_back(m.id);
   return out;
+}
+
+std::vector<TileId> stand_in_tiles(std::vector<TileId> tiles, int min_zoom, int max_zoom,
+                                   const std::function<bool(TileId)>& exists,
+                                   const std::function<bool(TileId)>& broken) {
+  auto parent = [](const TileId& t) { return TileId{t.z - 1, t.x / 2, t.y / 2}; };
+  for (int round = 0; round < 4; ++round) {
+    bool changed = false;
+    std::vector<TileId> out;
+    std::set<TileId> parents;  // stand-ins for a broken child and its siblings
+    for (const TileId& t : tiles) {
+      if (!broken(t)) {
+        out.push_back(t);
+        continue;
+      }
+      changed = true;
+      bool any = false;
+      for (uint32_t c = 0; c < 4 && t.z < max_zoom; ++c) {
+        const TileId child{t.z + 1, 2 * t.x + (c & 1), 2 * t.y + (c >> 1)};
+        if (exists(child)) out.push_back(child), any = true;
+      }
+      if (!any && t.z > min_zoom) parents.insert(parent(t));
+    }
+    if (!parents.empty()) {
+      std::vector<TileId> kept;
+      std::set<TileId> placed;
+      for (const TileId& t : out) {
+        const bool covered = t.z > min_zoom && parents.count(parent(t));
+        if (!covered) {
+          kept.push_back(t);
+        } else if (placed.insert(parent(t)).second) {
+          kept.push_back(parent(t));
+        }
+      }
+      for (const TileId& p : parents)  // a broken tile whose siblings were not selected
+        if (placed.insert(p).second) kept.push_back(p);
+      out = std::move(kept);
+    }
+    tiles = std::move(out);
+    if (!changed) break;
+  }
+  std::erase_if(tiles, broken);
+  return tiles;
 }
 
 }  // namespace globe::viewer

@@ -32,4 +32,15 @@ struct PointTileSelection {
 std::vector<tileformat::TileId> select_point_tiles(const PointTileSelection& s, const View& view,
                                                    const WorldFrame& world);
 
+// The selection with its broken tiles stood in for (issue 55): each by the
+// children the package holds, or, where it has none (the finest zoom), by
+// its parent, which then stands for its siblings too, so that no chart is
+// drawn twice; again while a stand-in is known broken (a few rounds), and a
+// tile with neither is left out. The order (back to front) is kept: a
+// stand-in takes the place of the first tile it replaces.
+std::vector<tileformat::TileId> stand_in_tiles(
+    std::vector<tileformat::TileId> tiles, int min_zoom, int max_zoom,
+    const std::function<bool(tileformat::TileId)>& exists,
+    const std::function<bool(tileformat::TileId)>& broken);
+
 }  // namespace globe::viewer
