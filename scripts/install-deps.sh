@@ -9,7 +9,7 @@ packages=(
   build-essential cmake ninja-build pkg-config clang-format
   # fuzzing (scripts/fuzz.sh): clang and its libFuzzer runtime
   clang libclang-rt-14-dev
-  # libraries (see README "Dependencies")
+  # libraries (docs/install.md lists what the programs link)
   libgdal-dev libproj-dev libtiff-dev libzstd-dev libsqlite3-dev libpng-dev zlib1g-dev
   # globe-serve: HTTP from GNU libmicrohttpd (docs/serve.md "HTTP")
   libmicrohttpd-dev

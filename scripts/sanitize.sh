@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds with AddressSanitizer + UndefinedBehaviorSanitizer (clang) into build-asan/
-# and runs the whole test suite there (every label: unit, cli, real, render,
-# slow). Leaks are reported, except Mesa's own (scripts/lsan.supp says why).
+# and runs the test suite there (every label but web, whose browsers run none
+# of the project's binaries, and tutorial, whose steps are tested on their
+# own). Leaks are reported, except Mesa's own (scripts/lsan.supp says why).
 # Needs the samples (scripts/test.sh fetches them).
 # Usage: scripts/sanitize.sh [ctest args]
 set -euo pipefail

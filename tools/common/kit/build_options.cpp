@@ -32,7 +32,7 @@ void declare_area_options(CliArgs& cli, BuildOptions& o, const std::string& s_sr
              [&o](const std::string& v) { o.bbox = CliArgs::to_doubles("--bbox", v, 4); });
 }
 
-void declare_run_options(CliArgs& cli, BuildOptions& o) {
+void declare_run_options(CliArgs& cli, BuildOptions& o, ResumeOption resume) {
   cli.option("-j,--threads", "N",
              "worker threads (default: all cores); output is identical for any N",
              [&o](const std::string& v) { o.threads = CliArgs::to_int("--threads", v, 1, 1024); });
@@ -42,11 +42,12 @@ void declare_run_options(CliArgs& cli, BuildOptions& o) {
                o.progress = ProgressMode::kJson;
              });
   cli.flag("--force", "replace an existing output", [&o] { o.force = true; });
-  cli.flag("--resume",
-           "continue the build a kill or crash interrupted (OUT.mbtiles.tmp) instead of starting "
-           "over; same inputs and options required; the result is identical to an "
-           "uninterrupted run",
-           [&o] { o.resume = true; });
+  if (resume == ResumeOption::kOffered)
+    cli.flag("--resume",
+             "continue the build a kill or crash interrupted (OUT.mbtiles.tmp) instead of "
+             "starting over; same inputs and options required; the result is identical to an "
+             "uninterrupted run",
+             [&o] { o.resume = true; });
   cli.flag("-q,--quiet", "no progress or summary on stderr", [&o] { o.quiet = true; });
 }
 

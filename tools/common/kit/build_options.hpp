@@ -44,7 +44,11 @@ struct BuildOptions {
 void declare_area_options(CliArgs& cli, BuildOptions& o, const std::string& s_srs_help,
                           const std::string& max_zoom_help);
 // -j, --progress, --force, --resume, -q.
-void declare_run_options(CliArgs& cli, BuildOptions& o);
+// Whether a command offers --resume (a build written as a package does; an
+// export, written afresh each time, does not).
+enum class ResumeOption { kOffered, kNotOffered };
+void declare_run_options(CliArgs& cli, BuildOptions& o,
+                         ResumeOption resume = ResumeOption::kOffered);
 // What identifies a build for --resume: the reproducible command line and
 // each input's size and modification time.
 std::string build_key(const BuildOptions& o);

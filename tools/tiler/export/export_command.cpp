@@ -119,10 +119,9 @@ int run_export(const std::vector<std::string>& args) {
              });
   cli.option("-o,--output", "OUT", "OUT.pmtiles, OUT.mbtiles or a folder",
              [&](const std::string& v) { o.output = CliArgs::to_output_path(v); });
-  declare_run_options(cli, o);
+  declare_run_options(cli, o, ResumeOption::kNotOffered);
   if (!parse_build_command(cli, o, args, "globe-tiler export", "PACKAGE")) return kExitOk;
   if (o.inputs.size() != 1) throw UsageError("give exactly one package to export");
-  if (o.resume) throw UsageError("--resume: an export is written afresh each time");
   const std::string& input = o.inputs[0];
   const std::optional<tileformat::PackageKind> kind = package_kind(input);
   Progress progress(o.progress);

@@ -44,8 +44,9 @@ int run_extract(const std::vector<std::string>& args) {
   cli.option("--bbox", "W,S,E,N", "only tiles intersecting this lon/lat box",
              [&](const std::string& v) { rq.bbox = CliArgs::to_doubles("--bbox", v, 4); });
   cli.option("--layer", "NAME",
-             "analysis packages: the layer to write (slope, aspect, profile_curvature, "
-             "plan_curvature), Float32 in its unit, NaN where it has no value",
+             "analysis packages: the layer to write, any the package holds (slope, aspect, "
+             "profile_curvature, plan_curvature, skyview, flow_direction, flow_accumulation), "
+             "Float32 in its unit, NaN where it has no value",
              [&](const std::string& v) { rq.layer = v; });
   cli.option("-o,--output", "OUT.tif", "output GeoTIFF",
              [&](const std::string& v) { rq.output = CliArgs::to_output_path(v); });

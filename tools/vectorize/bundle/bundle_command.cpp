@@ -172,7 +172,7 @@ int run_bundle(const std::vector<std::string>& args) {
   declare_area_options(cli, s,
                        "CRS of the network and locations files without one (default: theirs)",
                        "finest zoom (default: where the network's median segment spans 4 px, "
-                       "at most 18)");
+                       "at least 6 and at most 18)");
   declare_network_and_flow_options(cli, s);
   declare_bundle_drawing_options(cli, s);
   cli.option("--like", "PACKAGE",

@@ -40,11 +40,10 @@ int run_export(const std::vector<std::string>& args) {
              [&](const std::string& v) { s.style_json = v; });
   cli.option("-o,--output", "OUT", "OUT.pmtiles, OUT.mbtiles or a folder",
              [&](const std::string& v) { o.output = CliArgs::to_output_path(v); });
-  declare_run_options(cli, o);
+  declare_run_options(cli, o, ResumeOption::kNotOffered);
   if (!parse_build_command(cli, o, args, "globe-vectorize export", "PACKAGE")) return kExitOk;
   if (o.inputs.size() != 1)
     throw UsageError("give exactly one line, bundle or point package to export");
-  if (o.resume) throw UsageError("--resume: an export is written afresh each time");
   s.input = o.inputs[0], s.output = o.output, s.force = o.force;
   const auto kind = package_kind(s.input);
   if (kind != tileformat::PackageKind::kLines && kind != tileformat::PackageKind::kPoints)
