@@ -187,6 +187,74 @@ TEST(Serve, VectorTilesAndStylesPointAtTheServer) {
   EXPECT_EQ(http_get(port, "/roads/8/0/0.pbf").status, 204);
 }
 
+// Line and point tiles drawn as images for CesiumJS (/NAME/z/x/y.png, issue
+// 55 part 3), checked against positions worked out here from the web
+// mercator formulas: the line's pixels in its style's colour and width
+// (4 px: opaque on it, clear 6 px away), the place a disc of 3 px in
+// #d7301f at 0.8 with a white rim; a tile with nothing is transparent.
+TEST(Serve, LineAndPointTilesAsImagesDrawWhatTheStylesSay) {
+  TempDir dir("serve-raster");
+  std::ofstream(dir / "line.geojson")
+      << R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
+      << R"("geometry":{"type":"LineString","coordinates":[[7.0,46.0],[8.0,47.0]]}}]})";
+  std::ofstream(dir / "place.csv") << "lon,lat,v\n7.3,46.3,1\n";
+  ASSERT_TRUE(
+      run_all({vectorize() + " lines -q " + (dir / "line.geojson").string() +
+                   " --max-zoom 8 --style 'line:color=#ff0000,width=4px' -o " +
+                   (dir / "line.mbtiles").string(),
+               vectorize() + " points -q " + (dir / "place.csv").string() +
+                   " --xy lon,lat --fields v --max-zoom 8 -o " + (dir / "place.mbtiles").string()},
+              dir.path()));
+  ServeProcess server({(dir / "line.mbtiles").string(), (dir / "place.mbtiles").string()},
+                      dir.path());
+  ASSERT_GT(server.port(), 0) << server.log();
+  // Global pixel of (lon, lat) at zoom 8 (256 px tiles).
+  auto pixel = [](double lon, double lat) {
+    const double n = 256.0 * 256;
+    return std::pair{
+        (lon + 180) / 360 * n,
+        (1 - std::asinh(std::tan(lat * std::acos(-1.0) / 180)) / std::acos(-1.0)) / 2 * n};
+  };
+  auto tile_of = [&](const std::string& name, double gx, double gy, int& w, int& h) {
+    const HttpReply r = http_get(server.port(), "/" + name + "/8/" + std::to_string(int(gx / 256)) +
+                                                    "/" + std::to_string(int(gy / 256)) + ".png");
+    EXPECT_EQ(r.status, 200) << r.body;
+    EXPECT_EQ(r.header("content-type"), "image/png");
+    return png_pixels(r.body, w, h, 4);
+  };
+  int w = 0, h = 0;
+  // The line's midpoint in its tile, and 6 px off it across (the line runs
+  // north-east, so across is about (1, 1) / sqrt 2 in pixels).
+  const auto [mx, my] = pixel(7.5, 46.5);
+  const auto line = tile_of("line", mx, my, w, h);
+  ASSERT_EQ(line.size(), size_t(256) * 256 * 4);
+  auto at = [&](const std::vector<uint8_t>& px, double gx, double gy) {
+    const size_t i = (size_t(int(gy) % 256) * 256 + size_t(int(gx) % 256)) * 4;
+    return std::vector<int>{px[i], px[i + 1], px[i + 2], px[i + 3]};
+  };
+  EXPECT_EQ(at(line, mx, my), (std::vector<int>{255, 0, 0, 255}));
+  EXPECT_EQ(at(line, mx + 6 / std::sqrt(2.0), my + 6 / std::sqrt(2.0))[3], 0);
+  EXPECT_EQ(at(line, mx - 6 / std::sqrt(2.0), my - 6 / std::sqrt(2.0))[3], 0);
+  // The place: its centre red at 0.8, 3.5 px out the white rim, 6 px out clear.
+  const auto [px, py] = pixel(7.3, 46.3);
+  const auto place = tile_of("place", px, py, w, h);
+  ASSERT_EQ(place.size(), size_t(256) * 256 * 4);
+  const auto centre = at(place, px, py);
+  EXPECT_NEAR(centre[0], 0xd7, 2);
+  EXPECT_NEAR(centre[1], 0x30, 2);
+  EXPECT_NEAR(centre[3], 204, 2);
+  const auto rim = at(place, px + 3.6, py);
+  EXPECT_GT(rim[1], 200) << "white rim";
+  EXPECT_GT(rim[3], 100);
+  EXPECT_EQ(at(place, px + 6.5, py)[3], 0);
+  // A tile of the pyramid with nothing in it: transparent, not a 204.
+  const HttpReply empty = http_get(server.port(), "/line/8/0/0.png");
+  EXPECT_EQ(empty.status, 200);
+  const auto clear = png_pixels(empty.body, w, h, 4);
+  ASSERT_FALSE(clear.empty());
+  EXPECT_EQ(*std::max_element(clear.begin(), clear.end()), 0);
+}
+
 // The HTTP contract: ETag and 304, CORS and preflight, methods, PMTiles
 // ranges (206, 416), the preview pages and the libraries under /lib.
 TEST(Serve, HttpContractEtagCorsRangesPages) {

@@ -15,7 +15,8 @@
 namespace globe_test {
 
 // RGB pixels of a PNG in memory (GDAL's PNG driver).
-inline std::vector<uint8_t> png_rgb(const std::string& bytes, int& w, int& h) {
+// The first `channels` bands of a PNG in memory (GDAL's decoder), interleaved.
+inline std::vector<uint8_t> png_pixels(const std::string& bytes, int& w, int& h, int channels) {
   gdal_setup();
   static int serial = 0;
   const std::string name = "/vsimem/web_export_" + std::to_string(++serial) + ".png";
@@ -23,18 +24,21 @@ inline std::vector<uint8_t> png_rgb(const std::string& bytes, int& w, int& h) {
                                   reinterpret_cast<GByte*>(const_cast<char*>(bytes.data())),
                                   vsi_l_offset(bytes.size()), FALSE));
   GDALDatasetH ds = GDALOpen(name.c_str(), GA_ReadOnly);
-  std::vector<uint8_t> rgb;
-  if (ds) {
+  std::vector<uint8_t> px;
+  if (ds && GDALGetRasterCount(ds) >= channels) {
     w = GDALGetRasterXSize(ds), h = GDALGetRasterYSize(ds);
-    rgb.resize(size_t(w) * h * 3);
-    int bands[3] = {1, 2, 3};
-    if (GDALDatasetRasterIO(ds, GF_Read, 0, 0, w, h, rgb.data(), w, h, GDT_Byte, 3, bands, 3,
-                            size_t(w) * 3, 1) != CE_None)
-      rgb.clear();
-    GDALClose(ds);
+    px.resize(size_t(w) * h * channels);
+    int bands[4] = {1, 2, 3, 4};
+    if (GDALDatasetRasterIO(ds, GF_Read, 0, 0, w, h, px.data(), w, h, GDT_Byte, channels, bands,
+                            channels, size_t(w) * channels, 1) != CE_None)
+      px.clear();
   }
+  if (ds) GDALClose(ds);
   VSIUnlink(name.c_str());
-  return rgb;
+  return px;
+}
+inline std::vector<uint8_t> png_rgb(const std::string& bytes, int& w, int& h) {
+  return png_pixels(bytes, w, h, 3);
 }
 
 // Runs tests/web/pages/PAGE (or PAGE itself if it is an http:// URL) with

@@ -19,6 +19,7 @@
 #include "runtime/image_package.hpp"
 #include "runtime/line_package.hpp"
 #include "runtime/package_open.hpp"
+#include "runtime/png_codec.hpp"
 #include "runtime/point_package.hpp"
 #include "runtime/terrain_package.hpp"
 #include "serve/file_body.hpp"
@@ -32,6 +33,7 @@
 #include "web/raster_dem.hpp"
 #include "web/raster_dem_tile.hpp"
 #include "web/terrain_sampler.hpp"
+#include "web/vector_raster.hpp"
 
 namespace globe::serve {
 namespace {
@@ -100,6 +102,7 @@ class TerrainService : public PackageService {
                         : std::clamp(int(std::floor(pkg_.max_zoom + finer + 1e-9)), 0, 24);
   }
   std::string kind() const override { return "terrain"; }
+  std::string tiling() const override { return tileformat::scheme_name(pkg_.tiling.scheme); }
 
   // The quantized-mesh tiles (TMS rows), or with ?encoding=terrarium|terrain-rgb
   // the raster-DEM PNGs (XYZ rows, web mercator zooms), as MapLibre's
@@ -231,6 +234,30 @@ class TerrainService : public PackageService {
   };
 };
 
+// A tile of a global tiling (web mercator or geodetic: CesiumJS drapes
+// images in both) inside the package's zooms, or the refusal.
+HttpResponse check_tile(const tileformat::Tiling& t, const std::string& name, const Route& r,
+                        int min_zoom, int max_zoom) {
+  if (t.scheme == tileformat::Scheme::kLocal)
+    return text_response(404, name + " is in a local tiling, which web clients cannot place");
+  if (r.z < min_zoom || r.z > max_zoom)
+    return text_response(404, "zoom " + std::to_string(r.z) + " is outside the package's " +
+                                  std::to_string(min_zoom) + ".." + std::to_string(max_zoom));
+  if (r.x >= t.tiles_x(r.z) || r.y >= t.tiles_y(r.z))
+    return text_response(404, "tile outside zoom " + std::to_string(r.z));
+  return HttpResponse{};
+}
+
+// A tile with nothing drawn: fully transparent, so that an image client
+// draws what lies under it (a 204 is an error to CesiumJS's imagery).
+HttpResponse transparent_png() {
+  static const std::vector<uint8_t> png = [] {
+    const std::vector<uint8_t> clear(size_t(256) * 256 * 4, 0);
+    return encode_png(clear.data(), 256, 256, 4, 9);
+  }();
+  return bytes_response(png, "image/png", false);
+}
+
 // Web mercator packages only: their rows are XYZ rows.
 HttpResponse check_xyz(const tileformat::Tiling& t, const std::string& name, const Route& r,
                        int min_zoom, int max_zoom) {
@@ -254,6 +281,7 @@ class ImageService : public PackageService {
     ext_ = tileformat::image_format_name(pkg_.format);
   }
   std::string kind() const override { return "images"; }
+  std::string tiling() const override { return tileformat::scheme_name(pkg_.tiling.scheme); }
   HttpResponse tilejson(const std::string& base, const HttpRequest&) override {
     return json_response(tilejson_text(
         *this, name_, base + "/{z}/{x}/{y}." + ext_,
@@ -263,7 +291,9 @@ class ImageService : public PackageService {
     if (r.kind != Route::Kind::kTile) return text_response(404, "an image package has tiles only");
     if (r.extension != ext_)
       return text_response(404, name_ + " holds ." + ext_ + " tiles, not ." + r.extension);
-    HttpResponse bad = check_xyz(pkg_.tiling, name_, r, min_zoom, max_zoom);
+    // Web mercator for every client, geodetic for CesiumJS (its geographic
+    // tiling scheme): rows from the north in both.
+    HttpResponse bad = check_tile(pkg_.tiling, name_, r, min_zoom, max_zoom);
     if (bad.status != 200) return bad;
     std::optional<std::vector<uint8_t>> tile;
     {
@@ -297,6 +327,7 @@ class LineService : public PackageService {
     if (classes_in_.empty()) classes_in_["lines"] = all;
   }
   std::string kind() const override { return "lines"; }
+  std::string tiling() const override { return tileformat::scheme_name(pkg_.tiling.scheme); }
   HttpResponse tilejson(const std::string& base, const HttpRequest&) override {
     std::map<std::string, std::map<std::string, std::string>> layers;
     for (const auto& [layer, _] : classes_in_)
@@ -308,8 +339,20 @@ class LineService : public PackageService {
   HttpResponse answer(const Route& r, const HttpRequest&, const std::string& base) override {
     if (r.kind == Route::Kind::kStyleJson)
       return json_response(web::line_style_json(pkg_, classes_in_, base + ".json"));
+    if (r.kind == Route::Kind::kTile && r.extension == "png") {  // drawn, for image clients
+      HttpResponse bad = check_tile(pkg_.tiling, name_, r, min_zoom, max_zoom);
+      if (bad.status != 200) return bad;
+      std::optional<std::vector<uint8_t>> blob;
+      {
+        std::lock_guard lock(mutex_);
+        blob = pkg_.reader->tile({r.z, r.x, r.y});
+      }
+      std::vector<uint8_t> png;
+      if (blob) png = web::line_tile_png(pkg_, {r.z, r.x, r.y}, *blob);
+      return png.empty() ? transparent_png() : bytes_response(std::move(png), "image/png", false);
+    }
     if (r.kind != Route::Kind::kTile || (r.extension != "pbf" && r.extension != "mvt"))
-      return text_response(404, "a line package has style.json and .pbf tiles");
+      return text_response(404, "a line package has style.json, .pbf and .png tiles");
     HttpResponse bad = check_xyz(pkg_.tiling, name_, r, min_zoom, max_zoom);
     if (bad.status != 200) return bad;
     std::lock_guard lock(mutex_);  // one SQLite connection, one features cache
@@ -336,6 +379,9 @@ class PointService : public PackageService {
     min_zoom = pkg_.meta.common.min_zoom, max_zoom = pkg_.meta.common.max_zoom;
   }
   std::string kind() const override { return "points"; }
+  std::string tiling() const override {
+    return tileformat::scheme_name(pkg_.meta.common.tiling.scheme);
+  }
   HttpResponse tilejson(const std::string& base, const HttpRequest&) override {
     return json_response(tilejson_text(*this, name_, base + "/{z}/{x}/{y}.pbf",
                                        "\"format\":\"pbf\",\"vector_layers\":" +
@@ -344,8 +390,17 @@ class PointService : public PackageService {
   HttpResponse answer(const Route& r, const HttpRequest&, const std::string& base) override {
     if (r.kind == Route::Kind::kStyleJson)
       return json_response(web::point_style_json(pkg_, base + ".json"));
+    if (r.kind == Route::Kind::kTile && r.extension == "png") {  // drawn, for image clients
+      HttpResponse bad = check_tile(pkg_.meta.common.tiling, name_, r, min_zoom, max_zoom);
+      if (bad.status != 200) return bad;
+      const std::vector<uint8_t> png = web::point_tile_png(pkg_, {r.z, r.x, r.y}, [&](TileId t) {
+        std::lock_guard lock(mutex_);
+        return pkg_.reader->tile(t);
+      });
+      return png.empty() ? transparent_png() : bytes_response(std::move(png), "image/png", false);
+    }
     if (r.kind != Route::Kind::kTile || (r.extension != "pbf" && r.extension != "mvt"))
-      return text_response(404, "a point package has style.json and .pbf tiles");
+      return text_response(404, "a point package has style.json, .pbf and .png tiles");
     HttpResponse bad = check_xyz(pkg_.meta.common.tiling, name_, r, min_zoom, max_zoom);
     if (bad.status != 200) return bad;
     std::optional<std::vector<uint8_t>> blob;
@@ -383,6 +438,7 @@ class PmtilesService : public PackageService {
     west = i32(102) / 1e7, south = i32(106) / 1e7, east = i32(110) / 1e7, north = i32(114) / 1e7;
   }
   std::string kind() const override { return "pmtiles"; }
+  std::string tiling() const override { return ""; }
   HttpResponse tilejson(const std::string&, const HttpRequest&) override {
     return text_response(404, name_ +
                                   ".pmtiles holds its own metadata; read it with a PMTiles "

@@ -26,6 +26,8 @@ class PackageService : public TileSetExtent {
   virtual ~PackageService() = default;
   // "terrain", "images", "lines", "points", "pmtiles".
   virtual std::string kind() const = 0;
+  // "webmercator", "geodetic", "local"; "" for a .pmtiles file.
+  virtual std::string tiling() const = 0;
   // TileJSON 3.0.0 with tile URLs under `base` (http://host:port/NAME); the
   // request's query may choose among a kind's tile sets (terrain: ?encoding=
   // gives the raster-DEM PNGs').

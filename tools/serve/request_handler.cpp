@@ -89,8 +89,9 @@ HttpResponse RequestHandler::route(const HttpRequest& req) {
     case Route::Kind::kViewer: {
       HttpResponse out;
       out.content_type = "text/html; charset=utf-8";
-      out.body =
-          r.file == "cesium.html" ? cesium_page(options_.lib_url) : maplibre_page(options_.lib_url);
+      const auto packages = registry_.list();
+      out.body = r.file == "cesium.html" ? cesium_page(options_.lib_url, packages)
+                                         : maplibre_page(options_.lib_url, packages);
       out.compressible = true;
       return out;
     }

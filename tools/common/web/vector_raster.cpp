@@ -1,0 +1,205 @@
+// Line and point tiles as PNG images (see vector_raster.hpp).
+#include "web/vector_raster.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "runtime/errors.hpp"
+#include "runtime/png_codec.hpp"
+#include "tileformat/error.hpp"
+#include "tileformat/line_tile.hpp"
+#include "tileformat/point_tile.hpp"
+
+namespace globe::web {
+namespace {
+
+using tileformat::TileId;
+
+struct Rgb {
+  float r = 0, g = 0, b = 0;
+};
+
+Rgb parse_color(const std::string& hex) {
+  unsigned r = 0, g = 0, b = 0;
+  if (hex.size() == 7 && hex[0] == '#') std::sscanf(hex.c_str() + 1, "%2x%2x%2x", &r, &g, &b);
+  return {r / 255.0f, g / 255.0f, b / 255.0f};
+}
+
+// Premultiplied RGBA in floats; layers of coverage composited one by one.
+class Canvas {
+ public:
+  explicit Canvas(int size) : size_(size), rgba_(size_t(size) * size * 4, 0.0f) {}
+  int size() const { return size_; }
+  // A new layer (its coverage is the largest of the shapes drawn into it).
+  void begin_layer() {
+    cover_.assign(size_t(size_) * size_, 0.0f);
+    drawn_ = false;
+  }
+  // A capsule (segment with round ends) of half width `hw` px.
+  void segment(double ax, double ay, double bx, double by, double hw) {
+    const double reach = hw + 1;
+    const int x0 = std::max(0, int(std::floor(std::min(ax, bx) - reach)));
+    const int x1 = std::min(size_ - 1, int(std::ceil(std::max(ax, bx) + reach)));
+    const int y0 = std::max(0, int(std::floor(std::min(ay, by) - reach)));
+    const int y1 = std::min(size_ - 1, int(std::ceil(std::max(ay, by) + reach)));
+    const double dx = bx - ax, dy = by - ay, len2 = dx * dx + dy * dy;
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const double px = x + 0.5 - ax, py = y + 0.5 - ay;
+        const double t = len2 > 0 ? std::clamp((px * dx + py * dy) / len2, 0.0, 1.0) : 0.0;
+        const double d = std::hypot(px - t * dx, py - t * dy);
+        cover(x, y, hw + 0.5 - d);
+      }
+  }
+  void disc(double cx, double cy, double radius) { segment(cx, cy, cx, cy, radius); }
+  // The ring between radius r and r + w.
+  void ring(double cx, double cy, double r, double w) {
+    const int x0 = std::max(0, int(std::floor(cx - r - w - 1))),
+              x1 = std::min(size_ - 1, int(std::ceil(cx + r + w + 1)));
+    const int y0 = std::max(0, int(std::floor(cy - r - w - 1))),
+              y1 = std::min(size_ - 1, int(std::ceil(cy + r + w + 1)));
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const double d = std::hypot(x + 0.5 - cx, y + 0.5 - cy);
+        cover(x, y, std::min(r + w + 0.5 - d, d - r + 0.5));
+      }
+  }
+  // Composites the layer in `color` at `opacity`.
+  void end_layer(Rgb color, float opacity) {
+    if (!drawn_) return;
+    for (size_t i = 0; i < cover_.size(); ++i) {
+      const float a = cover_[i] * opacity;
+      if (a <= 0) continue;
+      float* p = &rgba_[4 * i];
+      p[0] = color.r * a + p[0] * (1 - a);
+      p[1] = color.g * a + p[1] * (1 - a);
+      p[2] = color.b * a + p[2] * (1 - a);
+      p[3] = a + p[3] * (1 - a);
+    }
+  }
+  // Straight-alpha RGBA PNG; empty if nothing was drawn.
+  std::vector<uint8_t> png() const {
+    std::vector<uint8_t> out(rgba_.size());
+    bool any = false;
+    for (size_t i = 0; i < rgba_.size(); i += 4) {
+      const float a = rgba_[i + 3];
+      for (int k = 0; k < 3; ++k)
+        out[i + k] =
+            uint8_t(std::lround(std::clamp(a > 0 ? rgba_[i + k] / a : 0.0f, 0.0f, 1.0f) * 255));
+      out[i + 3] = uint8_t(std::lround(std::clamp(a, 0.0f, 1.0f) * 255));
+      any = any || out[i + 3] > 0;
+    }
+    return any ? encode_png(out.data(), size_, size_, 4, 6) : std::vector<uint8_t>();
+  }
+
+ private:
+  void cover(int x, int y, double c) {
+    if (c <= 0) return;
+    float& v = cover_[size_t(y) * size_ + x];
+    v = std::max(v, float(std::min(c, 1.0)));
+    drawn_ = true;
+  }
+  int size_;
+  std::vector<float> rgba_, cover_;
+  bool drawn_ = false;
+};
+
+// Ground metres per pixel at the centre of tile `id`.
+double metres_per_pixel(const tileformat::Tiling& t, TileId id, int size) {
+  const tileformat::Bounds b = t.tile_bounds(id);
+  const double cy = (b.min_y + b.max_y) / 2, edge = t.tile_size(id.z) / size;
+  switch (t.scheme) {
+    case tileformat::Scheme::kGeodetic:
+      return edge * 111319.49 * std::cos(cy * M_PI / 180);
+    case tileformat::Scheme::kWebMercator:
+      return edge * std::cos(2 * std::atan(std::exp(cy / 6378137.0)) - M_PI / 2);
+    default:
+      return edge;
+  }
+}
+
+}  // namespace
+
+std::vector<uint8_t> line_tile_png(const LinePackage& package, TileId id,
+                                   std::span<const uint8_t> blob, int size) {
+  tileformat::LineTile t;
+  try {
+    t = tileformat::decode_line_tile(blob);
+  } catch (const tileformat::FormatError& e) {
+    throw InputError(package.reader->path() + ": tile " + id.str() + ": " + e.what() +
+                     "; check the package with globe-vectorize validate");
+  }
+  const double px = double(size) / t.extent;  // pixels per tile unit
+  const double m_per_px = metres_per_pixel(package.tiling, id, size);
+  Canvas canvas(size);
+  for (int pass = 0; pass < 2; ++pass)  // every casing, then every fill
+    for (size_t c = 0; c < package.classes.size(); ++c) {
+      const LineStyle& s = package.classes[c].style;
+      const bool casing = !s.casing_color.empty() && s.casing_width > 0;
+      if (!s.visible || (pass == 0 && !casing)) continue;
+      const double unit = s.width_in_m ? 1 / m_per_px : 1;  // pixels per width unit
+      const double hw = std::max(0.5, unit * (s.width / 2 + (pass == 0 ? s.casing_width : 0)));
+      canvas.begin_layer();
+      for (const tileformat::LineRun& run : t.runs) {
+        if (run.class_id != c) continue;
+        for (uint32_t v = 0; v + 1 < run.vertex_count; ++v) {
+          const tileformat::LineVertex& a = t.vertices[run.first_vertex + v];
+          const tileformat::LineVertex& b = t.vertices[run.first_vertex + v + 1];
+          canvas.segment(a.x * px, a.y * px, b.x * px, b.y * px, hw);
+        }
+      }
+      for (const tileformat::LinePoint& p : t.points)
+        if (p.class_id == c) canvas.disc(p.at.x * px, p.at.y * px, hw);
+      const std::string& color = pass == 0         ? s.casing_color
+                                 : s.color.empty() ? palette_color(c)
+                                                   : s.color;
+      canvas.end_layer(parse_color(color), float(s.opacity));
+    }
+  return canvas.png();
+}
+
+std::vector<uint8_t> point_tile_png(
+    const PointPackage& package, TileId id,
+    const std::function<std::optional<std::vector<uint8_t>>(TileId)>& blob_of, int size) {
+  Canvas canvas(size);
+  const tileformat::Tiling& tiling = package.meta.common.tiling;
+  const Rgb fill = parse_color("#d7301f"), rim{1, 1, 1};
+  // The rims (rings outside the radius, as a circle layer's stroke), then
+  // the fills.
+  for (int pass = 0; pass < 2; ++pass) {
+    canvas.begin_layer();
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int64_t x = int64_t(id.x) + dx, y = int64_t(id.y) + dy;
+        if (y < 0 || y >= int64_t(tiling.tiles_y(id.z))) continue;
+        const int64_t n = int64_t(tiling.tiles_x(id.z));
+        if (!tiling.wraps_x() && (x < 0 || x >= n)) continue;
+        const TileId t{id.z, uint32_t((x + n) % n), uint32_t(y)};
+        const std::optional<std::vector<uint8_t>> blob = blob_of(t);
+        if (!blob) continue;
+        tileformat::PointTile tile;
+        try {
+          tile = tileformat::decode_point_tile(*blob);
+        } catch (const tileformat::FormatError& e) {
+          throw InputError(package.reader->path() + ": tile " + t.str() + ": " + e.what() +
+                           "; check the package with globe-vectorize validate");
+        }
+        const double px = double(size) / tile.extent;
+        for (const tileformat::Place& p : tile.places) {
+          const double r =
+              std::clamp(3 + (std::sqrt(double(p.count)) - 1) * 27.0 / 99.0, 3.0, 30.0);
+          const double cx = p.at.x * px + dx * size, cy = p.at.y * px + dy * size;
+          if (pass == 0) {
+            canvas.ring(cx, cy, r, 1);
+          } else {
+            canvas.disc(cx, cy, r);
+          }
+        }
+      }
+    canvas.end_layer(pass == 0 ? rim : fill, pass == 0 ? 1.0f : 0.8f);
+  }
+  return canvas.png();
+}
+
+}  // namespace globe::web
