@@ -256,3 +256,17 @@ TEST(WebMapLibre, GlobeServeBundlesDrawWithItsStyle) {
                        dir);
   EXPECT_NE(server.log().find("GET /flights/"), std::string::npos) << "MapLibre asked for no tile";
 }
+
+// The same archive read by pmtiles.js from globe-serve (issue 55): its first
+// read asks bytes=0-16383, then directories and tiles by ranges, every one
+// answered as RFC 9110 says (the picture is the same).
+TEST(WebMapLibre, PmtilesFromGlobeServeByRanges) {
+  TempDir dir;
+  ServeProcess server({(flights_mvt() / "flights.pmtiles").string()}, dir.path());
+  ASSERT_GT(server.port(), 0) << server.log();
+  expect_flights_drawn(
+      "style=/data/style.json&pmtiles=" +
+          query_escape("http://127.0.0.1:" + std::to_string(server.port()) + "/flights.pmtiles"),
+      dir);
+  EXPECT_NE(server.log().find("GET /flights.pmtiles 206"), std::string::npos) << server.log();
+}
