@@ -10,6 +10,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 . scripts/lib/stage.sh
+. scripts/lib/ccache.sh
 seconds=${1:-60}
 shift || true
 targets=("$@")
@@ -19,7 +20,8 @@ targets=("$@")
 # apply: each step's failure is returned explicitly.)
 build_fuzz() {
   CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DGLOBE_FUZZ=ON -DGLOBE_BUILD_TESTS=OFF -DGLOBE_SANITIZE=address,undefined >/dev/null || return
+    -DGLOBE_FUZZ=ON -DGLOBE_BUILD_TESTS=OFF -DGLOBE_SANITIZE=address,undefined \
+    "${GLOBE_CCACHE_ARGS[@]}" >/dev/null || return
   cmake --build build-fuzz --target make_fuzz_seeds "${targets[@]/#/fuzz_}"
 }
 

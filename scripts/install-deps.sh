@@ -7,6 +7,8 @@ set -euo pipefail
 packages=(
   # build
   build-essential cmake ninja-build pkg-config clang-format
+  # the compiler cache every tree goes through (scripts/lib/ccache.sh)
+  ccache
   # fuzzing (scripts/fuzz.sh): clang and its libFuzzer runtime
   clang libclang-rt-14-dev
   # libraries (docs/install.md lists what the programs link)

@@ -10,13 +10,14 @@
 #include <string>
 #include <vector>
 
+#include "test_paths.hpp"
 #include "test_support.hpp"
 
 namespace {
 
 using namespace globe_test;
 
-const fs::path kSource = GLOBE_SOURCE_DIR;
+const fs::path kSource = globe_test::paths::source_dir();
 
 // Lines of the C++ files under `dir` for which `bad` holds, as "path:line: text".
 // (Plain string tests: GCC 12 warns inside std::regex in the sanitizer build.)
@@ -288,7 +289,7 @@ TEST(Architecture, EachCApiIsCalledOnlyFromItsWrapper) {
 TEST(Architecture, ViewerLibTestsAndTheTilerFrontLinkNoGdal) {
   TempDir dir;
   for (const std::string& binary :
-       {std::string(GLOBE_VIEW_PATH), std::string(GLOBE_LIB_TESTS_PATH), tiler()}) {
+       {globe_test::paths::view(), globe_test::paths::lib_tests(), tiler()}) {
     const RunResult r = run("ldd " + binary, dir.path());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.out.find("libgdal"), std::string::npos) << binary << ":\n" << r.out;

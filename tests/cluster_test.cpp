@@ -14,13 +14,14 @@
 #include <thread>
 
 #include "package_compare.hpp"
+#include "test_paths.hpp"
 #include "test_support.hpp"
 
 using namespace globe_test;
 
 namespace {
 
-const std::string kScripts = std::string(GLOBE_SOURCE_DIR) + "/scripts/slurm/";
+const std::string kScripts = globe_test::paths::source_dir() + "/scripts/slurm/";
 
 class SlurmCluster : public ::testing::Test {
  protected:

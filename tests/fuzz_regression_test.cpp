@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fuzz/fuzz_entries.hpp"
+#include "test_paths.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -17,7 +18,7 @@ namespace {
 
 std::vector<std::vector<uint8_t>> inputs(const std::string& target) {
   std::vector<std::vector<uint8_t>> out;
-  const fs::path dir = fs::path(GLOBE_TEST_DATA_DIR) / "fuzz" / target;
+  const fs::path dir = fs::path(globe_test::paths::test_data_dir()) / "fuzz" / target;
   for (const auto& e : fs::directory_iterator(dir)) {
     std::ifstream in(e.path(), std::ios::binary);
     out.emplace_back(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());

@@ -10,6 +10,7 @@
 #include "line_fixtures.hpp"
 #include "point_fixtures.hpp"
 #include "raster_fixtures.hpp"
+#include "test_paths.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -25,7 +26,7 @@ using namespace globe_test;
 #endif
 
 std::string with_plugin(const std::string& command) {
-  return "GDAL_DRIVER_PATH=" GLOBE_GDAL_PLUGIN_DIR " " + command;
+  return "GDAL_DRIVER_PATH=" + globe_test::paths::gdal_plugin_dir() + " " + command;
 }
 
 class GdalPlugin : public ::testing::TestWithParam<const char*> {};

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "render_fixtures.hpp"
+#include "test_paths.hpp"
 #include "test_support.hpp"
 
 using namespace globe_test;
@@ -13,7 +14,8 @@ namespace {
 class Hostile : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    const fs::path script = fs::path(GLOBE_TEST_DATA_DIR) / "hostile" / "make_hostile.sh";
+    const fs::path script =
+        fs::path(globe_test::paths::test_data_dir()) / "hostile" / "make_hostile.sh";
     inputs_ = new fs::path(shared_folder(
         "globe-hostile",
         [&](const fs::path& dir) {

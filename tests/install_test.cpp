@@ -8,6 +8,7 @@
 #include <fstream>
 #include <string>
 
+#include "test_paths.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -17,8 +18,9 @@ using namespace globe_test;
 TEST(Install, ProgramsLibraryHeadersAndDocsLandUnderThePrefix) {
   TempDir dir;
   const fs::path prefix = dir / "prefix";
-  ASSERT_TRUE(
-      run_all({"cmake --install " GLOBE_BINARY_DIR " --prefix " + prefix.string()}, dir.path()));
+  ASSERT_TRUE(run_all(
+      {"cmake --install " + globe_test::paths::binary_dir() + " --prefix " + prefix.string()},
+      dir.path()));
   for (const char* f : {"bin/globe-tiler", "bin/globe-tiler-gdal", "bin/globe-vectorize",
                         "bin/globe-view", "bin/globe-serve", "lib/libtileformat.a",
                         "include/tileformat/mblock.hpp", "share/doc/globe-tiles/README.md",
@@ -49,7 +51,7 @@ TEST(Install, ProgramsLibraryHeadersAndDocsLandUnderThePrefix) {
          "#include <cstdio>\n"
          "int main() { std::printf(\"%g\\n\", tileformat::Tiling::geodetic().root_size); }\n";
   const RunResult c =
-      run(GLOBE_USER_CXX " -std=c++20 -I" + (prefix / "include").string() + " " +
+      run(globe_test::paths::user_cxx() + " -std=c++20 -I" + (prefix / "include").string() + " " +
               (dir / "user.cpp").string() + " " + (prefix / "lib/libtileformat.a").string() +
               " -lzstd -lsqlite3 -o " + (dir / "user").string() + " && " + (dir / "user").string(),
           dir.path());
@@ -60,7 +62,8 @@ TEST(Install, ProgramsLibraryHeadersAndDocsLandUnderThePrefix) {
 TEST(Install, CpackMakesADebianPackageWithItsDependencies) {
   TempDir dir;
   ASSERT_TRUE(
-      run_all({"cpack -G DEB --config " GLOBE_BINARY_DIR "/CPackConfig.cmake"}, dir.path()));
+      run_all({"cpack -G DEB --config " + globe_test::paths::binary_dir() + "/CPackConfig.cmake"},
+              dir.path()));
   const RunResult info = run("dpkg-deb -f globe-tiles_*.deb Package Depends", dir.path());
   EXPECT_EQ(info.exit_code, 0) << info.err;
   EXPECT_NE(info.out.find("Package: globe-tiles"), std::string::npos) << info.out;

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "golden_block.hpp"
+#include "test_paths.hpp"
 #include "tileformat/blob_header.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/kpatch.hpp"
@@ -123,7 +124,7 @@ TEST(MBlockCodec, RejectsCorruptPayloadWithoutCrashing) {
 }
 
 TEST(MBlockCodec, GoldenVersion1BlobStillDecodes) {
-  std::ifstream in(std::string(GLOBE_TEST_DATA_DIR) + "/golden_mblock_v1.bin", std::ios::binary);
+  std::ifstream in(globe_test::paths::test_data_dir() + "/golden_mblock_v1.bin", std::ios::binary);
   ASSERT_TRUE(in) << "tests/data/golden_mblock_v1.bin is missing";
   std::vector<uint8_t> blob((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   expect_same(decode_mblock(blob), golden_block());

@@ -11,12 +11,13 @@
 #include <vector>
 
 #include "raster_fixtures.hpp"
+#include "test_paths.hpp"
 #include "test_support.hpp"
 
 namespace globe_test {
 
 inline std::string viewer() {
-  return GLOBE_VIEW_PATH;
+  return globe_test::paths::view();
 }
 
 // The viewer's sky (its clear colour) in an RGB snapshot pixel.
@@ -134,7 +135,7 @@ inline size_t expect_lens_frame(const std::vector<uint8_t>& plain,
 // Compares with the expected image; on failure writes <name>.actual.png and
 // <name>.diff.png (|difference| x 8) under the build's render-diffs folder.
 inline void expect_image(const std::string& actual, const std::string& name) {
-  const std::string expected = std::string(GLOBE_TEST_DATA_DIR) + "/render/" + name + ".png";
+  const std::string expected = globe_test::paths::test_data_dir() + "/render/" + name + ".png";
   int w = 0, h = 0, ew = 0, eh = 0;
   const auto a = read_rgb(actual, w, h);
   const auto e = read_rgb(expected, ew, eh);
@@ -155,7 +156,7 @@ inline void expect_image(const std::string& actual, const std::string& name) {
   EXPECT_TRUE(ok) << name << ": mean |diff| " << mean << ", " << bad
                   << " channel values off by > 24";
   if (!ok) {
-    const fs::path out = fs::path(GLOBE_RENDER_DIFF_DIR);
+    const fs::path out = fs::path(globe_test::paths::render_diff_dir());
     fs::create_directories(out);
     fs::copy_file(actual, out / (name + ".actual.png"), fs::copy_options::overwrite_existing);
     GDALDatasetH mem = GDALCreate(GDALGetDriverByName("MEM"), "", w, h, 3, GDT_Byte, nullptr);

@@ -18,6 +18,7 @@
 
 #include "point_fixtures.hpp"
 #include "render_fixtures.hpp"
+#include "test_paths.hpp"
 #include "test_support.hpp"
 
 using namespace globe_test;
@@ -174,7 +175,7 @@ void kill_after_every_commit(const std::string& build) {
       run("cd " + (dir / "ref").string() + " && " + build + " -o out.mbtiles -j1", dir.path());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // (ASan wants its runtime first among the preloaded libraries.)
-  const std::string shim = std::string("LD_PRELOAD=") + GLOBE_KILL_AFTER_COMMIT_PATH +
+  const std::string shim = std::string("LD_PRELOAD=") + globe_test::paths::kill_after_commit() +
                            " ASAN_OPTIONS=\"$ASAN_OPTIONS:verify_asan_link_order=0\" ";
   // Kills after commit k and resumes; false when the build made fewer than k
   // commits (it finished).

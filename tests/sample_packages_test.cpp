@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <map>
 
+#include "test_paths.hpp"
 #include "test_support.hpp"
 
 using namespace globe_test;
@@ -39,7 +40,7 @@ const SamplePackage kPackages[] = {
 
 std::map<std::string, std::string> pinned_hashes() {
   std::map<std::string, std::string> hashes;
-  std::ifstream in(fs::path(GLOBE_TEST_DATA_DIR) / "sample_package_hashes.txt");
+  std::ifstream in(fs::path(globe_test::paths::test_data_dir()) / "sample_package_hashes.txt");
   std::string line;
   while (std::getline(in, line)) {
     if (line.empty() || line[0] == '#') continue;

@@ -22,12 +22,13 @@
 #include <thread>
 #include <vector>
 
+#include "test_paths.hpp"
 #include "test_support.hpp"
 
 namespace globe_test {
 
 inline std::string serve_path() {
-  return GLOBE_SERVE_PATH;
+  return globe_test::paths::serve();
 }
 
 // globe-serve ARGS --port 0 -q, until destroyed. port() is 0 if it did not

@@ -18,6 +18,7 @@
 #include "spec_readers/gunzip.hpp"
 #include "spec_readers/pmtiles_reader.hpp"
 #include "spec_readers/quantized_mesh_reader.hpp"
+#include "test_paths.hpp"
 #include "test_support.hpp"
 #include "tileformat/json.hpp"
 #include "web_fixtures.hpp"
@@ -354,15 +355,16 @@ TEST(Serve, ClientsPeopleUseGetRfc9110Answers) {
   const std::string base = "http://127.0.0.1:" + std::to_string(server.port());
   const std::string dem = "/dem.pmtiles=" + (dir / "dem.pmtiles").string();
   const std::string small = "/small.pmtiles=" + (dir / "small.pmtiles").string();
-  const RunResult r = run(
-      "python3 " + std::string(GLOBE_SOURCE_DIR) + "/tests/http_conformance/check_http.py --base " +
-          base + " --timeout 10 --clients raw,curl,wget,urllib,gdal --gdalinfo /img/0/0/0.png" +
-          " --gdal-read " + small + " --gdal-read " + dem + " " + small + " " + dem +
-          " /surf.json /surf/layer.json /surf/0/1/0.terrain '/surf/0/1/0.terrain?extensions="
-          "octvertexnormals' '/surf/0/0/0.png?encoding=terrarium' /img/0/0/0.png"
-          " /roads/4/8/5.pbf /roads/style.json /roads.json / '/view/cesium.html?pkg=surf'"
-          " /lib/demo/lib.js",
-      dir.path());
+  const RunResult r =
+      run("python3 " + globe_test::paths::source_dir() +
+              "/tests/http_conformance/check_http.py --base " + base +
+              " --timeout 10 --clients raw,curl,wget,urllib,gdal --gdalinfo /img/0/0/0.png" +
+              " --gdal-read " + small + " --gdal-read " + dem + " " + small + " " + dem +
+              " /surf.json /surf/layer.json /surf/0/1/0.terrain '/surf/0/1/0.terrain?extensions="
+              "octvertexnormals' '/surf/0/0/0.png?encoding=terrarium' /img/0/0/0.png"
+              " /roads/4/8/5.pbf /roads/style.json /roads.json / '/view/cesium.html?pkg=surf'"
+              " /lib/demo/lib.js",
+          dir.path());
   EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
   EXPECT_NE(r.out.find(" passed, 0 failed"), std::string::npos) << r.out;
   std::cerr << "check_http.py: " << r.out.substr(r.out.rfind('\n', r.out.size() - 2) + 1);

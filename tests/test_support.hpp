@@ -24,6 +24,7 @@
 #include <vector>
 
 #include <stdlib.h>
+#include "test_paths.hpp"
 
 namespace globe_test {
 
@@ -54,10 +55,10 @@ inline RunResult run(const std::string& command, const fs::path& scratch) {
 }
 
 inline std::string tiler() {
-  return GLOBE_TILER_PATH;
+  return globe_test::paths::tiler();
 }
 inline std::string vectorize() {
-  return GLOBE_VECTORIZE_PATH;
+  return globe_test::paths::vectorize();
 }
 // Great-circle metres on the mean sphere (haversine): the bundling tests'
 // reference length, written here, not the tools' ellipsoid (they agree
@@ -70,7 +71,7 @@ inline double haversine_m(double lon1, double lat1, double lon2, double lat2) {
 }
 
 inline fs::path samples() {
-  return GLOBE_SAMPLES_DIR;
+  return globe_test::paths::samples_dir();
 }
 
 // A fresh folder per test, removed afterwards.
@@ -150,7 +151,7 @@ inline bool run_all(const std::vector<std::string>& commands, const fs::path& di
 // build reads (a script of tests/data, say) that go into the stamp.
 template <class Build>
 fs::path shared_folder(const std::string& name, Build build, std::vector<fs::path> also = {}) {
-  const fs::path dir = fs::path(GLOBE_TEST_SHARED_DIR) /
+  const fs::path dir = fs::path(globe_test::paths::shared_dir()) /
                        (name + "." + fs::read_symlink("/proc/self/exe").filename().string());
   fs::create_directories(dir.parent_path());
   const std::string lock_path = dir.string() + ".lock";

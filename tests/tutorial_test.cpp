@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "render_fixtures.hpp"
+#include "test_paths.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -40,15 +41,17 @@ std::vector<std::string> sh_blocks(const std::string& markdown) {
 
 TEST(Tutorial, EveryStepRunsAndMakesItsPictures) {
   TempDir dir;
-  const std::string page = read_file(fs::path(GLOBE_SOURCE_DIR) / "docs/tutorial.md");
+  const std::string page =
+      read_file(fs::path(globe_test::paths::source_dir()) / "docs/tutorial.md");
   const std::vector<std::string> blocks = sh_blocks(page);
   ASSERT_GE(blocks.size(), 6u) << "docs/tutorial.md lost its steps";
-  fs::create_directory_symlink(fs::path(GLOBE_SAMPLES_DIR).parent_path(), dir / "samples");
+  fs::create_directory_symlink(fs::path(globe_test::paths::samples_dir()).parent_path(),
+                               dir / "samples");
   std::ofstream script(dir / "tutorial.sh");
   script << "set -euo pipefail\ncd " << dir.path().string() << "\n"
-         << "export PATH=" << fs::path(GLOBE_TILER_PATH).parent_path().string() << ":"
-         << fs::path(GLOBE_VECTORIZE_PATH).parent_path().string() << ":"
-         << fs::path(GLOBE_VIEW_PATH).parent_path().string() << ":$PATH\n";
+         << "export PATH=" << fs::path(globe_test::paths::tiler()).parent_path().string() << ":"
+         << fs::path(globe_test::paths::vectorize()).parent_path().string() << ":"
+         << fs::path(globe_test::paths::view()).parent_path().string() << ":$PATH\n";
   for (const std::string& b : blocks)
     script << b;
   script.close();

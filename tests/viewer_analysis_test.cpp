@@ -11,6 +11,7 @@
 
 #include "raster_fixtures.hpp"
 #include "render_fixtures.hpp"
+#include "test_paths.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -204,7 +205,7 @@ TEST(ViewerAnalysis, FlowPulsesMoveDownstream) {
 
 TEST(ViewerAnalysis, ColormapFilesColourSlopeAndFlow) {
   TempDir dir;
-  const fs::path data = fs::path(GLOBE_TEST_DATA_DIR) / "render";
+  const fs::path data = fs::path(globe_test::paths::test_data_dir()) / "render";
   const auto slope =
       snapshot(packages().terrain + " " + packages().all + " --shading slope --colormap " +
                    (data / "slope_colormap.txt").string(),

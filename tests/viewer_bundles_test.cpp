@@ -15,6 +15,7 @@
 
 #include "raster_fixtures.hpp"
 #include "render_fixtures.hpp"
+#include "test_paths.hpp"
 #include "test_support.hpp"
 #include "tileformat/json.hpp"
 
@@ -202,7 +203,7 @@ TEST(ViewerBundlesWindow, AClickNamesTheBundleInTheTitle) {
   const Packages& k = packages();
   TempDir dir;
   const RunResult w =
-      run("xvfb-run -a -s '-screen 0 640x480x24' " + std::string(GLOBE_TEST_DATA_DIR) +
+      run("xvfb-run -a -s '-screen 0 640x480x24' " + globe_test::paths::test_data_dir() +
               "/window/hover_title.sh --click " + dir.path().string() + " 300 150 " + viewer() +
               " --platform glfw" + kView + " " + k.world + " " + k.bundles,
           dir.path());

@@ -13,6 +13,7 @@
 #include "point_fixtures.hpp"
 #include "raster_fixtures.hpp"
 #include "render_fixtures.hpp"
+#include "test_paths.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -274,7 +275,7 @@ TEST(ViewerChartsWindow, TheTitleNamesThePlaceUnderThePointer) {
   const Packages& k = packages();
   TempDir dir;
   const RunResult w =
-      run("xvfb-run -a -s '-screen 0 640x480x24' " + std::string(GLOBE_TEST_DATA_DIR) +
+      run("xvfb-run -a -s '-screen 0 640x480x24' " + globe_test::paths::test_data_dir() +
               "/window/hover_title.sh " + dir.path().string() + " 160 90 " + viewer() +
               " --platform glfw --size 320x180 --chart-depth top "
               "--camera=-84.43,33.64,300000,0,0 " +

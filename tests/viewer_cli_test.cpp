@@ -12,6 +12,7 @@
 
 #include "raster_fixtures.hpp"
 #include "render_fixtures.hpp"
+#include "test_paths.hpp"
 #include "test_support.hpp"
 #include "tileformat/json.hpp"
 
@@ -256,10 +257,10 @@ TEST(ViewerCli, BadInputGetsAClearError) {
 // points to --help once.
 TEST(ViewerCli, EveryProgramTellsItsVersion) {
   TempDir dir;
-  const std::string version = GLOBE_PROJECT_VERSION;
+  const std::string version = globe_test::paths::project_version();
   const std::pair<std::string, std::string> programs[] = {
       {viewer(), "globe-view"},
-      {GLOBE_SERVE_PATH, "globe-serve"},
+      {globe_test::paths::serve(), "globe-serve"},
       {tiler(), "globe-tiler"},
       {tiler() + " terrain", "globe-tiler"},
       {vectorize() + " lines", "globe-vectorize"}};
@@ -282,7 +283,7 @@ TEST(ViewerCli, EveryProgramTellsItsVersion) {
 TEST(ViewerIdleWindow, SleepsUntilSomethingHappens) {
   TempDir dir;
   const RunResult r =
-      run("xvfb-run -a -s '-screen 0 640x480x24' " + std::string(GLOBE_TEST_DATA_DIR) +
+      run("xvfb-run -a -s '-screen 0 640x480x24' " + globe_test::paths::test_data_dir() +
               "/window/idle_cpu.sh " + dir.path().string() + " 3 " + viewer() +
               " --platform glfw --size 320x180 " + jacksboro_package(),
           dir.path());

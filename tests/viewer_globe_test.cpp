@@ -10,6 +10,7 @@
 #include <regex>
 
 #include "render_fixtures.hpp"
+#include "test_paths.hpp"
 #include "test_support.hpp"
 #include "tileformat/json.hpp"
 
@@ -286,7 +287,7 @@ TEST(ViewerGlobe, GlobeIsTheDefaultForWidePackages) {
 TEST(ViewerGlobe, WindowZoomsOntoTheGlobe) {
   TempDir dir;
   const RunResult w =
-      run("xvfb-run -a -s '-screen 0 640x480x24' " + std::string(GLOBE_TEST_DATA_DIR) +
+      run("xvfb-run -a -s '-screen 0 640x480x24' " + globe_test::paths::test_data_dir() +
               "/window/drive_keys.sh " + dir.path().string() + " ';w w w w w w w w;Left Left Up' " +
               viewer() + " --platform glfw --size 320x180 " + globes().geodetic + " " +
               globes().bluemarble,

@@ -12,6 +12,7 @@
 
 #include "raster_fixtures.hpp"
 #include "render_fixtures.hpp"
+#include "test_paths.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -128,7 +129,8 @@ TEST_P(ViewerImagery, StraightDownViewMatchesGdalwarp) {
   std::printf("%s: PSNR %.2f dB\n", p.name.c_str(), psnr);
   EXPECT_GE(psnr, 30.0) << p.name << ": view " << snap << " vs gdalwarp " << ref;
   if (psnr < 30.0) {
-    fs::copy_file(snap, fs::path(GLOBE_RENDER_DIFF_DIR) / ("imagery-" + p.name + ".png"),
+    fs::copy_file(snap,
+                  fs::path(globe_test::paths::render_diff_dir()) / ("imagery-" + p.name + ".png"),
                   fs::copy_options::overwrite_existing);
   }
 }
@@ -311,7 +313,7 @@ TEST(ViewerImageryWindow, KeysHideAndFadeTheImageLayer) {
   TempDir dir;
   const std::string packages = olinda().terrain + " " + olinda().natural;
   const RunResult w =
-      run("xvfb-run -a -s '-screen 0 640x480x24' " + std::string(GLOBE_TEST_DATA_DIR) +
+      run("xvfb-run -a -s '-screen 0 640x480x24' " + globe_test::paths::test_data_dir() +
               "/window/drive_keys.sh " + dir.path().string() +
               " ';v;v bracketleft bracketleft bracketleft bracketleft bracketleft' " + viewer() +
               " --platform glfw " + packages + kOlindaOblique,

@@ -9,6 +9,7 @@
 
 #include "raster_fixtures.hpp"
 #include "render_fixtures.hpp"
+#include "test_paths.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -221,7 +222,7 @@ TEST(ViewerShadingWindow, TheLensFollowsThePointerAndShiftWheelResizesIt) {
   TempDir dir;
   const std::string base = packages().himalaya + " --size 320x180 --camera=86.9,27.9,400000,30,45";
   const RunResult w = run(
-      "xvfb-run -a -s '-screen 0 640x480x24' " + std::string(GLOBE_TEST_DATA_DIR) +
+      "xvfb-run -a -s '-screen 0 640x480x24' " + globe_test::paths::test_data_dir() +
           "/window/drive_keys.sh " + dir.path().string() +
           " '@move:100,90 k @move:150,100;@shiftwheel:down @shiftwheel:down @shiftwheel:down' " +
           viewer() + " --platform glfw " + base,

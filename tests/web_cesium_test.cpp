@@ -11,6 +11,7 @@
 #include "quantized_mesh_fixtures.hpp"
 #include "render_fixtures.hpp"
 #include "serve_fixtures.hpp"
+#include "test_paths.hpp"
 #include "tileformat/json.hpp"
 #include "web_fixtures.hpp"
 #include "web_surfaces.hpp"
@@ -149,7 +150,7 @@ TEST(WebCesium, GlobeServeTerrainInCesiumAndItsMapLibrePreview) {
                       dir.path()));
   // The web cache, as run_web_page installs it, is what the server serves at /lib.
   const RunResult cache =
-      run(std::string(GLOBE_TEST_DATA_DIR) + "/../../scripts/web-deps.sh", dir.path());
+      run(globe_test::paths::test_data_dir() + "/../../scripts/web-deps.sh", dir.path());
   ASSERT_EQ(cache.exit_code, 0) << cache.err;
   const std::string libs =
       cache.out.substr(0, cache.out.find_last_not_of('\n') + 1) + "/node_modules";

@@ -10,6 +10,7 @@
 #include <gdal.h>
 
 #include "raster_fixtures.hpp"
+#include "test_paths.hpp"
 #include "test_support.hpp"
 
 namespace globe_test {
@@ -47,9 +48,9 @@ inline std::vector<uint8_t> png_rgb(const std::string& bytes, int& w, int& h) {
 inline RunResult run_web_page(const std::string& page, const fs::path& data,
                               const std::string& query, const fs::path& screenshot,
                               const fs::path& scratch, const std::string& viewport = "800x600") {
-  const std::string web = std::string(GLOBE_TEST_DATA_DIR) + "/../web";
+  const std::string web = globe_test::paths::test_data_dir() + "/../web";
   const RunResult cache =
-      run(std::string(GLOBE_TEST_DATA_DIR) + "/../../scripts/web-deps.sh", scratch);
+      run(globe_test::paths::test_data_dir() + "/../../scripts/web-deps.sh", scratch);
   if (cache.exit_code != 0) return cache;
   const std::string dir = cache.out.substr(0, cache.out.find_last_not_of('\n') + 1);
   return run("GLOBE_WEB_CACHE=" + dir + " node " + web + "/run_page.mjs --timeout 90 --viewport " +

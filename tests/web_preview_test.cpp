@@ -12,6 +12,7 @@
 
 #include "render_fixtures.hpp"
 #include "serve_fixtures.hpp"
+#include "test_paths.hpp"
 #include "tileformat/json.hpp"
 #include "web_fixtures.hpp"
 #include "web_surfaces.hpp"
@@ -58,7 +59,7 @@ struct PreviewServer {
   explicit PreviewServer(const TempDir& dir) {
     const fs::path& d = preview_packages();
     const RunResult cache =
-        run(std::string(GLOBE_TEST_DATA_DIR) + "/../../scripts/web-deps.sh", dir.path());
+        run(globe_test::paths::test_data_dir() + "/../../scripts/web-deps.sh", dir.path());
     EXPECT_EQ(cache.exit_code, 0) << cache.err;
     const std::string libs =
         cache.out.substr(0, cache.out.find_last_not_of('\n') + 1) + "/node_modules";
