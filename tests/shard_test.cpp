@@ -9,6 +9,7 @@
 // of shards are clear errors that write nothing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "package_compare.hpp"
@@ -86,11 +87,20 @@ class ShardedBuild : public ::testing::TestWithParam<ShardCase> {};
 
 }  // namespace
 
+// Under ASan + UBSan a case of 7 shards is built as 3 (docs/ci.md): the same
+// code runs, shard borders across the same seams and polar rows, in half the
+// builds; the plain build keeps every count.
+#ifdef GLOBE_ADDRESS_SANITIZER
+constexpr int kMostShards = 3;
+#else
+constexpr int kMostShards = 64;
+#endif
+
 TEST_P(ShardedBuild, MergesToTheOneMachineBuild) {
   TempDir dir;
   const ShardCase& c = GetParam();
-  expect_shards_merge_to_one_build(c.command, sample(c.file).string(), c.options, c.shards,
-                                   c.shard_options, dir.path());
+  expect_shards_merge_to_one_build(c.command, sample(c.file).string(), c.options,
+                                   std::min(c.shards, kMostShards), c.shard_options, dir.path());
 }
 
 INSTANTIATE_TEST_SUITE_P(
