@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Fetches the real sample datasets (see samples/README.md) from Debian packages
-# with `apt-get download`, without installing those packages. Files are cached
-# under samples/data/ (git-ignored) and checked against samples/checksums.sha256.
+# with `apt-get download`, without installing those packages. The downloads are
+# cached in ~/.cache/globe-samples ($GLOBE_SAMPLES_CACHE), the files under
+# samples/data/ (git-ignored), checked against samples/checksums.sha256.
 # Formats GDAL cannot read directly are described by GDAL VRTs and converted to
 # GeoTIFF (jacksboro .npz, brasilia raw Float32).
 #
@@ -22,8 +23,11 @@ case "$tier" in small|all) ;; *) echo "usage: $0 [small|all]" >&2; exit 2;; esac
 
 here=$(cd "$(dirname "$0")" && pwd)
 data="$here/data"
-debs="$data/debs"
-mkdir -p "$debs"
+# What is downloaded (packages, npm tarballs, members streamed out of a
+# package) is kept outside the clone: a second clone on the same machine
+# extracts and converts again without downloading (docs/ci.md, "Warm").
+debs="${GLOBE_SAMPLES_CACHE:-${HOME:-/tmp}/.cache/globe-samples}"
+mkdir -p "$data" "$debs"
 
 # id | package | path inside the package | output name
 small_sets=(
@@ -122,7 +126,12 @@ stream_deb_members() { # package inner-path:output...
   local pkg=$1 uri tmp spec missing=() inners=()
   shift
   for spec in "$@"; do
-    [ -f "$data/${spec#*:}" ] || missing+=("$spec")
+    [ -f "$data/${spec#*:}" ] && continue
+    if [ -s "$debs/${spec#*:}" ]; then
+      cp "$debs/${spec#*:}" "$data/${spec#*:}"
+    else
+      missing+=("$spec")
+    fi
   done
   [ ${#missing[@]} -eq 0 ] && return 0
   if [ $apt_updated = 0 ] && [ -z "$(ls /var/lib/apt/lists/ 2>/dev/null | grep -v lock | head -n 1)" ]; then
@@ -139,6 +148,7 @@ stream_deb_members() { # package inner-path:output...
     xz -dc 2>/dev/null | tar -x -C "$tmp" --occurrence=1 "${inners[@]}" 2>/dev/null) || true
   for spec in "${missing[@]}"; do
     [ -s "$tmp/${spec%%:*}" ] || { echo "fetch: could not take ${spec%%:*} out of $pkg" >&2; rm -rf "$tmp"; return 1; }
+    cp "$tmp/${spec%%:*}" "$debs/${spec#*:}"
     mv "$tmp/${spec%%:*}" "$data/${spec#*:}"
   done
   rm -rf "$tmp"
