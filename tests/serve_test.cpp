@@ -190,8 +190,8 @@ TEST(Serve, VectorTilesAndStylesPointAtTheServer) {
 
 // Line and point tiles drawn as images for CesiumJS (/NAME/z/x/y.png, issue
 // 55 part 3), checked against positions worked out here from the web
-// mercator formulas: the line's pixels in its style's colour and width
-// (4 px: opaque on it, clear 6 px away), the place a disc of 3 px in
+// mercator formulas (and the geodetic tiling's, for a geodetic package): the line's pixels in its
+// style's colour and width (4 px: opaque on it, clear 6 px away), the place a disc of 3 px in
 // #d7301f at 0.8 with a white rim; a tile with nothing is transparent.
 TEST(Serve, LineAndPointTilesAsImagesDrawWhatTheStylesSay) {
   TempDir dir("serve-raster");
@@ -248,6 +248,25 @@ TEST(Serve, LineAndPointTilesAsImagesDrawWhatTheStylesSay) {
   EXPECT_GT(rim[1], 200) << "white rim";
   EXPECT_GT(rim[3], 100);
   EXPECT_EQ(at(place, px + 6.5, py)[3], 0);
+  // The same line in the geodetic tiling (CesiumJS's geographic scheme):
+  // 2 x 1 tiles at zoom 0, so at zoom 7 a pixel is 180 / 2^7 / 256 degrees.
+  ASSERT_TRUE(run_all(
+      {vectorize() + " lines -q --tiling geodetic " + (dir / "line.geojson").string() +
+       " --max-zoom 7 --style 'line:color=#ff0000,width=4px' -o " + (dir / "geo.mbtiles").string()},
+      dir.path()));
+  ServeProcess geo_server({(dir / "geo.mbtiles").string()}, dir.path());
+  ASSERT_GT(geo_server.port(), 0) << geo_server.log();
+  const double deg_per_px = 180.0 / 128 / 256;
+  const double gx = (7.5 + 180) / deg_per_px, gy = (90 - 46.5) / deg_per_px;
+  const HttpReply geo_tile =
+      http_get(geo_server.port(), "/geo/7/" + std::to_string(int(gx / 256)) + "/" +
+                                      std::to_string(int(gy / 256)) + ".png");
+  ASSERT_EQ(geo_tile.status, 200) << geo_tile.body;
+  const auto geo = png_pixels(geo_tile.body, w, h, 4);
+  ASSERT_EQ(geo.size(), size_t(256) * 256 * 4);
+  EXPECT_EQ(at(geo, gx, gy), (std::vector<int>{255, 0, 0, 255}));
+  // (In degrees the line runs at 45 degrees: across is (1, 1) / sqrt 2 too.)
+  EXPECT_EQ(at(geo, gx + 6 / std::sqrt(2.0), gy + 6 / std::sqrt(2.0))[3], 0);
   // A tile of the pyramid with nothing in it: transparent, not a 204.
   const HttpReply empty = http_get(server.port(), "/line/8/0/0.png");
   EXPECT_EQ(empty.status, 200);

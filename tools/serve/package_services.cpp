@@ -258,17 +258,13 @@ HttpResponse transparent_png() {
   return bytes_response(png, "image/png", false);
 }
 
-// Web mercator packages only: their rows are XYZ rows.
+// Web mercator packages only (vector tiles for web maps): their rows are
+// XYZ rows.
 HttpResponse check_xyz(const tileformat::Tiling& t, const std::string& name, const Route& r,
                        int min_zoom, int max_zoom) {
   if (t.scheme != tileformat::Scheme::kWebMercator)
     return text_response(404, name + " is not in the webmercator tiling; web maps read only that");
-  if (r.z < min_zoom || r.z > max_zoom)
-    return text_response(404, "zoom " + std::to_string(r.z) + " is outside the package's " +
-                                  std::to_string(min_zoom) + ".." + std::to_string(max_zoom));
-  if (r.x >= t.tiles_x(r.z) || r.y >= t.tiles_y(r.z))
-    return text_response(404, "tile outside zoom " + std::to_string(r.z));
-  return HttpResponse{};
+  return check_tile(t, name, r, min_zoom, max_zoom);
 }
 
 class ImageService : public PackageService {
