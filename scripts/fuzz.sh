@@ -14,7 +14,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(mblock image_tile line_tile point_tile analysis_block package url_route)
+[ ${#targets[@]} -eq 0 ] && targets=(mblock image_tile line_tile point_tile area_tile analysis_block package url_route)
 
 # (Both stages run as functions under `stage`, where `set -e` does not
 # apply: each step's failure is returned explicitly.)

@@ -56,6 +56,13 @@ TEST(FuzzRegression, PointTileInputs) {
     globe_fuzz::point_tile(bytes);
 }
 
+TEST(FuzzRegression, AreaTileInputs) {
+  const auto all = inputs("area_tile");
+  EXPECT_FALSE(all.empty());
+  for (const auto& bytes : all)
+    globe_fuzz::area_tile(bytes);
+}
+
 TEST(FuzzRegression, AnalysisBlockInputs) {
   const auto all = inputs("analysis_block");
   EXPECT_FALSE(all.empty());

@@ -185,7 +185,8 @@ TEST(Metadata, EveryKindHasOneDescriptor) {
                                                          {PackageKind::kImage, "png"},
                                                          {PackageKind::kLines, kLineClustersFormat},
                                                          {PackageKind::kAnalysis, kAnalysisFormat},
-                                                         {PackageKind::kPoints, kPointsFormat}};
+                                                         {PackageKind::kPoints, kPointsFormat},
+                                                         {PackageKind::kAreas, kAreasFormat}};
   ASSERT_EQ(package_kinds().size(), std::size(formats));
   std::set<std::string> names, keys;
   for (size_t i = 0; i < package_kinds().size(); ++i) {

@@ -10,6 +10,7 @@
 #include "serve/http_semantics.hpp"
 #include "serve/url_route.hpp"
 #include "tileformat/analysis_block.hpp"
+#include "tileformat/area_tile.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/image_tile.hpp"
 #include "tileformat/line_tile.hpp"
@@ -93,6 +94,30 @@ void line_tile(std::span<const uint8_t> data) {
   });
 }
 
+void area_tile(std::span<const uint8_t> data) {
+  rejecting_cleanly([&] {
+    const tileformat::AreaTileCounts c = tileformat::peek_area_tile_counts(data);
+    const tileformat::AreaTile t = tileformat::decode_area_tile(data);
+    if (c.features != t.feature_ids.size() || c.polygons != t.polygons.size() ||
+        c.rings != t.ring_sizes.size() || c.vertices != t.vertices.size())
+      fail("peeked area tile counts differ from the decoded tile");
+    const tileformat::AreaTile u = tileformat::decode_area_tile(tileformat::encode_area_tile(t, 1));
+    auto flat = [](const tileformat::AreaTile& a) {
+      std::vector<int64_t> v{a.extent, a.buffer};
+      for (uint64_t id : a.feature_ids)
+        v.push_back(int64_t(id));
+      for (const auto& p : a.polygons)
+        v.insert(v.end(), {p.feature, p.class_id, p.first_ring, p.ring_count});
+      for (uint32_t n : a.ring_sizes)
+        v.push_back(n);
+      for (const auto& q : a.vertices)
+        v.insert(v.end(), {q.x, q.y});
+      return v;
+    };
+    if (flat(u) != flat(t)) fail("an area tile does not survive re-encoding");
+  });
+}
+
 void point_tile(std::span<const uint8_t> data) {
   rejecting_cleanly([&] {
     const tileformat::PointTileCounts c = tileformat::peek_point_tile_counts(data);
@@ -153,6 +178,8 @@ void package(std::span<const uint8_t> data, const std::string& scratch_path) {
         point_tile(blob);
       else if (format == tileformat::kAnalysisFormat)
         analysis_block(blob);
+      else if (format == tileformat::kAreasFormat)
+        area_tile(blob);
       else
         image_tile(blob);
     });

@@ -22,6 +22,8 @@ void image_tile(std::span<const uint8_t> data);
 void line_tile(std::span<const uint8_t> data);
 // decode_point_tile and peek_point_tile_counts, as for line tiles.
 void point_tile(std::span<const uint8_t> data);
+// decode_area_tile and peek_area_tile_counts, as for line tiles.
+void area_tile(std::span<const uint8_t> data);
 // decode_analysis_block; what decodes must re-encode and decode to the
 // same block.
 void analysis_block(std::span<const uint8_t> data);

@@ -16,6 +16,7 @@
 #include "tileformat/metadata.hpp"
 #include "tileformat/package.hpp"
 #include "tileformat/point_tile.hpp"
+#include "tileformat/area_tile.hpp"
 
 namespace fs = std::filesystem;
 using Bytes = std::vector<uint8_t>;
@@ -74,6 +75,19 @@ std::vector<Bytes> point_tiles() {
   empty.fields = 1;
   tileformat::build_point_grid(empty);
   return {tileformat::encode_point_tile(t), tileformat::encode_point_tile(empty)};
+}
+
+std::vector<Bytes> area_tiles() {
+  tileformat::AreaTile t;  // a square with a square hole, and a triangle past the edge
+  t.buffer = 64;
+  t.feature_ids = {3, 9};
+  t.polygons = {{0, 1, 0, 2}, {1, 0, 2, 1}};
+  t.ring_sizes = {4, 4, 3};
+  t.vertices = {{0, 0},     {4000, 0},    {4000, 4000}, {0, 4000},  {1000, 1000},
+                {1000, 3000}, {3000, 3000}, {3000, 1000}, {4100, -50}, {4150, 200},
+                {3900, 100}};
+  tileformat::AreaTile empty;
+  return {tileformat::encode_area_tile(t), tileformat::encode_area_tile(empty)};
 }
 
 std::vector<Bytes> image_headers() {
@@ -138,7 +152,7 @@ int main(int argc, char** argv) {
   }
   const fs::path out = argv[1];
   const auto m = mblocks(), l = line_tiles(), i = image_headers(), p = point_tiles(),
-             a = analysis_blocks();
+             a = analysis_blocks(), r = area_tiles();
   for (size_t k = 0; k < m.size(); ++k)
     save(out / "mblock", "seed" + std::to_string(k), m[k]);
   for (size_t k = 0; k < l.size(); ++k)
@@ -149,11 +163,14 @@ int main(int argc, char** argv) {
     save(out / "point_tile", "seed" + std::to_string(k), p[k]);
   for (size_t k = 0; k < a.size(); ++k)
     save(out / "analysis_block", "seed" + std::to_string(k), a[k]);
+  for (size_t k = 0; k < r.size(); ++k)
+    save(out / "area_tile", "seed" + std::to_string(k), r[k]);
   fs::create_directories(out / "package");
   save(out / "package", "seed0", package(out, tileformat::kMBlockFormat, {m[0], m[1]}));
   save(out / "package", "seed1", package(out, tileformat::kLineClustersFormat, l));
   save(out / "package", "seed2", package(out, "png", {i[0]}));
   save(out / "package", "seed3", package(out, tileformat::kPointsFormat, p));
   save(out / "package", "seed4", package(out, tileformat::kAnalysisFormat, a));
+  save(out / "package", "seed5", package(out, tileformat::kAreasFormat, r));
   return 0;
 }

@@ -429,4 +429,82 @@ PointMetadata read_point_metadata(const MetadataMap& meta) {
   return m;
 }
 
+MetadataMap to_metadata(const AreaMetadata& m) {
+  MetadataMap meta = common_keys(m.common);
+  meta["globe:extent"] = std::to_string(m.extent);
+  meta["globe:buffer"] = std::to_string(m.buffer);
+  meta["globe:simplify_px"] = metadata_number(m.simplify_px);
+  meta["globe:tile_px"] = metadata_number(m.tile_px);
+  meta["globe:features"] = std::to_string(m.features);
+  meta["globe:classes"] = m.classes_json;
+  std::string layers = "[";
+  for (size_t i = 0; i < m.layers.size(); ++i)
+    layers += (i ? "," : "") + std::string("{\"name\":\"") + json_escape(m.layers[i].name) +
+              "\",\"source\":\"" + json_escape(m.layers[i].source) +
+              "\",\"features\":" + std::to_string(m.layers[i].features) + "}";
+  meta["globe:layers"] = layers + "]";
+  meta["globe:repaired"] = std::to_string(m.repaired);
+  meta["globe:dropped_small"] = std::to_string(m.dropped_small);
+  if (const auto& c = m.choropleth) {
+    std::string j = "{\"field\":\"" + json_escape(c->field) + "\",\"denominator\":\"" +
+                    json_escape(c->denominator) + "\",\"method\":\"" + json_escape(c->method) +
+                    "\",\"ramp\":\"" + json_escape(c->ramp) + "\",\"classes\":[";
+    for (size_t i = 0; i < c->classes.size(); ++i)
+      j += (i ? "," : "") + std::string("{\"min\":") + metadata_number(c->classes[i].min) +
+           ",\"max\":" + metadata_number(c->classes[i].max) + ",\"color\":\"" +
+           json_escape(c->classes[i].color) + "\"}";
+    j += "],\"no_data\":{\"color\":\"" + json_escape(c->no_data_color) +
+         "\",\"features\":" + std::to_string(c->no_data) + "}}";
+    meta["globe:choropleth"] = j;
+  }
+  return meta;
+}
+
+AreaMetadata read_area_metadata(const MetadataMap& meta) {
+  const Keys k(meta, "12.3");
+  AreaMetadata m;
+  read_common(k, meta, m.common);
+  if (!m.common.has_tiling) Tiling::from_metadata(meta);  // names the missing key
+  m.extent = k.integer("globe:extent");
+  m.buffer = k.integer("globe:buffer");
+  m.simplify_px = k.number("globe:simplify_px");
+  m.tile_px = k.number("globe:tile_px");
+  m.features = static_cast<uint64_t>(k.number("globe:features"));
+  m.classes_json = k.text("globe:classes");
+  m.layers = read_array<LineLayerInfo>(k, "globe:layers", [&](const JsonValue& e) {
+    return LineLayerInfo{
+        member(e, "name", "globe:layers", "12.3").string(),
+        member(e, "source", "globe:layers", "12.3").string(),
+        static_cast<uint64_t>(member(e, "features", "globe:layers", "12.3").number())};
+  });
+  m.repaired = static_cast<uint64_t>(k.number("globe:repaired"));
+  m.dropped_small = static_cast<uint64_t>(k.number("globe:dropped_small"));
+  if (k.find("globe:choropleth")) {
+    const JsonValue doc = k.json("globe:choropleth");
+    try {
+      Choropleth c;
+      auto text = [&](const JsonValue& o, const char* f) {
+        return member(o, f, "globe:choropleth", "12.3").string();
+      };
+      c.field = text(doc, "field");
+      c.denominator = text(doc, "denominator");
+      c.method = text(doc, "method");
+      c.ramp = text(doc, "ramp");
+      for (const JsonValue& e : member(doc, "classes", "globe:choropleth", "12.3").array())
+        c.classes.push_back({member(e, "min", "globe:choropleth", "12.3").number(),
+                             member(e, "max", "globe:choropleth", "12.3").number(),
+                             text(e, "color")});
+      const JsonValue& nd = member(doc, "no_data", "globe:choropleth", "12.3");
+      c.no_data_color = text(nd, "color");
+      c.no_data =
+          static_cast<uint64_t>(member(nd, "features", "globe:choropleth", "12.3").number());
+      if (c.classes.empty()) throw FormatError("12.3", "metadata globe:choropleth has no class");
+      m.choropleth = std::move(c);
+    } catch (const JsonError& e) {
+      throw FormatError("12.3", std::string("metadata globe:choropleth: ") + e.what());
+    }
+  }
+  return m;
+}
+
 }  // namespace tileformat

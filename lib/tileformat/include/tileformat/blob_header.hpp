@@ -15,7 +15,8 @@ enum class BlobKind : uint16_t {
   kImage = 2,
   kLineClusters = 3,
   kAnalysis = 4,
-  kPoints = 5
+  kPoints = 5,
+  kAreas = 6
 };
 
 // Every blob kind and its name in messages (adding a kind: its enumerator
@@ -28,7 +29,8 @@ inline constexpr BlobKindName kBlobKinds[] = {{BlobKind::kMBlock, "mblock"},
                                               {BlobKind::kImage, "image"},
                                               {BlobKind::kLineClusters, "lineclusters"},
                                               {BlobKind::kAnalysis, "analysis block"},
-                                              {BlobKind::kPoints, "points"}};
+                                              {BlobKind::kPoints, "points"},
+                                              {BlobKind::kAreas, "areas"}};
 
 inline constexpr uint16_t kFormatVersion = 1;
 inline constexpr size_t kBlobHeaderSize = 12;

@@ -128,6 +128,33 @@ struct PointMetadata {
   std::vector<PointZoomStats> zooms;  // globe:zoom_stats (JSON array), min..max zoom
 };
 
+// Areas (§12.3).
+struct ChoroplethClass {
+  double min = 0, max = 0;  // class i holds [min, max), the last one [min, max]
+  std::string color;        // "#rrggbb"
+};
+struct Choropleth {
+  std::string field, denominator;  // the value is field, or field / denominator
+  std::string method;              // quantile, equal, jenks, pretty
+  std::string ramp;                // the ColorBrewer ramp's name
+  std::vector<ChoroplethClass> classes;
+  std::string no_data_color;  // features without a value (class id 0)
+  uint64_t no_data = 0;       // how many
+};
+struct AreaMetadata {
+  CommonMetadata common;
+  int extent = 0;                        // globe:extent
+  int buffer = 0;                        // globe:buffer: units the polygons reach past a tile
+  double simplify_px = 0;                // globe:simplify_px: the snapping grid of a zoom, in px
+  double tile_px = 0;                    // globe:tile_px
+  uint64_t features = 0;                 // globe:features
+  std::string classes_json;              // globe:classes: style classes, JSON (as §7.4)
+  std::vector<LineLayerInfo> layers;     // globe:layers
+  std::optional<Choropleth> choropleth;  // globe:choropleth (JSON)
+  uint64_t repaired = 0;       // globe:repaired: features whose geometry GEOS MakeValid repaired
+  uint64_t dropped_small = 0;  // globe:dropped_small: polygons below a zoom's grid, left out there
+};
+
 // The package's keys; kind-specific keys absent from the struct (optionals)
 // are not written.
 MetadataMap to_metadata(const TerrainMetadata& m);
@@ -135,6 +162,7 @@ MetadataMap to_metadata(const ImageMetadata& m);
 MetadataMap to_metadata(const LineMetadata& m);
 MetadataMap to_metadata(const AnalysisMetadata& m);
 MetadataMap to_metadata(const PointMetadata& m);
+MetadataMap to_metadata(const AreaMetadata& m);
 
 // Read back; throw FormatError (§3.2, §7.4, §8) naming the missing or bad
 // key. read_common_metadata reads what any MBTiles has (other tools'
@@ -145,6 +173,7 @@ ImageMetadata read_image_metadata(const MetadataMap& meta);
 LineMetadata read_line_metadata(const MetadataMap& meta);
 AnalysisMetadata read_analysis_metadata(const MetadataMap& meta);
 PointMetadata read_point_metadata(const MetadataMap& meta);
+AreaMetadata read_area_metadata(const MetadataMap& meta);
 
 // The `description` our tools write: "WHAT built by PROGRAM from FIRST
 // (and N more)", FIRST being the first input's file name.

@@ -18,9 +18,10 @@ inline constexpr const char* kMBlockFormat = "application/vnd.globe.mblock";
 inline constexpr const char* kLineClustersFormat = "application/vnd.globe.lineclusters";
 inline constexpr const char* kAnalysisFormat = "application/vnd.globe.analysis";
 inline constexpr const char* kPointsFormat = "application/vnd.globe.points";
+inline constexpr const char* kAreasFormat = "application/vnd.globe.areas";
 
 // The kinds of package; the `format` key tells them apart.
-enum class PackageKind { kTerrain, kImage, kLines, kAnalysis, kPoints };
+enum class PackageKind { kTerrain, kImage, kLines, kAnalysis, kPoints, kAreas };
 
 struct PackageKindDescriptor {
   PackageKind kind;
@@ -45,6 +46,8 @@ inline constexpr PackageKindDescriptor kPackageKinds[] = {
      "a layer: globe-tiler extract PACKAGE --layer NAME --zoom Z -o OUT.tif", kAnalysisFormat},
     {PackageKind::kPoints, "point", "points", "globe-vectorize points", "globe-vectorize",
      "its places: globe-vectorize extract PACKAGE --zoom Z -o OUT.gpkg", kPointsFormat},
+    {PackageKind::kAreas, "area", "areas", "globe-vectorize areas", "globe-vectorize",
+     "its polygons: globe-vectorize extract PACKAGE --zoom Z -o OUT.gpkg", kAreasFormat},
 };
 
 // Every kind, in PackageKind order.

@@ -1,0 +1,53 @@
+// Area tiles (docs/tileformat.md §12): the polygons of one quadtree tile,
+// clipped to the tile widened by `buffer` units on every side, as rings of
+// tile-local integer vertices (x east, y south, 0..extent across the tile).
+// A polygon is one exterior ring and its holes; exterior rings wind
+// clockwise as seen on screen (positive shoelace area with y down, MVT 2.1's
+// convention), holes counter-clockwise. Rings are open: the first vertex is
+// not repeated at the end.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "tileformat/line_tile.hpp"
+
+namespace tileformat {
+
+struct AreaPolygon {
+  uint32_t feature = 0;     // index into AreaTile::feature_ids
+  uint32_t class_id = 0;    // style class (globe:classes) or choropleth class + 1 (0: no data)
+  uint32_t first_ring = 0;  // into AreaTile::ring_sizes; that ring is the exterior
+  uint32_t ring_count = 0;  // >= 1: the exterior, then the holes
+};
+
+struct AreaTile {
+  uint32_t extent = 4096;             // units per tile edge
+  uint32_t buffer = 64;               // units the polygons reach past each edge
+  std::vector<uint64_t> feature_ids;  // strictly increasing ids of the features table
+  std::vector<AreaPolygon> polygons;  // in feature order
+  std::vector<uint32_t> ring_sizes;   // vertices of each ring, >= 3
+  std::vector<LineVertex> vertices;   // every ring's vertices, ring after ring
+
+  // Offset of ring r's first vertex in `vertices`.
+  std::vector<uint32_t> ring_offsets() const;
+};
+
+// Counts readable from the uncompressed part of a blob (for `info`).
+struct AreaTileCounts {
+  uint32_t features = 0, polygons = 0, rings = 0, vertices = 0;
+};
+
+// Twice the signed area of a ring (shoelace, tile units, y down): positive
+// for an exterior ring, negative for a hole.
+int64_t ring_area2(std::span<const LineVertex> ring);
+
+// Encodes `tile` as a blob with header. Throws FormatError if it breaks the
+// §12 invariants (orientation included).
+std::vector<uint8_t> encode_area_tile(const AreaTile& tile, int zstd_level = 9);
+// Decodes and checks every §12 invariant; throws FormatError.
+AreaTile decode_area_tile(std::span<const uint8_t> blob);
+AreaTileCounts peek_area_tile_counts(std::span<const uint8_t> blob);
+
+}  // namespace tileformat
