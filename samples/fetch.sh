@@ -10,6 +10,7 @@
 #   small: lux, olinda, jacksboro, brasilia, etopo20 (DEMs, ~3 MB of packages) and
 #          ne_admin1, canada_roads, os_wales, efas_rivers (lines, ~35 MB of packages) and
 #          landsat, cbers20, bluemarble (imagery, +15 MB) and
+#          world, nc (polygons: countries and counties, +4 MB of packages) and
 #          us_flights (npm vega-datasets: airports, routes; points per airport, +18 MB) and
 #          airways and world_airports (FlightGear's airway network and navaids, two
 #          files of 1.7 and 0.7 MB streamed out of flightgear-data-base, converted to
@@ -53,6 +54,12 @@ for ext in shp shx dbf prj; do
               "efas_rivers|libmagics++-data|$efas.$ext|efas_rivers.$ext")
 done
 small_sets+=("${line_sets[@]}")
+# Polygons (areas, choropleths): the world's countries (spData, CC0) and North
+# Carolina's counties (sf's nc.gpkg, NAD27).
+small_sets+=(
+  "world|r-cran-spdata|usr/lib/R/site-library/spData/shapes/world.gpkg|world.gpkg"
+  "nc|r-cran-sf|usr/lib/R/site-library/sf/gpkg/nc.gpkg|nc.gpkg"
+)
 # Imagery.
 small_sets+=(
   "landsat|r-cran-stars|usr/lib/R/site-library/stars/tif/L7_ETMs.tif|landsat.tif"

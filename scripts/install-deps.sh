@@ -12,7 +12,7 @@ packages=(
   # fuzzing (scripts/fuzz.sh): clang and its libFuzzer runtime
   clang libclang-rt-14-dev
   # libraries (docs/install.md lists what the programs link)
-  libgdal-dev libproj-dev libtiff-dev libzstd-dev libsqlite3-dev libpng-dev zlib1g-dev
+  libgdal-dev libgeos-dev libproj-dev libtiff-dev libzstd-dev libsqlite3-dev libpng-dev zlib1g-dev
   # globe-serve: HTTP from GNU libmicrohttpd (docs/serve.md "HTTP")
   libmicrohttpd-dev
   # viewer image tile decoding without GDAL

@@ -13,6 +13,8 @@ const char* kUsage =
     "                                     GeoPackage, GeoJSON, OSM, ...) -> line-cluster package\n"
     "  points INPUT... -o OUT.mbtiles --fields A,B,...   places with values (OGR points,\n"
     "                                     CSV with --xy) -> point package for charts\n"
+    "  areas INPUT... -o OUT.mbtiles      polygons (countries, land use, tracts; any OGR\n"
+    "                                     source) -> area package, with --choropleth classes\n"
     "  bundle FLOWS --network NET... -o OUT.mbtiles   origin-destination flows routed\n"
     "                                     along a network, bundled and smoothed -> line package\n"
     "  info PACKAGE                       metadata, classes or fields, zooms, tiles, contents\n"
@@ -36,6 +38,7 @@ int main(int argc, char** argv) {
                                   {"extract", globe::run_lines_extract},
                                   {"merge", globe::run_lines_merge},
                                   {"points", globe::run_points},
+                                  {"areas", globe::run_areas},
                                   {"bundle", globe::run_bundle},
                                   {"export", globe::run_export}},
                                  argc, argv);

@@ -14,6 +14,7 @@ int run_lines_validate(const std::vector<std::string>& args);
 int run_lines_extract(const std::vector<std::string>& args);
 int run_lines_merge(const std::vector<std::string>& args);
 int run_points(const std::vector<std::string>& args);
+int run_areas(const std::vector<std::string>& args);
 int run_bundle(const std::vector<std::string>& args);
 int run_export(const std::vector<std::string>& args);
 

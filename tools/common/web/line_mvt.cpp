@@ -12,28 +12,6 @@
 namespace globe::web {
 namespace {
 
-MvtValue value_of(const tileformat::JsonValue& v) {
-  MvtValue m;
-  if (v.is_number()) {
-    const double d = v.number();
-    if (d == std::floor(d) && std::fabs(d) < 9e15) {
-      m.kind = MvtValue::Kind::kInt;
-      m.integer = static_cast<int64_t>(d);
-    } else {
-      m.kind = MvtValue::Kind::kDouble;
-      m.number = d;
-    }
-  } else if (v.is_bool()) {
-    m.kind = MvtValue::Kind::kBool;
-    m.flag = v.boolean();
-  } else if (v.is_string()) {
-    m.text = v.string();
-  } else {
-    m.text = v.text();  // arrays and objects as JSON text
-  }
-  return m;
-}
-
 std::string number(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.6g", v);
@@ -114,7 +92,7 @@ const LineMvtEncoder::FeatureInfo& LineMvtEncoder::feature(uint64_t id) {
         const tileformat::JsonValue props = tileformat::JsonValue::parse(rec->properties);
         if (props.is_object())
           for (const auto& [k, v] : props.members())
-            if (k != "class") info.tags.emplace_back(k, value_of(v));
+            if (k != "class") info.tags.emplace_back(k, MvtValue::from_json(v));
       } catch (const tileformat::JsonError&) {
         // attributes that are not JSON: the feature keeps its id and class
       }

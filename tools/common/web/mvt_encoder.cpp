@@ -1,6 +1,7 @@
 // Mapbox Vector Tile encoding (see mvt_encoder.hpp).
 #include "web/mvt_encoder.hpp"
 
+#include <cmath>
 #include <cstring>
 #include <tuple>
 
@@ -36,11 +37,11 @@ uint64_t zigzag64(int64_t v) {
   return (static_cast<uint64_t>(v) << 1) ^ static_cast<uint64_t>(v >> 63);
 }
 // Geometry commands (spec 4.3): id in the low 3 bits, count above.
-constexpr uint32_t kMoveTo = 1, kLineTo = 2;
+constexpr uint32_t kMoveTo = 1, kLineTo = 2, kClosePath = 7;
 uint32_t command(uint32_t id, uint32_t count) {
   return (id & 7) | (count << 3);
 }
-constexpr int kPoint = 1, kLineString = 2;
+constexpr int kPoint = 1, kLineString = 2, kPolygon = 3;
 
 }  // namespace
 
@@ -59,6 +60,28 @@ uint32_t MvtLayer::tag_value(const MvtValue& v) {
   auto [it, fresh] = value_index_.try_emplace(v, static_cast<uint32_t>(values_.size()));
   if (fresh) values_.push_back(v);
   return it->second;
+}
+
+MvtValue MvtValue::from_json(const tileformat::JsonValue& v) {
+  MvtValue m;
+  if (v.is_number()) {
+    const double d = v.number();
+    if (d == std::floor(d) && std::fabs(d) < 9e15) {
+      m.kind = MvtValue::Kind::kInt;
+      m.integer = static_cast<int64_t>(d);
+    } else {
+      m.kind = MvtValue::Kind::kDouble;
+      m.number = d;
+    }
+  } else if (v.is_bool()) {
+    m.kind = MvtValue::Kind::kBool;
+    m.flag = v.boolean();
+  } else if (v.is_string()) {
+    m.text = v.string();
+  } else {
+    m.text = v.text();  // arrays and objects as JSON text
+  }
+  return m;
 }
 
 void MvtLayer::add(uint64_t id, int type, std::vector<uint32_t> geometry,
@@ -105,6 +128,26 @@ bool MvtLayer::add_line(uint64_t id, std::span<const MvtPoint> line,
 void MvtLayer::add_point(uint64_t id, MvtPoint at,
                          const std::vector<std::pair<std::string, MvtValue>>& tags) {
   add(id, kPoint, {command(kMoveTo, 1), zigzag(at.x), zigzag(at.y)}, tags);
+}
+
+void MvtLayer::add_polygon(uint64_t id, const std::vector<std::vector<MvtPoint>>& rings,
+                           const std::vector<std::pair<std::string, MvtValue>>& tags) {
+  std::vector<uint32_t> g;
+  MvtPoint cursor;
+  for (const std::vector<MvtPoint>& r : rings) {
+    if (r.size() < 3) continue;
+    g.push_back(command(kMoveTo, 1));
+    g.push_back(zigzag(r[0].x - cursor.x));
+    g.push_back(zigzag(r[0].y - cursor.y));
+    g.push_back(command(kLineTo, static_cast<uint32_t>(r.size() - 1)));
+    for (size_t i = 1; i < r.size(); ++i) {
+      g.push_back(zigzag(r[i].x - r[i - 1].x));
+      g.push_back(zigzag(r[i].y - r[i - 1].y));
+    }
+    g.push_back(command(kClosePath, 1));
+    cursor = r.back();
+  }
+  if (!g.empty()) add(id, kPolygon, std::move(g), tags);
 }
 
 std::string MvtLayer::encode() const {

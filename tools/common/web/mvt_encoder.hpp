@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "tileformat/json.hpp"
+
 namespace globe::web {
 
 struct MvtPoint {
@@ -25,6 +27,9 @@ struct MvtValue {
   int64_t integer = 0;
   bool flag = false;
   bool operator<(const MvtValue& o) const;
+  // A JSON attribute as a tag: integral numbers as int, other numbers as
+  // double, booleans, strings; arrays and objects as their JSON text.
+  static MvtValue from_json(const tileformat::JsonValue& v);
 };
 
 class MvtLayer {
@@ -37,6 +42,12 @@ class MvtLayer {
                 const std::vector<std::pair<std::string, MvtValue>>& tags);
   void add_point(uint64_t id, MvtPoint at,
                  const std::vector<std::pair<std::string, MvtValue>>& tags);
+  // A POLYGON (one exterior ring) or MULTIPOLYGON: rings open (the first
+  // vertex not repeated), exterior rings with positive area in tile
+  // coordinates (y down), each followed by its holes (negative area), as
+  // spec 4.3.4.4 wants; rings of fewer than 3 vertices are left out.
+  void add_polygon(uint64_t id, const std::vector<std::vector<MvtPoint>>& rings,
+                   const std::vector<std::pair<std::string, MvtValue>>& tags);
   bool empty() const { return features_.empty(); }
   const std::string& name() const { return name_; }
   // The Layer message (spec 4.1), without its field key.

@@ -1,7 +1,8 @@
 // `globe-vectorize export PACKAGE --format mvt -o OUT [--style-json STYLE.json]`:
-// line, bundle and point packages as vector tiles for web maps (docs/web.md).
+// line, bundle, point and area packages as vector tiles for web maps (docs/web.md).
 #include <sstream>
 
+#include "export/area_mvt_export.hpp"
 #include "export/mvt_export.hpp"
 #include "export/point_mvt_export.hpp"
 #include "kit/build_options.hpp"
@@ -30,6 +31,9 @@ int run_export(const std::vector<std::string>& args) {
       "become points tagged zero_length. A point package becomes one layer 'points': each\n"
       "place a point with its id, 'count' (the source places it stands for) and its fields\n"
       "(sums or means, as the package aggregates); its style draws circles sized by count.\n"
+      "An area package becomes one layer per source layer, each feature's polygons in a tile\n"
+      "one (multi)polygon with its id, 'class', attributes and, in a choropleth, 'value'; its\n"
+      "style fills the classes (a choropleth as a step over 'value') under outlines.\n"
       "docs/web.md has a MapLibre page.");
   cli.option("--format", "mvt", "vector tiles (the only format, the default)",
              [&](const std::string& v) {
@@ -43,21 +47,24 @@ int run_export(const std::vector<std::string>& args) {
   declare_run_options(cli, o, ResumeOption::kNotOffered);
   if (!parse_build_command(cli, o, args, "globe-vectorize export", "PACKAGE")) return kExitOk;
   if (o.inputs.size() != 1)
-    throw UsageError("give exactly one line, bundle or point package to export");
+    throw UsageError("give exactly one line, bundle, point or area package to export");
   s.input = o.inputs[0], s.output = o.output, s.force = o.force;
   const auto kind = package_kind(s.input);
-  if (kind != tileformat::PackageKind::kLines && kind != tileformat::PackageKind::kPoints)
+  if (kind != tileformat::PackageKind::kLines && kind != tileformat::PackageKind::kPoints &&
+      kind != tileformat::PackageKind::kAreas)
     throw UsageError(s.input +
-                     ": globe-vectorize export takes line, bundle and point packages; terrain "
-                     "and image packages are exported by globe-tiler export");
+                     ": globe-vectorize export takes line, bundle, point and area packages; "
+                     "terrain and image packages are exported by globe-tiler export");
   Progress progress(o.progress);
-  const MvtExportSummary sum = kind == tileformat::PackageKind::kPoints
-                                   ? export_point_mvt(s, progress)
-                                   : export_mvt(s, progress);
+  const MvtExportSummary sum =
+      kind == tileformat::PackageKind::kPoints  ? export_point_mvt(s, progress)
+      : kind == tileformat::PackageKind::kAreas ? export_area_mvt(s, progress)
+                                                : export_mvt(s, progress);
   std::ostringstream msg;
   msg.precision(3);
   msg << std::fixed << "globe-vectorize: wrote " << s.output << ": " << sum.tiles << " tiles, zoom "
-      << sum.min_zoom << ".." << sum.max_zoom << ", " << sum.features << " lines and points";
+      << sum.min_zoom << ".." << sum.max_zoom << ", " << sum.features
+      << (kind == tileformat::PackageKind::kAreas ? " areas" : " lines and points");
   if (sum.zero_length) msg << " (" << sum.zero_length << " zero-length lines as points)";
   msg << ", " << sum.bytes << " bytes, " << sum.seconds << " s";
   if (!s.style_json.empty()) msg << "; style " << s.style_json;

@@ -8,13 +8,14 @@
 
 namespace globe {
 
-// Each in its kind's file: lines_inspect.cpp, points_inspect.cpp.
-extern const KindInspection kLinesInspection, kPointsInspection;
+// Each in its kind's file: lines_inspect.cpp, points_inspect.cpp, areas_inspect.cpp.
+extern const KindInspection kLinesInspection, kPointsInspection, kAreasInspection;
 
 namespace {
 
-constexpr const KindInspection* kVectorizeKinds[] = {&kLinesInspection, &kPointsInspection};
-constexpr const char* kKindList = "line-cluster or point";
+constexpr const KindInspection* kVectorizeKinds[] = {&kLinesInspection, &kPointsInspection,
+                                                     &kAreasInspection};
+constexpr const char* kKindList = "line-cluster, point or area";
 
 }  // namespace
 
@@ -33,7 +34,8 @@ int run_lines_extract(const std::vector<std::string>& args) {
               "globe-vectorize extract PACKAGE --zoom Z -o OUT.gpkg\n\n"
               "Writes the lines (and points) of zoom Z, clipped to their tiles, as vector data\n"
               "(GeoPackage; .geojson, .shp, .fgb by extension) in the tiling CRS. Of a point\n"
-              "package: its places with their values (layer places).");
+              "package: its places with their values (layer places); of an area package: its\n"
+              "polygons, each clipped to its own tile (layer polygons).");
   cli.option("--zoom", "Z", "zoom level to extract",
              [&](const std::string& v) { zoom = CliArgs::to_int("--zoom", v, 0, 30); });
   cli.option("-o,--output", "OUT.gpkg", "output file",

@@ -36,18 +36,28 @@ void append_points(OGRGeometryH g, std::vector<XY>& out) {
     out.push_back({OGR_G_GetX(g, i), OGR_G_GetY(g, i)});
 }
 
-// Flattens any geometry into line parts and points.
-void flatten(OGRGeometryH g, VectorFeature& f) {
+// Flattens any geometry into line parts and points; with `polygons`, a
+// polygon's rings stay together in f.polygons instead.
+void flatten(OGRGeometryH g, VectorFeature& f, bool polygons) {
   if (!g || OGR_G_IsEmpty(g)) return;
   if (OGR_G_HasCurveGeometry(g, TRUE)) {
     OGRGeometryH lin = OGR_G_GetLinearGeometry(g, 0, nullptr);
     if (lin) {
-      flatten(lin, f);
+      flatten(lin, f, polygons);
       OGR_G_DestroyGeometry(lin);
     }
     return;
   }
-  switch (wkbFlatten(OGR_G_GetGeometryType(g))) {
+  const OGRwkbGeometryType type = wkbFlatten(OGR_G_GetGeometryType(g));
+  if (polygons && (type == wkbPolygon || type == wkbTriangle)) {
+    f.polygons.emplace_back();
+    for (int i = 0; i < OGR_G_GetGeometryCount(g); ++i) {
+      f.polygons.back().emplace_back();
+      append_points(OGR_G_GetGeometryRef(g, i), f.polygons.back().back());
+    }
+    return;
+  }
+  switch (type) {
     case wkbPoint:
       f.points.push_back({OGR_G_GetX(g, 0), OGR_G_GetY(g, 0)});
       return;
@@ -60,7 +70,7 @@ void flatten(OGRGeometryH g, VectorFeature& f) {
       break;  // polygons (rings) and collections: recurse into parts
   }
   for (int i = 0; i < OGR_G_GetGeometryCount(g); ++i)
-    flatten(OGR_G_GetGeometryRef(g, i), f);
+    flatten(OGR_G_GetGeometryRef(g, i), f, polygons);
 }
 
 std::string field_json(OGRFeatureH feat, int i, OGRFieldType type) {
@@ -105,7 +115,7 @@ LayerGeometry layer_geometry(OGRLayerH layer) {
 }  // namespace
 
 VectorReader::VectorReader(const std::vector<std::string>& inputs, const VectorReaderOptions& opt)
-    : properties_(opt.properties) {
+    : properties_(opt.properties), polygons_(opt.polygons) {
   gdal_init();
   std::vector<bool> layer_found(opt.layers.size(), false);
   std::string available;
@@ -242,6 +252,7 @@ bool VectorReader::next(VectorFeature& out) {
     out.fid = OGR_F_GetFID(feat);
     out.lines.clear();
     out.points.clear();
+    out.polygons.clear();
     out.values.clear();
     for (int fi : h.value_fields)
       out.values.push_back(OGR_F_IsFieldSetAndNotNull(feat, fi) ? OGR_F_GetFieldAsDouble(feat, fi)
@@ -263,7 +274,7 @@ bool VectorReader::next(VectorFeature& out) {
     out.class_value = h.class_field >= 0 && OGR_F_IsFieldSetAndNotNull(feat, h.class_field)
                           ? OGR_F_GetFieldAsString(feat, h.class_field)
                           : "";
-    flatten(OGR_F_GetGeometryRef(feat), out);
+    flatten(OGR_F_GetGeometryRef(feat), out, polygons_);
     OGR_F_Destroy(feat);
     return true;
   }

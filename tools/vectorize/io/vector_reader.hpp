@@ -24,6 +24,9 @@ struct VectorFeature {
   std::string class_value;      // the class field as text ("" without --class-field)
   std::vector<std::vector<XY>> lines;
   std::vector<XY> points;
+  // With VectorReaderOptions::polygons: each polygon's rings (the exterior
+  // first, then its holes; closed as OGR gives them), not in `lines`.
+  std::vector<std::vector<std::vector<XY>>> polygons;
   std::vector<double> values;      // VectorReaderOptions::value_fields; NaN where null
   std::vector<std::string> texts;  // VectorReaderOptions::text_fields; "" where null
 };
@@ -47,6 +50,7 @@ struct VectorReaderOptions {
   std::optional<tileformat::Bounds> filter;  // lon/lat area (a fast pre-filter)
   std::string s_srs;                         // assigned CRS ("" keeps the files')
   bool properties = true;                    // false: properties_json stays empty
+  bool polygons = false;                     // polygons into VectorFeature::polygons
   // Numeric fields read into VectorFeature::values; a missing or text field
   // is a UsageError naming the layer and its fields.
   std::vector<std::string> value_fields;
@@ -89,6 +93,7 @@ class VectorReader {
   std::vector<std::unique_ptr<LayerHandle>> handles_;
   size_t current_ = 0;
   bool properties_ = true;
+  bool polygons_ = false;
 };
 
 }  // namespace globe

@@ -34,14 +34,20 @@ VectorWriter::~VectorWriter() {
 }
 
 void* VectorWriter::layer(Kind kind) {
-  void*& l = kind == Kind::kPoints   ? points_layer_
-             : kind == Kind::kPlaces ? places_layer_
-                                     : lines_layer_;
+  void*& l = kind == Kind::kPoints     ? points_layer_
+             : kind == Kind::kPlaces   ? places_layer_
+             : kind == Kind::kPolygons ? polygons_layer_
+                                       : lines_layer_;
   if (l) return l;
   const SpatialRef srs = SpatialRef::from_wkt(crs_wkt_, path_ + " (the package's CRS)");
-  const char* name = kind == Kind::kPoints ? "points" : kind == Kind::kPlaces ? "places" : "lines";
-  OGRLayerH layer = GDALDatasetCreateLayer(
-      ds_.get(), name, srs.get(), kind == Kind::kLines ? wkbLineString : wkbPoint, nullptr);
+  const char* name = kind == Kind::kPoints     ? "points"
+                     : kind == Kind::kPlaces   ? "places"
+                     : kind == Kind::kPolygons ? "polygons"
+                                               : "lines";
+  const OGRwkbGeometryType type = kind == Kind::kLines      ? wkbLineString
+                                  : kind == Kind::kPolygons ? wkbPolygon
+                                                            : wkbPoint;
+  OGRLayerH layer = GDALDatasetCreateLayer(ds_.get(), name, srs.get(), type, nullptr);
   if (!layer) throw OutputError(temp_ + ": cannot create a layer (" + gdal_last_error() + ")");
   std::vector<std::pair<std::string, OGRFieldType>> fields;
   if (kind == Kind::kPlaces) {
@@ -109,6 +115,20 @@ void VectorWriter::add_point(XY p, const VectorAttributes& a) {
   OGR_G_SetPoint_2D(g, 0, p.x, p.y);
   add(g, Kind::kPoints, a);
   ++points_;
+}
+
+void VectorWriter::add_polygon(const std::vector<std::vector<XY>>& rings,
+                               const VectorAttributes& a) {
+  OGRGeometryH g = OGR_G_CreateGeometry(wkbPolygon);
+  for (const std::vector<XY>& r : rings) {
+    OGRGeometryH ring = OGR_G_CreateGeometry(wkbLinearRing);
+    for (const XY& p : r)
+      OGR_G_AddPoint_2D(ring, p.x, p.y);
+    if (!r.empty()) OGR_G_AddPoint_2D(ring, r.front().x, r.front().y);
+    OGR_G_AddGeometryDirectly(g, ring);
+  }
+  add(g, Kind::kPolygons, a);
+  ++polygons_;
 }
 
 void VectorWriter::add_place(XY p, const PlaceAttributes& a) {

@@ -1,9 +1,9 @@
 // Writes decoded lines and points as vector data through OGR (the one place
 // that creates OGR layers and features), in the tiling CRS: layers "lines"
-// and "points" (of line packages) with fields feature_id, class, layer, tile
-// and properties; layer "places" (of point packages) with fields place_id,
-// places, tile, properties and one real field per value. Built under a
-// temporary name and renamed by commit().
+// and "points" (of line packages) and "polygons" (of area packages) with
+// fields feature_id, class, layer, tile and properties; layer "places" (of point packages) with
+// fields place_id, places, tile, properties and one real field per value. Built under a temporary
+// name and renamed by commit().
 #pragma once
 
 #include <functional>
@@ -38,16 +38,19 @@ class VectorWriter {
 
   void add_line(const std::vector<XY>& points, const VectorAttributes& a);
   void add_point(XY p, const VectorAttributes& a);
+  // A polygon: its exterior ring, then its holes (open rings).
+  void add_polygon(const std::vector<std::vector<XY>>& rings, const VectorAttributes& a);
   // The value fields of the "places" layer (before the first add_place).
   void set_value_fields(std::vector<std::string> names) { value_fields_ = std::move(names); }
   void add_place(XY p, const PlaceAttributes& a);
   void commit();
   uint64_t lines() const { return lines_; }
   uint64_t points() const { return points_; }
+  uint64_t polygons() const { return polygons_; }
 
  private:
-  enum class Kind { kLines, kPoints, kPlaces };  // one layer each
-  void* layer(Kind kind);                        // OGRLayerH
+  enum class Kind { kLines, kPoints, kPlaces, kPolygons };  // one layer each
+  void* layer(Kind kind);                                   // OGRLayerH
   // Writes one feature of `geometry` (taken over) to the layer of `kind`;
   // set_fields(OGRFeatureH) fills its fields.
   void add(void* geometry, Kind kind, const std::function<void(void*)>& set_fields);
@@ -57,8 +60,9 @@ class VectorWriter {
   void* lines_layer_ = nullptr;
   void* points_layer_ = nullptr;
   void* places_layer_ = nullptr;
+  void* polygons_layer_ = nullptr;
   std::vector<std::string> value_fields_;
-  uint64_t lines_ = 0, points_ = 0;
+  uint64_t lines_ = 0, points_ = 0, polygons_ = 0;
   bool committed_ = false, in_transaction_ = false;
 };
 

@@ -91,6 +91,15 @@ void LineProjector::project_lines(const std::vector<std::vector<XY>>& in,
   }
 }
 
+bool LineProjector::transform_ring(std::vector<XY>& ring) const {
+  for (const XY& p : ring)
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) return false;
+  if (!transform(ring)) return false;
+  for (const XY& p : ring)
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) return false;
+  return frame_ == TargetFrame::kProjected || on_the_globe(ring);
+}
+
 bool LineProjector::project_point(XY in, XY& out) const {
   std::vector<XY> p{in};
   if (!std::isfinite(in.x) || !std::isfinite(in.y) || !transform(p)) return false;

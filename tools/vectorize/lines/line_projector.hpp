@@ -30,6 +30,12 @@ class LineProjector {
                      ProjectionCounts& counts) const;
   // False if the point cannot be projected.
   bool project_point(XY in, XY& out) const;
+  // A polygon ring into longitude/latitude (the global frames; not cut at
+  // the antimeridian, not yet in the frame: lonlat_to_frame does that) or
+  // into the target CRS (kProjected). False if a vertex cannot be
+  // transformed, is not finite, or lies off the globe.
+  bool transform_ring(std::vector<XY>& ring) const;
+  TargetFrame frame() const { return frame_; }
   // Longitude/latitude (degrees) of a tiling-CRS position (for bounds).
   static XY frame_to_lonlat(TargetFrame frame, XY p);
   static XY lonlat_to_frame(TargetFrame frame, XY p);

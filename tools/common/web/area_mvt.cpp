@@ -1,0 +1,163 @@
+// Area tiles as Mapbox Vector Tiles (see area_mvt.hpp).
+#include "web/area_mvt.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "runtime/errors.hpp"
+#include "tileformat/area_tile.hpp"
+#include "tileformat/error.hpp"
+#include "tileformat/json.hpp"
+
+namespace globe::web {
+namespace {
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+std::string quoted(const std::string& s) {
+  return "\"" + tileformat::json_escape(s) + "\"";
+}
+
+// The choropleth's value of a feature from its attributes; NaN if absent.
+double choropleth_value(const tileformat::Choropleth& c, const tileformat::JsonValue& props) {
+  auto get = [&](const std::string& key) {
+    const tileformat::JsonValue* v = props.is_object() ? props.find(key) : nullptr;
+    return v && v->is_number() ? v->number() : std::nan("");
+  };
+  const double v = get(c.field);
+  if (c.denominator.empty()) return v;
+  const double d = get(c.denominator);
+  return d != 0 ? v / d : std::nan("");
+}
+
+}  // namespace
+
+AreaMvtEncoder::AreaMvtEncoder(AreaPackage& package) : package_(package) {
+  table_ = std::make_unique<tileformat::FeatureTableReader>(*package.reader);
+}
+
+AreaMvtEncoder::~AreaMvtEncoder() = default;
+
+const AreaMvtEncoder::FeatureInfo& AreaMvtEncoder::feature(uint64_t id) {
+  if (auto it = features_cache_.find(id); it != features_cache_.end()) return it->second;
+  if (features_cache_.size() > 200000) features_cache_.clear();
+  FeatureInfo info{"areas", {}};
+  if (const auto rec = table_->get(int64_t(id))) {
+    info.layer = rec->layer.empty() ? "areas" : rec->layer;
+    try {
+      const tileformat::JsonValue props = tileformat::JsonValue::parse(rec->properties);
+      if (props.is_object())
+        for (const auto& [k, v] : props.members())
+          if (k != "class" && k != "value") info.tags.emplace_back(k, MvtValue::from_json(v));
+      if (const auto& c = package_.meta.choropleth) {
+        const double v = choropleth_value(*c, props);
+        if (std::isfinite(v)) {
+          MvtValue m;
+          m.kind = MvtValue::Kind::kDouble;
+          m.number = v;
+          info.tags.emplace_back("value", m);
+        }
+      }
+    } catch (const tileformat::JsonError&) {
+      // attributes that are not JSON: the feature keeps its id and class
+    }
+  }
+  return features_cache_.emplace(id, std::move(info)).first->second;
+}
+
+std::vector<uint8_t> AreaMvtEncoder::encode(tileformat::TileId id, std::span<const uint8_t> blob) {
+  tileformat::AreaTile t;
+  try {
+    t = tileformat::decode_area_tile(blob);
+  } catch (const tileformat::FormatError& e) {
+    throw InputError(package_.reader->path() + ": tile " + id.str() + ": " + e.what() +
+                     "; check the package with globe-vectorize validate");
+  }
+  std::vector<MvtLayer> layers;
+  std::map<std::string, size_t> layer_of;
+  const std::vector<uint32_t> offsets = t.ring_offsets();
+  std::vector<std::vector<MvtPoint>> rings;
+  for (size_t p = 0; p < t.polygons.size();) {
+    // One MVT feature for all polygons of a feature (they are consecutive).
+    const uint32_t feature_index = t.polygons[p].feature, cls = t.polygons[p].class_id;
+    rings.clear();
+    for (; p < t.polygons.size() && t.polygons[p].feature == feature_index; ++p)
+      for (uint32_t r = t.polygons[p].first_ring;
+           r < t.polygons[p].first_ring + t.polygons[p].ring_count; ++r) {
+        rings.emplace_back();
+        for (uint32_t v = offsets[r]; v < offsets[r + 1]; ++v)
+          rings.back().push_back({t.vertices[v].x, t.vertices[v].y});
+      }
+    const uint64_t fid = t.feature_ids[feature_index];
+    const FeatureInfo& info = feature(fid);
+    Tags tags = info.tags;
+    MvtValue c;
+    if (package_.meta.choropleth) {
+      c.kind = MvtValue::Kind::kInt;
+      c.integer = cls;
+    } else {
+      c.text = cls < package_.classes.size() ? package_.classes[cls].name : std::to_string(cls);
+    }
+    tags.insert(tags.begin(), {"class", c});
+    auto& known = fields_[info.layer];
+    for (const auto& [k, v] : tags)
+      known.try_emplace(k, v.kind == MvtValue::Kind::kString ? "String"
+                           : v.kind == MvtValue::Kind::kBool ? "Boolean"
+                                                             : "Number");
+    auto [at, fresh] = layer_of.try_emplace(info.layer, layers.size());
+    if (fresh) layers.emplace_back(info.layer, t.extent);
+    classes_in_[info.layer].insert(cls);
+    layers[at->second].add_polygon(fid, rings, tags);
+    ++features_;
+  }
+  return encode_mvt(layers);
+}
+
+std::string area_style_json(const AreaPackage& pkg,
+                            const std::map<std::string, std::set<uint32_t>>& classes_in,
+                            const std::string& source_url) {
+  std::string out = "{\"version\":8,\"name\":" + quoted(pkg.meta.common.name) +
+                    ",\"sources\":{\"areas\":{\"type\":\"vector\",\"url\":" + quoted(source_url) +
+                    "}},\"layers\":[";
+  bool first = true;
+  auto layer = [&](const std::string& id, const std::string& type, const std::string& source_layer,
+                   const std::string& filter, const std::string& paint) {
+    out += (first ? "" : ",") + std::string("{\"id\":") + quoted(id) + ",\"type\":\"" + type +
+           "\",\"source\":\"areas\",\"source-layer\":" + quoted(source_layer) +
+           (filter.empty() ? "" : ",\"filter\":" + filter) + ",\"paint\":{" + paint + "}}";
+    first = false;
+  };
+  for (const auto& [name, classes] : classes_in) {
+    if (const auto& c = pkg.meta.choropleth) {
+      // step: the first colour below the second class's lower bound, then
+      // each class's colour from its lower bound on (classes are [min, max)).
+      std::string step = "[\"step\",[\"get\",\"value\"]," + quoted(c->classes[0].color);
+      for (size_t i = 1; i < c->classes.size(); ++i)
+        step += "," + number(c->classes[i].min) + "," + quoted(c->classes[i].color);
+      step += "]";
+      layer(name + "/no-data", "fill", name, "[\"!\",[\"has\",\"value\"]]",
+            "\"fill-color\":" + quoted(c->no_data_color) + ",\"fill-opacity\":0.8");
+      layer(name + "/choropleth", "fill", name, "[\"has\",\"value\"]",
+            "\"fill-color\":" + step + ",\"fill-opacity\":0.8");
+    } else {
+      for (uint32_t k : classes) {
+        if (k >= pkg.classes.size()) continue;
+        const LineStyle& s = pkg.classes[k].style;
+        layer(name + "/" + pkg.classes[k].name, "fill", name,
+              "[\"==\",[\"get\",\"class\"]," + quoted(pkg.classes[k].name) + "]",
+              "\"fill-color\":" + quoted(s.color) +
+                  ",\"fill-opacity\":" + number(std::min(s.opacity, 0.8)));
+      }
+    }
+  }
+  for (const auto& [name, classes] : classes_in)
+    layer(name + "/outline", "line", name, "",
+          "\"line-color\":\"#444444\",\"line-width\":0.5,\"line-opacity\":0.8");
+  return out + "]}";
+}
+
+}  // namespace globe::web
