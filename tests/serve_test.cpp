@@ -8,12 +8,17 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdio>
 #include <fstream>
 #include <mutex>
 #include <random>
 #include <set>
 #include <thread>
 
+#include <ogr_api.h>
+#include <ogr_srs_api.h>
+
+#include "area_fixtures.hpp"
 #include "serve_fixtures.hpp"
 #include "spec_readers/gunzip.hpp"
 #include "spec_readers/pmtiles_reader.hpp"
@@ -50,6 +55,40 @@ const fs::path& vector_packages() {
 
 std::string gunzip(const std::string& bytes) {
   return spec_readers::gunzip(bytes, "test: ", size_t(1) << 30);
+}
+
+// The choropleth classes `globe-vectorize info --json` lists: [min, max) each,
+// the last [min, max].
+struct ChoroplethClass {
+  double min = 0, max = 0;
+  std::string color;
+};
+
+std::vector<ChoroplethClass> choropleth_classes(const std::string& package, const fs::path& dir) {
+  std::vector<ChoroplethClass> out;
+  const RunResult info = run(vectorize() + " info --json " + package, dir);
+  EXPECT_EQ(info.exit_code, 0) << info.err;
+  if (info.exit_code != 0) return out;
+  const tileformat::JsonValue json = tileformat::JsonValue::parse(info.out);
+  for (const auto& c : json.find("areas")->find("classes")->array())
+    out.push_back({c.find("min")->number(), c.find("max")->number(), c.find("color")->string()});
+  return out;
+}
+
+// The class (1..k) of a value, as the package's classes say: the last whose
+// minimum it reaches; 0 outside them all.
+int class_of(const std::vector<ChoroplethClass>& classes, double v) {
+  int k = 0;
+  for (size_t i = 0; i < classes.size(); ++i)
+    if (v >= classes[i].min) k = int(i) + 1;
+  return k > 0 && v <= classes.back().max ? k : 0;
+}
+
+// "#rrggbb" as three bytes.
+std::vector<int> rgb_of(const std::string& hex) {
+  unsigned r = 0, g = 0, b = 0;
+  std::sscanf(hex.c_str(), "#%2x%2x%2x", &r, &g, &b);
+  return {int(r), int(g), int(b)};
 }
 
 }  // namespace
@@ -273,6 +312,234 @@ TEST(Serve, LineAndPointTilesAsImagesDrawWhatTheStylesSay) {
   const auto clear = png_pixels(empty.body, w, h, 4);
   ASSERT_FALSE(clear.empty());
   EXPECT_EQ(*std::max_element(clear.begin(), clear.end()), 0);
+}
+
+// An area package served as line packages are: nc.gpkg's 100 counties as a
+// choropleth of BIR74 in 4 classes. Every .pbf the export writes is served
+// with the same bytes (gzip); the TileJSON lists the layer's fields; the
+// style fills by a step over the package's breaks; GDAL's MVT driver reads a
+// served tile's polygons with the county's attributes, its value and class;
+// the tile drawn as a PNG has the class colour at 0.8 inside each of 4
+// counties (one per class, the classes computed here from BIR74 and the
+// breaks `info --json` lists) and nothing outside the state.
+TEST(Serve, AreaChoroplethTilesTileJsonStyleAndImages) {
+  TempDir dir("serve-areas");
+  const std::string pkg = (dir / "nc.mbtiles").string();
+  ASSERT_TRUE(run_all({vectorize() + " areas -q " + sample("nc.gpkg").string() +
+                           " --choropleth BIR74 --classes 4 --max-zoom 7 -o " + pkg,
+                       vectorize() + " export -q " + pkg + " -o " + (dir / "nc").string()},
+                      dir.path()));
+  const std::vector<ChoroplethClass> classes = choropleth_classes(pkg, dir.path());
+  ASSERT_EQ(classes.size(), 4u);
+  ServeProcess server({pkg}, dir.path());
+  ASSERT_GT(server.port(), 0) << server.log();
+  const int port = server.port();
+  const std::string base = "http://127.0.0.1:" + std::to_string(port);
+
+  // The export's tiles, byte for byte.
+  size_t tiles = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir / "nc")) {
+    if (e.path().extension() != ".pbf") continue;
+    const std::string rel = fs::relative(e.path(), dir / "nc").string();
+    const HttpReply r = http_get(port, "/nc/" + rel, "Accept-Encoding: gzip\r\n");
+    ASSERT_EQ(r.status, 200) << rel;
+    EXPECT_EQ(r.header("content-type"), "application/vnd.mapbox-vector-tile");
+    EXPECT_EQ(r.header("content-encoding"), "gzip");
+    EXPECT_TRUE(gunzip(r.body) == gunzip(read_file(e.path()))) << rel;
+    ++tiles;
+  }
+  EXPECT_GT(tiles, 10u);
+  EXPECT_EQ(http_get(port, "/nc/7/0/0.pbf").status, 204);
+
+  // TileJSON: the tiles here, the layer and its fields.
+  const auto tj = tileformat::JsonValue::parse(http_get(port, "/nc.json").body);
+  EXPECT_EQ(tj.find("tilejson")->string(), "3.0.0");
+  EXPECT_EQ(tj.find("tiles")->array().at(0).string(), base + "/nc/{z}/{x}/{y}.pbf");
+  EXPECT_EQ(tj.find("maxzoom")->number(), 7);
+  const auto& layers = tj.find("vector_layers")->array();
+  ASSERT_EQ(layers.size(), 1u);
+  EXPECT_EQ(layers[0].find("id")->string(), "nc.gpkg");
+  const auto* fields = layers[0].find("fields");
+  ASSERT_TRUE(fields);
+  EXPECT_EQ(fields->find("NAME")->string(), "String");
+  EXPECT_EQ(fields->find("BIR74")->string(), "Number");
+  EXPECT_EQ(fields->find("value")->string(), "Number");
+  EXPECT_EQ(fields->find("class")->string(), "Number");
+
+  // The style: its source the TileJSON, the choropleth's fill a step over the
+  // breaks, the outlines over it.
+  const auto style = tileformat::JsonValue::parse(http_get(port, "/nc/style.json").body);
+  EXPECT_EQ(style.find("version")->number(), 8);
+  const auto& sources = style.find("sources")->members();
+  ASSERT_EQ(sources.size(), 1u);
+  EXPECT_EQ(sources[0].second.find("url")->string(), base + "/nc.json");
+  const tileformat::JsonValue* fill = nullptr;
+  std::vector<std::string> types;
+  for (const auto& l : style.find("layers")->array()) {
+    types.push_back(l.find("type")->string());
+    if (l.find("id")->string() == "nc.gpkg/choropleth") fill = &l;
+  }
+  EXPECT_EQ(types, (std::vector<std::string>{"fill", "fill", "line"}));
+  ASSERT_TRUE(fill) << "no choropleth fill layer";
+  EXPECT_EQ(fill->find("type")->string(), "fill");
+  EXPECT_EQ(fill->find("source-layer")->string(), "nc.gpkg");
+  const auto& step = fill->find("paint")->find("fill-color")->array();
+  ASSERT_EQ(step.size(), 3 + 2 * (classes.size() - 1));
+  EXPECT_EQ(step[0].string(), "step");
+  EXPECT_EQ(step[2].string(), classes[0].color);
+  for (size_t i = 1; i < classes.size(); ++i) {
+    EXPECT_EQ(step[1 + 2 * i].number(), classes[i].min);
+    EXPECT_EQ(step[2 + 2 * i].string(), classes[i].color);
+  }
+  EXPECT_EQ(fill->find("paint")->find("fill-opacity")->number(), 0.8);
+  EXPECT_NE(http_get(port, "/").body.find("/nc/style.json"), std::string::npos);
+
+  // One county per class, the one farthest inside its border.
+  std::vector<County> picked(classes.size() + 1);
+  for (const County& c : nc_counties()) {
+    const int k = class_of(classes, c.births);
+    ASSERT_GT(k, 0) << c.name << " " << c.births;
+    if (c.clearance > picked[k].clearance) picked[k] = c;
+  }
+  constexpr double kPi = 3.14159265358979323846, kR = 6378137;
+  const int z = 7;
+  const double world = 256.0 * (1 << z);
+  for (int k = 1; k <= int(classes.size()); ++k) {
+    const County& c = picked[size_t(k)];
+    ASSERT_GT(c.clearance * world / 360, 6) << "class " << k << ": " << c.name;
+    const double gx = (c.lon + 180) / 360 * world,
+                 gy = (1 - std::asinh(std::tan(c.lat * kPi / 180)) / kPi) / 2 * world;
+    const std::string tile = "/nc/" + std::to_string(z) + "/" + std::to_string(int(gx / 256)) +
+                             "/" + std::to_string(int(gy / 256));
+    SCOPED_TRACE(c.name + " (BIR74 " + std::to_string(c.births) + ", class " + std::to_string(k) +
+                 ") in " + tile);
+    // The vector tile, read by GDAL's MVT driver: the county's polygon holds
+    // the point, with its attributes, value and class.
+    const HttpReply pbf = http_get(port, tile + ".pbf", "Accept-Encoding: gzip\r\n");
+    ASSERT_EQ(pbf.status, 200);
+    EXPECT_EQ(pbf.header("content-encoding"), "gzip");
+    const fs::path file = dir / ("tile" + std::to_string(k) + ".pbf");
+    std::ofstream(file, std::ios::binary) << gunzip(pbf.body);
+    const std::string ox = "X=" + std::to_string(int(gx / 256)),
+                      oy = "Y=" + std::to_string(int(gy / 256)), oz = "Z=" + std::to_string(z);
+    const char* options[] = {ox.c_str(), oy.c_str(), oz.c_str(), "METADATA_FILE=", nullptr};
+    const char* drivers[] = {"MVT", nullptr};
+    GDALDatasetH ds = GDALOpenEx(file.c_str(), GDAL_OF_VECTOR, drivers, options, nullptr);
+    ASSERT_TRUE(ds) << "GDAL's MVT driver cannot open " << tile;
+    ASSERT_EQ(GDALDatasetGetLayerCount(ds), 1);
+    OGRLayerH layer = GDALDatasetGetLayer(ds, 0);
+    EXPECT_STREQ(OGR_L_GetName(layer), "nc.gpkg");
+    OGRGeometryH at = OGR_G_CreateGeometry(wkbPoint);
+    OGR_G_SetPoint_2D(at, 0, c.lon * kPi / 180 * kR, kR * std::asinh(std::tan(c.lat * kPi / 180)));
+    int holding = 0, features = 0;
+    OGR_L_ResetReading(layer);
+    while (OGRFeatureH f = OGR_L_GetNextFeature(layer)) {
+      ++features;
+      OGRGeometryH g = OGR_F_GetGeometryRef(f);
+      ASSERT_TRUE(g);
+      const OGRwkbGeometryType type = wkbFlatten(OGR_G_GetGeometryType(g));
+      EXPECT_TRUE(type == wkbPolygon || type == wkbMultiPolygon) << OGRGeometryTypeToName(type);
+      EXPECT_GE(OGR_F_GetFieldIndex(f, "value"), 0);
+      if (!OGR_G_Contains(g, at)) {
+        OGR_F_Destroy(f);
+        continue;
+      }
+      ++holding;
+      EXPECT_STREQ(OGR_F_GetFieldAsString(f, OGR_F_GetFieldIndex(f, "NAME")), c.name.c_str());
+      EXPECT_EQ(OGR_F_GetFieldAsDouble(f, OGR_F_GetFieldIndex(f, "BIR74")), c.births);
+      const int value = OGR_F_GetFieldIndex(f, "value");
+      ASSERT_GE(value, 0);
+      EXPECT_TRUE(OGR_F_IsFieldSetAndNotNull(f, value));
+      EXPECT_EQ(OGR_F_GetFieldAsDouble(f, value), c.births);
+      EXPECT_EQ(OGR_F_GetFieldAsInteger(f, OGR_F_GetFieldIndex(f, "class")), k);
+      OGR_F_Destroy(f);
+    }
+    OGR_G_DestroyGeometry(at);
+    GDALClose(ds);
+    EXPECT_GT(features, 1);
+    EXPECT_EQ(holding, 1);
+    // The tile drawn: the class colour at the style's opacity, 0.8.
+    const HttpReply png = http_get(port, tile + ".png");
+    ASSERT_EQ(png.status, 200);
+    EXPECT_EQ(png.header("content-type"), "image/png");
+    int w = 0, h = 0;
+    const auto px = png_pixels(png.body, w, h, 4);
+    ASSERT_EQ(px.size(), size_t(256) * 256 * 4);
+    const size_t i = (size_t(int(gy) % 256) * 256 + size_t(int(gx) % 256)) * 4;
+    const std::vector<int> expected = rgb_of(classes[size_t(k - 1)].color);
+    for (int b = 0; b < 3; ++b)
+      EXPECT_NEAR(px[i + b], expected[size_t(b)], 1) << "band " << b;
+    EXPECT_NEAR(px[i + 3], 204, 1);
+  }
+  // Outside the state, in a tile that holds part of it: South Carolina and
+  // the Atlantic at zoom 5 transparent, the state drawn.
+  for (const auto& [lon, lat] : {std::pair{-80.5, 33.2}, std::pair{-74.5, 35.0}}) {
+    const double w5 = 256.0 * 32, gx = (lon + 180) / 360 * w5,
+                 gy = (1 - std::asinh(std::tan(lat * kPi / 180)) / kPi) / 2 * w5;
+    const HttpReply png = http_get(port, "/nc/5/" + std::to_string(int(gx / 256)) + "/" +
+                                             std::to_string(int(gy / 256)) + ".png");
+    ASSERT_EQ(png.status, 200);
+    int w = 0, h = 0;
+    const auto px = png_pixels(png.body, w, h, 4);
+    ASSERT_EQ(px.size(), size_t(256) * 256 * 4);
+    EXPECT_EQ(px[(size_t(int(gy) % 256) * 256 + size_t(int(gx) % 256)) * 4 + 3], 0)
+        << lon << "," << lat;
+    size_t drawn = 0;
+    for (size_t j = 3; j < px.size(); j += 4)
+      drawn += px[j] > 0;
+    EXPECT_GT(drawn, 1000u) << "the state in tile of " << lon << "," << lat;
+  }
+}
+
+// A polygon with a hole in the geodetic tiling and a style class of its own
+// (#00ff00 at 0.5, times 0.8 on web maps): drawn for CesiumJS, filled by the
+// winding rule (the ring green at 0.4, the hole and the outside clear); MVT refused as for lines
+// (web maps read web mercator only); the style fills the class.
+TEST(Serve, AreaImagesFillByTheWindingRuleGeodeticToo) {
+  TempDir dir("serve-area-hole");
+  std::ofstream(dir / "sq.geojson")
+      << R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{"kind":"park"},)"
+      << R"("geometry":{"type":"Polygon","coordinates":[[[7,46],[9,46],[9,48],[7,48],[7,46]],)"
+      << R"([[7.5,46.5],[7.5,47.5],[8.5,47.5],[8.5,46.5],[7.5,46.5]]]}}]})";
+  ASSERT_TRUE(
+      run_all({vectorize() + " areas -q --tiling geodetic " + (dir / "sq.geojson").string() +
+               " --class-field kind --style 'park:color=#00ff00,opacity=0.5' --max-zoom 6 " +
+               "-o " + (dir / "sq.mbtiles").string()},
+              dir.path()));
+  ServeProcess server({(dir / "sq.mbtiles").string()}, dir.path());
+  ASSERT_GT(server.port(), 0) << server.log();
+  const int port = server.port();
+  // Geodetic zoom 6: 128 x 64 tiles of 180 / 64 degrees.
+  const double deg_per_px = 180.0 / 64 / 256;
+  auto alpha_and_rgb = [&](double lon, double lat) {
+    const double gx = (lon + 180) / deg_per_px, gy = (90 - lat) / deg_per_px;
+    const HttpReply r = http_get(port, "/sq/6/" + std::to_string(int(gx / 256)) + "/" +
+                                           std::to_string(int(gy / 256)) + ".png");
+    EXPECT_EQ(r.status, 200) << r.body;
+    int w = 0, h = 0;
+    const auto px = png_pixels(r.body, w, h, 4);
+    if (px.size() != size_t(256) * 256 * 4) return std::vector<int>{-1, -1, -1, -1};
+    const size_t i = (size_t(int(gy) % 256) * 256 + size_t(int(gx) % 256)) * 4;
+    return std::vector<int>{px[i + 3], px[i], px[i + 1], px[i + 2]};
+  };
+  // The class's opacity 0.5 times the web maps' fill opacity 0.8: 0.4.
+  const auto ring = alpha_and_rgb(7.25, 47.0);
+  EXPECT_NEAR(ring[0], 102, 1);
+  EXPECT_EQ(std::vector<int>(ring.begin() + 1, ring.end()), (std::vector<int>{0, 255, 0}));
+  EXPECT_EQ(alpha_and_rgb(8.0, 47.0)[0], 0) << "the hole";
+  EXPECT_EQ(alpha_and_rgb(7.25, 45.5)[0], 0) << "outside";
+  EXPECT_NEAR(alpha_and_rgb(8.75, 46.25)[0], 102, 1) << "the ring's other corner";
+  const HttpReply pbf = http_get(port, "/sq/6/66/15.pbf");
+  EXPECT_EQ(pbf.status, 404);
+  EXPECT_NE(pbf.body.find("webmercator"), std::string::npos) << pbf.body;
+  const auto style = tileformat::JsonValue::parse(http_get(port, "/sq/style.json").body);
+  const auto& first = style.find("layers")->array().at(0);
+  EXPECT_EQ(first.find("type")->string(), "fill");
+  EXPECT_EQ(first.find("paint")->find("fill-color")->string(), "#00ff00");
+  EXPECT_NEAR(first.find("paint")->find("fill-opacity")->number(), 0.4, 1e-9);
+  const auto tj = tileformat::JsonValue::parse(http_get(port, "/sq.json").body);
+  EXPECT_EQ(tj.find("vector_layers")->array().at(0).find("fields")->find("kind")->string(),
+            "String");
 }
 
 // The HTTP contract: ETag and 304, CORS and preflight, methods, PMTiles

@@ -6,12 +6,18 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <set>
 #include <sstream>
 #include <tuple>
 
+#include <ogr_api.h>
+#include <ogr_srs_api.h>
+
+#include "area_fixtures.hpp"
 #include "render_fixtures.hpp"
 #include "serve_fixtures.hpp"
 #include "spec_readers/pmtiles_reader.hpp"
@@ -269,4 +275,108 @@ TEST(WebMapLibre, PmtilesFromGlobeServeByRanges) {
           query_escape("http://127.0.0.1:" + std::to_string(server.port()) + "/flights.pmtiles"),
       dir);
   EXPECT_NE(server.log().find("GET /flights.pmtiles 206"), std::string::npos) << server.log();
+}
+
+// nc.gpkg's counties as a choropleth of BIR74 in 4 quantile classes,
+// served by globe-serve and drawn by MapLibre with the server's own style
+// (its fills at 0.8 over the page's #f4f1ea): every county rendered, the
+// picture the expected one, and, independently of it, at the inside point
+// of every county at least 6 px from its border, the pixel the colour of the
+// county's class (computed here from BIR74 and the breaks `info --json`
+// lists) blended at 0.8, nearer it than any other class's.
+TEST(WebMapLibre, AreasChoroplethFromGlobeServe) {
+  TempDir dir;
+  const std::string pkg = (dir / "nc.mbtiles").string();
+  ASSERT_TRUE(run_all({vectorize() + " areas -q " + sample("nc.gpkg").string() +
+                       " --choropleth BIR74 --classes 4 --max-zoom 7 -o " + pkg},
+                      dir.path()));
+  const RunResult info = run(vectorize() + " info --json " + pkg, dir.path());
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const auto json = tileformat::JsonValue::parse(info.out);
+  struct Class {
+    double min;
+    std::array<int, 3> rgb;
+  };
+  std::vector<Class> classes;
+  double top = 0;
+  for (const auto& c : json.find("areas")->find("classes")->array()) {
+    unsigned r = 0, g = 0, b = 0;
+    std::sscanf(c.find("color")->string().c_str(), "#%2x%2x%2x", &r, &g, &b);
+    classes.push_back({c.find("min")->number(), {int(r), int(g), int(b)}});
+    top = c.find("max")->number();
+  }
+  ASSERT_EQ(classes.size(), 4u);
+  ServeProcess server({pkg}, dir.path());
+  ASSERT_GT(server.port(), 0) << server.log();
+  // The view: 640 x 280 px around the state at zoom 5.5 (MapLibre's 512 px
+  // world at zoom 0).
+  const int width = 640, height = 280;
+  const double lon0 = -79.89, lat0 = 35.24, zoom = 5.5;
+  const RunResult page = run_web_page(
+      "maplibre_mvt.html", dir.path(),
+      "style=" +
+          query_escape("http://127.0.0.1:" + std::to_string(server.port()) + "/nc/style.json") +
+          "&center=" + std::to_string(lon0) + "," + std::to_string(lat0) +
+          "&zoom=" + std::to_string(zoom),
+      dir / "areas.png", dir.path(), std::to_string(width) + "x" + std::to_string(height));
+  ASSERT_EQ(page.exit_code, 0) << page.err;
+  const auto result = tileformat::JsonValue::parse(page.out);
+  std::set<int64_t> ids;
+  for (const auto& id : result.find("ids")->array())
+    ids.insert(int64_t(id.number()));
+  EXPECT_EQ(ids.size(), 100u) << "every county rendered: " << page.out.substr(0, 300);
+  const auto* fills = result.find("layers")->find("nc.gpkg/choropleth");
+  ASSERT_TRUE(fills) << page.out.substr(0, 300);
+  EXPECT_GE(fills->number(), 100);
+  EXPECT_NE(server.log().find("GET /nc/"), std::string::npos) << "MapLibre asked for no tile";
+  expect_image((dir / "areas.png").string(), "maplibre_areas_choropleth");
+
+  int w = 0, h = 0;
+  const std::vector<uint8_t> rgb = read_rgb((dir / "areas.png").string(), w, h);
+  ASSERT_EQ(w, width);
+  ASSERT_EQ(h, height);
+  const std::array<int, 3> bg{0xf4, 0xf1, 0xea};
+  auto blend = [&](const std::array<int, 3>& c) {
+    std::array<double, 3> out{};
+    for (int b = 0; b < 3; ++b)
+      out[size_t(b)] = 0.8 * c[size_t(b)] + 0.2 * bg[size_t(b)];
+    return out;
+  };
+  const double world = 512 * std::pow(2.0, zoom);
+  auto mercator_y = [](double lat) {
+    return (1 - std::asinh(std::tan(lat * kPi / 180)) / kPi) / 2;
+  };
+  std::map<int, int> checked;  // per class
+  for (const County& c : nc_counties()) {
+    if (c.clearance * world / 360 < 6) continue;
+    int k = 0;
+    for (size_t i = 0; i < classes.size(); ++i)
+      if (c.births >= classes[i].min) k = int(i);
+    ASSERT_LE(c.births, top) << c.name;
+    const int x = int(std::floor(width / 2.0 + (c.lon - lon0) / 360 * world));
+    const int y = int(std::floor(height / 2.0 + (mercator_y(c.lat) - mercator_y(lat0)) * world));
+    ASSERT_TRUE(x >= 0 && y >= 0 && x < w && y < h) << c.name;
+    const uint8_t* p = &rgb[(size_t(y) * w + x) * 3];
+    const auto want = blend(classes[size_t(k)].rgb);
+    // The nearest class colour is the county's, and it is that colour.
+    int nearest = -1;
+    double best = 1e9;
+    for (size_t i = 0; i < classes.size(); ++i) {
+      const auto b = blend(classes[i].rgb);
+      double d = 0;
+      for (int j = 0; j < 3; ++j)
+        d += std::abs(p[j] - b[size_t(j)]);
+      if (d < best) best = d, nearest = int(i);
+    }
+    EXPECT_EQ(nearest, k) << c.name << " (BIR74 " << c.births << ") at " << x << "," << y;
+    for (int j = 0; j < 3; ++j)
+      EXPECT_NEAR(p[j], want[size_t(j)], 3) << c.name << " (BIR74 " << c.births << ", class "
+                                            << k + 1 << ") at " << x << "," << y << " band " << j;
+    ++checked[k];
+  }
+  for (int k = 0; k < 4; ++k)
+    EXPECT_GE(checked[k], 3) << "counties checked in class " << k + 1;
+  std::printf(
+      "MapLibre drew %zu counties; %d, %d, %d, %d checked per class at their inside point\n",
+      ids.size(), checked[0], checked[1], checked[2], checked[3]);
 }

@@ -15,6 +15,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "runtime/area_package.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/image_package.hpp"
 #include "runtime/line_package.hpp"
@@ -23,8 +24,10 @@
 #include "runtime/point_package.hpp"
 #include "runtime/terrain_package.hpp"
 #include "serve/file_body.hpp"
+#include "tileformat/feature_table.hpp"
 #include "tileformat/image_tile.hpp"
 #include "tileformat/json.hpp"
+#include "web/area_mvt.hpp"
 #include "web/line_mvt.hpp"
 #include "web/lru_cache.hpp"
 #include "web/mesh_tiles.hpp"
@@ -415,6 +418,103 @@ class PointService : public PackageService {
   std::mutex mutex_;
 };
 
+// Areas as lines are served: MVT (web mercator), the style, drawn PNGs (web
+// mercator and geodetic).
+class AreaService : public PackageService {
+ public:
+  AreaService(const std::string& path, const std::string& name)
+      : pkg_(open_area_package(path)), name_(name), encoder_(pkg_) {
+    const tileformat::CommonMetadata& c = pkg_.meta.common;
+    west = c.lonlat.min_x, south = c.lonlat.min_y, east = c.lonlat.max_x, north = c.lonlat.max_y;
+    min_zoom = c.min_zoom, max_zoom = c.max_zoom;
+    // The layers (as the encoder names them) with every class, and their
+    // fields: the class (a number in a choropleth, the class name
+    // otherwise), the choropleth's value, and the attributes of the first
+    // 10,000 features (a package's features share their source's fields).
+    std::set<uint32_t> all;
+    if (const auto& ch = pkg_.meta.choropleth) {
+      for (uint32_t k = 0; k <= ch->classes.size(); ++k)
+        all.insert(k);
+    } else {
+      for (uint32_t k = 0; k < pkg_.classes.size(); ++k)
+        all.insert(k);
+    }
+    for (const tileformat::LineLayerInfo& l : pkg_.meta.layers)
+      fields_[l.name.empty() ? "areas" : l.name];
+    struct Enough {};
+    int64_t read = 0;
+    try {
+      tileformat::FeatureTableReader(*pkg_.reader)
+          .for_each([&](int64_t, const tileformat::FeatureRecord& f) {
+            if (++read > 10000) throw Enough{};
+            std::map<std::string, std::string>& known =
+                fields_[f.layer.empty() ? "areas" : f.layer];
+            try {
+              const tileformat::JsonValue props = tileformat::JsonValue::parse(f.properties);
+              if (props.is_object())
+                for (const auto& [k, v] : props.members())
+                  if (k != "class" && k != "value")  // as the encoder: these are its own
+                    known.try_emplace(k, v.is_number() ? "Number"
+                                         : v.is_bool() ? "Boolean"
+                                                       : "String");
+            } catch (const tileformat::JsonError&) {
+              // attributes that are not JSON: the encoder leaves them out too
+            }
+          });
+    } catch (const Enough&) {
+    }
+    if (fields_.empty()) fields_["areas"];
+    for (auto& [layer, fields] : fields_) {
+      classes_in_[layer] = all;
+      fields["class"] = pkg_.meta.choropleth ? "Number" : "String";
+      if (pkg_.meta.choropleth) fields["value"] = "Number";
+    }
+  }
+  std::string kind() const override { return "areas"; }
+  std::string tiling() const override {
+    return tileformat::scheme_name(pkg_.meta.common.tiling.scheme);
+  }
+  HttpResponse tilejson(const std::string& base, const HttpRequest&) override {
+    return json_response(
+        tilejson_text(*this, name_, base + "/{z}/{x}/{y}.pbf",
+                      "\"format\":\"pbf\",\"vector_layers\":" + web::vector_layers_json(fields_)));
+  }
+  HttpResponse answer(const Route& r, const HttpRequest&, const std::string& base) override {
+    if (r.kind == Route::Kind::kStyleJson)
+      return json_response(web::area_style_json(pkg_, classes_in_, base + ".json"));
+    const tileformat::Tiling& tiling = pkg_.meta.common.tiling;
+    if (r.kind == Route::Kind::kTile && r.extension == "png") {  // drawn, for image clients
+      HttpResponse bad = check_tile(tiling, name_, r, min_zoom, max_zoom);
+      if (bad.status != 200) return bad;
+      std::optional<std::vector<uint8_t>> blob;
+      {
+        std::lock_guard lock(mutex_);
+        blob = pkg_.reader->tile({r.z, r.x, r.y});
+      }
+      std::vector<uint8_t> png;
+      if (blob) png = web::area_tile_png(pkg_, {r.z, r.x, r.y}, *blob);
+      return png.empty() ? transparent_png() : bytes_response(std::move(png), "image/png", false);
+    }
+    if (r.kind != Route::Kind::kTile || (r.extension != "pbf" && r.extension != "mvt"))
+      return text_response(404, "an area package has style.json, .pbf and .png tiles");
+    HttpResponse bad = check_xyz(tiling, name_, r, min_zoom, max_zoom);
+    if (bad.status != 200) return bad;
+    std::lock_guard lock(mutex_);  // one SQLite connection, one features cache
+    const auto blob = pkg_.reader->tile({r.z, r.x, r.y});
+    if (!blob) return text_response(204, "");
+    return bytes_response(encoder_.encode({r.z, r.x, r.y}, *blob),
+                          "application/vnd.mapbox-vector-tile", true);
+  }
+
+ private:
+  AreaPackage pkg_;
+  std::string name_;
+  web::AreaMvtEncoder encoder_;
+  std::map<std::string, std::set<uint32_t>> classes_in_;
+  std::map<std::string, std::map<std::string, std::string>> fields_;
+  std::mutex mutex_;
+};
+
 // A PMTiles v3 archive: its bytes, read on demand (ranges, validators:
 // file_body.hpp and the request handler).
 class PmtilesService : public PackageService {
@@ -476,6 +576,8 @@ std::unique_ptr<PackageService> open_service(const std::string& path, const std:
       return std::make_unique<LineService>(path, name);
     case tileformat::PackageKind::kPoints:
       return std::make_unique<PointService>(path, name);
+    case tileformat::PackageKind::kAreas:
+      return std::make_unique<AreaService>(path, name);
     case tileformat::PackageKind::kAnalysis:
       throw InputError(path +
                        ": analysis packages have no web format yet; serve the terrain package");

@@ -2,9 +2,9 @@
 // package kind, each answering its routes from the package opened read-only.
 // Terrain: quantized-mesh (layer.json, .terrain, TMS rows) and raster-DEM PNG
 // (?encoding=terrarium|terrain-rgb) cut on the fly; images: tiles as stored;
-// lines, bundles and points: MVT and a MapLibre style; a .pmtiles file: its
-// bytes (ranges applied by the HTTP layer). Every service is safe to call
-// from several threads.
+// lines, bundles, points and areas: MVT, a MapLibre style and the tiles drawn
+// as PNG images; a .pmtiles file: its bytes (ranges applied by the HTTP
+// layer). Every service is safe to call from several threads.
 #pragma once
 
 #include <memory>
@@ -24,7 +24,7 @@ struct TileSetExtent {
 class PackageService : public TileSetExtent {
  public:
   virtual ~PackageService() = default;
-  // "terrain", "images", "lines", "points", "pmtiles".
+  // "terrain", "images", "lines", "points", "areas", "pmtiles".
   virtual std::string kind() const = 0;
   // "webmercator", "geodetic", "local"; "" for a .pmtiles file.
   virtual std::string tiling() const = 0;

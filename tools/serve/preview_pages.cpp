@@ -23,7 +23,7 @@ std::string row(const PackageRegistry::Listed& p) {
                           ? "<a href=\"/" + p.name + ".pmtiles\">" + p.name + ".pmtiles</a>"
                           : "<a href=\"/" + p.name + ".json\">TileJSON</a>";
   if (p.kind == "terrain") links += " <a href=\"/" + p.name + "/layer.json\">layer.json</a>";
-  if (p.kind == "lines" || p.kind == "points")
+  if (p.kind == "lines" || p.kind == "points" || p.kind == "areas")
     links += " <a href=\"/" + p.name + "/style.json\">style.json</a>";
   return "<tr><td>" + p.name + "</td><td>" + p.kind + "</td><td>" + p.service->tiling() +
          "</td><td>" + zooms + "</td><td>" + links + "</td><td>" + views + "</td></tr>";
@@ -65,10 +65,11 @@ const char* kMapLibreScript = R"JS(
 import * as maplibregl from '@LIB@/maplibre-gl/dist/maplibre-gl.mjs';
 try {
   // Background, the images (first given at the bottom), the terrain's
-  // hillshade over them, then the vector packages' own styles on top.
+  // hillshade over them, then the vector packages' own styles on top: the
+  // area packages' fills (and outlines) under the lines and points.
   const style = { version: 8, sources: {}, layers: [
     { id: 'background', type: 'background', paint: { 'background-color': '#dde6d5' } }] };
-  const images = [], vectors = [];
+  const images = [], areas = [], vectors = [];
   let dem = null;
   for (const p of shown) {
     if (p.kind === 'pmtiles') continue;
@@ -95,7 +96,8 @@ try {
       for (const [id, source] of Object.entries(own.sources))
         style.sources[p.name + '/' + id] = source;
       for (const layer of own.layers)
-        vectors.push({ ...layer, id: p.name + '/' + layer.id, source: p.name + '/' + layer.source });
+        (p.kind === 'areas' ? areas : vectors).push(
+          { ...layer, id: p.name + '/' + layer.id, source: p.name + '/' + layer.source });
     }
   }
   style.layers.push(...images);
@@ -104,7 +106,7 @@ try {
                         paint: { 'hillshade-exaggeration': images.length ? 0.35 : 0.5 } });
     style.terrain = { source: 'dem' };
   }
-  style.layers.push(...vectors);
+  style.layers.push(...areas, ...vectors);
   for (const s of skipped) console.log('not shown: ' + s);
   const map = new maplibregl.Map({ container: 'map', style,
     bounds: bounds ? [[bounds[0], bounds[1]], [bounds[2], bounds[3]]] : [[-180, -80], [180, 80]],
@@ -120,7 +122,8 @@ try {
 const char* kCesiumScript = R"JS(
 (async () => {
   // The terrain, the images draped in the order given (first at the bottom),
-  // then the line and point packages as images the server draws.
+  // then the area, line and point packages as images the server draws (the
+  // areas under the lines and points, as in the MapLibre view).
   const terrain = shown.find((p) => p.kind === 'terrain' && p.tiling !== 'local');
   const options = { baseLayer: false, animation: false, timeline: false,
     baseLayerPicker: false, geocoder: false, sceneModePicker: false,
@@ -133,7 +136,8 @@ const char* kCesiumScript = R"JS(
   viewer.scene.globe.enableLighting = !!terrain;
   viewer.scene.globe.baseColor = Cesium.Color.fromCssColorString('#c8c0a8');
   const draped = [];
-  for (const p of shown) {
+  const rank = (p) => (p.kind === 'areas' ? 1 : p.kind === 'lines' || p.kind === 'points' ? 2 : 0);
+  for (const p of [...shown].sort((a, b) => rank(a) - rank(b))) {
     if (p.kind === 'pmtiles') continue;
     if (p.tiling === 'local') { skipped.push(p.name + ': a local tiling'); continue; }
     if (p.kind === 'terrain' && p !== terrain) { skipped.push(p.name + ': one terrain at a time'); continue; }

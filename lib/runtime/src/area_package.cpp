@@ -16,4 +16,30 @@ AreaPackage open_area_package(const std::string& path) {
   return p;
 }
 
+std::vector<AreaLook> area_looks(const AreaPackage& p, double fill_opacity) {
+  std::vector<AreaLook> out;
+  const AreaLook outline{"", fill_opacity, "#444444", 0.5, true};
+  if (const auto& c = p.meta.choropleth) {
+    out.push_back(outline);
+    out.back().fill = c->no_data_color;
+    for (const tileformat::ChoroplethClass& k : c->classes) {
+      out.push_back(outline);
+      out.back().fill = k.color;
+    }
+    return out;
+  }
+  for (const NamedLineStyle& n : p.classes) {
+    AreaLook l = outline;
+    l.fill = n.style.color;
+    l.opacity = fill_opacity * n.style.opacity;
+    l.visible = n.style.visible;
+    if (!n.style.casing_color.empty() && n.style.casing_width > 0) {
+      l.outline = n.style.casing_color;
+      l.outline_px = n.style.casing_width;
+    }
+    out.push_back(l);
+  }
+  return out;
+}
+
 }  // namespace globe

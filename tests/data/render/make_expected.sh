@@ -103,6 +103,18 @@ GLOBE_WEB_CACHE=$(scripts/web-deps.sh) node tests/web/run_page.mjs --viewport 48
   --mount /data="$tmp" --screenshot $out/maplibre_us_flights_mvt.png \
   --query 'style=/data/style.json&pmtiles=/data/flights.pmtiles&center=-97,39&zoom=3.5' \
   tests/web/pages/maplibre_mvt.html > /dev/null
+# Areas in MapLibre GL JS (tests/web_maplibre_test.cpp): nc's counties as a BIR74
+# choropleth served by globe-serve, drawn with the server's own style.
+build/tools/vectorize/globe-vectorize areas -q samples/data/nc.gpkg --choropleth BIR74 \
+  --classes 4 --max-zoom 7 -o "$tmp/nc.mbtiles"
+build/tools/serve/globe-serve -q --port 18931 "$tmp/nc.mbtiles" >/dev/null &
+serve=$!
+sleep 2
+GLOBE_WEB_CACHE=$(scripts/web-deps.sh) node tests/web/run_page.mjs --viewport 640x280 \
+  --screenshot $out/maplibre_areas_choropleth.png \
+  --query 'style=http://127.0.0.1:18931/nc/style.json&center=-79.890000,35.240000&zoom=5.500000' \
+  tests/web/pages/maplibre_mvt.html > /dev/null
+kill $serve
 # The tutorial's pictures (tests/tutorial_test.cpp runs docs/tutorial.md): without expected
 # images the test fails and keeps its folder, whose pictures become the expected ones.
 rm -f $out/tutorial_*.png

@@ -131,32 +131,46 @@ std::string area_style_json(const AreaPackage& pkg,
            (filter.empty() ? "" : ",\"filter\":" + filter) + ",\"paint\":{" + paint + "}}";
     first = false;
   };
+  const std::vector<AreaLook> looks = area_looks(pkg, kAreaWebFillOpacity);
   for (const auto& [name, classes] : classes_in) {
     if (const auto& c = pkg.meta.choropleth) {
       // step: the first colour below the second class's lower bound, then
       // each class's colour from its lower bound on (classes are [min, max)).
-      std::string step = "[\"step\",[\"get\",\"value\"]," + quoted(c->classes[0].color);
+      std::string step = "[\"step\",[\"get\",\"value\"]," + quoted(looks[1].fill);
       for (size_t i = 1; i < c->classes.size(); ++i)
-        step += "," + number(c->classes[i].min) + "," + quoted(c->classes[i].color);
+        step += "," + number(c->classes[i].min) + "," + quoted(looks[i + 1].fill);
       step += "]";
       layer(name + "/no-data", "fill", name, "[\"!\",[\"has\",\"value\"]]",
-            "\"fill-color\":" + quoted(c->no_data_color) + ",\"fill-opacity\":0.8");
+            "\"fill-color\":" + quoted(looks[0].fill) +
+                ",\"fill-opacity\":" + number(looks[0].opacity));
       layer(name + "/choropleth", "fill", name, "[\"has\",\"value\"]",
-            "\"fill-color\":" + step + ",\"fill-opacity\":0.8");
+            "\"fill-color\":" + step + ",\"fill-opacity\":" + number(looks[1].opacity));
     } else {
       for (uint32_t k : classes) {
-        if (k >= pkg.classes.size()) continue;
-        const LineStyle& s = pkg.classes[k].style;
+        if (k >= looks.size() || !looks[k].visible) continue;
         layer(name + "/" + pkg.classes[k].name, "fill", name,
               "[\"==\",[\"get\",\"class\"]," + quoted(pkg.classes[k].name) + "]",
-              "\"fill-color\":" + quoted(s.color) +
-                  ",\"fill-opacity\":" + number(std::min(s.opacity, 0.8)));
+              "\"fill-color\":" + quoted(looks[k].fill) +
+                  ",\"fill-opacity\":" + number(looks[k].opacity));
       }
     }
   }
-  for (const auto& [name, classes] : classes_in)
-    layer(name + "/outline", "line", name, "",
-          "\"line-color\":\"#444444\",\"line-width\":0.5,\"line-opacity\":0.8");
+  // The outlines over every fill: one per class look (a choropleth's share one).
+  for (const auto& [name, classes] : classes_in) {
+    if (pkg.meta.choropleth) {
+      layer(name + "/outline", "line", name, "",
+            "\"line-color\":" + quoted(looks[0].outline) + ",\"line-width\":" +
+                number(looks[0].outline_px) + ",\"line-opacity\":" + number(kAreaWebFillOpacity));
+      continue;
+    }
+    for (uint32_t k : classes) {
+      if (k >= looks.size() || !looks[k].visible || looks[k].outline_px <= 0) continue;
+      layer(name + "/" + pkg.classes[k].name + "/outline", "line", name,
+            "[\"==\",[\"get\",\"class\"]," + quoted(pkg.classes[k].name) + "]",
+            "\"line-color\":" + quoted(looks[k].outline) + ",\"line-width\":" +
+                number(looks[k].outline_px) + ",\"line-opacity\":" + number(kAreaWebFillOpacity));
+    }
+  }
   return out + "]}";
 }
 

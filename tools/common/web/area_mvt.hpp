@@ -25,6 +25,10 @@
 
 namespace globe::web {
 
+// The fills' opacity on web maps (over a basemap or hillshade): the style's
+// and the drawn tiles' (runtime's area_looks).
+inline constexpr double kAreaWebFillOpacity = 0.8;
+
 class AreaMvtEncoder {
  public:
   // Not thread-safe: one per thread, or a lock.

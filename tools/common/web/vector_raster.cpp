@@ -1,15 +1,18 @@
-// Line and point tiles as PNG images (see vector_raster.hpp).
+// Line, point and area tiles as PNG images (see vector_raster.hpp).
 #include "web/vector_raster.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 
 #include "runtime/errors.hpp"
 #include "runtime/png_codec.hpp"
+#include "tileformat/area_tile.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/line_tile.hpp"
 #include "tileformat/point_tile.hpp"
+#include "web/area_mvt.hpp"
 
 namespace globe::web {
 namespace {
@@ -78,6 +81,21 @@ class Canvas {
       p[3] = a + p[3] * (1 - a);
     }
   }
+  // Adds `cover` (a coverage a pixel) in `color` at `opacity`: fills of
+  // polygons that do not overlap, so a pixel two of them share gets the sum
+  // of their parts, as one polygon covering it whole (no seam along a shared
+  // border, as compositing one over the other would leave).
+  void add(const std::vector<float>& cover, Rgb color, float opacity) {
+    for (size_t i = 0; i < cover.size(); ++i) {
+      const float a = cover[i] * opacity;
+      if (a <= 0) continue;
+      float* p = &rgba_[4 * i];
+      p[0] += color.r * a, p[1] += color.g * a, p[2] += color.b * a, p[3] += a;
+      if (p[3] > 1)
+        for (int k = 0; k < 4; ++k)
+          p[k] /= p[3];
+    }
+  }
   // Straight-alpha RGBA PNG; empty if nothing was drawn.
   std::vector<uint8_t> png() const {
     std::vector<uint8_t> out(rgba_.size());
@@ -103,6 +121,67 @@ class Canvas {
   int size_;
   std::vector<float> rgba_, cover_;
   bool drawn_ = false;
+};
+
+// Polygons filled by the nonzero winding rule on scanlines: kSamples rows of
+// samples a pixel, at (j + 0.5) / kSamples, and along each kSamples samples
+// a pixel, at (i + 0.5) / kSamples; a pixel's coverage is the share of its
+// samples inside. Edges are given one by one (any order, every ring closed);
+// fill() adds the coverage of all of them together, so two polygons of one
+// fill sharing a border (its edges once each way) leave no seam.
+class Scanlines {
+ public:
+  static constexpr int kSamples = 4;
+  explicit Scanlines(int size) : size_(size), rows_(size_t(size) * kSamples) {}
+  // The edge from a to b, in pixels (y down).
+  void edge(double ax, double ay, double bx, double by) {
+    if (ay == by || !std::isfinite(ax + ay + bx + by)) return;
+    const int dir = ay < by ? 1 : -1;
+    if (ay > by) std::swap(ax, bx), std::swap(ay, by);
+    // The sample rows whose centre lies in [ay, by).
+    const int n = int(rows_.size());
+    const int r0 = int(std::clamp(std::ceil(ay * kSamples - 0.5), 0.0, double(n)));
+    const int r1 = int(std::clamp(std::ceil(by * kSamples - 0.5), 0.0, double(n)));
+    const double slope = (bx - ax) / (by - ay);
+    for (int r = r0; r < r1; ++r) {
+      const double y = (r + 0.5) / kSamples;
+      rows_[size_t(r)].push_back({ax + (y - ay) * slope, dir});
+    }
+    if (r0 < r1) low_ = std::min(low_, r0), high_ = std::max(high_, r1);
+  }
+  // Adds the coverage of the edges given since the last call to `cover`
+  // (size² pixels) and forgets them.
+  void fill(std::vector<float>& cover) {
+    const float w = 1.0f / (kSamples * kSamples);
+    const int last = size_ * kSamples;  // samples a row
+    for (int r = low_; r < high_; ++r) {
+      std::vector<Crossing>& row = rows_[size_t(r)];
+      std::sort(row.begin(), row.end(),
+                [](const Crossing& a, const Crossing& b) { return a.x < b.x; });
+      float* line = &cover[size_t(r / kSamples) * size_];
+      int winding = 0;
+      for (size_t k = 0; k + 1 < row.size(); ++k) {
+        winding += row[k].dir;
+        if (winding == 0) continue;
+        // The samples whose centre lies in [x_k, x_k+1).
+        const int i0 = int(std::clamp(std::ceil(row[k].x * kSamples - 0.5), 0.0, double(last)));
+        const int i1 = int(std::clamp(std::ceil(row[k + 1].x * kSamples - 0.5), 0.0, double(last)));
+        for (int i = i0; i < i1; ++i)
+          line[i / kSamples] += w;
+      }
+      row.clear();
+    }
+    low_ = int(rows_.size()), high_ = 0;
+  }
+
+ private:
+  struct Crossing {
+    double x;
+    int dir;
+  };
+  int size_;
+  std::vector<std::vector<Crossing>> rows_;  // per sample row
+  int low_ = int(rows_.size()), high_ = 0;   // the rows touched
 };
 
 // Ground metres per pixel at the centre of tile `id`.
@@ -198,6 +277,61 @@ std::vector<uint8_t> point_tile_png(
         }
       }
     canvas.end_layer(pass == 0 ? rim : fill, pass == 0 ? 1.0f : 0.8f);
+  }
+  return canvas.png();
+}
+
+std::vector<uint8_t> area_tile_png(const AreaPackage& package, TileId id,
+                                   std::span<const uint8_t> blob, int size) {
+  tileformat::AreaTile t;
+  try {
+    t = tileformat::decode_area_tile(blob);
+  } catch (const tileformat::FormatError& e) {
+    throw InputError(package.reader->path() + ": tile " + id.str() + ": " + e.what() +
+                     "; check the package with globe-vectorize validate");
+  }
+  const double px = double(size) / t.extent;  // pixels per tile unit
+  const std::vector<uint32_t> offsets = t.ring_offsets();
+  // Every edge of polygon p's rings (each ring closed).
+  auto edges = [&](const tileformat::AreaPolygon& p, const auto& fn) {
+    for (uint32_t r = p.first_ring; r < p.first_ring + p.ring_count; ++r)
+      for (uint32_t v = offsets[r]; v < offsets[r + 1]; ++v) {
+        const tileformat::LineVertex& a = t.vertices[v];
+        const tileformat::LineVertex& b = t.vertices[v + 1 < offsets[r + 1] ? v + 1 : offsets[r]];
+        fn(a.x * px, a.y * px, b.x * px, b.y * px);
+      }
+  };
+  std::map<uint32_t, std::vector<const tileformat::AreaPolygon*>> by_class;
+  for (const tileformat::AreaPolygon& p : t.polygons)
+    by_class[p.class_id].push_back(&p);
+  Canvas canvas(size);
+  Scanlines scan(size);
+  std::vector<float> cover;
+  // The fills and outlines as area_style_json draws them (area_looks).
+  const std::vector<AreaLook> looks = area_looks(package, kAreaWebFillOpacity);
+  auto look = [&](uint32_t cls) -> const AreaLook* {
+    if (cls < looks.size()) return &looks[cls];
+    return package.meta.choropleth ? &looks[0] : nullptr;  // a class it does not list: no data
+  };
+  for (const auto& [cls, polygons] : by_class) {
+    const AreaLook* l = look(cls);
+    if (!l || !l->visible) continue;
+    for (const tileformat::AreaPolygon* p : polygons)
+      edges(*p, [&](double ax, double ay, double bx, double by) { scan.edge(ax, ay, bx, by); });
+    cover.assign(size_t(size) * size, 0.0f);
+    scan.fill(cover);
+    canvas.add(cover, parse_color(l->fill), float(std::min(l->opacity, 1.0)));
+  }
+  // The outlines over every fill, per class.
+  for (const auto& [cls, polygons] : by_class) {
+    const AreaLook* l = look(cls);
+    if (!l || !l->visible || l->outline_px <= 0) continue;
+    canvas.begin_layer();
+    for (const tileformat::AreaPolygon* p : polygons)
+      edges(*p, [&](double ax, double ay, double bx, double by) {
+        canvas.segment(ax, ay, bx, by, l->outline_px / 2);
+      });
+    canvas.end_layer(parse_color(l->outline), float(kAreaWebFillOpacity));
   }
   return canvas.png();
 }

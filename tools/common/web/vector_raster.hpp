@@ -1,5 +1,6 @@
-// Line and point tiles drawn as transparent PNG images, as the generated
-// MapLibre styles draw them (line_mvt.hpp, point_mvt.hpp), for clients that
+// Line, point and area tiles drawn as transparent PNG images, as the
+// generated MapLibre styles draw them (line_mvt.hpp, point_mvt.hpp,
+// area_mvt.hpp), for clients that
 // drape images but read no vector tiles: CesiumJS's imagery layers in
 // globe-serve's composed preview (docs/serve.md "Preview"). Lines: classes
 // in id order, every casing under every fill, round caps and joins, widths in
@@ -7,6 +8,11 @@
 // patterns are drawn solid. Points: circles whose radius follows the square
 // root of the count (3 px at 1 to 30 px at 100), #d7301f at 0.8 with a white
 // rim. Anti-aliased by the distance of each pixel's centre, 1 px wide ramps.
+// Areas: each polygon filled by the nonzero winding rule (scanlines, 4 x 4
+// samples a pixel) in its class's colour (a choropleth's class colour, or
+// the no-data colour) at the style's opacity, the fills of all classes added
+// so that two polygons sharing a border leave no seam; then the outlines
+// (#444444, 0.5 px, 0.8) over them.
 #pragma once
 
 #include <cstdint>
@@ -15,6 +21,7 @@
 #include <span>
 #include <vector>
 
+#include "runtime/area_package.hpp"
 #include "runtime/line_package.hpp"
 #include "runtime/point_package.hpp"
 #include "tileformat/tile_id.hpp"
@@ -34,5 +41,10 @@ std::vector<uint8_t> point_tile_png(
     const PointPackage& package, tileformat::TileId id,
     const std::function<std::optional<std::vector<uint8_t>>(tileformat::TileId)>& blob_of,
     int size = 256);
+
+// The PNG of area tile `id` from its blob (as line_tile_png). A polygon
+// reaches only `buffer` units past its tile, which the drawing never needs.
+std::vector<uint8_t> area_tile_png(const AreaPackage& package, tileformat::TileId id,
+                                   std::span<const uint8_t> blob, int size = 256);
 
 }  // namespace globe::web

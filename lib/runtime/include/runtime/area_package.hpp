@@ -22,4 +22,19 @@ struct AreaPackage {
 // an area package.
 AreaPackage open_area_package(const std::string& path);
 
+// How one class of an area package is drawn, the same in the viewer, the
+// MapLibre style and the drawn tiles (docs/areas.md "Looks").
+struct AreaLook {
+  std::string fill;         // "#rrggbb"
+  double opacity = 1;       // the class's own, times the drawing's fill opacity
+  std::string outline;      // "#rrggbb"
+  double outline_px = 0.5;  // 0: none
+  bool visible = true;
+};
+
+// Per class id: a choropleth's no-data class (0), then its classes; else
+// the style classes (colour and opacity; their casing is the outline, else a
+// thin #444444). `fill_opacity` multiplies every class's opacity.
+std::vector<AreaLook> area_looks(const AreaPackage& package, double fill_opacity);
+
 }  // namespace globe
