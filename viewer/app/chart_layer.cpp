@@ -417,6 +417,24 @@ std::string ChartLayer::describe(int x, int y) {
   return o.str();
 }
 
+std::string ChartLayer::pick_json(int x, int y) {
+  if (settings_.heatmap) return "null";
+  const uint32_t pick = renderer_.pick(x, y);
+  if (pick == 0 || pick > places_.size()) return "null";
+  const PlaceRef& ref = places_[pick - 1];
+  const tileformat::PointTile* t = cache_.get(ref.tile);
+  if (!t) return "null";
+  const tileformat::PointMetadata& m = cache_.package().meta;
+  const tileformat::Place& pl = t->places[ref.index];
+  std::ostringstream o;
+  o << "{\"id\": " << pl.id << ", \"count\": " << pl.count << ", \"values\": {";
+  for (size_t f = 0; f < m.fields.size(); ++f)
+    o << (f ? ", " : "") << "\"" << tileformat::json_escape(m.fields[f])
+      << "\": " << number_text(t->value(ref.index, uint32_t(f)));
+  o << "}}";
+  return o.str();
+}
+
 ChartLayerStats ChartLayer::stats() const {
   return {cache_.stats(), drawn_.size(), instances_.size(), thinned_};
 }

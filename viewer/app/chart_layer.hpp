@@ -74,6 +74,9 @@ class ChartLayer final : public SceneLayer {
   // The place whose chart covers pixel (x, y) (from the top-left) in the
   // last frame: "label: field value, ..." ("" for none).
   std::string describe(int x, int y);
+  const char* pick_kind() const override { return "chart"; }
+  // {"id", "count", "values": {field: value}} of that place.
+  std::string pick_json(int x, int y) override;
 
   ChartKind kind() const { return settings_.kind; }
   // Cycles pie, bar, stacked, column (skipping those the values cannot show).

@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "camera/proj_crs.hpp"
+#include "runtime/area_package.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/image_package.hpp"
 #include "runtime/line_package.hpp"
@@ -47,12 +48,16 @@ Layer first_layer(const PackageSet& set) {
     const PointPackage p = open_point_package(*set.points);
     return {*set.points, p.meta.common.tiling, p.meta.common.lonlat, p.meta.common.has_bounds};
   }
+  if (set.areas) {
+    const AreaPackage p = open_area_package(*set.areas);
+    return {*set.areas, p.meta.common.tiling, p.meta.common.lonlat, p.meta.common.has_bounds};
+  }
   if (!set.images.empty()) {
     const ImagePackage p = open_image_package(set.images.front());
     return {set.images.front(), p.tiling, p.meta.common.lonlat, p.meta.common.has_bounds};
   }
   throw InputError(
-      "no package to draw: give a terrain, or lines, points or imagery to draw "
+      "no package to draw: give a terrain, or lines, points, areas or imagery to draw "
       "over a flat base");
 }
 

@@ -44,10 +44,37 @@ std::pair<int, int> pixel_of(const View& view, const WorldFrame& world, double l
 // --pick: what lies at each pixel (or where each lon/lat lands) in frame
 // `f`, one line each on stdout; a picked line is highlighted by drawing the
 // last pose (`last`) again into `f`.
+// --pick-format json: one object per pick (docs/viewer.md "Picking").
+void run_json_picks(const ViewerSettings& settings, TerrainScene& scene, const FrameResult& f) {
+  for (const ViewerSettings::PickAt& at : settings.picks) {
+    const auto [x, y] = at.geographic ? pixel_of(f.view, scene.world(), at.a, at.b)
+                                      : std::pair(int(at.a), int(at.b));
+    std::string out = "{\"x\": " + std::to_string(x) + ", \"y\": " + std::to_string(y);
+    if (const auto g = scene.ground_at(f.view, x, y)) {
+      char buf[128];
+      std::snprintf(buf, sizeof buf, ", \"lon\": %.9f, \"lat\": %.9f, \"height\": %.3f", g->x, g->y,
+                    g->z);
+      out += buf;
+    } else {
+      out += ", \"lon\": null, \"lat\": null, \"height\": null";
+    }
+    // The topmost feature of each kind: the last layer of that kind.
+    for (const char* kind : {"area", "line", "chart"}) {
+      std::string value = "null";
+      for (const auto& layer : scene.layers())
+        if (std::string(layer->pick_kind()) == kind) value = layer->pick_json(x, y);
+      out += ", \"" + std::string(kind) + "\": " + value;
+    }
+    std::printf("%s}\n", out.c_str());
+  }
+}
+
 void run_picks(const ViewerSettings& settings, TerrainScene& scene, const CameraPose& last,
                FrameResult& f) {
-  SceneLayer* layer = scene.picking_layer();  // the topmost: charts over lines
-  if (!layer) throw UsageError("--pick finds charts or lines; give a point or line package too");
+  if (settings.pick_json) return run_json_picks(settings, scene, f);
+  SceneLayer* layer = scene.picking_layer();  // the topmost: charts over lines over areas
+  if (!layer)
+    throw UsageError("--pick finds charts, lines or areas; give a point, line or area package too");
   // Every pick reads the frame drawn; the last one's highlight shows in the next.
   for (size_t i = 0; i < settings.picks.size(); ++i) {
     const ViewerSettings::PickAt& at = settings.picks[i];

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "app/color_relief_file.hpp"
+#include "app/vector_settle.hpp"
 #include "render/color_ramp.hpp"
 #include "runtime/errors.hpp"
 #include "tileformat/feature_table.hpp"
@@ -176,27 +177,15 @@ double LineLayer::draw(const LayerPass& pass) {
   const bool lens = sh.lens_shows == ShadingSettings::LensShows::kLines;
   renderer_.set_lens_only(float(sh.lens_x), float(sh.lens_y), float(lens ? sh.lens_radius : 0.0));
   set_height_range(pass.height_lo, pass.height_hi);
-  double ms = 0;
-  int idle_rounds = 0;
-  for (int round = 0;; ++round) {
-    cache_.begin_frame();
-    const size_t loaded = upload_loaded();
-    LineFeedback fb;
-    ms = renderer_.draw(g, view, world, exaggeration, cache_, terrain, mode_, ++frame_, fb);
-    tiles_used_ = fb.used.size();
-    used_ = fb.used;
-    for (uint32_t r : fb.used)
-      cache_.mark_used(r);
-    bool news = false;
-    for (const tileformat::TileId& id : fb.requests)
-      news = cache_.request(id) || news;
-    cache_.flush_requests();
-    if (pass.loading == Loading::kAsReady || (!news && !cache_.loader_busy())) break;
-    // Tiles that cannot get room in the budget are asked for again and again.
-    idle_rounds = loaded == 0 ? idle_rounds + 1 : 0;
-    if (idle_rounds > 3 || round > 200) break;
-    if (cache_.loader_busy()) cache_.wait_for_loader();
-  }
+  const double ms = draw_settled(
+      cache_, pass.loading, [&] { return upload_loaded(); },
+      [&](VectorFeedback& fb) {
+        return renderer_.draw(g, view, world, exaggeration, cache_, terrain, mode_, ++frame_, fb);
+      },
+      [&](const VectorFeedback& fb) {
+        tiles_used_ = fb.used.size();
+        used_ = fb.used;
+      });
   if (heat_) return draw_heatmap(g, view, world, exaggeration, terrain, pass.below_fbo);
   if (!legend_.empty()) {
     queue_bundle_legend(legend_, styles_, height_, overlay_);
@@ -331,6 +320,23 @@ std::string LineLayer::describe(uint64_t feature, std::vector<uint64_t>& lit) {
                  static_cast<unsigned long long>(feature), e.what());
     return text;
   }
+}
+
+std::string LineLayer::pick_json(int x, int y) {
+  if (heat_) return "null";
+  const std::optional<uint64_t> feature = feature_at(x, y);
+  if (!feature) return "null";
+  std::string layer, attributes = "{}";
+  try {
+    if (const auto f = tileformat::FeatureTableReader(*features_).get(int64_t(*feature))) {
+      layer = f->layer;
+      if (!f->properties.empty()) attributes = f->properties;
+    }
+  } catch (const std::exception&) {
+    // a package without a features table: the id is all there is
+  }
+  return "{\"id\": " + std::to_string(*feature) + ", \"layer\": \"" +
+         tileformat::json_escape(layer) + "\", \"attributes\": " + attributes + "}";
 }
 
 std::string LineLayer::pick(int x, int y, bool highlight) {

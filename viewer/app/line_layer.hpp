@@ -80,6 +80,9 @@ class LineLayer final : public SceneLayer {
   bool picks() const override { return true; }
   std::string pick(int x, int y, bool highlight) override;
   bool picked_highlight() const override { return !highlighted_.empty(); }
+  const char* pick_kind() const override { return "line"; }
+  // {"id", "layer", "attributes"} of the line drawn on top there.
+  std::string pick_json(int x, int y) override;
   // The feature ids drawn highlighted (sorted; empty: none).
   const std::vector<uint64_t>& highlighted() const { return highlighted_; }
 

@@ -34,6 +34,11 @@ PackageSet sort_packages(const std::vector<std::string>& paths) {
         throw UsageError("two point packages (" + *set.points + ", " + path +
                          "); globe-view draws the charts of one point package per view");
       set.points = path;
+    } else if (kind == tileformat::PackageKind::kAreas) {
+      if (set.areas)
+        throw UsageError("two area packages (" + *set.areas + ", " + path +
+                         "); globe-view draws one area package per view");
+      set.areas = path;
     } else if (kind == tileformat::PackageKind::kAnalysis) {
       if (set.analysis)
         throw UsageError("two analysis packages (" + *set.analysis + ", " + path +
@@ -42,7 +47,7 @@ PackageSet sort_packages(const std::vector<std::string>& paths) {
     } else {
       throw InputError(path + ": format '" + format +
                        "' is not a package globe-view draws (terrain, image, line, analysis, "
-                       "point)");
+                       "point, area)");
     }
   }
   if (set.terrain.empty() && set.analysis)

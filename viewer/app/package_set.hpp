@@ -17,11 +17,12 @@ struct PackageSet {
   std::optional<std::string> lines;
   std::optional<std::string> analysis;  // terrain analytics (globe-tiler analyze)
   std::optional<std::string> points;    // places for charts (globe-vectorize points)
+  std::optional<std::string> areas;     // polygons (globe-vectorize areas)
 };
 
 // Throws InputError (a package that is missing or of an unknown kind) or
 // UsageError (nothing to draw, an analysis without its terrain, two
-// terrains, two line, analysis or point packages).
+// terrains, two line, analysis, point or area packages).
 PackageSet sort_packages(const std::vector<std::string>& paths);
 
 // Throws InputError naming both files unless `other` uses the terrain's

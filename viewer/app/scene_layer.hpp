@@ -61,6 +61,14 @@ class SceneLayer {
     (void)x, (void)y, (void)highlight;
     return "";
   }
+  // --pick-format json: the member this layer's pick fills ("area", "line",
+  // "chart"; "" for none) and the topmost feature at pixel (x, y) as a JSON
+  // object with its "id" and attributes ("null" for none).
+  virtual const char* pick_kind() const { return ""; }
+  virtual std::string pick_json(int x, int y) {
+    (void)x, (void)y;
+    return "null";
+  }
   // Whether a pick made the next frame look different (a highlight).
   virtual bool picked_highlight() const { return false; }
   // This layer's members of `--stats`' JSON object, each starting ", "

@@ -11,6 +11,7 @@
 #include "app/analysis_overlay.hpp"
 #include "app/package_set.hpp"
 #include "render/readback.hpp"
+#include "runtime/area_package.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/line_package.hpp"
 #include "runtime/point_package.hpp"
@@ -70,6 +71,12 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
   } else if (settings_.style) {
     throw UsageError("--style styles lines; give a line package too");
   }
+  std::optional<AreaPackage> areas;
+  CrsCross area_cross = CrsCross::kSame;
+  if (set.areas) {
+    areas = open_area_package(*set.areas);
+    area_cross = layer_cross(package.tiling, path, areas->meta.common.tiling, *set.areas);
+  }
   std::optional<PointPackage> points;
   if (set.points) {
     points = open_point_package(*set.points);
@@ -90,6 +97,7 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
   const uint64_t line_budget = share(lines.has_value(), LineLayer::kBudgetShare);
   const uint64_t image_budget = share(!set.images.empty(), ImageLayers::kBudgetShare);
   const uint64_t point_budget = share(points.has_value(), ChartLayer::kBudgetShare);
+  const uint64_t area_budget = share(areas.has_value(), AreaLayer::kBudgetShare);
   if (package.max_zoom > 21)
     throw InputError(path + ": maxzoom " + std::to_string(package.max_zoom) +
                      " is deeper than the viewer's integer vertex frame supports (21)");
@@ -118,15 +126,15 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
   // The relief stretch is the default look; --exaggeration given is the
   // user's own choice of relief.
   auto_relief_ = !settings_.shading.exaggeration_given;
-  cache_ = std::make_unique<BlockCache>(path, std::move(package),
-                                        budget - line_budget - image_budget - point_budget,
-                                        std::move(analysis));
+  cache_ = std::make_unique<BlockCache>(
+      path, std::move(package), budget - line_budget - image_budget - point_budget - area_budget,
+      std::move(analysis));
   selector_ = std::make_unique<PatchSelector>(cache_->package());
   if (selector_->root_tiles().empty())
     throw InputError(path + ": no tiles at minzoom " + std::to_string(cache_->package().min_zoom) +
                      "; the package is empty or its metadata is wrong");
   make_renderer(path, set.analysis);
-  // The layers, bottom first: imagery, lines, charts.
+  // The layers, bottom first: imagery, areas, lines, charts.
   auto add = [this](auto layer) {
     auto* typed = layer.get();
     layers_.push_back(std::move(layer));
@@ -137,6 +145,10 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
         set.images, settings_.image_opacity, *world_,
         cache_->package().meta.common.has_bounds ? &cache_->package().meta.common.lonlat : nullptr,
         image_budget, settings_.width, settings_.height));
+  if (areas)
+    areas_ = add(std::make_unique<AreaLayer>(*set.areas, std::move(*areas), settings_.area_opacity,
+                                             area_budget, settings_.width, settings_.height,
+                                             area_cross));
   if (lines) {
     lines_ = add(std::make_unique<LineLayer>(*set.lines, std::move(*lines), settings_.style,
                                              settings_.line_mode, line_budget, settings_.width,
@@ -210,6 +222,23 @@ bool TerrainScene::loading() {
   for (const auto& layer : layers_)
     if (layer->loading()) return true;
   return false;
+}
+
+std::optional<glm::dvec3> TerrainScene::ground_at(const View& view, int x, int y) const {
+  const GBuffer& g = renderer_->gbuffer();
+  if (x < 0 || y < 0 || x >= g.width || y >= g.height) return std::nullopt;
+  if (read_position(g.fbo, x, y, g.height).w == 0) return std::nullopt;
+  // Ground metres from the view origin (x east, y north), and the height.
+  const glm::vec4 ground = read_rgba32f(g.fbo, 3, x, y, g.height);
+  const glm::vec4 dy = read_rgba32f(g.fbo, 4, x, y, g.height);
+  const glm::dvec2 o = world_->key_to_crs(double(view.origin.x), double(view.origin.y));
+  try {
+    const glm::dvec2 ll = world_->crs_to_lonlat(o.x + ground.x / world_->ground_per_crs_x(),
+                                                o.y + ground.y / world_->ground_per_crs_y());
+    return glm::dvec3(ll.x, ll.y, dy.z);
+  } catch (const std::exception&) {
+    return std::nullopt;  // past what the CRS can say in degrees
+  }
 }
 
 SceneLayer* TerrainScene::picking_layer() {

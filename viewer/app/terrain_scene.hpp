@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "app/area_layer.hpp"
 #include "app/chart_layer.hpp"
 #include "app/data_ranges.hpp"
 #include "app/edge_scale.hpp"
@@ -68,6 +69,7 @@ class TerrainScene {
   SceneLayer* picking_layer();
   // The layers by kind, for the window's keys that act on one (nullptr: none).
   LineLayer* lines() { return lines_; }
+  AreaLayer* areas() { return areas_; }
   ChartLayer* charts() { return charts_; }
   ImageLayers* images() { return images_; }
   // The finished image (terrain, imagery and lines): framebuffer and pixels.
@@ -82,6 +84,10 @@ class TerrainScene {
   }
   BlockCache& cache() { return *cache_; }
   WorldFrame& world() { return *world_; }
+  // The ground under pixel (x, y) (from the top-left) of the last frame drawn
+  // with `view`: longitude, latitude (degrees) and height (metres, before
+  // exaggeration); nullopt where the pixel shows no ground.
+  std::optional<glm::dvec3> ground_at(const View& view, int x, int y) const;
   const TerrainPackage& package() const { return cache_->package(); }
   ViewerSettings& settings() { return settings_; }
   double top_height_m() { return selector_->top_height_m(*cache_); }
@@ -120,6 +126,7 @@ class TerrainScene {
   std::vector<std::unique_ptr<SceneLayer>> layers_;  // drawn in this order
   ImageLayers* images_ = nullptr;                    // those of layers_ by kind
   LineLayer* lines_ = nullptr;
+  AreaLayer* areas_ = nullptr;
   ChartLayer* charts_ = nullptr;
   std::unique_ptr<ElevationRamp> ramp_;
   std::unique_ptr<GroundProbe> ground_;

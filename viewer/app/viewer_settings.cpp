@@ -177,6 +177,14 @@ void declare_shading_options(CliArgs& cli, ViewerSettings& s) {
                  start = comma + 1;
                }
              });
+  cli.option("--area-opacity", "A",
+             "opacity of the area fills over the terrain, 0..1 (default 0.75; a style class's "
+             "own opacity multiplies it)",
+             [&](const std::string& v) {
+               s.area_opacity = CliArgs::to_double("--area-opacity", v);
+               if (!(s.area_opacity >= 0 && s.area_opacity <= 1))
+                 throw UsageError("--area-opacity: must be within 0..1");
+             });
   cli.option("--sun", "AZ,ALT", "sun azimuth and altitude in degrees (default 315,45)",
              [&](const std::string& v) {
                const auto d = CliArgs::to_doubles("--sun", v, 2);
@@ -406,13 +414,24 @@ void declare_output_options(CliArgs& cli, ViewerSettings& s) {
              "print what is at pixel X,Y (from the top-left), or where the point LON,LAT at "
              "height 0 lands, on stdout, one line (empty: nothing): the place whose chart covers "
              "it and its values, or else the line feature drawn on top there, which the snapshot "
-             "then highlights (in bundled flows: the bundle, with every connection through it); "
+             "then highlights (in bundled flows: the bundle, with every connection through it), "
+             "or else the area filled there; "
              "repeatable: one line per pick, all in the same frame, the last one highlighted "
              "(headless)",
              [&](const std::string& v) {
                const bool geographic = !v.empty() && v[0] == '@';
                const auto d = CliArgs::to_doubles("--pick", geographic ? v.substr(1) : v, 2);
                s.picks.push_back({geographic, d[0], d[1]});
+             });
+  cli.option("--pick-format", "text|json",
+             "how --pick prints: text (default: one line of the topmost layer that picks) or "
+             "json: one object per pick with x, y, the ground's lon, lat and height there (null "
+             "off the globe) and the topmost area, line and chart there (each with its id and "
+             "attributes, or null)",
+             [&](const std::string& v) {
+               if (v != "text" && v != "json")
+                 throw UsageError("--pick-format: '" + v + "' is not text or json");
+               s.pick_json = v == "json";
              });
   cli.option("--frames", "N", "frames measured for --stats (default 5)",
              [&](const std::string& v) { s.frames = CliArgs::to_int("--frames", v, 1, 10000); });

@@ -46,6 +46,8 @@ struct ViewerSettings {
   bool imagery_unlit = false;    // --shading imagery
   bool flow_animate = false;     // --flow-animate: the window moves the flow pulses
   std::vector<double> image_opacity;  // --image-opacity, per image layer (the last repeats)
+  double area_opacity = 0.75;         // --area-opacity: the area fills'
+  bool pick_json = false;             // --pick-format json
   ChartSettings charts;               // --chart, --chart-style, --chart-depth, --chart-thinning
   bool charts_given = false;          // any of those options
   bool lens_mode_given = false;       // --lens named its mode

@@ -16,6 +16,7 @@
 #include "render/readback.hpp"
 #include "render/terrain_shaders.hpp"
 #include "render/tile_table.hpp"
+#include "render/vector_pixel_glsl.hpp"
 
 namespace globe::viewer {
 
@@ -52,41 +53,20 @@ void set_tile_ref(const GlProgram& p, const std::string& name, const View& view,
   gl::Uniform1i(p.uniform((name + ".wrap").c_str()), t.wrap_tiles());
 }
 
-// The same for the line tiling `lt` (which may cross from the terrain's CRS),
-// and the crossing's uniforms.
-void set_line_ref(const GlProgram& p, const View& view, const WorldFrame& world,
-                  const tileformat::Tiling& lt, CrsCross cross, int zoom) {
-  const glm::dvec2 o = world.key_to_crs(double(view.origin.x), double(view.origin.y));
-  const CrossAnchor a = cross_anchor(cross, o);
-  const double size = lt.tile_size(zoom);
-  const double tx = (a.anchor.x - lt.origin_x) / size, ty = (lt.origin_y - a.anchor.y) / size;
-  const double bx = std::floor(tx), by = std::floor(ty);
-  gl::Uniform2i(p.uniform("u_ref.base"), static_cast<int>(bx), static_cast<int>(by));
-  gl::Uniform2f(p.uniform("u_ref.frac"), static_cast<float>(tx - bx), static_cast<float>(ty - by));
-  const bool same = cross == CrsCross::kSame;
-  gl::Uniform2f(p.uniform("u_ref.per_m"),
-                static_cast<float>(1 / ((same ? world.ground_per_crs_x() : 1.0) * size)),
-                static_cast<float>(1 / ((same ? world.ground_per_crs_y() : 1.0) * size)));
-  gl::Uniform1i(p.uniform("u_ref.zoom"), zoom);
-  gl::Uniform1i(p.uniform("u_ref.wrap"), lt.wrap_tiles());
-  gl::Uniform1i(p.uniform("u_cross"), static_cast<int>(cross));
-  gl::Uniform2f(p.uniform("u_cross_param"), a.param.x, a.param.y);
-  gl::Uniform2f(p.uniform("u_crs_per_m"), static_cast<float>(1 / world.ground_per_crs_x()),
-                static_cast<float>(1 / world.ground_per_crs_y()));
-}
-
 std::string program_source(const std::string& table, int binding, const std::string& body) {
-  return std::string(shaders::kLineCommon) + kTileHashGlsl + tile_table_glsl(table, binding) + body;
+  return std::string(shaders::kLineCommon) + shaders::kTileRefGlsl + kTileHashGlsl +
+         tile_table_glsl(table, binding) + body;
 }
 
 }  // namespace
 
 LineRenderer::LineRenderer(uint64_t arena_words, int width, int height, CrsCross cross)
     : cross_(cross) {
-  deferred_ = GlProgram("line pass", kFullScreenVertex,
-                        program_source("line_table", kLineTable,
-                                       deferred_pass_glsl(kRequests) + shaders::kCrsCrossGlsl +
-                                           shaders::kLineDeferredFragment));
+  deferred_ =
+      GlProgram("line pass", kFullScreenVertex,
+                program_source("line_table", kLineTable,
+                               deferred_pass_glsl(kRequests) + shaders::kCrsCrossGlsl +
+                                   shaders::kVectorPixelGlsl + shaders::kLineDeferredFragment));
   geometry_ =
       GlProgram("line geometry",
                 program_source("terrain_table", kTerrainTable,
@@ -97,10 +77,10 @@ LineRenderer::LineRenderer(uint64_t arena_words, int width, int height, CrsCross
       program_source("line_table", kLineTable,
                      tile_table_glsl("terrain", kTerrainTable) + shaders::kFrameWorldGlsl +
                          shaders::kKeyHeightGlsl + shaders::kLineLiftedPoints));
-  lifted_ = GlProgram(
-      "lifted lines",
-      std::string(shaders::kLineCommon) + shaders::kLineQuadGlsl + shaders::kLineLiftedVertex,
-      shaders::kLineLiftedFragment);
+  lifted_ = GlProgram("lifted lines",
+                      std::string(shaders::kLineCommon) + shaders::kTileRefGlsl +
+                          shaders::kLineQuadGlsl + shaders::kLineLiftedVertex,
+                      shaders::kLineLiftedFragment);
   GLuint buffers[9];
   gl::CreateBuffers(9, buffers);
   arena_ = buffers[0], records_ = buffers[1], table_ = buffers[2], styles_ = buffers[3],
@@ -255,7 +235,6 @@ double LineRenderer::draw(const GBuffer& g, const View& view, const WorldFrame& 
   upload_tables(cache);
   const LinePackage& pkg = cache.package();
   const tileformat::Tiling& tiling = pkg.tiling;
-  const double mx = world.ground_per_crs_x(), my = world.ground_per_crs_y();
 
   gl::BindFramebuffer(GL_FRAMEBUFFER, fbo_);
   gl::Viewport(0, 0, width_, height_);
@@ -279,16 +258,8 @@ double LineRenderer::draw(const GBuffer& g, const View& view, const WorldFrame& 
   gl::Uniform1i(p.uniform("u_ground_dy"), 3);
   gl::BindTextureUnit(5, ramps_);
   gl::Uniform1i(p.uniform("u_line_ramps"), 5);
-  const glm::mat4 inv = glm::mat4(glm::inverse(view.proj * view.view));
-  gl::UniformMatrix4fv(p.uniform("u_inv_view_proj"), 1, GL_FALSE, glm::value_ptr(inv));
-  gl::Uniform3f(p.uniform("u_eye"), float(view.eye.x), float(view.eye.y), float(view.eye.z));
-  set_line_ref(p, view, world, tiling, cross_, pkg.max_zoom);
-  gl::Uniform1i(p.uniform("u_min_zoom"), pkg.min_zoom);
-  gl::Uniform1i(p.uniform("u_max_zoom"), pkg.max_zoom);
-  const double m0x = mx * tiling.root_size, m0y = my * tiling.root_size;
-  gl::Uniform1f(p.uniform("u_zoom_bias"),
-                static_cast<float>(std::log2(std::min(m0x, m0y) / kTilePx)));
-  gl::Uniform2f(p.uniform("u_tile_m0"), float(m0x), float(m0y));
+  set_vector_pixel_uniforms(p, view, world, tiling, cross_, pkg.min_zoom, pkg.max_zoom, kTilePx,
+                            lens_only_, height_);
   gl::Uniform1f(p.uniform("u_units_to_nominal_px"), kTilePx / float(std::max(pkg.extent, 1)));
   gl::Uniform1f(p.uniform("u_world_per_m"), static_cast<float>(world.ground_height_scale()));
   gl::Uniform1ui(p.uniform("line_table_mask"), table_mask_);
@@ -296,8 +267,6 @@ double LineRenderer::draw(const GBuffer& g, const View& view, const WorldFrame& 
   gl::Uniform1ui(p.uniform("u_frame"), frame);
   gl::Uniform1i(p.uniform("u_class_count"), class_count_);
   gl::Uniform1i(p.uniform("u_select_only"), mode == LineMode::kDeferred ? 0 : 1);
-  gl::Uniform3f(p.uniform("u_lens_only"), lens_only_.x, float(height_) - lens_only_.y,
-                lens_only_.z);
   gl::BindVertexArray(vao_);
   if (mode == LineMode::kDeferred) gl::BeginQuery(GL_TIME_ELAPSED, timer_);
   gl::DrawArrays(GL_TRIANGLES, 0, 3);
@@ -326,16 +295,8 @@ std::pair<uint32_t, uint32_t> LineRenderer::pick(int x, int y) const {
 }
 
 void LineRenderer::read_feedback(const LineCache& cache, uint32_t frame, LineFeedback& fb) {
-  gl::MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  std::vector<uint32_t> req(kRequestSlots * 2), used(record_count_);
-  gl::GetNamedBufferSubData(requests_, 0, req.size() * 4, req.data());
-  if (record_count_) gl::GetNamedBufferSubData(used_, 0, used.size() * 4, used.data());
-  fb.requests.clear();
-  fb.used.clear();
-  for (const TileRequest& r : decode_tile_requests(req))
-    fb.requests.push_back(r.id);
-  for (uint32_t r = 0; r < record_count_; ++r)
-    if (used[r] == frame && cache.live(r)) fb.used.push_back(r);
+  read_vector_feedback(
+      requests_, used_, record_count_, frame, [&](uint32_t r) { return cache.live(r); }, fb);
 }
 
 uint32_t LineRenderer::upload_terrain_table(const TerrainHeights& terrain) {

@@ -19,6 +19,7 @@
 #include "data/line_cache.hpp"
 #include "render/gl_program.hpp"
 #include "render/terrain_renderer.hpp"
+#include "render/vector_pixel_glsl.hpp"
 #include "runtime/line_style.hpp"
 
 namespace globe::viewer {
@@ -47,10 +48,7 @@ struct LineRamp {
   std::vector<uint8_t> rgba;  // kEntries * 4
 };
 
-struct LineFeedback {
-  std::vector<tileformat::TileId> requests;  // wanted, not resident
-  std::vector<uint32_t> used;                // records the frame read
-};
+using LineFeedback = VectorFeedback;
 
 class LineRenderer {
  public:

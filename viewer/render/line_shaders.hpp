@@ -12,60 +12,21 @@ layout(std430, binding = 0) readonly buffer Arena { uint arena[]; };
 layout(std430, binding = 3) readonly buffer Styles { vec4 styles[]; };  // 7 per class
 uniform int u_class_count;
 
-// Tile coordinates of world points: `base + frac` is the view origin in
-// tiles of zoom `zoom`, `per_m` tiles per world metre (x east, y north),
-// `wrap` tiles across 360 degrees at zoom 0 (0: a tiling that does not wrap;
-// on the globe, ground points continue past the antimeridian).
-struct TileRef {
-  ivec2 base;
-  vec2 frac;
-  vec2 per_m;
-  int zoom;
-  int wrap;
-};
-// The tile of zoom z (<= ref.zoom) holding the point p tiles of zoom
-// ref.zoom from ref.base (y south), and p's position inside it (0..1, y south).
-ivec2 tile_of(TileRef r, int z, vec2 p, out vec2 local) {
-  vec2 fl = floor(p);
-  ivec2 g = r.base + ivec2(fl);
-  int s = r.zoom - z;
-  ivec2 t = g >> s;
-  local = (vec2(g - (t << s)) + (p - fl)) / float(1 << s);
-  if (r.wrap > 0) {
-    int n = r.wrap << z;
-    t.x = ((t.x % n) + n) % n;
-  }
-  return t;
-}
-// The same for world point w.
-ivec2 tile_at(TileRef r, int z, vec2 w, out vec2 local) {
-  return tile_of(r, z, r.frac + vec2(w.x, -w.y) * r.per_m, local);
-}
 vec2 seg_a(uint o) { return vec2(uintBitsToFloat(arena[o]), uintBitsToFloat(arena[o + 1u])); }
 vec2 seg_b(uint o) { return vec2(uintBitsToFloat(arena[o + 2u]), uintBitsToFloat(arena[o + 3u])); }
 )";
 
-// The deferred pass. Per pixel: the surface point and its plane from the
-// G-buffer give the Jacobian J (world metres per screen pixel) of the map
-// position; the line zoom is the finest whose tiles still span
-// globe:tile_px pixels at the pixel's area footprint; the segments of
+// The deferred pass. Per pixel (vector_pixel_glsl.hpp): the surface point and
+// its plane from the G-buffer give the Jacobian J (world metres per screen
+// pixel) of the map position; the line zoom is the finest whose tiles still
+// span globe:tile_px pixels at the pixel's area footprint; the segments of
 // the pixel's cell are measured in screen pixels through J^-1 (so widths hold
 // on slopes and in perspective) and composited: casings under fills, the
 // higher (coverage, class) winning, coverage from a 1-px box filter.
-// (Follows deferred_pass_glsl(), deferred_pass.hpp.)
+// (Follows deferred_pass_glsl(), deferred_pass.hpp, and kVectorPixelGlsl.)
 inline constexpr const char* kLineDeferredFragment = R"(
-layout(std430, binding = 1) readonly buffer Records { uvec4 records[]; };  // 2 per record
-layout(std430, binding = 5) buffer Used { uint used[]; };
-uniform uint u_frame;
-uniform sampler2D u_color, u_ground, u_ground_dy;
+uniform sampler2D u_color;
 uniform sampler2D u_line_ramps;  // a row per class coloured by the ground (LineRamp)
-uniform vec3 u_lens_only;        // lines only inside this circle (window pixels; radius 0: everywhere)
-uniform TileRef u_ref;  // the line tiling's (per_m: per layer CRS unit when crossing)
-uniform int u_cross;    // 0 the terrain's CRS, 1/2 crossing (kCrsCrossGlsl)
-uniform vec2 u_cross_param, u_crs_per_m;  // crossing: its parameter, terrain CRS units per ground unit
-uniform int u_min_zoom, u_max_zoom;
-uniform float u_zoom_bias;  // log2(shorter zoom-0 tile edge in world metres / tile_px)
-uniform vec2 u_tile_m0;     // world metres per tile edge at zoom 0 (x, y)
 uniform float u_units_to_nominal_px;  // tile_px / extent: dash layout scale
 uniform float u_world_per_m;          // world units per metre on the ground (world_frame.hpp)
 uniform int u_select_only;
@@ -127,73 +88,11 @@ void main() {
   o_color = base;
   o_record = 0u;
   o_segment = 0u;
-  vec4 p4 = texelFetch(u_position, px, 0);
-  if (p4.w == 0.0) return;
-  if (u_lens_only.z > 0.0 && distance(gl_FragCoord.xy, u_lens_only.xy) >= u_lens_only.z) return;
-  // The pixel's ground point and its screen derivatives (terrain_renderer.hpp).
-  vec4 gr = texelFetch(u_ground, px, 0);
-  vec2 G = gr.xy;
-  mat2 J = mat2(gr.zw, texelFetch(u_ground_dy, px, 0).xy);  // ground metres per pixel (x, y)
-  if (abs(determinant(J)) < 1e-12) return;
-  mat2 Jinv = inverse(J);
-  // The zoom follows the pixel's area footprint (sqrt |det J|); in oblique
-  // views that is finer than the most stretched direction would allow, so
-  // widths are clamped per segment below.
-  float footprint = sqrt(abs(determinant(J)));
-  // The pixel in tiles of the line tiling's zoom u_ref.zoom (p), and ground
-  // metres per such tile (M, columns x east and y south): linear in the
-  // terrain's CRS, through the crossing's Jacobian at the pixel otherwise.
-  vec2 p;
-  mat2 M;
-  float zoom_bias = u_zoom_bias;
-  if (u_cross == 0) {
-    p = u_ref.frac + vec2(G.x, -G.y) * u_ref.per_m;
-    M = mat2(1.0 / u_ref.per_m.x, 0.0, 0.0, -1.0 / u_ref.per_m.y);
-  } else {
-    vec2 c0, c1, c2;
-    if (!cross_offset(u_cross, u_cross_param, G * u_crs_per_m, c0)) return;  // past its edge
-    cross_offset(u_cross, u_cross_param, (G + J[0]) * u_crs_per_m, c1);
-    cross_offset(u_cross, u_cross_param, (G + J[1]) * u_crs_per_m, c2);
-    vec2 flip = vec2(1, -1) * u_ref.per_m;
-    p = u_ref.frac + c0 * flip;
-    mat2 Jt = mat2((c1 - c0) * flip, (c2 - c0) * flip);  // tiles per pixel
-    if (abs(determinant(Jt)) < 1e-30) return;
-    M = J * inverse(Jt);
-    zoom_bias = log2(min(length(M[0]), length(M[1])) / 256.0) + float(u_ref.zoom);
-  }
-  int wanted = int(floor(zoom_bias - log2(footprint)));  // may lie past the package's zooms
-  int z = clamp(wanted, u_min_zoom, u_max_zoom);
-
-  // The wanted tile, else the coarser ones. Past a broken tile (record flag
-  // 2) the next coarser unknown one is asked for too; where no coarser tile
-  // can be drawn, the finer ones under the broken tile are (one or two zooms
-  // down: a tile's cells reach only as far as its own zoom's widest line, so
-  // finer tiles draw wide lines thinner, and are the last resort).
-  int rec = -1, zz = z, broken_z = -1;
-  vec2 local;
-  bool ask = true;
-  for (; zz >= u_min_zoom; --zz) {
-    ivec2 t = tile_of(u_ref, zz, p, local);
-    rec = line_table_lookup(zz, t);
-    if (rec >= 0 && records[2 * rec + 1].z == 2u) {
-      if (broken_z < 0) broken_z = zz;
-      rec = -1;
-      ask = true;
-      continue;
-    }
-    if (rec >= 0) break;
-    if (ask) request(zz, t, 0u);
-    ask = false;
-  }
-  for (int zf = broken_z + 1; rec < 0 && broken_z >= 0 && zf <= min(broken_z + 2, u_max_zoom);
-       ++zf) {
-    ivec2 tf = tile_of(u_ref, zf, p, local);
-    int r = line_table_lookup(zf, tf);
-    if (r < 0) request(zf, tf, 0u);
-    if (r < 0 || records[2 * r + 1].z == 1u) break;
-    if (records[2 * r + 1].z == 0u) rec = r, zz = zf;
-  }
-  if (rec < 0) return;
+  VectorPixel v;
+  if (!vector_pixel(px, v) || v.rec < 0) return;
+  int rec = v.rec, zz = v.zz, z = v.z, wanted = v.wanted;
+  vec2 local = v.local;
+  mat2 J = v.J, Jinv = v.Jinv, L = v.L;
   used[rec] = u_frame;
   o_record = uint(rec) + 1u;
   uvec4 r0 = records[2 * rec], r1 = records[2 * rec + 1];
@@ -202,10 +101,6 @@ void main() {
   float extent = uintBitsToFloat(r1.x), reach = uintBitsToFloat(r1.y);
   uint grid = r0.w;
   vec2 lu = local * extent;
-  // Ground metres per tile unit (x east, y south).
-  mat2 L = u_cross == 0 ? mat2(u_tile_m0.x / (exp2(float(zz)) * extent), 0.0, 0.0,
-                               -u_tile_m0.y / (exp2(float(zz)) * extent))
-                        : M * (exp2(float(u_ref.zoom - zz)) / extent);
   ivec2 cell = clamp(ivec2(lu * float(grid) / extent), ivec2(0), ivec2(int(grid) - 1));
   uint ci = uint(cell.y) * grid + uint(cell.x);
   uint begin = arena[r0.x + ci], end = arena[r0.x + ci + 1u];

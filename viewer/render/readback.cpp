@@ -35,11 +35,15 @@ std::vector<uint8_t> read_rgba(GLuint fbo, int width, int height) {
   return flipped;
 }
 
-glm::vec4 read_position(GLuint fbo, int x, int y, int height) {
+glm::vec4 read_rgba32f(GLuint fbo, int attachment, int x, int y, int height) {
   glm::vec4 p(0);
-  read_attachment(fbo, 1, x, height - 1 - y, 1, 1, GL_RGBA, GL_FLOAT, &p,
-                  "reading a G-buffer position");
+  read_attachment(fbo, attachment, x, height - 1 - y, 1, 1, GL_RGBA, GL_FLOAT, &p,
+                  "reading a G-buffer value");
   return p;
+}
+
+glm::vec4 read_position(GLuint fbo, int x, int y, int height) {
+  return read_rgba32f(fbo, 1, x, y, height);
 }
 
 double ground_fraction(GLuint fbo, int width, int height) {

@@ -19,6 +19,9 @@ glm::vec4 read_position(GLuint gbuffer_fbo, int x, int y, int height);
 // The fraction of the G-buffer's pixels where the terrain (or the globe's
 // polar caps) was drawn: position w = 1.
 double ground_fraction(GLuint gbuffer_fbo, int width, int height);
+// The RGBA32F value of colour attachment `attachment` of `fbo` at pixel
+// (x, y), y counted from the top.
+glm::vec4 read_rgba32f(GLuint fbo, int attachment, int x, int y, int height);
 // The R32UI value of colour attachment `attachment` (0-based) of `fbo` at
 // pixel (x, y), y counted from the top.
 uint32_t read_u32(GLuint fbo, int attachment, int x, int y, int height);
