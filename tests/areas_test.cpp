@@ -29,6 +29,7 @@
 #include <ogr_api.h>
 #include <ogr_srs_api.h>
 
+#include "package_compare.hpp"
 #include "raster_fixtures.hpp"
 #include "test_support.hpp"
 #include "tileformat/json.hpp"
@@ -1027,3 +1028,24 @@ TEST(AreasExtract, PolygonsComeBackInTheTilingCrs) {
   OSRRelease(albers);
   EXPECT_EQ(areas.count, 0u) << areas.text();
 }
+
+namespace {
+
+// The same input and options give the same package for any thread count:
+// world.gpkg as a choropleth (the classes, GEOS's per-thread contexts, the
+// pieces sorted by tile) at -j 1 and -j 2, each written as a.mbtiles.
+TEST(AreasCli, OneAndTwoThreadsWriteTheSamePackage) {
+  if (!have_samples({"world.gpkg"})) GTEST_SKIP() << "samples/data/world.gpkg missing";
+  TempDir dir;
+  for (const char* j : {"1", "2"}) {
+    fs::create_directories(dir / j);
+    const RunResult r = run(vectorize() + " areas -q " + (samples() / "world.gpkg").string() +
+                                " --max-zoom 4 --choropleth pop/area_km2 --method jenks -j " + j +
+                                " -o " + (dir / j / "a.mbtiles").string(),
+                            dir.path());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  expect_same_package((dir / "2" / "a.mbtiles").string(), (dir / "1" / "a.mbtiles").string());
+}
+
+}  // namespace

@@ -40,13 +40,14 @@ void expect_same_features(const std::string& ours, const std::string& ref) {
   EXPECT_TRUE(a == b) << "the features tables differ";
 }
 
-// Builds `input` with `command` (terrain, imagery, analyze, lines) and
+// Builds `input` with `command` (terrain, imagery, analyze, lines, areas) and
 // `options` on one machine and as `n` shards (each with `shard_options`),
 // merges, and compares.
 void expect_shards_merge_to_one_build(const std::string& command, const std::string& input,
                                       const std::string& options, int n,
                                       const std::string& shard_options, const fs::path& dir) {
-  const std::string program = command == "lines" ? vectorize() : tiler();
+  const bool vector = command == "lines" || command == "areas";
+  const std::string program = vector ? vectorize() : tiler();
   auto build = [&](const std::string& more, const std::string& out) {
     const RunResult r = run(program + " " + command + " -q " + input + " " + options + " " + more +
                                 " -o " + (dir / out).string(),
@@ -66,8 +67,7 @@ void expect_shards_merge_to_one_build(const std::string& command, const std::str
       run(program + " merge -q" + shards + " -o " + (dir / "m.mbtiles").string(), dir);
   ASSERT_EQ(m.exit_code, 0) << m.err;
   expect_same_package((dir / "m.mbtiles").string(), (dir / "one.mbtiles").string());
-  if (command == "lines")
-    expect_same_features((dir / "m.mbtiles").string(), (dir / "one.mbtiles").string());
+  if (vector) expect_same_features((dir / "m.mbtiles").string(), (dir / "one.mbtiles").string());
 }
 
 struct ShardCase {
@@ -134,7 +134,15 @@ INSTANTIATE_TEST_SUITE_P(
         ShardCase{"lines_roads_local_3", "lines", "canada_roads.shp",
                   "--s_srs EPSG:3978 --tiling local", 3, ""},
         ShardCase{"lines_contours_local_2", "lines", "os_wales_contours.shp",
-                  "--tiling local --max-zoom 9", 2, ""}),
+                  "--tiling local --max-zoom 9", 2, ""},
+        // Areas: the world's countries (across the antimeridian, Antarctica)
+        // as a choropleth, in both global tilings (the classes from every
+        // shard's reading of all features); North Carolina's counties.
+        ShardCase{"areas_world_3", "areas", "world.gpkg", "--max-zoom 4 --choropleth pop/area_km2",
+                  3, "--split-zoom 2"},
+        ShardCase{"areas_world_geodetic_2", "areas", "world.gpkg", "--tiling geodetic --max-zoom 3",
+                  2, "--split-zoom 1"},
+        ShardCase{"areas_nc_4", "areas", "nc.gpkg", "--max-zoom 9", 4, ""}),
     [](const auto& info) { return std::string(info.param.name); });
 
 // Holes of nodata on both sides of shard borders (and whole subtrees without

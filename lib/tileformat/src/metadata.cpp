@@ -444,7 +444,6 @@ MetadataMap to_metadata(const AreaMetadata& m) {
               "\",\"features\":" + std::to_string(m.layers[i].features) + "}";
   meta["globe:layers"] = layers + "]";
   meta["globe:repaired"] = std::to_string(m.repaired);
-  meta["globe:dropped_small"] = std::to_string(m.dropped_small);
   if (const auto& c = m.choropleth) {
     std::string j = "{\"field\":\"" + json_escape(c->field) + "\",\"denominator\":\"" +
                     json_escape(c->denominator) + "\",\"method\":\"" + json_escape(c->method) +
@@ -478,7 +477,6 @@ AreaMetadata read_area_metadata(const MetadataMap& meta) {
         static_cast<uint64_t>(member(e, "features", "globe:layers", "12.3").number())};
   });
   m.repaired = static_cast<uint64_t>(k.number("globe:repaired"));
-  m.dropped_small = static_cast<uint64_t>(k.number("globe:dropped_small"));
   if (k.find("globe:choropleth")) {
     const JsonValue doc = k.json("globe:choropleth");
     try {

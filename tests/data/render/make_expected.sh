@@ -136,3 +136,8 @@ GLOBE_TEST_KEEP=1 build/tests/viewer_lines_tests \
 kept=$(ls -dt /tmp/globe-test-ViewerLineColours-ContoursColouredBySlopeMatchExpected-* | head -1)
 cp "$kept"/s.png $out/line_colour_by_slope.png
 rm -rf "$kept"
+# Areas (tests/viewer_areas_test.cpp): North Carolina's SIDS rate (SID74/BIR74), a choropleth.
+build/tools/vectorize/globe-vectorize areas -q samples/data/nc.gpkg --choropleth SID74/BIR74 \
+  --classes 5 --method quantile --colors YlOrRd -o "$tmp/nc_sids.mbtiles"
+build/viewer/globe-view "$tmp/nc_sids.mbtiles" --fit --size 320x200 \
+  --snapshot $out/viewer_areas_nc.png

@@ -142,6 +142,19 @@ PlaneMultiPolygon Geos::clip(const PlaneMultiPolygon& m, double x0, double y0, d
   return out;
 }
 
+std::vector<PlaneMultiPolygon> Geos::clip_to_boxes(const PlaneMultiPolygon& m,
+                                                   const std::vector<Box>& boxes) {
+  const Impl::Geom g = impl_->multi(m);
+  std::vector<PlaneMultiPolygon> out(boxes.size());
+  for (size_t i = 0; i < boxes.size(); ++i) {
+    const Box& b = boxes[i];
+    const Impl::Geom c(impl_->ctx, GEOSClipByRect_r(impl_->ctx, g.g, b.x0, b.y0, b.x1, b.y1));
+    if (!c.g) impl_->fail("rectangle clipping");
+    impl_->read_polygons(c.g, out[i]);
+  }
+  return out;
+}
+
 PlanePoint Geos::inscribed_centre(const PlanePolygon& p, double tolerance) {
   const Impl::Geom g(impl_->ctx, impl_->polygon(p));
   const Impl::Geom line(impl_->ctx, GEOSMaximumInscribedCircle_r(impl_->ctx, g.g, tolerance));

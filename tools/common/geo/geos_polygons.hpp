@@ -34,6 +34,13 @@ class Geos {
   PlaneMultiPolygon make_valid(const PlaneMultiPolygon& m);
   // The intersection with the box [x0, x1] x [y0, y1] (valid for valid input).
   PlaneMultiPolygon clip(const PlaneMultiPolygon& m, double x0, double y0, double x1, double y1);
+  struct Box {
+    double x0, y0, x1, y1;
+  };
+  // m cut to each box by GEOS's rectangle clipping (converted to GEOS once;
+  // fast, but a piece may touch itself along the box's edge: check it).
+  std::vector<PlaneMultiPolygon> clip_to_boxes(const PlaneMultiPolygon& m,
+                                               const std::vector<Box>& boxes);
   // The centre of the largest circle inside the polygon (the pole of
   // inaccessibility), to `tolerance`.
   PlanePoint inscribed_centre(const PlanePolygon& p, double tolerance);

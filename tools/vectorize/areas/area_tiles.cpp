@@ -147,16 +147,27 @@ class AreaCutter {
     const auto tx1 = std::min<int64_t>(keep.max_x, int64_t(std::floor((all.x1 + b) / e)));
     const auto ty0 = std::max<int64_t>(keep.min_y, int64_t(std::floor((all.y0 - b) / e)));
     const auto ty1 = std::min<int64_t>(keep.max_y, int64_t(std::floor((all.y1 + b) / e)));
+    // Row strips, then the tiles of each (GEOS's rectangle clipping, each
+    // geometry converted once per strip set).
+    std::vector<Geos::Box> strips;
+    for (int64_t ty = ty0; ty <= ty1; ++ty)
+      strips.push_back({all.x0 - 1, ty * e - b, all.x1 + 1, (ty + 1) * e + b});
+    const bool one_row = ty0 == ty1 && all.y0 >= strips[0].y0 && all.y1 <= strips[0].y1;
+    const std::vector<PlaneMultiPolygon> rows =
+        one_row ? std::vector<PlaneMultiPolygon>{grid} : geos.clip_to_boxes(grid, strips);
     for (int64_t ty = ty0; ty <= ty1; ++ty) {
-      const double y0 = ty * e - b, y1 = (ty + 1) * e + b;
-      const bool one_row = all.y0 >= y0 && all.y1 <= y1;
-      const PlaneMultiPolygon row =
-          one_row ? grid : geos.clip(grid, all.x0 - 1, y0, all.x1 + 1, y1);
+      const PlaneMultiPolygon& row = rows[size_t(ty - ty0)];
       if (row.empty()) continue;
+      const double y0 = ty * e - b, y1 = (ty + 1) * e + b;
+      const bool inside =
+          one_row && tx0 == tx1 && all.x0 >= tx0 * e - b && all.x1 <= (tx0 + 1) * e + b;
+      std::vector<Geos::Box> boxes;
+      for (int64_t tx = tx0; tx <= tx1; ++tx)
+        boxes.push_back({tx * e - b, y0, (tx + 1) * e + b, y1});
+      std::vector<PlaneMultiPolygon> pieces =
+          inside ? std::vector<PlaneMultiPolygon>{row} : geos.clip_to_boxes(row, boxes);
       for (int64_t tx = tx0; tx <= tx1; ++tx) {
-        const double x0 = tx * e - b, x1 = (tx + 1) * e + b;
-        const bool inside = one_row && all.x0 >= x0 && all.x1 <= x1;
-        PlaneMultiPolygon piece = inside ? row : geos.clip(row, x0, y0, x1, y1);
+        PlaneMultiPolygon& piece = pieces[size_t(tx - tx0)];
         if (piece.empty()) continue;
         if (!inside) piece = round_valid(std::move(piece), geos, stats.resnapped);
         for (const PlanePolygon& p : piece) {
@@ -211,8 +222,12 @@ void cut_area_tiles(AreaScratch& scratch, uint64_t features, const AreaTileOptio
         [&](size_t i, int worker, const NoInputs&) {
           Result r;
           uint32_t sub = 0;
+          const uint32_t zooms = o.zooms ? o.zooms(batch[i]) : ~0u;
           for (int z = o.min_zoom; z <= o.max_zoom; ++z)
-            cutter.cut(batch[i], z, *geos[worker], sub, r.emissions, r.stats);
+            if (zooms >> z & 1) cutter.cut(batch[i], z, *geos[worker], sub, r.emissions, r.stats);
+          if (o.keeps)
+            std::erase_if(r.emissions,
+                          [&](const AreaEmission& e) { return !o.keeps(key_tile(e.key)); });
           return r;
         },
         [&](size_t i, Result&& r) {

@@ -52,6 +52,10 @@ struct AreaTileOptions {
   // The class of feature `id` (a choropleth's, known after reading); none:
   // the class the feature was written with.
   std::function<uint32_t(uint64_t id)> class_of;
+  // Zooms to cut a feature at (bit z; a shard's); none: every zoom.
+  std::function<uint32_t(const AreaFeature&)> zooms;
+  // Tiles to keep (a shard's); none: every tile.
+  std::function<bool(tileformat::TileId)> keeps;
 };
 
 struct AreaTileStats {

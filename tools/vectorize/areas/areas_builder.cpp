@@ -17,9 +17,11 @@
 #include "lines/line_plan.hpp"
 #include "lines/line_projector.hpp"
 #include "runtime/errors.hpp"
+#include "shard/line_shard.hpp"
 #include "tileformat/feature_table.hpp"
 #include "tileformat/metadata.hpp"
 #include "tileformat/package.hpp"
+#include "tileformat/shard_table.hpp"
 
 namespace globe {
 namespace {
@@ -52,7 +54,10 @@ class Builder {
   AreasSummary run() {
     const auto start = std::chrono::steady_clock::now();
     frame_ = choose_vector_frame(s_.like, s_);
+    // Shard 0 holds the features table of a sharded build (as for lines).
+    const bool keeps_features = !s_.shard || s_.shard->index == 0;
     VectorReaderOptions ro;
+    ro.properties = keeps_features;
     ro.layers = s_.layers;
     ro.where = s_.where;
     ro.class_field = s_.class_field;
@@ -77,24 +82,39 @@ class Builder {
     write_package_tiles(s_.output, [&] {
       tileformat::FeatureTableWriter features(*writer);
       AreaScratch scratch(s_.output + ".scratch-geometry");
-      pass_read(reader, &features, scratch);
+      // A shard plans its share from the polygons' outlines, as a line
+      // build does from its lines (shard/line_shard.hpp).
+      std::optional<GeometryScratch> outlines;
+      if (s_.shard) outlines.emplace(s_.output + ".scratch-outlines");
+      pass_read(reader, keeps_features ? &features : nullptr, scratch,
+                outlines ? &*outlines : nullptr);
       if (const std::string unused = classes_.unused_style(); !unused.empty()) {
         if (!s_.bbox) throw UsageError(unused);
         progress_.note(unused + " in --bbox");
       }
       classify();
-      const LinePlan plan = plan_lines(s_, frame_, extent_, lengths_, classes_);
+      plan_ = plan_lines(s_, frame_, extent_, lengths_, classes_);
+      const int buffer = static_cast<int>(std::lround(s_.extent / kLineTilePx * s_.buffer_px));
+      plan_.reach.assign(plan_.reach.size(), static_cast<uint32_t>(buffer));  // the tiles' reach
+      const LinePlan& plan = plan_;
       tiling_ = plan.tiling;
       area_ = plan.area;
       sum_.min_zoom = plan.min_zoom;
       sum_.max_zoom = plan.max_zoom;
+      if (s_.shard) {
+        outlines->rewind();
+        shard_.emplace(s_, plan, *outlines, sum_.features_kept, progress_);
+        tileformat::ShardTableWriter(*writer).put_roots(shard_->plan().roots);
+        o.zooms = [this](const AreaFeature& f) { return shard_->zooms_to_cut(outline_of(f)); };
+        o.keeps = [this](tileformat::TileId id) { return shard_->keeps(id); };
+      }
       writer->checkpoint();  // the features table is committed before any tile
       o.tiling = plan.tiling;
       o.area = plan.area;
       o.min_zoom = plan.min_zoom;
       o.max_zoom = plan.max_zoom;
       o.extent = s_.extent;
-      o.buffer = static_cast<int>(std::lround(s_.extent / kLineTilePx * s_.buffer_px));
+      o.buffer = buffer;
       o.simplify_px = s_.simplify_px;
       o.threads = s_.worker_threads();
       if (!feature_class_.empty())
@@ -110,17 +130,23 @@ class Builder {
       sum_.spilled_runs = sorter.spilled_runs();
       sum_.spilled_bytes = sorter.spilled_bytes();
     });
-    if (writer->tiles_written() == 0)
+    if (writer->tiles_written() == 0 && !shard_)
       throw InputError(s_.inputs[0] + ": no polygon falls in the requested area" +
                        (s_.bbox ? " (check --bbox)" : "") + "; nothing written");
-    writer->set_metadata(tileformat::to_metadata(metadata(o)));
+    const tileformat::AreaMetadata meta = metadata(o);
+    writer->set_metadata(tileformat::to_metadata(meta));
+    // A shard's metadata is the whole build's, plus the shard keys.
+    if (shard_)
+      writer->set_metadata(tileformat::to_metadata(
+          shard_metadata(s_, shard_->plan(), meta.common.min_zoom, meta.common.center_zoom)));
     commit_package(*writer, s_.output, start, sum_);
     return sum_;
   }
 
  private:
+  // `outlines`: where a shard's planner reads each feature's exterior rings.
   void pass_read(VectorReader& reader, tileformat::FeatureTableWriter* features,
-                 AreaScratch& scratch) {
+                 AreaScratch& scratch, GeometryScratch* outlines) {
     std::vector<LineProjector> projectors;
     for (const VectorLayerInfo& l : reader.layers())
       projectors.emplace_back(frame_.frame, *l.crs, frame_.target ? &*frame_.target : nullptr);
@@ -172,6 +198,7 @@ class Builder {
         }
       }
       scratch.write(f);
+      if (outlines) outlines->write(outline_of(f));
     }
     progress_.end();
     for (const VectorLayerInfo& l : reader.layers())
@@ -187,6 +214,19 @@ class Builder {
                        "for lines and points use `globe-vectorize lines` or `points`");
     }
     scratch.rewind();
+  }
+
+  // A feature's exterior rings as a line feature: what the shard planner
+  // (and a shard's choice of zooms) reads.
+  static ProjectedFeature outline_of(const AreaFeature& f) {
+    ProjectedFeature p;
+    p.id = f.id;
+    for (const PlanePolygon& poly : f.polygons) {
+      p.lines.emplace_back();
+      for (const PlanePoint& q : poly.front())
+        p.lines.back().push_back({q.x, q.y});
+    }
+    return p;
   }
 
   // One source polygon, projected and made ready for the tiling.
@@ -257,7 +297,6 @@ class Builder {
     for (size_t i = 0; i < layers_.size(); ++i)
       m.layers.push_back({layers_[i].name, layers_[i].source, layer_features_[i]});
     m.repaired = sum_.repaired;
-    m.dropped_small = sum_.dropped_small;
     if (s_.choropleth) {
       const ChoroplethSettings& c = *s_.choropleth;
       tileformat::Choropleth ch;
@@ -283,6 +322,8 @@ class Builder {
   Bounds area_;
   Bounds extent_{1e300, 1e300, -1e300, -1e300};
   LengthHistogram lengths_;
+  LinePlan plan_;
+  std::optional<LineShard> shard_;
   std::vector<VectorLayerInfo> layers_;
   std::vector<uint64_t> layer_features_;
   std::vector<double> values_, breaks_;

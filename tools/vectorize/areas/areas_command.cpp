@@ -4,6 +4,7 @@
 
 #include "areas/areas_builder.hpp"
 #include "areas/choropleth.hpp"
+#include "kit/shard_plan.hpp"
 #include "lines/lines_options.hpp"
 #include "runtime/cli_args.hpp"
 #include "runtime/errors.hpp"
@@ -105,6 +106,7 @@ int run_areas(const std::vector<std::string>& args) {
              [&](const std::string& v) {
                s.memory_mb = static_cast<size_t>(CliArgs::to_int("--memory-mb", v, 1, 1 << 20));
              });
+  declare_shard_options(cli, s);
   declare_run_options(cli, s);
   if (!parse_build_command(cli, s, args, "globe-vectorize areas", "input vector file (see --help)"))
     return kExitOk;

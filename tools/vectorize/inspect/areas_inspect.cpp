@@ -79,7 +79,6 @@ int areas_info(const std::string& path, bool json) {
         .integer("buffer", uint64_t(m.buffer))
         .number("simplify_px", m.simplify_px)
         .integer("repaired", m.repaired)
-        .integer("dropped_small", m.dropped_small)
         .raw("style_classes", m.classes_json.empty() ? "[]" : m.classes_json);
     if (const auto& c = m.choropleth) {
       std::vector<InfoJson> classes;
@@ -105,8 +104,6 @@ int areas_info(const std::string& path, bool json) {
               static_cast<unsigned long long>(m.repaired));
   std::printf("snapping grid %g px a zoom (the finest: 1 unit), buffer %d units of %d\n",
               m.simplify_px, m.buffer, m.extent);
-  std::printf("polygons below a zoom's grid, left out there: %llu\n",
-              static_cast<unsigned long long>(m.dropped_small));
   if (const auto& c = m.choropleth) {
     std::printf("choropleth: %s%s%s, %s breaks, ColorBrewer %s\n", c->field.c_str(),
                 c->denominator.empty() ? "" : " / ", c->denominator.c_str(), c->method.c_str(),

@@ -13,8 +13,20 @@ namespace globe {
 
 LinesSummary merge_lines(ShardSet& shards, const BuildOptions& o, Progress& progress) {
   const auto start = std::chrono::steady_clock::now();
-  const tileformat::LineMetadata meta = read_metadata(
-      shards.path(0), [&] { return tileformat::read_line_metadata(shards.metadata()); });
+  // The keys both kinds have: the zooms and the features.
+  struct {
+    tileformat::CommonMetadata common;
+    uint64_t features = 0;
+  } meta;
+  if (shards.kind() == tileformat::PackageKind::kAreas) {
+    const auto m = read_metadata(shards.path(0),
+                                 [&] { return tileformat::read_area_metadata(shards.metadata()); });
+    meta = {m.common, m.features};
+  } else {
+    const auto m = read_metadata(shards.path(0),
+                                 [&] { return tileformat::read_line_metadata(shards.metadata()); });
+    meta = {m.common, m.features};
+  }
   const tileformat::ShardMetadata shard = *tileformat::read_shard_metadata(shards.metadata());
   LinesSummary sum;
   std::unique_ptr<tileformat::PackageWriter> writer = create_package(o, progress);

@@ -15,20 +15,23 @@ int run_lines_merge(const std::vector<std::string>& args) {
   BuildOptions o;
   CliArgs cli("globe-vectorize merge",
               "globe-vectorize merge SHARD... -o OUT.mbtiles [options]\n\n"
-              "Joins the N shards of a line build run with --shard 0/N ... N-1/N (for example a\n"
-              "Slurm array job, docs/scale-out.md) into the package the same command builds on\n"
-              "one machine: the same tiles, features and metadata (only globe:command_line\n"
-              "differs). Checks that the shards come from one build and cover it exactly once.");
+              "Joins the N shards of a line or area build run with --shard 0/N ... N-1/N (for\n"
+              "example a Slurm array job, docs/scale-out.md) into the package the same command\n"
+              "builds on one machine: the same tiles, features and metadata (only\n"
+              "globe:command_line differs). Checks that the shards come from one build and cover\n"
+              "it exactly once.");
   if (!parse_merge_command(cli, o, args, "globe-vectorize merge")) return kExitOk;
 
   Progress progress(o.progress);
   ShardSet shards(o.inputs);
-  if (shards.kind() != tileformat::PackageKind::kLines)
+  if (shards.kind() != tileformat::PackageKind::kLines &&
+      shards.kind() != tileformat::PackageKind::kAreas)
     throw InputError(shards.path(0) + ": a " + tileformat::package_kind_name(shards.kind()) +
-                     " shard; globe-vectorize merge joins line shards (the others: globe-tiler "
-                     "merge)");
-  progress.note("globe-vectorize: merging " + std::to_string(shards.count()) +
-                " line shards split below zoom " + std::to_string(shards.split_zoom()));
+                     " shard; globe-vectorize merge joins line and area shards (the others: "
+                     "globe-tiler merge)");
+  progress.note("globe-vectorize: merging " + std::to_string(shards.count()) + " " +
+                tileformat::package_kind_name(shards.kind()) + " shards split below zoom " +
+                std::to_string(shards.split_zoom()));
   const LinesSummary sum = merge_lines(shards, o, progress);
   std::ostringstream out;
   out.precision(3);

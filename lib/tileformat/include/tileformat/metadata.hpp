@@ -152,7 +152,6 @@ struct AreaMetadata {
   std::vector<LineLayerInfo> layers;     // globe:layers
   std::optional<Choropleth> choropleth;  // globe:choropleth (JSON)
   uint64_t repaired = 0;       // globe:repaired: features whose geometry GEOS MakeValid repaired
-  uint64_t dropped_small = 0;  // globe:dropped_small: polygons below a zoom's grid, left out there
 };
 
 // The package's keys; kind-specific keys absent from the struct (optionals)
