@@ -14,8 +14,9 @@
 //
 // Words (u32): cell offsets (C*C + 1, into the entries), entries (4 words:
 // polygon, winding as int bits, first edge reference, edge references), edge
-// references (edge indices), edges (4 words: ax, ay, bx, by as float bits,
-// tile units), polygons (2 words: class id, feature index).
+// references (edge indices), edges (5 words: ax, ay, bx, by as float bits,
+// tile units, then 1 where the edge is not outlined), polygons (2 words: class
+// id, feature index).
 #pragma once
 
 #include <cstdint>
@@ -29,7 +30,7 @@
 
 namespace globe::viewer {
 
-inline constexpr uint32_t kAreaEntryWords = 4, kAreaEdgeWords = 4, kAreaPolygonWords = 2;
+inline constexpr uint32_t kAreaEntryWords = 4, kAreaEdgeWords = 5, kAreaPolygonWords = 2;
 // The cells' reference point, in tile units from their top-left corner.
 inline constexpr double kAreaRefX = 0.41421356, kAreaRefY = 0.73205081;
 
@@ -46,11 +47,18 @@ struct DecodedAreaTile {
   uint32_t polygons_at() const { return edges_at() + edges * kAreaEdgeWords; }
 };
 
+// Sides of a tile (bits) that lie on the tiling's edge: the antimeridian
+// (left of the first column, right of the last) and the poles' rows.
+enum AreaTileSide : uint32_t { kSideLeft = 1, kSideRight = 2, kSideTop = 4, kSideBottom = 8 };
+uint32_t world_edge_sides(const tileformat::Tiling& tiling, tileformat::TileId id);
+
 // The fill pass's words of a decoded tile with a grid of `grid` cells a side;
 // a cell lists the edges that pass within `reach` units of it (outlines near
-// its sides are drawn whole). Exposed for tests.
+// its sides are drawn whole). Edges along `world_sides` (world_edge_sides)
+// are where polygons were cut at the map's edge, not borders: they fill but
+// are not outlined. Exposed for tests.
 DecodedAreaTile area_tile_words(const tileformat::AreaTile& tile, uint32_t grid = 32,
-                                double reach = 24);
+                                double reach = 24, uint32_t world_sides = 0);
 
 // The winding number at tile point (x, y) of polygon `polygon` by the words
 // alone, as the shader computes it (for tests).

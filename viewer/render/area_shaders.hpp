@@ -74,11 +74,11 @@ void main() {
     float half_w = styled ? 0.5 * styles[cls * 2 + 1].w : 0.0;
     float dmin = 1e9;
     for (uint i = 0u; i < n; ++i) {
-      uint go = r1.y + arena[r0.z + first + i] * 4u;
+      uint go = r1.y + arena[r0.z + first + i] * 5u;
       vec2 a = vec2(uintBitsToFloat(arena[go]), uintBitsToFloat(arena[go + 1u])) - ref;
       vec2 b = vec2(uintBitsToFloat(arena[go + 2u]), uintBitsToFloat(arena[go + 3u])) - ref;
       w += crossing(a, b, q);
-      if (half_w > 0.0) {
+      if (half_w > 0.0 && arena[go + 4u] == 0u) {  // not where the map's edge cut it
         vec2 as = v.Jinv * (v.L * (a - q)), ab = v.Jinv * (v.L * (b - q)) - as;
         float len2 = dot(ab, ab);
         float t = len2 > 1e-12 ? clamp(-dot(as, ab) / len2, 0.0, 1.0) : 0.0;

@@ -5,6 +5,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace globe {
 namespace {
@@ -36,6 +37,11 @@ struct Geos::Impl {
     GEOSGeometry* g;
     Geom(GEOSContextHandle_t c, GEOSGeometry* p) : ctx(c), g(p) {}
     Geom(const Geom&) = delete;
+    Geom& operator=(Geom&& o) noexcept {
+      std::swap(ctx, o.ctx);
+      std::swap(g, o.g);
+      return *this;
+    }
     ~Geom() {
       if (g) GEOSGeom_destroy_r(ctx, g);
     }
@@ -144,14 +150,38 @@ PlaneMultiPolygon Geos::clip(const PlaneMultiPolygon& m, double x0, double y0, d
 
 std::vector<PlaneMultiPolygon> Geos::clip_to_boxes(const PlaneMultiPolygon& m,
                                                    const std::vector<Box>& boxes) {
+  GEOSContextHandle_t ctx = impl_->ctx;
   const Impl::Geom g = impl_->multi(m);
+  const GEOSPreparedGeometry* prepared = GEOSPrepare_r(ctx, g.g);
+  if (!prepared) impl_->fail("prepare");
+  // Whether (x, y) is inside `geom` (prepared: the input), by GEOS.
+  auto contains = [&](const GEOSGeometry* geom, const GEOSPreparedGeometry* prep, double x,
+                      double y) {
+    const Impl::Geom pt(ctx, GEOSGeom_createPointFromXY_r(ctx, x, y));
+    const char c = prep ? GEOSPreparedContains_r(ctx, prep, pt.g) : GEOSContains_r(ctx, geom, pt.g);
+    if (c == 2) impl_->fail("contains");
+    return c == 1;
+  };
   std::vector<PlaneMultiPolygon> out(boxes.size());
   for (size_t i = 0; i < boxes.size(); ++i) {
     const Box& b = boxes[i];
-    const Impl::Geom c(impl_->ctx, GEOSClipByRect_r(impl_->ctx, g.g, b.x0, b.y0, b.x1, b.y1));
+    Impl::Geom c(ctx, GEOSClipByRect_r(ctx, g.g, b.x0, b.y0, b.x1, b.y1));
     if (!c.g) impl_->fail("rectangle clipping");
+    // Rectangle clipping can turn a ring inside out (taking the box's
+    // corners); where a corner's side disagrees with the input's, the
+    // overlay intersection decides instead.
+    bool trusted = true;
+    for (const auto& [x, y] : {std::pair{b.x0, b.y0}, {b.x1, b.y0}, {b.x1, b.y1}, {b.x0, b.y1}})
+      trusted = trusted && contains(c.g, nullptr, x, y) == contains(g.g, prepared, x, y);
+    if (!trusted) {
+      const Impl::Geom box(ctx, GEOSGeom_createRectangle_r(ctx, b.x0, b.y0, b.x1, b.y1));
+      c = Impl::Geom(ctx, GEOSIntersection_r(ctx, g.g, box.g));
+      if (!c.g) impl_->fail("intersection");
+      ++overlay_fallbacks_;
+    }
     impl_->read_polygons(c.g, out[i]);
   }
+  GEOSPreparedGeom_destroy_r(ctx, prepared);
   return out;
 }
 

@@ -5,6 +5,7 @@
 // (a GEOS context is not shared).
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -39,8 +40,12 @@ class Geos {
   };
   // m cut to each box by GEOS's rectangle clipping (converted to GEOS once;
   // fast, but a piece may touch itself along the box's edge: check it).
+  // Where the result disagrees with m about a box corner (rectangle
+  // clipping turned a ring inside out), the overlay intersection is used.
   std::vector<PlaneMultiPolygon> clip_to_boxes(const PlaneMultiPolygon& m,
                                                const std::vector<Box>& boxes);
+  // How often clip_to_boxes fell back to the overlay.
+  uint64_t overlay_fallbacks() const { return overlay_fallbacks_; }
   // The centre of the largest circle inside the polygon (the pole of
   // inaccessibility), to `tolerance`.
   PlanePoint inscribed_centre(const PlanePolygon& p, double tolerance);
@@ -48,6 +53,7 @@ class Geos {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  uint64_t overlay_fallbacks_ = 0;
 };
 
 }  // namespace globe

@@ -148,22 +148,27 @@ class AreaCutter {
     const auto ty0 = std::max<int64_t>(keep.min_y, int64_t(std::floor((all.y0 - b) / e)));
     const auto ty1 = std::min<int64_t>(keep.max_y, int64_t(std::floor((all.y1 + b) / e)));
     // Row strips, then the tiles of each (GEOS's rectangle clipping, each
-    // geometry converted once per strip set).
+    // geometry converted once per strip set). The boxes' edges lie half a
+    // unit inside the buffer, where no vertex of the grid lies: GEOS's
+    // rectangle clipping may turn a ring inside out when vertices lie on the
+    // rectangle's edge; the points it adds there round back onto the
+    // buffer's edge.
+    const double h = b > 0 ? b - 0.5 : 0.0;
     std::vector<Geos::Box> strips;
     for (int64_t ty = ty0; ty <= ty1; ++ty)
-      strips.push_back({all.x0 - 1, ty * e - b, all.x1 + 1, (ty + 1) * e + b});
+      strips.push_back({all.x0 - 1, ty * e - h, all.x1 + 1, (ty + 1) * e + h});
     const bool one_row = ty0 == ty1 && all.y0 >= strips[0].y0 && all.y1 <= strips[0].y1;
     const std::vector<PlaneMultiPolygon> rows =
         one_row ? std::vector<PlaneMultiPolygon>{grid} : geos.clip_to_boxes(grid, strips);
     for (int64_t ty = ty0; ty <= ty1; ++ty) {
       const PlaneMultiPolygon& row = rows[size_t(ty - ty0)];
       if (row.empty()) continue;
-      const double y0 = ty * e - b, y1 = (ty + 1) * e + b;
+      const double y0 = ty * e - h, y1 = (ty + 1) * e + h;
       const bool inside =
-          one_row && tx0 == tx1 && all.x0 >= tx0 * e - b && all.x1 <= (tx0 + 1) * e + b;
+          one_row && tx0 == tx1 && all.x0 >= tx0 * e - h && all.x1 <= (tx0 + 1) * e + h;
       std::vector<Geos::Box> boxes;
       for (int64_t tx = tx0; tx <= tx1; ++tx)
-        boxes.push_back({tx * e - b, y0, (tx + 1) * e + b, y1});
+        boxes.push_back({tx * e - h, y0, (tx + 1) * e + h, y1});
       std::vector<PlaneMultiPolygon> pieces =
           inside ? std::vector<PlaneMultiPolygon>{row} : geos.clip_to_boxes(row, boxes);
       for (int64_t tx = tx0; tx <= tx1; ++tx) {
