@@ -5,6 +5,8 @@
 #include <bit>
 #include <cmath>
 
+#include "tileformat/line_clusters.hpp"
+
 namespace globe::viewer {
 
 using tileformat::TileId;
@@ -19,25 +21,11 @@ uint32_t float_bits(double v) {
   return std::bit_cast<uint32_t>(static_cast<float>(v));
 }
 
-// Whether segment e meets the closed box [x0, x1] x [y0, y1] (Liang-Barsky).
+// Whether segment e meets the closed box [x0, x1] x [y0, y1] (Liang-Barsky,
+// as the line clusters' grid rule).
 bool meets_box(const Edge& e, double x0, double y0, double x1, double y1) {
   double t0 = 0, t1 = 1;
-  const double dx = e.bx - e.ax, dy = e.by - e.ay;
-  const double p[4] = {-dx, dx, -dy, dy};
-  const double q[4] = {e.ax - x0, x1 - e.ax, e.ay - y0, y1 - e.ay};
-  for (int i = 0; i < 4; ++i) {
-    if (p[i] == 0) {
-      if (q[i] < 0) return false;
-      continue;
-    }
-    const double t = q[i] / p[i];
-    if (p[i] < 0)
-      t0 = std::max(t0, t);
-    else
-      t1 = std::min(t1, t);
-    if (t0 > t1) return false;
-  }
-  return true;
+  return tileformat::clip_parameters(e.ax, e.ay, e.bx, e.by, x0, y0, x1, y1, t0, t1);
 }
 
 struct CellEntry {

@@ -118,14 +118,8 @@ void AreaRenderer::upload_tables(const AreaCache& cache) {
                                 : 0u,
                       off + t.polygons_at()};
   }
-  fill_buffer(records_, gpu.size() * sizeof(glm::uvec4), gpu.data());
-  const auto table = build_tile_table(entries);
-  fill_buffer(table_, table.size() * sizeof(glm::uvec4), table.data());
-  table_mask_ = static_cast<uint32_t>(table.size() - 1);
+  upload_vector_tables(records_, table_, used_, requests_, gpu, entries, table_mask_);
   record_count_ = static_cast<uint32_t>(recs.size());
-  const std::vector<uint32_t> zeros(std::max<size_t>(record_count_, kRequestSlots * 2), 0);
-  fill_buffer(used_, record_count_ * sizeof(uint32_t), zeros.data());
-  gl::NamedBufferSubData(requests_, 0, kRequestSlots * 2 * sizeof(uint32_t), zeros.data());
 }
 
 double AreaRenderer::draw(const GBuffer& g, const View& view, const WorldFrame& world,
@@ -143,14 +137,7 @@ double AreaRenderer::draw(const GBuffer& g, const View& view, const WorldFrame& 
   gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kUsed, used_);
   const GlProgram& p = program_;
   gl::UseProgram(p.id());
-  gl::BindTextureUnit(0, g.color);
-  gl::BindTextureUnit(1, g.position);
-  gl::BindTextureUnit(2, g.ground);
-  gl::BindTextureUnit(3, g.ground_dy);
-  gl::Uniform1i(p.uniform("u_color"), 0);
-  gl::Uniform1i(p.uniform("u_position"), 1);
-  gl::Uniform1i(p.uniform("u_ground"), 2);
-  gl::Uniform1i(p.uniform("u_ground_dy"), 3);
+  bind_gbuffer(p, g);
   set_vector_pixel_uniforms(p, view, world, common.tiling, cross_, common.min_zoom, common.max_zoom,
                             kTilePx, lens_only_, height_);
   gl::Uniform1ui(p.uniform("line_table_mask"), table_mask_);

@@ -218,14 +218,8 @@ void LineRenderer::upload_tables(const LineCache& cache) {
                                 : 0u,
                       0u};
   }
-  fill_buffer(records_, gpu.size() * sizeof(glm::uvec4), gpu.data());
-  const auto table = build_tile_table(entries);
-  fill_buffer(table_, table.size() * sizeof(glm::uvec4), table.data());
-  table_mask_ = static_cast<uint32_t>(table.size() - 1);
+  upload_vector_tables(records_, table_, used_, requests_, gpu, entries, table_mask_);
   record_count_ = static_cast<uint32_t>(recs.size());
-  const std::vector<uint32_t> zeros(std::max<size_t>(record_count_, kRequestSlots * 2), 0);
-  fill_buffer(used_, record_count_ * sizeof(uint32_t), zeros.data());
-  gl::NamedBufferSubData(requests_, 0, kRequestSlots * 2 * sizeof(uint32_t), zeros.data());
 }
 
 double LineRenderer::draw(const GBuffer& g, const View& view, const WorldFrame& world,
@@ -248,14 +242,7 @@ double LineRenderer::draw(const GBuffer& g, const View& view, const WorldFrame& 
 
   const GlProgram& p = deferred_;
   gl::UseProgram(p.id());
-  gl::BindTextureUnit(0, g.color);
-  gl::BindTextureUnit(1, g.position);
-  gl::BindTextureUnit(2, g.ground);
-  gl::BindTextureUnit(3, g.ground_dy);
-  gl::Uniform1i(p.uniform("u_color"), 0);
-  gl::Uniform1i(p.uniform("u_position"), 1);
-  gl::Uniform1i(p.uniform("u_ground"), 2);
-  gl::Uniform1i(p.uniform("u_ground_dy"), 3);
+  bind_gbuffer(p, g);
   gl::BindTextureUnit(5, ramps_);
   gl::Uniform1i(p.uniform("u_line_ramps"), 5);
   set_vector_pixel_uniforms(p, view, world, tiling, cross_, pkg.min_zoom, pkg.max_zoom, kTilePx,

@@ -8,6 +8,8 @@
 
 #include "render/crs_cross_glsl.hpp"
 #include "render/deferred_pass.hpp"
+#include "render/gl_buffer.hpp"
+#include "render/tile_table.hpp"
 
 namespace globe::viewer {
 
@@ -23,6 +25,31 @@ void read_vector_feedback(GLuint requests, GLuint used, uint32_t records, uint32
     out.requests.push_back(r.id);
   for (uint32_t r = 0; r < records; ++r)
     if (stamps[r] == frame && live(r)) out.used.push_back(r);
+}
+
+void bind_gbuffer(const GlProgram& p, const GBuffer& g) {
+  gl::BindTextureUnit(0, g.color);
+  gl::BindTextureUnit(1, g.position);
+  gl::BindTextureUnit(2, g.ground);
+  gl::BindTextureUnit(3, g.ground_dy);
+  gl::Uniform1i(p.uniform("u_color"), 0);
+  gl::Uniform1i(p.uniform("u_position"), 1);
+  gl::Uniform1i(p.uniform("u_ground"), 2);
+  gl::Uniform1i(p.uniform("u_ground_dy"), 3);
+}
+
+void upload_vector_tables(GLuint records, GLuint table, GLuint used, GLuint requests,
+                          const std::vector<glm::uvec4>& words,
+                          const std::vector<std::pair<tileformat::TileId, uint32_t>>& entries,
+                          uint32_t& table_mask) {
+  fill_buffer(records, words.size() * sizeof(glm::uvec4), words.data());
+  const auto hash = build_tile_table(entries);
+  fill_buffer(table, hash.size() * sizeof(glm::uvec4), hash.data());
+  table_mask = static_cast<uint32_t>(hash.size() - 1);
+  const size_t count = words.size() / 2;
+  const std::vector<uint32_t> zeros(std::max<size_t>(count, kRequestSlots * 2), 0);
+  fill_buffer(used, count * sizeof(uint32_t), zeros.data());
+  gl::NamedBufferSubData(requests, 0, kRequestSlots * 2 * sizeof(uint32_t), zeros.data());
 }
 
 void set_vector_ref(const GlProgram& p, const View& view, const WorldFrame& world,

@@ -15,6 +15,7 @@
 #include "camera/layer_tiling.hpp"
 #include "camera/world_frame.hpp"
 #include "render/gl_program.hpp"
+#include "render/terrain_renderer.hpp"
 #include "tileformat/tiling.hpp"
 
 namespace globe::viewer {
@@ -171,6 +172,18 @@ void read_vector_feedback(GLuint requests, GLuint used, uint32_t records, uint32
 // u_ref, u_cross, u_cross_param, u_crs_per_m.
 void set_vector_ref(const GlProgram& p, const View& view, const WorldFrame& world,
                     const tileformat::Tiling& lt, CrsCross cross, int zoom);
+
+// The G-buffer's colour, position and ground textures on units 0..3 as
+// u_color, u_position, u_ground and u_ground_dy (after UseProgram).
+void bind_gbuffer(const GlProgram& p, const GBuffer& g);
+
+// The record table of a frame: the records' words (2 uvec4 each) into
+// `records`, the tile -> record hash table (tile_table.hpp) into `table`
+// (its mask into table_mask), and the used stamps and requests cleared.
+void upload_vector_tables(GLuint records, GLuint table, GLuint used, GLuint requests,
+                          const std::vector<glm::uvec4>& words,
+                          const std::vector<std::pair<tileformat::TileId, uint32_t>>& entries,
+                          uint32_t& table_mask);
 
 // Every uniform of kVectorPixelGlsl but the textures and buffers: the
 // reference at the package's finest zoom, its zooms, the zoom bias for

@@ -158,6 +158,26 @@ std::vector<T> read_array(const Keys& keys, const std::string& key, Fn one) {
   return out;
 }
 
+// globe:layers of line and area packages (§7.4): the source layers and
+// their feature counts, as JSON.
+std::string layers_json(const std::vector<LineLayerInfo>& layers) {
+  std::string out = "[";
+  for (size_t i = 0; i < layers.size(); ++i)
+    out += (i ? "," : "") + std::string("{\"name\":\"") + json_escape(layers[i].name) +
+           "\",\"source\":\"" + json_escape(layers[i].source) +
+           "\",\"features\":" + std::to_string(layers[i].features) + "}";
+  return out + "]";
+}
+
+std::vector<LineLayerInfo> read_layers(const Keys& k, const char* section) {
+  return read_array<LineLayerInfo>(k, "globe:layers", [&](const JsonValue& e) {
+    return LineLayerInfo{
+        member(e, "name", "globe:layers", section).string(),
+        member(e, "source", "globe:layers", section).string(),
+        static_cast<uint64_t>(member(e, "features", "globe:layers", section).number())};
+  });
+}
+
 void read_common(const Keys& k, const MetadataMap& meta, CommonMetadata& m) {
   m.format = k.text("format");
   m.name = k.find("name").value_or("");
@@ -221,12 +241,7 @@ MetadataMap to_metadata(const LineMetadata& m) {
   meta["globe:tile_px"] = metadata_number(m.tile_px);
   meta["globe:features"] = std::to_string(m.features);
   meta["globe:classes"] = m.classes_json;
-  std::string layers = "[";
-  for (size_t i = 0; i < m.layers.size(); ++i)
-    layers += (i ? "," : "") + std::string("{\"name\":\"") + json_escape(m.layers[i].name) +
-              "\",\"source\":\"" + json_escape(m.layers[i].source) +
-              "\",\"features\":" + std::to_string(m.layers[i].features) + "}";
-  meta["globe:layers"] = layers + "]";
+  meta["globe:layers"] = layers_json(m.layers);
   if (!m.bundle_json.empty()) meta["globe:bundle"] = m.bundle_json;
   return meta;
 }
@@ -358,12 +373,7 @@ LineMetadata read_line_metadata(const MetadataMap& meta) {
   const Keys k74(meta, "7.4");
   m.classes_json = k74.text("globe:classes");
   if (k.find("globe:layers"))
-    m.layers = read_array<LineLayerInfo>(k74, "globe:layers", [&](const JsonValue& e) {
-      return LineLayerInfo{
-          member(e, "name", "globe:layers", "7.4").string(),
-          member(e, "source", "globe:layers", "7.4").string(),
-          static_cast<uint64_t>(member(e, "features", "globe:layers", "7.4").number())};
-    });
+    m.layers = read_layers(k74, "7.4");
   if (k.find("globe:bundle")) m.bundle_json = Keys(meta, "7.5").text("globe:bundle");
   return m;
 }
@@ -437,12 +447,7 @@ MetadataMap to_metadata(const AreaMetadata& m) {
   meta["globe:tile_px"] = metadata_number(m.tile_px);
   meta["globe:features"] = std::to_string(m.features);
   meta["globe:classes"] = m.classes_json;
-  std::string layers = "[";
-  for (size_t i = 0; i < m.layers.size(); ++i)
-    layers += (i ? "," : "") + std::string("{\"name\":\"") + json_escape(m.layers[i].name) +
-              "\",\"source\":\"" + json_escape(m.layers[i].source) +
-              "\",\"features\":" + std::to_string(m.layers[i].features) + "}";
-  meta["globe:layers"] = layers + "]";
+  meta["globe:layers"] = layers_json(m.layers);
   meta["globe:repaired"] = std::to_string(m.repaired);
   if (const auto& c = m.choropleth) {
     std::string j = "{\"field\":\"" + json_escape(c->field) + "\",\"denominator\":\"" +
@@ -470,12 +475,7 @@ AreaMetadata read_area_metadata(const MetadataMap& meta) {
   m.tile_px = k.number("globe:tile_px");
   m.features = static_cast<uint64_t>(k.number("globe:features"));
   m.classes_json = k.text("globe:classes");
-  m.layers = read_array<LineLayerInfo>(k, "globe:layers", [&](const JsonValue& e) {
-    return LineLayerInfo{
-        member(e, "name", "globe:layers", "12.3").string(),
-        member(e, "source", "globe:layers", "12.3").string(),
-        static_cast<uint64_t>(member(e, "features", "globe:layers", "12.3").number())};
-  });
+  m.layers = read_layers(k, "12.3");
   m.repaired = static_cast<uint64_t>(k.number("globe:repaired"));
   if (k.find("globe:choropleth")) {
     const JsonValue doc = k.json("globe:choropleth");

@@ -36,38 +36,21 @@ double choropleth_value(const tileformat::Choropleth& c, const tileformat::JsonV
 
 }  // namespace
 
-AreaMvtEncoder::AreaMvtEncoder(AreaPackage& package) : package_(package) {
-  table_ = std::make_unique<tileformat::FeatureTableReader>(*package.reader);
-}
+AreaMvtEncoder::AreaMvtEncoder(AreaPackage& package)
+    : package_(package),
+      features_(*package.reader, "areas", {"class", "value"},
+                [&package](const tileformat::JsonValue& props, MvtTags& tags) {
+                  // A choropleth's value, as its classes were made from.
+                  if (!package.meta.choropleth) return;
+                  const double v = choropleth_value(*package.meta.choropleth, props);
+                  if (!std::isfinite(v)) return;
+                  MvtValue m;
+                  m.kind = MvtValue::Kind::kDouble;
+                  m.number = v;
+                  tags.emplace_back("value", m);
+                }) {}
 
 AreaMvtEncoder::~AreaMvtEncoder() = default;
-
-const AreaMvtEncoder::FeatureInfo& AreaMvtEncoder::feature(uint64_t id) {
-  if (auto it = features_cache_.find(id); it != features_cache_.end()) return it->second;
-  if (features_cache_.size() > 200000) features_cache_.clear();
-  FeatureInfo info{"areas", {}};
-  if (const auto rec = table_->get(int64_t(id))) {
-    info.layer = rec->layer.empty() ? "areas" : rec->layer;
-    try {
-      const tileformat::JsonValue props = tileformat::JsonValue::parse(rec->properties);
-      if (props.is_object())
-        for (const auto& [k, v] : props.members())
-          if (k != "class" && k != "value") info.tags.emplace_back(k, MvtValue::from_json(v));
-      if (const auto& c = package_.meta.choropleth) {
-        const double v = choropleth_value(*c, props);
-        if (std::isfinite(v)) {
-          MvtValue m;
-          m.kind = MvtValue::Kind::kDouble;
-          m.number = v;
-          info.tags.emplace_back("value", m);
-        }
-      }
-    } catch (const tileformat::JsonError&) {
-      // attributes that are not JSON: the feature keeps its id and class
-    }
-  }
-  return features_cache_.emplace(id, std::move(info)).first->second;
-}
 
 std::vector<uint8_t> AreaMvtEncoder::encode(tileformat::TileId id, std::span<const uint8_t> blob) {
   tileformat::AreaTile t;
@@ -93,8 +76,8 @@ std::vector<uint8_t> AreaMvtEncoder::encode(tileformat::TileId id, std::span<con
           rings.back().push_back({t.vertices[v].x, t.vertices[v].y});
       }
     const uint64_t fid = t.feature_ids[feature_index];
-    const FeatureInfo& info = feature(fid);
-    Tags tags = info.tags;
+    const FeatureTags::Feature& info = features_.get(fid);
+    MvtTags tags = info.tags;
     MvtValue c;
     if (package_.meta.choropleth) {
       c.kind = MvtValue::Kind::kInt;
@@ -103,16 +86,12 @@ std::vector<uint8_t> AreaMvtEncoder::encode(tileformat::TileId id, std::span<con
       c.text = cls < package_.classes.size() ? package_.classes[cls].name : std::to_string(cls);
     }
     tags.insert(tags.begin(), {"class", c});
-    auto& known = fields_[info.layer];
-    for (const auto& [k, v] : tags)
-      known.try_emplace(k, v.kind == MvtValue::Kind::kString ? "String"
-                           : v.kind == MvtValue::Kind::kBool ? "Boolean"
-                                                             : "Number");
+    features_.note_fields(info.layer, tags);
     auto [at, fresh] = layer_of.try_emplace(info.layer, layers.size());
     if (fresh) layers.emplace_back(info.layer, t.extent);
     classes_in_[info.layer].insert(cls);
     layers[at->second].add_polygon(fid, rings, tags);
-    ++features_;
+    ++features_count_;
   }
   return encode_mvt(layers);
 }

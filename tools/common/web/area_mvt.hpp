@@ -21,6 +21,7 @@
 #include "runtime/area_package.hpp"
 #include "tileformat/feature_table.hpp"
 #include "tileformat/tile_id.hpp"
+#include "web/feature_tags.hpp"
 #include "web/mvt_encoder.hpp"
 
 namespace globe::web {
@@ -40,26 +41,17 @@ class AreaMvtEncoder {
   // that does not decode.
   std::vector<uint8_t> encode(tileformat::TileId id, std::span<const uint8_t> blob);
 
-  uint64_t features() const { return features_; }
+  uint64_t features() const { return features_count_; }
   const std::map<std::string, std::set<uint32_t>>& classes_in() const { return classes_in_; }
   const std::map<std::string, std::map<std::string, std::string>>& fields() const {
-    return fields_;
+    return features_.fields();
   }
 
  private:
-  using Tags = std::vector<std::pair<std::string, MvtValue>>;
-  struct FeatureInfo {
-    std::string layer;
-    Tags tags;
-  };
-  const FeatureInfo& feature(uint64_t id);
-
   AreaPackage& package_;
-  std::unique_ptr<tileformat::FeatureTableReader> table_;
-  std::unordered_map<uint64_t, FeatureInfo> features_cache_;  // cleared when large
-  uint64_t features_ = 0;
+  FeatureTags features_;
+  uint64_t features_count_ = 0;
   std::map<std::string, std::set<uint32_t>> classes_in_;
-  std::map<std::string, std::map<std::string, std::string>> fields_;
 };
 
 // A MapLibre style (version 8) for the tiles at `source_url`: per MVT layer

@@ -70,35 +70,10 @@ std::string line_style_json(const LinePackage& pkg,
   return out + "]}";
 }
 
-LineMvtEncoder::LineMvtEncoder(LinePackage& package) : package_(package) {
-  try {
-    table_ = std::make_unique<tileformat::FeatureTableReader>(*package.reader);
-  } catch (const tileformat::FormatError&) {
-    table_.reset();  // an older package: ids and classes only
-  }
-}
+LineMvtEncoder::LineMvtEncoder(LinePackage& package)
+    : package_(package), features_(*package.reader, "lines", {"class"}) {}
 
 LineMvtEncoder::~LineMvtEncoder() = default;
-
-// A feature's MVT layer and tags, read once from the features table.
-const LineMvtEncoder::FeatureInfo& LineMvtEncoder::feature(uint64_t id) {
-  if (auto it = features_cache_.find(id); it != features_cache_.end()) return it->second;
-  if (features_cache_.size() > 200000) features_cache_.clear();
-  FeatureInfo info{"lines", {}};
-  if (table_)
-    if (const auto rec = table_->get(int64_t(id))) {
-      info.layer = rec->layer.empty() ? "lines" : rec->layer;
-      try {
-        const tileformat::JsonValue props = tileformat::JsonValue::parse(rec->properties);
-        if (props.is_object())
-          for (const auto& [k, v] : props.members())
-            if (k != "class") info.tags.emplace_back(k, MvtValue::from_json(v));
-      } catch (const tileformat::JsonError&) {
-        // attributes that are not JSON: the feature keeps its id and class
-      }
-    }
-  return features_cache_.emplace(id, std::move(info)).first->second;
-}
 
 std::vector<uint8_t> LineMvtEncoder::encode(tileformat::TileId id, std::span<const uint8_t> blob) {
   tileformat::LineTile t;
@@ -117,15 +92,11 @@ std::vector<uint8_t> LineMvtEncoder::encode(tileformat::TileId id, std::span<con
     return layers[at->second];
   };
   auto tags_of = [&](uint64_t fid, uint32_t cls) {
-    Tags tags = feature(fid).tags;
+    MvtTags tags = features_.get(fid).tags;
     MvtValue c;
     c.text = cls < package_.classes.size() ? package_.classes[cls].name : std::to_string(cls);
     tags.insert(tags.begin(), {"class", c});
-    auto& known = fields_[feature(fid).layer];
-    for (const auto& [k, v] : tags)
-      known.try_emplace(k, v.kind == MvtValue::Kind::kString ? "String"
-                           : v.kind == MvtValue::Kind::kBool ? "Boolean"
-                                                             : "Number");
+    features_.note_fields(features_.get(fid).layer, tags);
     return tags;
   };
   std::vector<MvtPoint> line;
@@ -134,17 +105,18 @@ std::vector<uint8_t> LineMvtEncoder::encode(tileformat::TileId id, std::span<con
     line.clear();
     for (uint32_t v = 0; v < r.vertex_count; ++v)
       line.push_back({t.vertices[r.first_vertex + v].x, t.vertices[r.first_vertex + v].y});
-    ++features_;
-    if (!layer(feature(fid).layer, r.class_id).add_line(fid, line, tags_of(fid, r.class_id))) {
+    ++features_count_;
+    if (!layer(features_.get(fid).layer, r.class_id)
+             .add_line(fid, line, tags_of(fid, r.class_id))) {
       ++zero_length_;
-      fields_[feature(fid).layer]["zero_length"] = "Boolean";
+      features_.fields_of(features_.get(fid).layer)["zero_length"] = "Boolean";
     }
   }
   for (const tileformat::LinePoint& p : t.points) {
     const uint64_t fid = t.feature_ids[p.feature];
-    layer(feature(fid).layer, p.class_id)
+    layer(features_.get(fid).layer, p.class_id)
         .add_point(fid, {p.at.x, p.at.y}, tags_of(fid, p.class_id));
-    ++features_;
+    ++features_count_;
   }
   return encode_mvt(layers);
 }

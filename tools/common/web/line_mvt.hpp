@@ -19,6 +19,7 @@
 #include "runtime/line_package.hpp"
 #include "tileformat/feature_table.hpp"
 #include "tileformat/tile_id.hpp"
+#include "web/feature_tags.hpp"
 #include "web/mvt_encoder.hpp"
 
 namespace globe::web {
@@ -36,27 +37,18 @@ class LineMvtEncoder {
   std::vector<uint8_t> encode(tileformat::TileId id, std::span<const uint8_t> blob);
 
   // What the tiles encoded so far held, for TileJSON and the style.
-  uint64_t features() const { return features_; }
+  uint64_t features() const { return features_count_; }
   uint64_t zero_length() const { return zero_length_; }
   const std::map<std::string, std::set<uint32_t>>& classes_in() const { return classes_in_; }
   const std::map<std::string, std::map<std::string, std::string>>& fields() const {
-    return fields_;
+    return features_.fields();
   }
 
  private:
-  using Tags = std::vector<std::pair<std::string, MvtValue>>;
-  struct FeatureInfo {
-    std::string layer;
-    Tags tags;
-  };
-  const FeatureInfo& feature(uint64_t id);
-
   LinePackage& package_;
-  std::unique_ptr<tileformat::FeatureTableReader> table_;
-  std::unordered_map<uint64_t, FeatureInfo> features_cache_;  // cleared when large
-  uint64_t features_ = 0, zero_length_ = 0;
-  std::map<std::string, std::set<uint32_t>> classes_in_;              // MVT layer -> classes
-  std::map<std::string, std::map<std::string, std::string>> fields_;  // layer -> key -> type
+  FeatureTags features_;
+  uint64_t features_count_ = 0, zero_length_ = 0;
+  std::map<std::string, std::set<uint32_t>> classes_in_;  // MVT layer -> classes
 };
 
 // A MapLibre style (version 8) drawing the classes of `classes_in` as the

@@ -9,6 +9,7 @@
 #include "tileformat/area_tile.hpp"
 #include "tileformat/byte_io.hpp"
 #include "tiles/tile_cutter.hpp"
+#include "tiles/tile_encoding.hpp"
 
 namespace globe {
 
@@ -276,47 +277,18 @@ std::vector<uint8_t> encode_tile(const TileGroup& group, const AreaTileOptions& 
 void encode_area_tiles(TileSorter& sorter, const AreaTileOptions& o,
                        tileformat::PackageWriter& writer, AreaTileStats& stats,
                        Progress& progress) {
-  struct Encoded {
-    std::vector<uint8_t> blob;
-    uint64_t polygons = 0, vertices = 0;
-  };
-  progress.begin("encode tiles", sorter.records());
-  uint64_t skip = writer.resumed() ? writer.tiles_written() : 0;
-  std::vector<TileGroup> groups;
-  for (bool more = true; more;) {
-    groups.clear();
-    size_t bytes = 0;
-    while (groups.size() < size_t(64 * o.threads) && bytes < (16u << 20)) {
-      TileGroup g;
-      if (!sorter.next_group(g)) {
-        more = false;
-        break;
-      }
-      if (skip > 0) {
-        --skip;
-        progress.advance(g.records.size());
-        continue;
-      }
-      bytes += g.bytes.size() + g.records.size() * sizeof(TileRecord);
-      groups.push_back(std::move(g));
-    }
-    parallel_batches<NoInputs, Encoded>(
-        groups.size(), o.threads, groups.size(), [](size_t, size_t) { return NoInputs{}; },
-        [&](size_t i, int, const NoInputs&) {
-          Encoded e;
-          e.blob = encode_tile(groups[i], o, e.polygons, e.vertices);
-          return e;
-        },
-        [&](size_t i, Encoded&& e) {
-          writer.put_tile(key_tile(groups[i].key), e.blob);
-          stats.polygons += e.polygons;
-          stats.vertices += e.vertices;
-          if (key_tile(groups[i].key).z == o.max_zoom) stats.max_zoom_vertices += e.vertices;
-          progress.advance(groups[i].records.size());
-        },
-        [](size_t) {});
-  }
-  progress.end();
+  encode_sorted_tiles(
+      sorter, o.threads, writer, progress,
+      [&](const TileGroup& g) {
+        EncodedTile e;
+        e.blob = encode_tile(g, o, e.first, e.second);
+        return e;
+      },
+      [&](TileId id, const EncodedTile& e) {
+        stats.polygons += e.first;
+        stats.vertices += e.second;
+        if (id.z == o.max_zoom) stats.max_zoom_vertices += e.second;
+      });
 }
 
 }  // namespace globe

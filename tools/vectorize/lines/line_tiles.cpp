@@ -4,6 +4,7 @@
 #include "kit/parallel_batches.hpp"
 #include "tileformat/line_clusters.hpp"
 #include "tileformat/line_tile.hpp"
+#include "tiles/tile_encoding.hpp"
 
 namespace globe {
 
@@ -93,48 +94,18 @@ std::vector<uint8_t> encode_tile(const TileGroup& group, const LinePlan& plan,
 void encode_line_tiles(TileSorter& sorter, const LinePlan& plan, const LineTileOptions& o,
                        tileformat::PackageWriter& writer, LineTileStats& stats,
                        Progress& progress) {
-  struct Encoded {
-    std::vector<uint8_t> blob;
-    uint64_t segments = 0, points = 0;
-  };
-  progress.begin("encode tiles", sorter.records());
-  // Tiles are put in key order: those a resumed package holds come first.
-  uint64_t skip = writer.resumed() ? writer.tiles_written() : 0;
-  std::vector<TileGroup> groups;
-  for (bool more = true; more;) {
-    groups.clear();
-    size_t bytes = 0;
-    while (groups.size() < size_t(64 * o.threads) && bytes < (16u << 20)) {
-      TileGroup g;
-      if (!sorter.next_group(g)) {
-        more = false;
-        break;
-      }
-      if (skip > 0) {
-        --skip;
-        progress.advance(g.records.size());
-        continue;
-      }
-      bytes += g.bytes.size() + g.records.size() * sizeof(TileRecord);
-      groups.push_back(std::move(g));
-    }
-    parallel_batches<NoInputs, Encoded>(
-        groups.size(), o.threads, groups.size(), [](size_t, size_t) { return NoInputs{}; },
-        [&](size_t i, int, const NoInputs&) {
-          Encoded e;
-          e.blob = encode_tile(groups[i], plan, o, e.segments, e.points);
-          return e;
-        },
-        [&](size_t i, Encoded&& e) {
-          writer.put_tile(key_tile(groups[i].key), e.blob);
-          stats.segments += e.segments;
-          stats.points += e.points;
-          if (key_tile(groups[i].key).z == plan.max_zoom) stats.max_zoom_segments += e.segments;
-          progress.advance(groups[i].records.size());
-        },
-        [](size_t) {});
-  }
-  progress.end();
+  encode_sorted_tiles(
+      sorter, o.threads, writer, progress,
+      [&](const TileGroup& g) {
+        EncodedTile e;
+        e.blob = encode_tile(g, plan, o, e.first, e.second);
+        return e;
+      },
+      [&](TileId id, const EncodedTile& e) {
+        stats.segments += e.first;
+        stats.points += e.second;
+        if (id.z == plan.max_zoom) stats.max_zoom_segments += e.first;
+      });
 }
 
 }  // namespace globe
