@@ -181,12 +181,10 @@ TEST(Metadata, PackageKindFollowsFormat) {
 // inspects it and the command that makes it; each own format is recognised
 // as its kind and no other.
 TEST(Metadata, EveryKindHasOneDescriptor) {
-  const std::pair<PackageKind, const char*> formats[] = {{PackageKind::kTerrain, kMBlockFormat},
-                                                         {PackageKind::kImage, "png"},
-                                                         {PackageKind::kLines, kLineClustersFormat},
-                                                         {PackageKind::kAnalysis, kAnalysisFormat},
-                                                         {PackageKind::kPoints, kPointsFormat},
-                                                         {PackageKind::kAreas, kAreasFormat}};
+  const std::pair<PackageKind, const char*> formats[] = {
+      {PackageKind::kTerrain, kMBlockFormat},     {PackageKind::kImage, "png"},
+      {PackageKind::kLines, kLineClustersFormat}, {PackageKind::kAnalysis, kAnalysisFormat},
+      {PackageKind::kPoints, kPointsFormat},      {PackageKind::kAreas, kAreasFormat}};
   ASSERT_EQ(package_kinds().size(), std::size(formats));
   std::set<std::string> names, keys;
   for (size_t i = 0; i < package_kinds().size(); ++i) {

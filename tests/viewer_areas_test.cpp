@@ -790,3 +790,32 @@ TEST(ViewerAreas, MatchesExpected) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   expect_image(out, "viewer_areas_nc");
 }
+
+namespace {
+
+// A damaged area package, as a user may meet one: every tile's blob
+// replaced by random bytes. `validate` says so (exit 1, naming a tile); the
+// viewer warns about each broken tile once, draws the frame and exits 0, and
+// its statistics count the broken tiles.
+TEST(ViewerAreas, CorruptAreaTilesWarnAndTheFrameGoesOn) {
+  const Packages& k = packages();
+  TempDir dir;
+  const std::string pkg = (dir / "broken.mbtiles").string();
+  fs::copy_file(k.nc_mercator, pkg);
+  const RunResult s =
+      run("sqlite3 " + pkg + " \"UPDATE blobs SET tile_data = randomblob(64);\"", dir.path());
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  const RunResult v = run(vectorize() + " validate " + pkg, dir.path());
+  EXPECT_EQ(v.exit_code, 1) << v.out << v.err;
+  EXPECT_NE(v.out.find("tile"), std::string::npos) << v.out;
+  const RunResult r =
+      run(viewer() + " " + pkg + " --fit --stats --frames 1 --size 160x100", dir.path());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("area tile"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("the areas of its coarser or finer tiles are drawn there"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.out.find("\"broken_area_tiles\": 0"), std::string::npos) << r.out;
+}
+
+}  // namespace

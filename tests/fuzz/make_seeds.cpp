@@ -9,6 +9,7 @@
 
 #include "../golden_block.hpp"
 #include "tileformat/analysis_block.hpp"
+#include "tileformat/area_tile.hpp"
 #include "tileformat/kpatch.hpp"
 #include "tileformat/line_clusters.hpp"
 #include "tileformat/line_tile.hpp"
@@ -16,7 +17,6 @@
 #include "tileformat/metadata.hpp"
 #include "tileformat/package.hpp"
 #include "tileformat/point_tile.hpp"
-#include "tileformat/area_tile.hpp"
 
 namespace fs = std::filesystem;
 using Bytes = std::vector<uint8_t>;
@@ -83,9 +83,8 @@ std::vector<Bytes> area_tiles() {
   t.feature_ids = {3, 9};
   t.polygons = {{0, 1, 0, 2}, {1, 0, 2, 1}};
   t.ring_sizes = {4, 4, 3};
-  t.vertices = {{0, 0},     {4000, 0},    {4000, 4000}, {0, 4000},  {1000, 1000},
-                {1000, 3000}, {3000, 3000}, {3000, 1000}, {4100, -50}, {4150, 200},
-                {3900, 100}};
+  t.vertices = {{0, 0},       {4000, 0},    {4000, 4000}, {0, 4000},   {1000, 1000}, {1000, 3000},
+                {3000, 3000}, {3000, 1000}, {4100, -50},  {4150, 200}, {3900, 100}};
   tileformat::AreaTile empty;
   return {tileformat::encode_area_tile(t), tileformat::encode_area_tile(empty)};
 }

@@ -372,8 +372,7 @@ LineMetadata read_line_metadata(const MetadataMap& meta) {
   m.features = k.find("globe:features") ? static_cast<uint64_t>(k.number("globe:features")) : 0;
   const Keys k74(meta, "7.4");
   m.classes_json = k74.text("globe:classes");
-  if (k.find("globe:layers"))
-    m.layers = read_layers(k74, "7.4");
+  if (k.find("globe:layers")) m.layers = read_layers(k74, "7.4");
   if (k.find("globe:bundle")) m.bundle_json = Keys(meta, "7.5").text("globe:bundle");
   return m;
 }

@@ -322,14 +322,25 @@ std::vector<uint8_t> area_tile_png(const AreaPackage& package, TileId id,
     scan.fill(cover);
     canvas.add(cover, parse_color(l->fill), float(std::min(l->opacity, 1.0)));
   }
-  // The outlines over every fill, per class.
+  // The outlines over every fill, per class; not along the map's edge (the
+  // antimeridian, the poles' rows of a global tiling), where polygons were
+  // cut rather than bordered.
+  const tileformat::Tiling& tiling = package.meta.common.tiling;
+  const bool global = tiling.scheme != tileformat::Scheme::kLocal;
+  const double edge = double(size);
+  auto cut = [&](double ax, double ay, double bx, double by) {
+    return global && ((id.x == 0 && ax == 0 && bx == 0) ||
+                      (id.x + 1 == tiling.tiles_x(id.z) && ax == edge && bx == edge) ||
+                      (id.y == 0 && ay == 0 && by == 0) ||
+                      (id.y + 1 == tiling.tiles_y(id.z) && ay == edge && by == edge));
+  };
   for (const auto& [cls, polygons] : by_class) {
     const AreaLook* l = look(cls);
     if (!l || !l->visible || l->outline_px <= 0) continue;
     canvas.begin_layer();
     for (const tileformat::AreaPolygon* p : polygons)
       edges(*p, [&](double ax, double ay, double bx, double by) {
-        canvas.segment(ax, ay, bx, by, l->outline_px / 2);
+        if (!cut(ax, ay, bx, by)) canvas.segment(ax, ay, bx, by, l->outline_px / 2);
       });
     canvas.end_layer(parse_color(l->outline), float(kAreaWebFillOpacity));
   }

@@ -151,7 +151,7 @@ struct AreaMetadata {
   std::string classes_json;              // globe:classes: style classes, JSON (as §7.4)
   std::vector<LineLayerInfo> layers;     // globe:layers
   std::optional<Choropleth> choropleth;  // globe:choropleth (JSON)
-  uint64_t repaired = 0;       // globe:repaired: features whose geometry GEOS MakeValid repaired
+  uint64_t repaired = 0;  // globe:repaired: features whose geometry GEOS MakeValid repaired
 };
 
 // The package's keys; kind-specific keys absent from the struct (optionals)
