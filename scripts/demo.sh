@@ -6,6 +6,7 @@
 # Output: demo/jacksboro.mbtiles, demo/jacksboro.png, demo/contours.png, demo/globe.png (etopo20
 # and Blue Marble on the globe), demo/flights.png (pie charts of US flights on it),
 # demo/bundles.png (the US flight routes bundled over the airways, one bundle picked),
+# demo/countries.png (the world's population density as a choropleth over the terrain),
 # demo/canada_roads.mbtiles, demo/cbers20.mbtiles (git-ignored).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -59,5 +60,12 @@ build/tools/vectorize/globe-vectorize bundle samples/data/us_flights_airport.csv
 build/tools/vectorize/globe-vectorize info demo/bundles.mbtiles | grep -A 12 '^bundled flows'
 build/viewer/globe-view demo/etopo20.mbtiles demo/bluemarble.mbtiles demo/bundles.mbtiles \
   --snapshot demo/bundles.png --size 1280x720 --camera=-97,39,4500000,0,0 --pick 800,400
+# Areas: the world's countries as a choropleth of population density (quantile classes,
+# ColorBrewer YlOrRd), filled per pixel over the relief.
+build/tools/vectorize/globe-vectorize areas samples/data/world.gpkg --choropleth pop/area_km2 \
+  --classes 5 --method quantile --colors YlOrRd -o demo/countries.mbtiles --force
+build/tools/vectorize/globe-vectorize info demo/countries.mbtiles | grep -A 7 '^choropleth'
+build/viewer/globe-view demo/etopo20.mbtiles demo/countries.mbtiles --snapshot demo/countries.png \
+  --size 1280x720 --camera=15,30,12000000,0,0
 echo "demo: wrote demo/jacksboro.png, demo/contours.png, demo/globe.png, demo/flights.png," \
-  "demo/bundles.png, demo/canada_roads.mbtiles and demo/cbers20.mbtiles" >&2
+  "demo/bundles.png, demo/countries.png, demo/canada_roads.mbtiles and demo/cbers20.mbtiles" >&2
