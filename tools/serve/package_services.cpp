@@ -8,9 +8,11 @@
 #include <condition_variable>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <set>
+#include <span>
 #include <thread>
 #include <unordered_set>
 #include <vector>
@@ -310,6 +312,41 @@ class ImageService : public PackageService {
 };
 
 // Vector tiles: gzip where the client accepts it (the HTTP layer).
+// The routes every vector package answers (lines, areas): its MapLibre style,
+// its tiles drawn as PNG for image clients (any tiling) and as MVT (web
+// mercator: check_xyz). `what` names the package in the 404 ("a line
+// package"); the reader and the encoders are used under `mutex` (one SQLite
+// connection, one features cache).
+HttpResponse answer_vector_route(
+    const Route& r, const std::string& name, const tileformat::Tiling& tiling, int min_zoom,
+    int max_zoom, std::mutex& mutex, tileformat::PackageReader& reader, const std::string& what,
+    const std::function<std::string()>& style,
+    const std::function<std::vector<uint8_t>(tileformat::TileId, std::span<const uint8_t>)>& png,
+    const std::function<std::vector<uint8_t>(tileformat::TileId, std::span<const uint8_t>)>& mvt) {
+  if (r.kind == Route::Kind::kStyleJson) return json_response(style());
+  const tileformat::TileId id{r.z, r.x, r.y};
+  if (r.kind == Route::Kind::kTile && r.extension == "png") {
+    HttpResponse bad = check_tile(tiling, name, r, min_zoom, max_zoom);
+    if (bad.status != 200) return bad;
+    std::optional<std::vector<uint8_t>> blob;
+    {
+      std::lock_guard lock(mutex);
+      blob = reader.tile(id);
+    }
+    std::vector<uint8_t> drawn;
+    if (blob) drawn = png(id, *blob);
+    return drawn.empty() ? transparent_png() : bytes_response(std::move(drawn), "image/png", false);
+  }
+  if (r.kind != Route::Kind::kTile || (r.extension != "pbf" && r.extension != "mvt"))
+    return text_response(404, what + " has style.json, .pbf and .png tiles");
+  HttpResponse bad = check_xyz(tiling, name, r, min_zoom, max_zoom);
+  if (bad.status != 200) return bad;
+  std::lock_guard lock(mutex);
+  const auto blob = reader.tile(id);
+  if (!blob) return text_response(204, "");
+  return bytes_response(mvt(id, *blob), "application/vnd.mapbox-vector-tile", true);
+}
+
 class LineService : public PackageService {
  public:
   LineService(const std::string& path, const std::string& name)
@@ -336,29 +373,15 @@ class LineService : public PackageService {
                       "\"format\":\"pbf\",\"vector_layers\":" + web::vector_layers_json(layers)));
   }
   HttpResponse answer(const Route& r, const HttpRequest&, const std::string& base) override {
-    if (r.kind == Route::Kind::kStyleJson)
-      return json_response(web::line_style_json(pkg_, classes_in_, base + ".json"));
-    if (r.kind == Route::Kind::kTile && r.extension == "png") {  // drawn, for image clients
-      HttpResponse bad = check_tile(pkg_.tiling, name_, r, min_zoom, max_zoom);
-      if (bad.status != 200) return bad;
-      std::optional<std::vector<uint8_t>> blob;
-      {
-        std::lock_guard lock(mutex_);
-        blob = pkg_.reader->tile({r.z, r.x, r.y});
-      }
-      std::vector<uint8_t> png;
-      if (blob) png = web::line_tile_png(pkg_, {r.z, r.x, r.y}, *blob);
-      return png.empty() ? transparent_png() : bytes_response(std::move(png), "image/png", false);
-    }
-    if (r.kind != Route::Kind::kTile || (r.extension != "pbf" && r.extension != "mvt"))
-      return text_response(404, "a line package has style.json, .pbf and .png tiles");
-    HttpResponse bad = check_xyz(pkg_.tiling, name_, r, min_zoom, max_zoom);
-    if (bad.status != 200) return bad;
-    std::lock_guard lock(mutex_);  // one SQLite connection, one features cache
-    const auto blob = pkg_.reader->tile({r.z, r.x, r.y});
-    if (!blob) return text_response(204, "");
-    return bytes_response(encoder_.encode({r.z, r.x, r.y}, *blob),
-                          "application/vnd.mapbox-vector-tile", true);
+    return answer_vector_route(
+        r, name_, pkg_.tiling, min_zoom, max_zoom, mutex_, *pkg_.reader, "a line package",
+        [&] { return web::line_style_json(pkg_, classes_in_, base + ".json"); },
+        [&](tileformat::TileId id, std::span<const uint8_t> blob) {
+          return web::line_tile_png(pkg_, id, blob);
+        },
+        [&](tileformat::TileId id, std::span<const uint8_t> blob) {
+          return encoder_.encode(id, blob);
+        });
   }
 
  private:
@@ -480,30 +503,15 @@ class AreaService : public PackageService {
                       "\"format\":\"pbf\",\"vector_layers\":" + web::vector_layers_json(fields_)));
   }
   HttpResponse answer(const Route& r, const HttpRequest&, const std::string& base) override {
-    if (r.kind == Route::Kind::kStyleJson)
-      return json_response(web::area_style_json(pkg_, classes_in_, base + ".json"));
-    const tileformat::Tiling& tiling = pkg_.meta.common.tiling;
-    if (r.kind == Route::Kind::kTile && r.extension == "png") {  // drawn, for image clients
-      HttpResponse bad = check_tile(tiling, name_, r, min_zoom, max_zoom);
-      if (bad.status != 200) return bad;
-      std::optional<std::vector<uint8_t>> blob;
-      {
-        std::lock_guard lock(mutex_);
-        blob = pkg_.reader->tile({r.z, r.x, r.y});
-      }
-      std::vector<uint8_t> png;
-      if (blob) png = web::area_tile_png(pkg_, {r.z, r.x, r.y}, *blob);
-      return png.empty() ? transparent_png() : bytes_response(std::move(png), "image/png", false);
-    }
-    if (r.kind != Route::Kind::kTile || (r.extension != "pbf" && r.extension != "mvt"))
-      return text_response(404, "an area package has style.json, .pbf and .png tiles");
-    HttpResponse bad = check_xyz(tiling, name_, r, min_zoom, max_zoom);
-    if (bad.status != 200) return bad;
-    std::lock_guard lock(mutex_);  // one SQLite connection, one features cache
-    const auto blob = pkg_.reader->tile({r.z, r.x, r.y});
-    if (!blob) return text_response(204, "");
-    return bytes_response(encoder_.encode({r.z, r.x, r.y}, *blob),
-                          "application/vnd.mapbox-vector-tile", true);
+    return answer_vector_route(
+        r, name_, pkg_.meta.common.tiling, min_zoom, max_zoom, mutex_, *pkg_.reader,
+        "an area package", [&] { return web::area_style_json(pkg_, classes_in_, base + ".json"); },
+        [&](tileformat::TileId id, std::span<const uint8_t> blob) {
+          return web::area_tile_png(pkg_, id, blob);
+        },
+        [&](tileformat::TileId id, std::span<const uint8_t> blob) {
+          return encoder_.encode(id, blob);
+        });
   }
 
  private:
