@@ -22,6 +22,8 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -816,6 +818,80 @@ TEST(ViewerAreas, CorruptAreaTilesWarnAndTheFrameGoesOn) {
             std::string::npos)
       << r.err;
   EXPECT_EQ(r.out.find("\"broken_area_tiles\": 0"), std::string::npos) << r.out;
+}
+
+}  // namespace
+
+namespace {
+
+// --pick-format json with an area, a line and a point package drawn
+// together: at a place's own position the chart there (its id and values) and
+// the county filled under it; on a county's border vertex (from OGR) the line
+// drawn there; each with the ground's lon/lat under the pixel.
+TEST(ViewerAreas, PickJsonNamesTheAreaLineAndChartUnderAPixel) {
+  const Packages& k = packages();
+  TempDir dir;
+  // Wake county's first border vertex, in lon/lat.
+  GDALAllRegister();
+  GDALDatasetH ds =
+      GDALOpenEx((samples() / "nc.gpkg").c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr);
+  ASSERT_NE(ds, nullptr);
+  OGRLayerH layer = GDALDatasetGetLayer(ds, 0);
+  OGR_L_SetAttributeFilter(layer, "NAME = 'Wake'");
+  OGRFeatureH f = OGR_L_GetNextFeature(layer);
+  ASSERT_NE(f, nullptr);
+  OGRGeometryH g = OGR_G_Clone(OGR_F_GetGeometryRef(f));
+  OGRSpatialReferenceH to = OSRNewSpatialReference(nullptr);
+  OSRImportFromEPSG(to, 4326);
+  OSRSetAxisMappingStrategy(to, OAMS_TRADITIONAL_GIS_ORDER);
+  ASSERT_EQ(OGR_G_TransformTo(g, to), OGRERR_NONE);
+  OGRGeometryH ring = OGR_G_GetGeometryRef(OGR_G_GetGeometryRef(g, 0), 0);
+  const double bx = OGR_G_GetX(ring, 0), by = OGR_G_GetY(ring, 0);
+  OGR_G_DestroyGeometry(g);
+  OSRDestroySpatialReference(to);
+  OGR_F_Destroy(f);
+  GDALClose(ds);
+
+  const std::string lines = (dir / "l.mbtiles").string(), points = (dir / "p.mbtiles").string();
+  std::ofstream(dir / "p.csv") << "name,lon,lat,v\nRaleigh,-78.64,35.78,5\n";
+  ASSERT_EQ(run(vectorize() + " lines -q " + (samples() / "nc.gpkg").string() +
+                    " --max-zoom 9 -o " + lines,
+                dir.path())
+                .exit_code,
+            0);
+  ASSERT_EQ(run(vectorize() + " points -q " + (dir / "p.csv").string() +
+                    " --xy lon,lat --fields v --label-field name -o " + points,
+                dir.path())
+                .exit_code,
+            0);
+  char place[64], border[64];
+  std::snprintf(place, sizeof place, "@-78.64,35.78");
+  std::snprintf(border, sizeof border, "@%.7f,%.7f", bx, by);
+  const RunResult r = run(viewer() + " " + k.nc_mercator + " " + lines + " " + points +
+                              " --size 320x200 --camera=-78.6,35.8,120000,0,0 --pick-format json" +
+                              " --pick " + place + " --pick " + border,
+                          dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::istringstream out(r.out);
+  std::vector<JsonValue> picks;
+  for (std::string line; std::getline(out, line);)
+    picks.push_back(JsonValue::parse(line));
+  ASSERT_EQ(picks.size(), 2u) << r.out;
+  const JsonValue* chart = picks[0].find("chart");
+  ASSERT_TRUE(chart && chart->is_object()) << r.out;
+  EXPECT_EQ(chart->find("id")->number(), 1);
+  EXPECT_EQ(chart->find("values")->find("v")->number(), 5);
+  const JsonValue* area = picks[0].find("area");
+  ASSERT_TRUE(area && area->is_object()) << r.out;
+  EXPECT_EQ(area->find("attributes")->find("NAME")->string(), "Wake");
+  EXPECT_NEAR(picks[0].find("lon")->number(), -78.64, 0.01);
+  EXPECT_NEAR(picks[0].find("lat")->number(), 35.78, 0.01);
+  const JsonValue* line = picks[1].find("line");
+  ASSERT_TRUE(line && line->is_object()) << r.out;
+  EXPECT_GE(line->find("id")->number(), 1);
+  EXPECT_EQ(line->find("layer")->string(), "nc.gpkg");
+  EXPECT_NEAR(picks[1].find("lon")->number(), bx, 0.01);
+  EXPECT_NEAR(picks[1].find("lat")->number(), by, 0.01);
 }
 
 }  // namespace
