@@ -454,11 +454,12 @@ void declare_output_options(CliArgs& cli, ViewerSettings& s) {
 std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::string>& args) {
   ViewerSettings s;
   CliArgs cli("globe-view",
-              "globe-view [TERRAIN.mbtiles] [IMAGE.mbtiles ...] [LINES.mbtiles] [POINTS.mbtiles]\n"
-              "           [options]\n"
+              "globe-view [TERRAIN.mbtiles] [IMAGE.mbtiles ...] [AREAS.mbtiles] [LINES.mbtiles]\n"
+              "           [POINTS.mbtiles] [options]\n"
               "Renders a terrain package with image packages draped over it (bottom first),\n"
-              "the lines of a line-cluster package shaded per pixel over both, and a chart per\n"
-              "place of a point package on top: in a window, or headless with --snapshot,\n"
+              "the polygons of an area package filled per pixel over them, the lines of a\n"
+              "line-cluster package shaded per pixel over those, and a chart per place of a\n"
+              "point package on top: in a window, or headless with --snapshot,\n"
               "--stats or --export-mesh (OSMesa or EGL; no display needed). Packages are told\n"
               "apart by their format; layers may be tiled geodetic over a webmercator terrain\n"
               "or the other way round. Without a terrain, layers lie on zero heights (the\n"
