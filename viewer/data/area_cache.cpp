@@ -48,16 +48,6 @@ int crossing(double ax, double ay, double bx, double by, double qx, double qy) {
 
 }  // namespace
 
-uint32_t world_edge_sides(const tileformat::Tiling& t, TileId id) {
-  if (t.scheme == tileformat::Scheme::kLocal) return 0;
-  uint32_t sides = 0;
-  if (id.x == 0) sides |= kSideLeft;
-  if (id.x + 1 == t.tiles_x(id.z)) sides |= kSideRight;
-  if (id.y == 0) sides |= kSideTop;
-  if (id.y + 1 == t.tiles_y(id.z)) sides |= kSideBottom;
-  return sides;
-}
-
 DecodedAreaTile area_tile_words(const tileformat::AreaTile& t, uint32_t grid, double reach,
                                 uint32_t world_sides) {
   DecodedAreaTile d;
@@ -161,13 +151,10 @@ DecodedAreaTile area_tile_words(const tileformat::AreaTile& t, uint32_t grid, do
   for (const auto& c : cells)
     for (const CellEntry& e : c)
       d.words.insert(d.words.end(), e.edges.begin(), e.edges.end());
-  // Whether an edge runs along one of the world's sides of the tile.
   auto cut = [&](const Edge& e) {
-    return ((world_sides & kSideLeft) && e.ax == 0 && e.bx == 0) ||
-           ((world_sides & kSideRight) && e.ax == extent && e.bx == extent) ||
-           ((world_sides & kSideTop) && e.ay == 0 && e.by == 0) ||
-           ((world_sides & kSideBottom) && e.ay == extent && e.by == extent);
+    return tileformat::along_map_edge(world_sides, e.ax, e.ay, e.bx, e.by, extent);
   };
+
   for (const Edge& e : edges)
     d.words.insert(d.words.end(), {float_bits(e.ax), float_bits(e.ay), float_bits(e.bx),
                                    float_bits(e.by), cut(e) ? 1u : 0u});
@@ -217,7 +204,7 @@ AreaCache::AreaCache(const std::string& path, AreaPackage package, uint64_t budg
           area_source(path, package), budget_bytes,
           [tiling = package.meta.common.tiling](TileId id, std::span<const uint8_t> blob) {
             return area_tile_words(tileformat::decode_area_tile(blob), 32, 24,
-                                   world_edge_sides(tiling, id));
+                                   tileformat::map_edge_sides(tiling, id));
           }),
       package_(std::move(package)) {}
 

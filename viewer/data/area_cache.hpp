@@ -47,14 +47,9 @@ struct DecodedAreaTile {
   uint32_t polygons_at() const { return edges_at() + edges * kAreaEdgeWords; }
 };
 
-// Sides of a tile (bits) that lie on the tiling's edge: the antimeridian
-// (left of the first column, right of the last) and the poles' rows.
-enum AreaTileSide : uint32_t { kSideLeft = 1, kSideRight = 2, kSideTop = 4, kSideBottom = 8 };
-uint32_t world_edge_sides(const tileformat::Tiling& tiling, tileformat::TileId id);
-
 // The fill pass's words of a decoded tile with a grid of `grid` cells a side;
 // a cell lists the edges that pass within `reach` units of it (outlines near
-// its sides are drawn whole). Edges along `world_sides` (world_edge_sides)
+// its sides are drawn whole). Edges along `world_sides` (map_edge_sides)
 // are where polygons were cut at the map's edge, not borders: they fill but
 // are not outlined. Exposed for tests.
 DecodedAreaTile area_tile_words(const tileformat::AreaTile& tile, uint32_t grid = 32,

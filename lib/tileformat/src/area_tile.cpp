@@ -81,6 +81,23 @@ int64_t ring_area2(std::span<const LineVertex> ring) {
   return a;
 }
 
+uint32_t map_edge_sides(const Tiling& t, TileId id) {
+  if (t.scheme == Scheme::kLocal) return 0;
+  uint32_t sides = 0;
+  if (id.x == 0) sides |= kMapEdgeLeft;
+  if (id.x + 1 == t.tiles_x(id.z)) sides |= kMapEdgeRight;
+  if (id.y == 0) sides |= kMapEdgeTop;
+  if (id.y + 1 == t.tiles_y(id.z)) sides |= kMapEdgeBottom;
+  return sides;
+}
+
+bool along_map_edge(uint32_t sides, double ax, double ay, double bx, double by, double size) {
+  return ((sides & kMapEdgeLeft) && ax == 0 && bx == 0) ||
+         ((sides & kMapEdgeRight) && ax == size && bx == size) ||
+         ((sides & kMapEdgeTop) && ay == 0 && by == 0) ||
+         ((sides & kMapEdgeBottom) && ay == size && by == size);
+}
+
 std::vector<uint8_t> encode_area_tile(const AreaTile& t, int zstd_level) {
   const std::vector<uint32_t> offsets = t.ring_offsets();
   if (offsets.back() != t.vertices.size()) fail("12.2", "ring sizes do not add up to the vertices");

@@ -325,15 +325,11 @@ std::vector<uint8_t> area_tile_png(const AreaPackage& package, TileId id,
   // The outlines over every fill, per class; not along the map's edge (the
   // antimeridian, the poles' rows of a global tiling), where polygons were
   // cut rather than bordered.
-  const tileformat::Tiling& tiling = package.meta.common.tiling;
-  const bool global = tiling.scheme != tileformat::Scheme::kLocal;
-  const double edge = double(size);
+  const uint32_t sides = tileformat::map_edge_sides(package.meta.common.tiling, id);
   auto cut = [&](double ax, double ay, double bx, double by) {
-    return global && ((id.x == 0 && ax == 0 && bx == 0) ||
-                      (id.x + 1 == tiling.tiles_x(id.z) && ax == edge && bx == edge) ||
-                      (id.y == 0 && ay == 0 && by == 0) ||
-                      (id.y + 1 == tiling.tiles_y(id.z) && ay == edge && by == edge));
+    return tileformat::along_map_edge(sides, ax, ay, bx, by, double(size));
   };
+
   for (const auto& [cls, polygons] : by_class) {
     const AreaLook* l = look(cls);
     if (!l || !l->visible || l->outline_px <= 0) continue;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "tileformat/line_tile.hpp"
+#include "tileformat/tiling.hpp"
 
 namespace tileformat {
 
@@ -42,6 +43,21 @@ struct AreaTileCounts {
 // Twice the signed area of a ring (shoelace, tile units, y down): positive
 // for an exterior ring, negative for a hole.
 int64_t ring_area2(std::span<const LineVertex> ring);
+
+// Where polygons were cut rather than bordered: the sides of tile `id` that
+// lie on a global tiling's own edge (the antimeridian left of the first
+// column and right of the last, the poles' rows), as bits; none in a local
+// tiling. Drawers leave edges along them unoutlined.
+enum MapEdgeSide : uint32_t {
+  kMapEdgeLeft = 1,
+  kMapEdgeRight = 2,
+  kMapEdgeTop = 4,
+  kMapEdgeBottom = 8
+};
+uint32_t map_edge_sides(const Tiling& tiling, TileId id);
+// Whether the edge a-b (tile units, or pixels: `size` units a tile side) runs
+// along one of `sides`.
+bool along_map_edge(uint32_t sides, double ax, double ay, double bx, double by, double size);
 
 // Encodes `tile` as a blob with header. Throws FormatError if it breaks the
 // §12 invariants (orientation included).
