@@ -71,32 +71,14 @@ double AreaLayer::draw(const LayerPass& pass) {
 
 void AreaLayer::queue_legend() {
   const tileformat::Choropleth& c = *cache_.package().meta.choropleth;
-  struct Row {
-    glm::vec4 color;
-    std::string label;
-  };
-  std::vector<Row> rows;
+  std::vector<LegendEntry> rows;
   for (size_t i = c.classes.size(); i-- > 0;)  // highest on top
-    rows.push_back({styles_[i + 1].fill,
+    rows.push_back({glm::vec4(glm::vec3(styles_[i + 1].fill), 1), 0,
                     short_weight(c.classes[i].min) + " - " + short_weight(c.classes[i].max)});
-  if (c.no_data > 0) rows.push_back({styles_[0].fill, "no data"});
-  const int scale = height_ >= 600 ? 2 : 1;
-  const float f = float(scale), pad = 4 * f, row = 10 * f, swatch = 12 * f;
-  const std::string title =
-      c.field + (c.denominator.empty() ? "" : " / " + c.denominator) + " (" + c.method + ")";
-  float text_w = TextOverlay::text_width(title, scale);
-  for (const Row& r : rows)
-    text_w = std::max(text_w, swatch + pad + TextOverlay::text_width(r.label, scale));
-  const float w = pad * 2 + text_w, h = pad * 2 + row * float(rows.size() + 1) - 3 * f;
-  const float x = 10, y = float(height_) - 10 - h;
-  overlay_.rect(x - 1, y - 1, w + 2, h + 2, {0.2f, 0.2f, 0.2f, 0.9f});
-  overlay_.rect(x, y, w, h, {1, 1, 1, 0.88f});
-  overlay_.text(x + pad, y + pad, title, {0.1f, 0.1f, 0.1f, 1}, scale);
-  for (size_t i = 0; i < rows.size(); ++i) {
-    const float ry = y + pad + row * float(i + 1);
-    overlay_.rect(x + pad, ry, swatch, 7 * f, glm::vec4(glm::vec3(rows[i].color), 1));
-    overlay_.text(x + pad * 2 + swatch, ry, rows[i].label, {0.1f, 0.1f, 0.1f, 1}, scale);
-  }
+  if (c.no_data > 0) rows.push_back({glm::vec4(glm::vec3(styles_[0].fill), 1), 0, "no data"});
+  queue_legend_box(
+      c.field + (c.denominator.empty() ? "" : " / " + c.denominator) + " (" + c.method + ")", rows,
+      12, height_, overlay_);
 }
 
 std::optional<uint64_t> AreaLayer::feature_at(int x, int y) const {

@@ -23,6 +23,19 @@ std::vector<LegendRow> bundle_legend_rows(const std::string& bundle_json);
 // "533k", "1.2M", "71", "0.5": a weight in at most four characters or so.
 std::string short_weight(double w);
 
+// One row of a legend box: a stroke `line_px` wide in its colour, or (0) a
+// swatch, and its label.
+struct LegendEntry {
+  glm::vec4 color;
+  float line_px = 0;
+  std::string label;
+};
+
+// A legend box in the bottom-left corner of a `height`-pixel frame: the
+// title, then a row per entry, its mark `mark_units` font pixels wide.
+void queue_legend_box(const std::string& title, const std::vector<LegendEntry>& entries,
+                      float mark_units, int height, TextOverlay& overlay);
+
 // Queues the legend for a `height`-pixel frame; rows whose class is not in
 // `styles` or is hidden are left out.
 void queue_bundle_legend(const std::vector<LegendRow>& rows,
