@@ -86,6 +86,14 @@ SqliteStatement& SqliteStatement::bind(int index, int64_t value) {
   if (sqlite3_bind_int64(stmt_, index, value) != SQLITE_OK) db_.fail("bind", sql_);
   return *this;
 }
+SqliteStatement& SqliteStatement::bind_double(int index, double value) {
+  if (sqlite3_bind_double(stmt_, index, value) != SQLITE_OK) db_.fail("bind", sql_);
+  return *this;
+}
+SqliteStatement& SqliteStatement::bind_null(int index) {
+  if (sqlite3_bind_null(stmt_, index) != SQLITE_OK) db_.fail("bind", sql_);
+  return *this;
+}
 SqliteStatement& SqliteStatement::bind(int index, const std::string& value) {
   if (sqlite3_bind_text(stmt_, index, value.data(), static_cast<int>(value.size()),
                         SQLITE_TRANSIENT) != SQLITE_OK)
@@ -115,6 +123,9 @@ void SqliteStatement::reset() {
 
 int64_t SqliteStatement::column_int(int col) const {
   return sqlite3_column_int64(stmt_, col);
+}
+double SqliteStatement::column_double(int col) const {
+  return sqlite3_column_double(stmt_, col);
 }
 std::string SqliteStatement::column_text(int col) const {
   auto p = sqlite3_column_text(stmt_, col);

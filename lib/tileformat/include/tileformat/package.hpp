@@ -86,6 +86,7 @@ class PackageWriter {
   // The database being built, for the tables beyond the tiles (the features
   // and shard tables, by their own classes). Writes join the open transaction.
   friend class FeatureTableWriter;
+  friend class LabelTableWriter;
   friend class ShardTableWriter;
   friend struct PackageTestAccess;  // tests/package_test.cpp
   SqliteDb& db() { return *db_; }
@@ -140,6 +141,7 @@ class PackageReader {
   // The tables beyond the tiles (the features and shard tables) are read by
   // their own classes; nothing else issues SQL (docs/architecture.md rule 1).
   friend class FeatureTableReader;
+  friend class LabelTableReader;
   friend class ShardTableReader;
   friend struct PackageTestAccess;  // tests/package_test.cpp
   SqliteDb& db() { return *db_; }

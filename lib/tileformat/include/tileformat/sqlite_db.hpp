@@ -24,11 +24,14 @@ class SqliteStatement {
   SqliteStatement& operator=(const SqliteStatement&) = delete;
 
   SqliteStatement& bind(int index, int64_t value);
+  SqliteStatement& bind_double(int index, double value);
+  SqliteStatement& bind_null(int index);
   SqliteStatement& bind(int index, const std::string& value);
   SqliteStatement& bind(int index, std::span<const uint8_t> blob);
   bool step();   // true while a row is available
   void reset();  // ready to bind and step again
   int64_t column_int(int col) const;
+  double column_double(int col) const;
   std::string column_text(int col) const;
   std::span<const uint8_t> column_blob(int col) const;  // valid until the next step/reset
   bool column_is_null(int col) const;
