@@ -13,12 +13,14 @@
 #include "areas/choropleth.hpp"
 #include "io/vector_frame.hpp"
 #include "io/vector_reader.hpp"
+#include "labels/label_candidates.hpp"
 #include "lines/line_classes.hpp"
 #include "lines/line_plan.hpp"
 #include "lines/line_projector.hpp"
 #include "runtime/errors.hpp"
 #include "shard/line_shard.hpp"
 #include "tileformat/feature_table.hpp"
+#include "tileformat/label_table.hpp"
 #include "tileformat/metadata.hpp"
 #include "tileformat/package.hpp"
 #include "tileformat/shard_table.hpp"
@@ -72,6 +74,21 @@ class Builder {
       }
     }
     if (s_.bbox) ro.filter = Bounds{(*s_.bbox)[0], (*s_.bbox)[1], (*s_.bbox)[2], (*s_.bbox)[3]};
+    if (keeps_features && s_.labels.enabled()) {
+      label_field_ = resolve_label_field(s_.labels, VectorReader(s_.inputs, ro).layers());
+      if (label_field_.empty())
+        progress_.note("--label-field auto: no name field (name, NAME, ...) in " +
+                       s_.inputs.front() + "; no labels");
+    }
+    if (!label_field_.empty()) {
+      ro.text_fields.push_back(label_field_);
+      ro.field_options[label_field_] = "--label-field";
+      if (!s_.labels.priority.empty()) {
+        priority_index_ = static_cast<int>(ro.value_fields.size());
+        ro.value_fields.push_back(s_.labels.priority);
+        ro.field_options[s_.labels.priority] = "--priority-field";
+      }
+    }
     VectorReader reader(s_.inputs, ro);
     for (const std::string& table : reader.skipped_tables())
       progress_.note(table + ": no geometry (a table, e.g. QGIS's styles), left out");
@@ -81,13 +98,17 @@ class Builder {
     AreaTileOptions o;
     write_package_tiles(s_.output, [&] {
       tileformat::FeatureTableWriter features(*writer);
+      std::optional<tileformat::LabelTableWriter> labels;
+      if (!label_field_.empty()) labels.emplace(*writer);
       AreaScratch scratch(s_.output + ".scratch-geometry");
       // A shard plans its share from the polygons' outlines, as a line
       // build does from its lines (shard/line_shard.hpp).
       std::optional<GeometryScratch> outlines;
       if (s_.shard) outlines.emplace(s_.output + ".scratch-outlines");
-      pass_read(reader, keeps_features ? &features : nullptr, scratch,
+      pass_read(reader, keeps_features ? &features : nullptr,
+                labels && !labels->complete() ? &*labels : nullptr, scratch,
                 outlines ? &*outlines : nullptr);
+      if (labels) label_count_ = labels->count();
       if (const std::string unused = classes_.unused_style(); !unused.empty()) {
         if (!s_.bbox) throw UsageError(unused);
         progress_.note(unused + " in --bbox");
@@ -135,6 +156,9 @@ class Builder {
                        (s_.bbox ? " (check --bbox)" : "") + "; nothing written");
     const tileformat::AreaMetadata meta = metadata(o);
     writer->set_metadata(tileformat::to_metadata(meta));
+    if (!label_field_.empty())
+      writer->set_metadata("globe:labels",
+                           labels_metadata_json(label_field_, s_.labels.priority, label_count_));
     // A shard's metadata is the whole build's, plus the shard keys.
     if (shard_)
       writer->set_metadata(tileformat::to_metadata(
@@ -146,7 +170,9 @@ class Builder {
  private:
   // `outlines`: where a shard's planner reads each feature's exterior rings.
   void pass_read(VectorReader& reader, tileformat::FeatureTableWriter* features,
-                 AreaScratch& scratch, GeometryScratch* outlines) {
+                 tileformat::LabelTableWriter* labels, AreaScratch& scratch,
+                 GeometryScratch* outlines) {
+    const FrameLonLat to_lonlat(frame_.frame, frame_.target ? &*frame_.target : nullptr);
     std::vector<LineProjector> projectors;
     for (const VectorLayerInfo& l : reader.layers())
       projectors.emplace_back(frame_.frame, *l.crs, frame_.target ? &*frame_.target : nullptr);
@@ -181,6 +207,7 @@ class Builder {
       ++layer_features_[vf.layer];
       if (features && !features->complete())
         features->add(static_cast<int64_t>(f.id), layer, vf.properties_json);
+      if (labels) add_label(vf, f, to_lonlat, geos, *labels);
       if (s_.choropleth) {
         double v = vf.values.at(0);
         if (vf.values.size() > 1) v = vf.values[1] != 0 ? v / vf.values[1] : std::nan("");
@@ -214,6 +241,29 @@ class Builder {
                        "for lines and points use `globe-vectorize lines` or `points`");
     }
     scratch.rewind();
+  }
+
+  // The feature's label at the pole of inaccessibility of its largest part,
+  // unless its name is empty.
+  void add_label(const VectorFeature& vf, const AreaFeature& f, const FrameLonLat& to_lonlat,
+                 Geos& geos, tileformat::LabelTableWriter& labels) {
+    const std::string& text = vf.texts.at(0);
+    if (text.empty()) return;
+    const AreaAnchor a = area_anchor(f.polygons, geos);
+    XY ll;
+    if (!to_lonlat({a.at.x, a.at.y}, ll)) return;
+    tileformat::LabelRecord r;
+    r.feature = static_cast<int64_t>(f.id);
+    r.text = text;
+    r.priority = a.area;
+    if (priority_index_ >= 0) {
+      const double p = vf.values.at(size_t(priority_index_));
+      r.priority = std::isfinite(p) ? p : 0;
+    }
+    r.lon = ll.x;
+    r.lat = ll.y;
+    r.placement = tileformat::LabelPlacement::kArea;
+    labels.add(r);
   }
 
   // A feature's exterior rings as a line feature: what the shard planner
@@ -330,6 +380,9 @@ class Builder {
   std::vector<std::string> colors_;
   std::vector<uint32_t> feature_class_;
   AreasSummary sum_;
+  std::string label_field_;  // the attribute labels come from ("" none)
+  int priority_index_ = -1;  // --priority-field's index in VectorFeature::values
+  int64_t label_count_ = 0;
 };
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include "areas/areas_builder.hpp"
 #include "areas/choropleth.hpp"
 #include "kit/shard_plan.hpp"
+#include "labels/label_options.hpp"
 #include "lines/lines_options.hpp"
 #include "runtime/cli_args.hpp"
 #include "runtime/errors.hpp"
@@ -92,6 +93,7 @@ int run_areas(const std::vector<std::string>& args) {
                  throw UsageError("--no-data-color takes #rrggbb, got '" + v + "'");
                choropleth(s).no_data_color = v;
              });
+  declare_label_options(cli, s.labels, "a polygon (placed at its pole of inaccessibility)");
   cli.option("--simplify", "PX",
              "the snapping grid of each zoom but the finest, in pixels (default 0.5)",
              [&](const std::string& v) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "kit/build_options.hpp"
+#include "labels/label_candidates.hpp"
 
 namespace globe {
 
@@ -20,6 +21,7 @@ struct LinesSettings : BuildOptions {
   int extent = 4096;
   double simplify_px = 0.25;
   size_t memory_mb = 256;
+  LabelOptions labels;  // --label-field, --priority-field (docs/labels.md)
 };
 
 }  // namespace globe

@@ -12,11 +12,13 @@
 #include "io/vector_reader.hpp"
 #include "kit/package_output.hpp"
 #include "kit/parallel_batches.hpp"
+#include "labels/label_candidates.hpp"
 #include "lines/line_projector.hpp"
 #include "points/point_aggregation.hpp"
 #include "runtime/errors.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/feature_table.hpp"
+#include "tileformat/label_table.hpp"
 #include "tileformat/metadata.hpp"
 #include "tileformat/package.hpp"
 #include "tileformat/point_tile.hpp"
@@ -66,6 +68,16 @@ class Builder {
     for (const std::string& f : s_.fields)
       ro.field_options[f] = "--fields";
     ro.xy = s_.xy;
+    if (!s_.label_field.empty()) {
+      ro.text_fields.push_back(s_.label_field);
+      ro.field_options[s_.label_field] = "--label-field";
+    }
+    if (!s_.priority_field.empty()) {
+      if (s_.label_field.empty())
+        throw UsageError("--priority-field ranks labels: add --label-field");
+      ro.value_fields.push_back(s_.priority_field);
+      ro.field_options[s_.priority_field] = "--priority-field";
+    }
     if (s_.bbox) ro.filter = Bounds{(*s_.bbox)[0], (*s_.bbox)[1], (*s_.bbox)[2], (*s_.bbox)[3]};
     VectorReader reader(s_.inputs, ro);
     for (const std::string& table : reader.skipped_tables())
@@ -78,9 +90,12 @@ class Builder {
       // A resumed build reads and aggregates again but keeps the committed
       // features table (filled in the first transaction) and tiles.
       tileformat::FeatureTableWriter features(*writer);
+      std::optional<tileformat::LabelTableWriter> labels;
+      if (!s_.label_field.empty()) labels.emplace(*writer);
       auto read_places =
           std::make_unique<PlaceSorter>(s_.output + ".scratch-read", s_.memory_mb << 20, fields_);
-      read(reader, features, *read_places);
+      read(reader, features, labels && !labels->complete() ? &*labels : nullptr, *read_places);
+      if (labels) label_count_ = labels->count();
       writer->checkpoint();
       tiling_ = frame_tiling(frame_, extent_);
       area_ = frame_area(frame_, tiling_, s_);
@@ -109,11 +124,40 @@ class Builder {
       }
     });
     writer->set_metadata(tileformat::to_metadata(metadata()));
+    if (!s_.label_field.empty())
+      writer->set_metadata("globe:labels",
+                           labels_metadata_json(s_.label_field, s_.priority_field, label_count_));
     commit_package(*writer, s_.output, start, sum_);
     return sum_;
   }
 
  private:
+  // The place's label (its name beside its chart), unless the name is empty
+  // or the place lies outside --bbox.
+  void add_label(const VectorFeature& vf, uint64_t id, XY at, const FrameLonLat& to_lonlat,
+                 tileformat::LabelTableWriter& labels) {
+    const std::string& text = vf.texts.at(0);
+    XY ll;
+    if (text.empty() || !to_lonlat(at, ll)) return;
+    if (s_.bbox && (ll.x < (*s_.bbox)[0] || ll.x > (*s_.bbox)[2] || ll.y < (*s_.bbox)[1] ||
+                    ll.y > (*s_.bbox)[3]))
+      return;
+    tileformat::LabelRecord r;
+    r.feature = static_cast<int64_t>(id);
+    r.text = text;
+    if (!s_.priority_field.empty()) {
+      r.priority = vf.values.at(size_t(fields_));
+    } else {
+      for (int f = 0; f < fields_; ++f)
+        r.priority += std::isfinite(vf.values[size_t(f)]) ? vf.values[size_t(f)] : 0;
+    }
+    if (!std::isfinite(r.priority)) r.priority = 0;
+    r.lon = ll.x;
+    r.lat = ll.y;
+    r.placement = tileformat::LabelPlacement::kPoint;
+    labels.add(r);
+  }
+
   void check_layers(const VectorReader& reader) const {
     for (const VectorLayerInfo& l : reader.layers()) {
       const std::string where = l.source + " layer '" + l.name + "'";
@@ -133,7 +177,9 @@ class Builder {
     }
   }
 
-  void read(VectorReader& reader, tileformat::FeatureTableWriter& features, PlaceSorter& out) {
+  void read(VectorReader& reader, tileformat::FeatureTableWriter& features,
+            tileformat::LabelTableWriter* labels, PlaceSorter& out) {
+    const FrameLonLat to_lonlat(frame_.frame, frame_.target ? &*frame_.target : nullptr);
     std::vector<LineProjector> projectors;
     for (const VectorLayerInfo& l : reader.layers())
       projectors.emplace_back(frame_.frame, *l.crs, frame_.target ? &*frame_.target : nullptr);
@@ -189,6 +235,7 @@ class Builder {
       const uint64_t id = ++kept_;
       if (!features.complete())
         features.add(static_cast<int64_t>(id), layer.name, vf.properties_json);
+      if (labels) add_label(vf, id, at, to_lonlat, *labels);
       place.x = at.x;
       place.y = at.y;
       place.id = id;
@@ -508,7 +555,8 @@ class Builder {
   Bounds extent_{1e300, 1e300, -1e300, -1e300};  // the places, tiling CRS
   Bounds area_;
   Wrap wrap_;
-  uint64_t kept_ = 0;                              // ids given
+  uint64_t kept_ = 0;  // ids given
+  int64_t label_count_ = 0;
   uint64_t skip_ = 0;                              // tiles a resumed package already holds
   std::vector<tileformat::PointZoomStats> zooms_;  // min..max zoom
   PointsSummary sum_;

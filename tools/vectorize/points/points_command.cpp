@@ -31,8 +31,13 @@ int run_points(const std::vector<std::string>& args) {
                const std::vector<std::string> names = CliArgs::to_names("--xy", v, 2);
                s.xy = std::pair(names[0], names[1]);
              });
-  cli.option("--label-field", "FIELD", "attribute that names a place (shown when picked)",
+  cli.option("--label-field", "FIELD",
+             "attribute that names a place: shown when picked, and stored as its label for\n"
+             "                              globe-view and the MVT exports (docs/labels.md)",
              [&](const std::string& v) { s.label_field = v; });
+  cli.option("--priority-field", "FIELD",
+             "numeric attribute ranking the labels, larger first (default: the sum of --fields)",
+             [&](const std::string& v) { s.priority_field = v; });
   cli.option("--like", "PACKAGE",
              "use the tiling of this package (e.g. a local terrain), so tile ids match",
              [&](const std::string& v) { s.like = v; });

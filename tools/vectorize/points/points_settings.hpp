@@ -22,6 +22,7 @@ struct PointsSettings : BuildOptions {
   std::string where;
   std::vector<std::string> fields;                        // --fields: the chart's values
   std::string label_field;                                // --label-field
+  std::string priority_field;                             // --priority-field
   std::optional<std::pair<std::string, std::string>> xy;  // --xy LONCOL,LATCOL (CSV)
   tileformat::PointAggregate aggregate = tileformat::PointAggregate::kSum;
   ValueSign sign = ValueSign::kNonNegative;

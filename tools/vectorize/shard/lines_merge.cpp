@@ -7,6 +7,7 @@
 #include "runtime/package_open.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/feature_table.hpp"
+#include "tileformat/label_table.hpp"
 #include "tileformat/metadata.hpp"
 
 namespace globe {
@@ -43,6 +44,13 @@ LinesSummary merge_lines(ShardSet& shards, const BuildOptions& o, Progress& prog
           progress.advance();
         });
         progress.end();
+      }
+      // Shard 0's labels (it names every feature, as it holds the features).
+      if (tileformat::has_labels(shards.reader(0))) {
+        tileformat::LabelTableWriter labels(*writer);
+        if (!labels.complete())
+          tileformat::LabelTableReader(shards.reader(0))
+              .for_each([&](const tileformat::LabelRecord& l) { labels.add(l); });
       }
       writer->checkpoint();
       shards.copy_tiles(*writer, shard.min_zoom, meta.common.max_zoom, progress);
