@@ -10,6 +10,7 @@
 #include "io/geometry_scratch.hpp"
 #include "io/vector_reader.hpp"
 #include "kit/package_output.hpp"
+#include "labels/label_candidates.hpp"
 #include "lines/line_classes.hpp"
 #include "lines/line_metadata.hpp"
 #include "lines/line_plan.hpp"
@@ -19,6 +20,7 @@
 #include "shard/line_shard.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/feature_table.hpp"
+#include "tileformat/label_table.hpp"
 #include "tileformat/metadata.hpp"
 #include "tileformat/package.hpp"
 #include "tileformat/shard_table.hpp"
@@ -48,6 +50,20 @@ class Builder {
     ro.s_srs = s_.s_srs;
     ro.properties = keeps_features;
     if (s_.bbox) ro.filter = Bounds{(*s_.bbox)[0], (*s_.bbox)[1], (*s_.bbox)[2], (*s_.bbox)[3]};
+    if (keeps_features && s_.labels.enabled()) {
+      label_field_ = resolve_label_field(s_.labels, VectorReader(s_.inputs, ro).layers());
+      if (label_field_.empty())
+        progress_.note("--label-field auto: no name field (name, NAME, ...) in " +
+                       s_.inputs.front() + "; no labels");
+    }
+    if (!label_field_.empty()) {
+      ro.text_fields.push_back(label_field_);
+      ro.field_options[label_field_] = "--label-field";
+      if (!s_.labels.priority.empty()) {
+        ro.value_fields.push_back(s_.labels.priority);
+        ro.field_options[s_.labels.priority] = "--priority-field";
+      }
+    }
     VectorReader reader(s_.inputs, ro);
     for (const std::string& table : reader.skipped_tables())
       progress_.note(table + ": no geometry (a table, e.g. QGIS's styles), left out");
@@ -61,8 +77,12 @@ class Builder {
       // transaction (committed below), so it is either there and complete
       // or not there at all.
       tileformat::FeatureTableWriter features(*writer);
+      std::optional<tileformat::LabelTableWriter> labels;
+      if (!label_field_.empty()) labels.emplace(*writer);
       GeometryScratch scratch(s_.output + ".scratch-geometry");
-      pass_read(reader, keeps_features ? &features : nullptr, scratch);
+      pass_read(reader, keeps_features ? &features : nullptr,
+                labels && !labels->complete() ? &*labels : nullptr, scratch);
+      if (labels) label_count_ = labels->count();
       // Within --bbox a class may be absent for good reason: a note then.
       if (const std::string unused = classes_.unused_style(); !unused.empty()) {
         if (!s_.bbox) throw UsageError(unused);
@@ -94,6 +114,9 @@ class Builder {
     // out), plus the shard keys.
     const tileformat::LineMetadata meta = line_metadata(s_, frame_, plan_, classes_, facts_);
     writer->set_metadata(tileformat::to_metadata(meta));
+    if (!label_field_.empty())
+      writer->set_metadata("globe:labels",
+                           labels_metadata_json(label_field_, s_.labels.priority, label_count_));
     if (shard_)
       writer->set_metadata(tileformat::to_metadata(
           shard_metadata(s_, shard_->plan(), meta.common.min_zoom, meta.common.center_zoom)));
@@ -104,7 +127,8 @@ class Builder {
  private:
   // `features`: the table to fill (none: left empty).
   void pass_read(VectorReader& reader, tileformat::FeatureTableWriter* features,
-                 GeometryScratch& scratch) {
+                 tileformat::LabelTableWriter* labels, GeometryScratch& scratch) {
+    const FrameLonLat to_lonlat(frame_.frame, frame_.target ? &*frame_.target : nullptr);
     std::vector<LineProjector> projectors;
     for (const VectorLayerInfo& l : reader.layers())
       projectors.emplace_back(frame_.frame, *l.crs, frame_.target ? &*frame_.target : nullptr);
@@ -138,6 +162,7 @@ class Builder {
       ++facts_.layer_features[vf.layer];
       if (features && !features->complete())
         features->add(static_cast<int64_t>(pf.id), layer, vf.properties_json);
+      if (labels) add_label(vf, pf, to_lonlat, *labels);
       for (const auto& part : pf.lines)
         for (size_t i = 0; i < part.size(); ++i) {
           extend(part[i]);
@@ -162,6 +187,50 @@ class Builder {
                        " invalid or degenerate parts); check --where, --layer and --bbox");
     }
     scratch.rewind();
+  }
+
+  // The line's label along its longest part, anchored at that part's middle,
+  // unless its name is empty.
+  void add_label(const VectorFeature& vf, const ProjectedFeature& pf, const FrameLonLat& to_lonlat,
+                 tileformat::LabelTableWriter& labels) {
+    const std::string& text = vf.texts.at(0);
+    if (text.empty() || pf.lines.empty()) return;
+    const LinePath path = line_label_path(pf.lines);
+    if (path.points.size() < 2) return;
+    tileformat::LabelRecord r;
+    r.feature = static_cast<int64_t>(pf.id);
+    r.text = text;
+    r.priority = path.length;
+    if (!s_.labels.priority.empty()) {
+      const double p = vf.values.at(0);
+      r.priority = std::isfinite(p) ? p : 0;
+    }
+    double along = 0, half = 0;
+    for (size_t i = 1; i < path.points.size(); ++i)
+      half += std::hypot(path.points[i].x - path.points[i - 1].x,
+                         path.points[i].y - path.points[i - 1].y);
+    half /= 2;
+    XY mid = path.points.front();
+    for (size_t i = 1; i < path.points.size(); ++i) {
+      const XY a = path.points[i - 1], b = path.points[i];
+      const double len = std::hypot(b.x - a.x, b.y - a.y);
+      if (along + len >= half) {
+        const double t = len > 0 ? (half - along) / len : 0;
+        mid = {a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t};
+        break;
+      }
+      along += len;
+    }
+    XY ll;
+    if (!to_lonlat(mid, ll)) return;
+    r.lon = ll.x, r.lat = ll.y;
+    for (const XY& p : path.points) {
+      if (!to_lonlat(p, ll)) return;
+      r.path.push_back(ll.x);
+      r.path.push_back(ll.y);
+    }
+    r.placement = tileformat::LabelPlacement::kLine;
+    labels.add(r);
   }
 
   void extend(XY p) {
@@ -194,6 +263,8 @@ class Builder {
   LinePlan plan_;
   std::optional<LineShard> shard_;
   LinesSummary sum_;
+  std::string label_field_;  // the attribute labels come from ("" none)
+  int64_t label_count_ = 0;
 };
 
 }  // namespace

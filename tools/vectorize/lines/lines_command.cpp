@@ -2,6 +2,7 @@
 // prints the summary.
 #include <sstream>
 
+#include "labels/label_options.hpp"
 #include "lines/lines_builder.hpp"
 #include "lines/lines_options.hpp"
 #include "runtime/cli_args.hpp"
@@ -32,6 +33,7 @@ int run_lines(const std::vector<std::string>& args) {
   cli.option("--class-map", "V=NAME,...", "rename class values, e.g. 1=highway,2=primary",
              [&](const std::string& v) { s.class_map = v; });
   declare_line_tile_options(cli, s);
+  declare_label_options(cli, s.labels, "a line (drawn along it: rivers, roads, airways)");
   declare_shard_options(cli, s);
   declare_run_options(cli, s);
   if (!parse_build_command(cli, s, args, "globe-vectorize lines", "input vector file (see --help)"))
