@@ -17,6 +17,10 @@ packages=(
   libmicrohttpd-dev
   # viewer image tile decoding without GDAL
   libjpeg62-turbo-dev libwebp-dev
+  # lib/text: FreeType, HarfBuzz, FriBiDi, protozero, the fonts it falls back on, and
+  # hb-shape (tests/text_test.cpp checks the shaping against it)
+  libfreetype-dev libharfbuzz-dev libfribidi-dev libprotozero-dev fonts-noto-core fonts-dejavu-core
+  libharfbuzz-bin
   googletest libgtest-dev
   # viewer: GLM, GLFW window, OSMesa and EGL (Mesa llvmpipe) headless contexts
   libglm-dev libglfw3-dev libosmesa6-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
