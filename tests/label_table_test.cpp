@@ -27,7 +27,13 @@ TEST(LabelTable, RoundTripsEveryField) {
   std::vector<LabelRecord> in(3);
   in[0] = {0, 7, "Zürich", 1.5e6, 8.5417, 47.3769, LabelPlacement::kPoint, {}};
   in[1] = {0, 9, "القاهرة", 2.0, 31.2357, 30.0444, LabelPlacement::kArea, {}};
-  in[2] = {0, 12, "R464", 0.25, -155.8, 23.0, LabelPlacement::kLine,
+  in[2] = {0,
+           12,
+           "R464",
+           0.25,
+           -155.8,
+           23.0,
+           LabelPlacement::kLine,
            {-156.170961, 22.528056, -155.478836, 23.528031, 179.999999999, -0.1}};
   {
     tileformat::PackageWriter w(path, tileformat::IfExists::kFail);
