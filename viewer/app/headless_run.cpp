@@ -9,6 +9,7 @@
 #include "app/image_file.hpp"
 #include "app/mesh_file.hpp"
 #include "app/terrain_scene.hpp"
+#include "app/text_file.hpp"
 #include "platform/gl.hpp"
 #include "platform/headless_context.hpp"
 #include "runtime/errors.hpp"
@@ -113,12 +114,27 @@ int run_headless(const ViewerSettings& settings) {
   std::vector<double> frame_ms, terrain_ms, select_ms;
   std::vector<std::vector<double>> layer_ms(scene.layers().size());
   uint64_t max_resident = scene.cache().stats().resident_bytes;
+  std::string labels_json;  // --labels-json: one object per frame
+  int frame_no = 0;
   for (size_t i = 0; i < poses.size(); ++i) {
     const int frames = settings.stats ? settings.frames : 1;
     for (int k = 0; k < frames; ++k) {
       const auto t0 = std::chrono::steady_clock::now();
       f = scene.frame(poses[i], Loading::kSettle, TerrainScene::Output::kDraw);
       gl::Finish();
+      if (settings.labels_json) {
+        const CameraPose& p = poses[i];
+        const std::string frame =
+            scene.labels() ? scene.labels()->frame_json()
+                           : std::string("{\"candidates\": 0, \"shown\": 0, \"labels\": []}");
+        char pose[160];
+        std::snprintf(pose, sizeof pose, "[%.9g, %.9g, %.9g, %.9g, %.9g]", p.lon, p.lat, p.height_m,
+                      p.heading_deg, p.pitch_deg);
+        labels_json += std::string(labels_json.empty() ? "" : ",\n") +
+                       "{\"frame\": " + std::to_string(frame_no) + ", \"pose\": " + pose + ", " +
+                       frame.substr(1);
+      }
+      ++frame_no;
       frame_ms.push_back(
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       terrain_ms.push_back(f.terrain_ms);
@@ -131,6 +147,10 @@ int run_headless(const ViewerSettings& settings) {
     most_ground = std::max(most_ground, ground);
   }
   if (!settings.picks.empty()) run_picks(settings, scene, poses.back(), f);
+  if (settings.labels_json)
+    write_text_file(*settings.labels_json, "{\"width\": " + std::to_string(settings.width) +
+                                               ", \"height\": " + std::to_string(settings.height) +
+                                               ", \"frames\": [\n" + labels_json + "\n]}\n");
   if (settings.snapshot)
     write_png(*settings.snapshot, scene.read_pixels(), scene.renderer().width(),
               scene.renderer().height());

@@ -162,6 +162,15 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
     charts_ =
         add(std::make_unique<ChartLayer>(std::move(*points), settings_.charts, point_budget,
                                          settings_.width, settings_.height, point_cross, *world_));
+  // Names last, over everything.
+  std::vector<std::string> vector_packages;
+  for (const std::optional<std::string>& p : {set.areas, set.lines, set.points})
+    if (p) vector_packages.push_back(*p);
+  if (!vector_packages.empty() && (settings_.labels.enabled || settings_.labels_json)) {
+    auto labels = std::make_unique<LabelLayer>(vector_packages, settings_.labels, *world_,
+                                               settings_.width, settings_.height);
+    if (labels->has_labels()) labels_ = add(std::move(labels));
+  }
 }
 
 TerrainScene::~TerrainScene() = default;

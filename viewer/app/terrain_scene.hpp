@@ -16,6 +16,7 @@
 #include "app/elevation_ramp.hpp"
 #include "app/flat_base.hpp"
 #include "app/image_layers.hpp"
+#include "app/label_layer.hpp"
 #include "app/line_layer.hpp"
 #include "app/relief_scale.hpp"
 #include "app/scene_layer.hpp"
@@ -71,6 +72,7 @@ class TerrainScene {
   LineLayer* lines() { return lines_; }
   AreaLayer* areas() { return areas_; }
   ChartLayer* charts() { return charts_; }
+  LabelLayer* labels() { return labels_; }  // nullptr: no package stores labels
   ImageLayers* images() { return images_; }
   // The finished image (terrain, imagery and lines): framebuffer and pixels.
   GLuint output_fbo() const;
@@ -128,6 +130,7 @@ class TerrainScene {
   LineLayer* lines_ = nullptr;
   AreaLayer* areas_ = nullptr;
   ChartLayer* charts_ = nullptr;
+  LabelLayer* labels_ = nullptr;
   std::unique_ptr<ElevationRamp> ramp_;
   std::unique_ptr<GroundProbe> ground_;
   bool raised_ = false;                       // the last frame's pose was raised above the ground

@@ -185,6 +185,27 @@ void declare_shading_options(CliArgs& cli, ViewerSettings& s) {
                if (!(s.area_opacity >= 0 && s.area_opacity <= 1))
                  throw UsageError("--area-opacity: must be within 0..1");
              });
+  cli.option("--labels", "auto|off|FIELD",
+             "the names the vector packages store (globe-vectorize --label-field), placed per "
+             "frame: never overlapping, never through terrain (default auto: shown when stored; "
+             "FIELD: that attribute of each labelled feature instead)",
+             [&](const std::string& v) {
+               s.labels.enabled = v != "off";
+               s.labels.field = v == "auto" || v == "off" ? "" : v;
+             });
+  cli.option("--label-size", "PX", "label text size in pixels at the view's centre (default 13)",
+             [&](const std::string& v) {
+               s.labels.size_px = CliArgs::to_double("--label-size", v);
+               if (!(s.labels.size_px >= 4 && s.labels.size_px <= 96))
+                 throw UsageError("--label-size: must be within 4..96 pixels");
+             });
+  cli.option("--label-font", "FILE",
+             "a TrueType/OpenType font tried before Debian's Noto and DejaVu fonts",
+             [&](const std::string& v) { s.labels.font = v; });
+  cli.option("--labels-json", "FILE",
+             "write the labels placed in each frame as JSON (text, source, anchor, screen box, "
+             "alpha, line labels' glyphs; headless)",
+             [&](const std::string& v) { s.labels_json = v; });
   cli.option("--sun", "AZ,ALT", "sun azimuth and altitude in degrees (default 315,45)",
              [&](const std::string& v) {
                const auto d = CliArgs::to_doubles("--sun", v, 2);
@@ -475,7 +496,7 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
       "  , and . shift the elevation ramp down/up, ; and ' narrow/widen it, 0 reset;\n"
       "  I select the next image layer, V show/hide it, [ and ] its opacity -/+ 0.1,\n"
       "  U imagery unlit/lit; L line mode, F5 reload the style and colour files;\n"
-      "  C next chart kind; the title names the place under the cursor;\n"
+      "  C next chart kind; the title names the place under the cursor; N labels on/off;\n"
       "  PageUp/PageDown raise/lower lifted lines (--bundles 3d);\n"
       "  click a line to highlight it (a bundle: every connection through it), click\n"
       "  elsewhere to clear; the title names it.\n");

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "app/chart_layer.hpp"
+#include "app/label_settings.hpp"
 #include "camera/camera.hpp"
 #include "render/line_renderer.hpp"
 #include "render/terrain_renderer.hpp"
@@ -50,11 +51,13 @@ struct ViewerSettings {
   bool pick_json = false;             // --pick-format json
   ChartSettings charts;               // --chart, --chart-style, --chart-depth, --chart-thinning
   bool charts_given = false;          // any of those options
-  bool lens_mode_given = false;       // --lens named its mode
+  LabelSettings labels;               // --labels, --label-size, --label-font
+  std::optional<std::string> labels_json;  // --labels-json FILE
+  bool lens_mode_given = false;            // --lens named its mode
 
   bool headless() const {
-    return snapshot || export_mesh || stats || !picks.empty() || platform == "osmesa" ||
-           platform == "egl";
+    return snapshot || export_mesh || stats || !picks.empty() || labels_json ||
+           platform == "osmesa" || platform == "egl";
   }
 };
 

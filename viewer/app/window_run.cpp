@@ -238,6 +238,9 @@ bool WindowSession::layer_key(int key) {
     case GLFW_KEY_C:
       if (scene_->charts()) scene_->charts()->next_kind();
       return true;
+    case GLFW_KEY_N:  // names on/off
+      if (scene_->labels()) scene_->labels()->toggle();
+      return true;
     default:
       return false;
   }

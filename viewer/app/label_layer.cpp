@@ -1,0 +1,414 @@
+// The labels of one view (see label_layer.hpp).
+#include "app/label_layer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <sstream>
+#include <unordered_set>
+
+#include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
+
+#include "tileformat/json.hpp"
+
+namespace globe::viewer {
+
+namespace {
+
+constexpr float kHaloPx = 1.6f;
+constexpr double kShowScale = 0.6;    // legibility cutoff (MapLibre's perspective-ratio cutoff)
+constexpr double kKeepScale = 0.55;   // a shown label stays down to this (hysteresis)
+constexpr double kMaxScale = 1.4;     // labels near the eye grow no further
+constexpr int kMaxNewPerFrame = 400;  // the window's placement budget
+constexpr int kRepeatsEachSide = 3;   // line labels: copies either side of the middle
+constexpr float kMaxTurnDeg = 45;
+
+struct PathPoint {
+  float x, y, s, d;  // screen px, arc length px, distance
+};
+
+// Position, direction and distance at arc length s of a screen path.
+struct PathAt {
+  float x, y, angle, d;
+};
+PathAt path_at(const std::vector<PathPoint>& p, float s) {
+  size_t i = 1;
+  while (i + 1 < p.size() && p[i].s < s)
+    ++i;
+  const PathPoint& a = p[i - 1];
+  const PathPoint& b = p[i];
+  const float len = std::max(b.s - a.s, 1e-6f);
+  const float t = std::clamp((s - a.s) / len, 0.f, 1.f);
+  return {a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t, std::atan2(b.y - a.y, b.x - a.x),
+          a.d + (b.d - a.d) * t};
+}
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+}  // namespace
+
+// One bid's geometry: where its glyphs go and what it covers.
+struct LabelLayer::Layout {
+  uint32_t label = 0;
+  uint64_t key = 0;
+  float scale = 1;     // screen px per atlas texel
+  float distance = 0;  // of its anchor (expected depth of the samples)
+  bool legible = true;
+  std::vector<std::array<float, 3>> pivots;  // per glyph: x, y, angle (radians)
+  float baseline = 0;                        // of the glyphs, px below their pivot
+  ScreenBox box;
+  std::vector<ScreenBox> boxes;
+  size_t sample_first = 0, sample_count = 0;
+  std::vector<float> expected;  // per sample: the label's distance there
+};
+
+LabelLayer::LabelLayer(const std::vector<std::string>& packages, const LabelSettings& settings,
+                       const WorldFrame& world, int width, int height)
+    : settings_(settings),
+      set_(packages, settings.field, settings.font),
+      renderer_(width, height),
+      placer_(LabelPlacementOptions{width, height}),
+      width_(width),
+      height_(height) {
+  build_probes(world);
+}
+
+LabelLayer::~LabelLayer() = default;
+
+void LabelLayer::resize(int width, int height) {
+  renderer_.resize(width, height);
+  placer_.set_size(width, height);
+  width_ = width, height_ = height;
+}
+
+void LabelLayer::build_probes(const WorldFrame& world) {
+  std::vector<LabelProbe> probes;
+  glm::dvec2 last_key{0, 0};
+  auto probe = [&](double lon, double lat) -> uint32_t {
+    if (world.tiling().scheme == tileformat::Scheme::kWebMercator)
+      lat = std::clamp(lat, -85.0511, 85.0511);
+    glm::dvec2 k;
+    try {
+      const glm::dvec2 crs = world.lonlat_to_crs(lon, lat);
+      k = world.crs_to_key(crs.x, crs.y);
+    } catch (const std::exception&) {
+      return UINT32_MAX;  // not in this frame's CRS
+    }
+    if (!std::isfinite(k.x) || !std::isfinite(k.y)) return UINT32_MAX;
+    last_key = k;
+    LabelProbe p{};
+    p.key[0] = static_cast<int32_t>(std::floor(k.x));
+    p.key[1] = static_cast<int32_t>(std::floor(k.y));
+    p.frac[0] = static_cast<float>(k.x - std::floor(k.x));
+    p.frac[1] = static_cast<float>(k.y - std::floor(k.y));
+    probes.push_back(p);
+    return static_cast<uint32_t>(probes.size() - 1);
+  };
+  for (const LabelEntry& e : set_.labels()) {
+    anchor_probe_.push_back(probe(e.record.lon, e.record.lat));
+    anchor_key_.push_back(last_key);
+    const auto first = static_cast<uint32_t>(probes.size());
+    uint32_t count = 0;
+    for (size_t i = 0; i + 1 < e.record.path.size(); i += 2)
+      count += probe(e.record.path[i], e.record.path[i + 1]) != UINT32_MAX ? 1 : 0;
+    path_probes_.emplace_back(first, count);
+  }
+  renderer_.set_probes(probes);
+}
+
+double LabelLayer::draw(const LayerPass& pass) {
+  const auto now = std::chrono::steady_clock::now();
+  double dt = first_frame_ ? 0 : std::chrono::duration<double>(now - last_time_).count();
+  bool still = false;
+  if (pass.loading == Loading::kSettle) {  // headless: a frame is 1/30 s of a camera path
+    still = first_frame_ || pass.view.view == last_view_;
+    dt = 1.0 / 30;
+  }
+  last_time_ = now;
+  last_view_ = pass.view.view;
+  first_frame_ = false;
+  placed_.clear();
+  candidates_ = occluded_ = illegible_ = 0;
+  if (!settings_.enabled || set_.labels().empty()) return renderer_.draw(pass.below_fbo, {}, {});
+
+  const auto t0 = std::chrono::steady_clock::now();
+  const View& view = pass.view;
+  const std::vector<ProbeResult> probes =
+      renderer_.project(view, pass.world, pass.terrain, pass.heights, pass.shading.exaggeration);
+  // The distance labels have their nominal size at: the ground at the
+  // view's centre (else the median anchor in view).
+  double d_ref =
+      renderer_.terrain_distances({float(width_) / 2, float(height_) / 2}, pass.g, view)[0];
+  if (!(d_ref > 0)) {
+    std::vector<float> d;
+    for (const ProbeResult& p : probes)
+      if (p.front && p.x >= 0 && p.y >= 0 && p.x < width_ && p.y < height_) d.push_back(p.distance);
+    if (d.empty()) d.push_back(float(glm::length(view.eye)));
+    std::nth_element(d.begin(), d.begin() + long(d.size() / 2), d.end());
+    d_ref = d[d.size() / 2];
+  }
+  const float focal = static_cast<float>(view.pixels_per_radian);
+  const float pad = 100;  // labels may reach this far past the screen's edge
+  auto on_screen = [&](float x, float y) {
+    return x >= 0 && y >= 0 && x < float(width_) && y < float(height_);
+  };
+
+  std::vector<Layout> lays;
+  std::vector<float> samples;  // x, y
+  auto add_sample = [&](Layout& l, float x, float y, float expected) {
+    samples.push_back(x), samples.push_back(y);
+    l.expected.push_back(expected);
+    ++l.sample_count;
+  };
+  const glm::dmat4 unproject = glm::inverse(view.proj * view.view);
+  // The unit sight line through pixel (x, y) from the top-left.
+  auto ray = [&](float x, float y) {
+    const double nx = 2.0 * x / width_ - 1, ny = 1 - 2.0 * y / height_;
+    const glm::dvec4 p0 = unproject * glm::dvec4(nx, ny, -1, 1);
+    const glm::dvec4 p1 = unproject * glm::dvec4(nx, ny, 1, 1);
+    return glm::normalize(glm::dvec3(p1) / p1.w - glm::dvec3(p0) / p0.w);
+  };
+  std::vector<LabelEntry>& labels = set_.labels();
+  for (uint32_t i = 0; i < labels.size(); ++i) {
+    if (anchor_probe_[i] == UINT32_MAX) continue;
+    const ProbeResult& a = probes[anchor_probe_[i]];
+    if (!a.front || !on_screen(a.x, a.y)) continue;  // a label shows while its anchor does
+    LabelEntry& e = labels[i];
+    const ShapedLabel& s = set_.shaped(e);
+    if (!s.ok) continue;
+    const double sd = std::min(kMaxScale, 0.5 + 0.5 * d_ref / std::max(a.distance, 1e-3f));
+    const bool area = e.record.placement == tileformat::LabelPlacement::kArea;
+    const float size = static_cast<float>(settings_.size_px * (area ? 1.1 : 1.0) * sd);
+    const float k = size / LabelSet::kAtlasPx;
+    const float w = s.width * k, asc = s.ascent * k, desc = s.descent * k;
+    const float baseline = (asc - desc) / 2;  // text centred on its line
+    ++candidates_;
+    const auto [first, count] = path_probes_[i];
+    if (e.record.placement != tileformat::LabelPlacement::kLine || count < 2) {
+      Layout l;
+      l.label = i, l.key = uint64_t(i) << 4, l.scale = k, l.distance = a.distance;
+      l.legible = sd >= kShowScale;
+      const float gap = area ? -w / 2 : 0.45f * size;
+      const float x0 = a.x + gap;
+      for (const LabelGlyph& g : s.glyphs)
+        l.pivots.push_back({x0 + g.x * k, a.y - g.y * k, 0.f});
+      l.baseline = baseline;
+      l.box = {x0 - 1, a.y + baseline - asc - 1, x0 + w + 1, a.y + baseline + desc + 1};
+      l.boxes = {l.box};
+      l.sample_first = samples.size() / 2;
+      // The anchor and the label's row through it. The label stands on the
+      // ground at its anchor: where a sample's sight line meets terrain
+      // before the ground's tangent plane there, terrain is in front of the
+      // label (a ridge crossing it); the tangent plane keeps the globe's
+      // curvature and the view's perspective from counting.
+      const glm::dvec3 eye = view.eye;
+      const glm::dvec3 anchor_point = eye + ray(a.x, a.y) * double(a.distance);
+      const glm::dvec2 key = anchor_key_[i];
+      const glm::dvec3 up =
+          glm::normalize(pass.world.key_to_world(key.x, key.y, 1000, view.origin) -
+                         pass.world.key_to_world(key.x, key.y, 0, view.origin));
+      const double plane = glm::dot(anchor_point - eye, up);
+      add_sample(l, a.x, a.y, a.distance);
+      for (float x : {l.box.x0, (l.box.x0 + l.box.x1) / 2, l.box.x1}) {
+        const double down = glm::dot(ray(x, a.y), up);
+        add_sample(l, x, a.y, down < -1e-6 ? float(plane / down) : -1.f);
+      }
+      lays.push_back(std::move(l));
+      continue;
+    }
+    // A line label: along the screen path of its line, from its middle.
+    std::vector<PathPoint> path;
+    for (uint32_t p = first; p < first + count; ++p) {
+      const ProbeResult& q = probes[p];
+      const bool usable =
+          q.front && q.x > -pad && q.y > -pad && q.x < width_ + pad && q.y < height_ + pad;
+      if (!usable) {
+        if (path.size() >= 2) break;  // keep the first usable stretch
+        path.clear();
+        continue;
+      }
+      const float s_len =
+          path.empty() ? 0 : path.back().s + std::hypot(q.x - path.back().x, q.y - path.back().y);
+      path.push_back({q.x, q.y, s_len, q.distance});
+    }
+    if (path.size() < 2 || path.back().s < w + 4) continue;
+    // The middle's place on the path: the point nearest the anchor.
+    float s_mid = 0, best = HUGE_VALF;
+    for (size_t p = 1; p < path.size(); ++p) {
+      const float dx = path[p].x - path[p - 1].x, dy = path[p].y - path[p - 1].y;
+      const float len2 = std::max(dx * dx + dy * dy, 1e-9f);
+      const float t =
+          std::clamp(((a.x - path[p - 1].x) * dx + (a.y - path[p - 1].y) * dy) / len2, 0.f, 1.f);
+      const float ex = path[p - 1].x + dx * t - a.x, ey = path[p - 1].y + dy * t - a.y;
+      if (ex * ex + ey * ey < best)
+        best = ex * ex + ey * ey, s_mid = path[p - 1].s + t * std::sqrt(len2);
+    }
+    const float spacing = std::max(3 * w, 250.f);
+    const float total = path.back().s;
+    for (int rep = -kRepeatsEachSide; rep <= kRepeatsEachSide; ++rep) {
+      const float centre = s_mid + float(rep) * spacing;
+      if (centre - w / 2 < 0 || centre + w / 2 > total) continue;
+      // Upright: the text runs left to right on screen.
+      const PathAt p0 = path_at(path, centre - w / 2), p1 = path_at(path, centre + w / 2);
+      const bool flip = p1.x < p0.x;
+      Layout l;
+      l.label = i, l.key = (uint64_t(i) << 4) | uint64_t(rep + kRepeatsEachSide);
+      l.scale = k, l.distance = a.distance, l.legible = sd >= kShowScale, l.baseline = baseline;
+      l.sample_first = samples.size() / 2;
+      bool ok = true;
+      float last_angle = 0;
+      bool have_angle = false;
+      l.box = {HUGE_VALF, HUGE_VALF, -HUGE_VALF, -HUGE_VALF};
+      for (const LabelGlyph& g : s.glyphs) {
+        const float along = (g.x + g.advance / 2) * k;
+        const float at = flip ? centre + w / 2 - along : centre - w / 2 + along;
+        PathAt q = path_at(path, at);
+        if (flip) q.angle += std::numbers::pi_v<float>;
+        if (have_angle) {
+          float turn = std::remainder(q.angle - last_angle, 2 * std::numbers::pi_v<float>);
+          if (std::abs(turn) > kMaxTurnDeg * std::numbers::pi_v<float> / 180) {
+            ok = false;
+            break;
+          }
+        }
+        last_angle = q.angle, have_angle = true;
+        l.pivots.push_back({q.x, q.y, q.angle});
+        const float r = std::max(asc + desc, g.advance * k) / 2;
+        const ScreenBox b{q.x - r, q.y - r, q.x + r, q.y + r};
+        l.boxes.push_back(b);
+        l.box = {std::min(l.box.x0, b.x0), std::min(l.box.y0, b.y0), std::max(l.box.x1, b.x1),
+                 std::max(l.box.y1, b.y1)};
+        add_sample(l, q.x, q.y, q.d);
+      }
+      if (!ok) {
+        samples.resize(l.sample_first * 2);
+        continue;
+      }
+      lays.push_back(std::move(l));
+    }
+  }
+
+  // The terrain's distance at every sample: a label whose samples see
+  // terrain nearer than the label is behind it.
+  const std::vector<float> terrain = renderer_.terrain_distances(samples, pass.g, view);
+  const std::unordered_set<uint64_t> drawn_before(last_placed_keys_.begin(),
+                                                  last_placed_keys_.end());
+  std::vector<LabelBid> bids(lays.size());
+  for (size_t b = 0; b < lays.size(); ++b) {
+    const Layout& l = lays[b];
+    const bool before = drawn_before.count(l.key) != 0;
+    bool hidden = false;
+    for (size_t s = 0; s < l.sample_count && !hidden; ++s) {
+      const float t = terrain[l.sample_first + s];
+      const float d = l.expected[s];
+      if (d < 0) continue;  // the sight line misses the label's plane
+      // Hysteresis: a shown label needs more terrain in front to go.
+      const float tol = d * (before ? 0.015f : 0.008f) + d * (before ? 4.f : 2.f) / focal;
+      hidden = t >= 0 && t < d - tol;
+    }
+    occluded_ += hidden ? 1 : 0;
+    LabelBid& bid = bids[b];
+    bid.key = l.key;
+    bid.priority = labels[l.label].rank;
+    bid.boxes = l.boxes;
+    bid.drawable = !hidden;
+    bid.legible = l.legible ||
+                  (before && l.scale * LabelSet::kAtlasPx >= float(settings_.size_px * kKeepScale));
+    illegible_ += bid.legible ? 0 : 1;
+  }
+  const std::vector<float> alpha =
+      placer_.place(bids, dt, still, pass.loading == Loading::kAsReady ? kMaxNewPerFrame : -1);
+
+  // The glyphs of the labels shown.
+  std::vector<GlyphQuad> quads;
+  last_placed_keys_.clear();
+  for (size_t b = 0; b < lays.size(); ++b) {
+    if (alpha[b] <= 0) continue;
+    const Layout& l = lays[b];
+    last_placed_keys_.push_back(l.key);
+    const ShapedLabel& s = *labels[l.label].shaped;
+    Placed p{l.label, l.box, alpha[b], {}};
+    const bool line = l.pivots.size() == s.glyphs.size() &&
+                      labels[l.label].record.placement == tileformat::LabelPlacement::kLine &&
+                      path_probes_[l.label].second >= 2;
+    for (size_t g = 0; g < s.glyphs.size(); ++g) {
+      const LabelGlyph& lg = s.glyphs[g];
+      const auto& pv = l.pivots[g];
+      if (line) p.glyphs.push_back({pv[0], pv[1], pv[2] * 180 / std::numbers::pi_v<float>});
+      if (!lg.atlas) continue;
+      const text::GlyphAtlas::Entry& en = *lg.atlas;
+      GlyphQuad q{};
+      q.pivot[0] = pv[0], q.pivot[1] = pv[1], q.pivot[2] = pv[2], q.pivot[3] = l.scale;
+      // Line glyphs pivot about their centre on the line; straight ones
+      // about their pen position on the baseline.
+      const float x0 = line ? en.left * l.scale - lg.advance / 2 * l.scale : en.left * l.scale;
+      const float y0 = l.baseline - (en.top + (line ? lg.y : 0)) * l.scale;
+      q.rect[0] = x0, q.rect[1] = y0;
+      q.rect[2] = x0 + en.width * l.scale, q.rect[3] = y0 + en.height * l.scale;
+      q.atlas[0] = float(en.x), q.atlas[1] = float(en.y);
+      q.atlas[2] = float(en.x + en.width), q.atlas[3] = float(en.y + en.height);
+      q.style[0] = alpha[b], q.style[1] = kHaloPx;
+      quads.push_back(q);
+    }
+    placed_.push_back(std::move(p));
+  }
+  text::GlyphAtlas& atlas = set_.atlas();
+  if (const auto [y0, y1] = atlas.dirty_rows(); y1 > y0 || first_upload_) {
+    renderer_.upload_atlas(atlas.pixels().data(), atlas.width(), atlas.height(), y0, y1);
+    atlas.clear_dirty();
+    first_upload_ = false;
+  }
+  place_ms_ =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return renderer_.draw(pass.below_fbo, quads, LabelColors{});
+}
+
+std::string LabelLayer::frame_json() const {
+  std::ostringstream o;
+  o << "{\"candidates\": " << candidates_ << ", \"shown\": " << placed_.size()
+    << ", \"occluded\": " << occluded_ << ", \"illegible\": " << illegible_ << ", \"labels\": [";
+  const std::vector<LabelEntry>& labels = set_.labels();
+  for (size_t i = 0; i < placed_.size(); ++i) {
+    const Placed& p = placed_[i];
+    const LabelEntry& e = labels[p.label];
+    const char* kind = e.record.placement == tileformat::LabelPlacement::kArea   ? "area"
+                       : e.record.placement == tileformat::LabelPlacement::kLine ? "line"
+                                                                                 : "point";
+    o << (i ? ", " : "") << "{\"text\": \"" << tileformat::json_escape(e.record.text)
+      << "\", \"placement\": \"" << kind << "\", \"source\": {\"package\": \""
+      << tileformat::json_escape(set_.sources()[e.source])
+      << "\", \"feature\": " << e.record.feature << ", \"label\": " << e.record.id
+      << "}, \"anchor\": [" << number(e.record.lon) << ", " << number(e.record.lat)
+      << "], \"box\": [" << number(p.box.x0) << ", " << number(p.box.y0) << ", " << number(p.box.x1)
+      << ", " << number(p.box.y1) << "], \"alpha\": " << number(p.alpha);
+    if (!p.glyphs.empty()) {
+      o << ", \"glyphs\": [";
+      for (size_t g = 0; g < p.glyphs.size(); ++g)
+        o << (g ? ", " : "") << "[" << number(p.glyphs[g][0]) << ", " << number(p.glyphs[g][1])
+          << ", " << number(p.glyphs[g][2]) << "]";
+      o << "]";
+    }
+    o << "}";
+  }
+  o << "]}";
+  return o.str();
+}
+
+std::string LabelLayer::stats_json(double ms) const {
+  std::ostringstream o;
+  o << ", \"labels\": {\"stored\": " << set_.labels().size() << ", \"candidates\": " << candidates_
+    << ", \"shown\": " << placed_.size() << ", \"occluded\": " << occluded_
+    << ", \"illegible\": " << illegible_ << ", \"place_ms\": " << number(place_ms_)
+    << ", \"glyphs\": "
+    << (set_.labels().empty() ? 0 : const_cast<LabelSet&>(set_).atlas().glyph_count())
+    << ", \"ms\": " << number(ms) << "}";
+  return o.str();
+}
+
+}  // namespace globe::viewer

@@ -1,0 +1,136 @@
+// Label placement (see label_placement.hpp).
+#include "app/label_placement.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace globe::viewer {
+
+// Boxes placed so far, bucketed by the grid cells they touch.
+class LabelPlacer::Grid {
+ public:
+  Grid(const LabelPlacementOptions& o)
+      : cell_(o.cell_px),
+        x0_(-o.padding_px),
+        y0_(-o.padding_px),
+        cols_(std::max(1, int(std::ceil((float(o.width) + 2 * o.padding_px) / o.cell_px)))),
+        rows_(std::max(1, int(std::ceil((float(o.height) + 2 * o.padding_px) / o.cell_px)))),
+        cells_(size_t(cols_) * size_t(rows_)) {}
+
+  bool free(const std::vector<ScreenBox>& boxes) const {
+    for (const ScreenBox& b : boxes) {
+      const auto [c0, r0, c1, r1] = span(b);
+      for (int r = r0; r <= r1; ++r)
+        for (int c = c0; c <= c1; ++c)
+          for (uint32_t i : cells_[size_t(r) * size_t(cols_) + size_t(c)])
+            if (boxes_[i].overlaps(b)) return false;
+    }
+    return true;
+  }
+  void insert(const std::vector<ScreenBox>& boxes) {
+    for (const ScreenBox& b : boxes) {
+      const auto i = static_cast<uint32_t>(boxes_.size());
+      boxes_.push_back(b);
+      const auto [c0, r0, c1, r1] = span(b);
+      for (int r = r0; r <= r1; ++r)
+        for (int c = c0; c <= c1; ++c)
+          cells_[size_t(r) * size_t(cols_) + size_t(c)].push_back(i);
+    }
+  }
+
+ private:
+  struct Span {
+    int c0, r0, c1, r1;
+  };
+  Span span(const ScreenBox& b) const {
+    auto col = [&](float x) {
+      return std::clamp(int(std::floor((x - x0_) / cell_)), 0, cols_ - 1);
+    };
+    auto row = [&](float y) {
+      return std::clamp(int(std::floor((y - y0_) / cell_)), 0, rows_ - 1);
+    };
+    return {col(b.x0), row(b.y0), col(b.x1), row(b.y1)};
+  }
+  float cell_, x0_, y0_;
+  int cols_, rows_;
+  std::vector<std::vector<uint32_t>> cells_;
+  std::vector<ScreenBox> boxes_;
+};
+
+std::vector<float> LabelPlacer::place(const std::vector<LabelBid>& bids, double dt_s, bool still,
+                                      int max_new) {
+  ++frame_;
+  tried_ = shown_ = 0;
+  // Shown labels first (they keep their place), then by priority, then key.
+  std::vector<uint32_t> order(bids.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::vector<char> was_shown(bids.size());
+  for (size_t i = 0; i < bids.size(); ++i) {
+    auto it = state_.find(bids[i].key);
+    was_shown[i] = it != state_.end() && it->second.shown && it->second.seen + 1 == frame_;
+  }
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+    if (was_shown[a] != was_shown[b]) return was_shown[a] > was_shown[b];
+    if (bids[a].priority != bids[b].priority) return bids[a].priority > bids[b].priority;
+    return bids[a].key < bids[b].key;
+  });
+  Grid grid(o_);
+  std::vector<float> alpha(bids.size(), 0.f);
+  const float step = still ? 1.f : static_cast<float>(std::clamp(dt_s, 0.0, 1.0) * o_.fade_per_s);
+  int tried_new = 0;
+  for (uint32_t i : order) {
+    const LabelBid& b = bids[i];
+    State& s = state_[b.key];
+    if (s.seen + 1 != frame_) s = State{};  // not bid last frame: starts afresh
+    s.seen = frame_;
+    if (!b.drawable) {  // behind terrain or out of view: gone at once
+      s.alpha = 0, s.fits = 0, s.shown = false;
+      continue;
+    }
+    if (s.shown) {
+      if (!grid.free(b.boxes)) {  // pushed off by a label shown before it
+        s.alpha = 0, s.fits = 0, s.shown = false;
+        continue;
+      }
+      ++tried_;
+      grid.insert(b.boxes);
+      if (b.legible) {
+        s.alpha = std::min(1.f, s.alpha + step);
+      } else {  // too small: fades out, keeping its place meanwhile
+        s.alpha = std::max(0.f, s.alpha - step);
+        if (s.alpha <= 0) s.shown = false, s.fits = 0;
+      }
+      alpha[i] = s.alpha;
+      if (s.alpha > 0) ++shown_;
+      continue;
+    }
+    if (!b.legible) {
+      s.fits = 0;
+      continue;
+    }
+    if (max_new >= 0 && tried_new >= max_new) continue;  // deferred (keeps its streak)
+    ++tried_new, ++tried_;
+    if (!grid.free(b.boxes)) {
+      s.fits = 0;
+      continue;
+    }
+    ++s.fits;
+    if (!still && s.fits < o_.frames_to_show) {
+      // Not shown yet, but its room is kept so that the next frame can show it.
+      grid.insert(b.boxes);
+      continue;
+    }
+    grid.insert(b.boxes);
+    s.shown = true;
+    s.alpha = std::min(1.f, still ? 1.f : s.alpha + step);
+    alpha[i] = s.alpha;
+    ++shown_;
+  }
+  // Labels that bid no more are forgotten.
+  for (auto it = state_.begin(); it != state_.end();)
+    it = it->second.seen == frame_ ? std::next(it) : state_.erase(it);
+  return alpha;
+}
+
+}  // namespace globe::viewer

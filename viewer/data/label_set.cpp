@@ -1,0 +1,103 @@
+// The view's labels (see label_set.hpp).
+#include "data/label_set.hpp"
+
+#include <algorithm>
+#include <numeric>
+
+#include "runtime/errors.hpp"
+#include "tileformat/error.hpp"
+#include "tileformat/feature_table.hpp"
+#include "tileformat/json.hpp"
+#include "tileformat/package.hpp"
+
+namespace globe::viewer {
+
+namespace {
+
+// The attribute `field` of a feature as label text ("" when absent).
+std::string attribute_text(tileformat::FeatureTableReader& features, int64_t id,
+                           const std::string& field) {
+  const auto f = features.get(id);
+  if (!f) return "";
+  const tileformat::JsonValue props = tileformat::JsonValue::parse(f->properties);
+  const tileformat::JsonValue* v = props.find(field);
+  if (!v) return "";
+  if (v->is_string()) return v->string();
+  if (v->is_number()) {
+    const double x = v->number();
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.10g", x);
+    return buf;
+  }
+  return "";
+}
+
+}  // namespace
+
+LabelSet::LabelSet(const std::vector<std::string>& packages, const std::string& field,
+                   const std::string& font) {
+  for (const std::string& path : packages) {
+    try {
+      tileformat::PackageReader reader(path);
+      if (!tileformat::has_labels(reader)) continue;
+      const auto source = static_cast<uint32_t>(sources_.size());
+      sources_.push_back(path);
+      std::optional<tileformat::FeatureTableReader> features;
+      if (!field.empty()) features.emplace(reader);
+      const size_t first = labels_.size();
+      tileformat::LabelTableReader(reader).for_each([&](const tileformat::LabelRecord& r) {
+        LabelEntry e;
+        e.source = source;
+        e.record = r;
+        if (features) e.record.text = attribute_text(*features, r.feature, field);
+        if (!e.record.text.empty()) labels_.push_back(std::move(e));
+      });
+      // Ranks within the package: by priority, ties by id.
+      const size_t n = labels_.size() - first;
+      std::vector<size_t> order(n);
+      std::iota(order.begin(), order.end(), first);
+      std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+        return labels_[a].record.priority > labels_[b].record.priority;
+      });
+      for (size_t k = 0; k < n; ++k)
+        labels_[order[k]].rank = 1.0 - double(k) / double(std::max<size_t>(n, 1));
+    } catch (const tileformat::FormatError& e) {
+      throw InputError(path + ": " + e.what());
+    } catch (const tileformat::PackageError& e) {
+      throw InputError(path + ": " + e.what());
+    }
+  }
+  if (labels_.empty()) return;
+  try {
+    fonts_ = std::make_unique<text::FontSet>(text::FontSet::debian(font));
+    shaper_ = std::make_unique<text::Shaper>(*fonts_);
+    sdf_ = std::make_unique<text::SdfRenderer>(*fonts_, static_cast<int>(kAtlasPx), 3, 8.0f);
+    atlas_ = std::make_unique<text::GlyphAtlas>(*sdf_, 1024, 1024);
+  } catch (const text::TextError& e) {
+    throw InputError(std::string("labels: ") + e.what());
+  }
+}
+
+LabelSet::~LabelSet() = default;
+
+const ShapedLabel& LabelSet::shaped(LabelEntry& l) {
+  if (l.shaped) return *l.shaped;
+  ShapedLabel s;
+  const text::ShapedText t = shaper_->shape(l.record.text, kAtlasPx);
+  s.width = t.width, s.ascent = t.ascent, s.descent = t.descent;
+  s.ok = !t.glyphs.empty();
+  for (const text::PlacedGlyph& g : t.glyphs) {
+    LabelGlyph lg{g.x, g.y, g.advance, atlas_->get(g.font, g.glyph)};
+    if (!lg.atlas) {
+      s.ok = false;
+      ++atlas_misses_;
+      break;
+    }
+    if (lg.atlas->width == 0) lg.atlas = nullptr;
+    s.glyphs.push_back(lg);
+  }
+  l.shaped = std::move(s);
+  return *l.shaped;
+}
+
+}  // namespace globe::viewer
