@@ -26,6 +26,13 @@ LabelBid bid(uint64_t key, double priority, float x, float y, float w = 60, floa
   return b;
 }
 
+std::vector<float> alphas(const std::vector<globe::viewer::LabelPlace>& places) {
+  std::vector<float> a;
+  for (const auto& p : places)
+    a.push_back(p.alpha);
+  return a;
+}
+
 bool overlap(const LabelBid& a, const LabelBid& b) {
   for (const ScreenBox& p : a.boxes)
     for (const ScreenBox& q : b.boxes)
@@ -50,7 +57,7 @@ TEST(LabelPlacement, NoTwoShownOverlapAndPriorityDecides) {
     }
     bids.push_back(b);
   }
-  const std::vector<float> alpha = placer.place(bids, 0, true);
+  const std::vector<float> alpha = alphas(placer.place(bids, 0, true));
   size_t shown = 0;
   for (size_t i = 0; i < bids.size(); ++i) {
     if (alpha[i] <= 0) continue;
@@ -73,10 +80,10 @@ TEST(LabelPlacement, NoTwoShownOverlapAndPriorityDecides) {
 TEST(LabelPlacement, AShownLabelKeepsItsPlaceAgainstAHigherNewcomer) {
   LabelPlacer placer(LabelPlacementOptions{640, 360});
   std::vector<LabelBid> bids = {bid(1, 0.2, 100, 100)};
-  EXPECT_EQ(placer.place(bids, 0, true)[0], 1.f);
+  EXPECT_EQ(alphas(placer.place(bids, 0, true))[0], 1.f);
   bids.push_back(bid(2, 0.9, 110, 104));  // overlaps, higher priority
   for (int f = 0; f < 10; ++f) {
-    const std::vector<float> a = placer.place(bids, 1.0 / 30, false);
+    const std::vector<float> a = alphas(placer.place(bids, 1.0 / 30, false));
     EXPECT_GT(a[0], 0.f) << "frame " << f;
     EXPECT_EQ(a[1], 0.f) << "frame " << f;
   }
@@ -85,19 +92,19 @@ TEST(LabelPlacement, AShownLabelKeepsItsPlaceAgainstAHigherNewcomer) {
 TEST(LabelPlacement, AppearsAfterTwoFramesFadesInAndGoesAtOnce) {
   LabelPlacer placer(LabelPlacementOptions{640, 360});
   std::vector<LabelBid> bids = {bid(5, 1, 10, 10)};
-  EXPECT_EQ(placer.place(bids, 1.0 / 30, false)[0], 0.f);  // fitted once: not yet
-  const float a1 = placer.place(bids, 1.0 / 30, false)[0];
+  EXPECT_EQ(alphas(placer.place(bids, 1.0 / 30, false))[0], 0.f);  // fitted once: not yet
+  const float a1 = alphas(placer.place(bids, 1.0 / 30, false))[0];
   EXPECT_GT(a1, 0.f);
   EXPECT_LT(a1, 1.f);  // fading in
   float a = a1;
   for (int f = 0; f < 10; ++f) {
-    const float next = placer.place(bids, 1.0 / 30, false)[0];
+    const float next = alphas(placer.place(bids, 1.0 / 30, false))[0];
     EXPECT_GE(next, a);
     a = next;
   }
   EXPECT_EQ(a, 1.f);
   bids[0].drawable = false;  // behind terrain: gone in the same frame
-  EXPECT_EQ(placer.place(bids, 1.0 / 30, false)[0], 0.f);
+  EXPECT_EQ(alphas(placer.place(bids, 1.0 / 30, false))[0], 0.f);
 }
 
 TEST(LabelPlacement, AOneFrameChanceNeverShowsALabel) {
@@ -107,7 +114,7 @@ TEST(LabelPlacement, AOneFrameChanceNeverShowsALabel) {
   for (int f = 0; f < 20; ++f) {
     std::vector<LabelBid> bids = {bid(2, 0.1, 100, 100)};
     if (f % 2 == 0) bids.push_back(bid(1, 0.9, 100, 100));
-    const std::vector<float> a = placer.place(bids, 1.0 / 30, false);
+    const std::vector<float> a = alphas(placer.place(bids, 1.0 / 30, false));
     EXPECT_EQ(a[0], 0.f) << "frame " << f;
   }
 }
@@ -115,10 +122,10 @@ TEST(LabelPlacement, AOneFrameChanceNeverShowsALabel) {
 TEST(LabelPlacement, TooSmallFadesOutKeepingItsRoom) {
   LabelPlacer placer(LabelPlacementOptions{640, 360});
   std::vector<LabelBid> bids = {bid(1, 0.5, 100, 100)};
-  placer.place(bids, 0, true);
+  alphas(placer.place(bids, 0, true));
   bids[0].legible = false;
   bids.push_back(bid(2, 0.9, 100, 100));
-  const std::vector<float> a = placer.place(bids, 1.0 / 30, false);
+  const std::vector<float> a = alphas(placer.place(bids, 1.0 / 30, false));
   EXPECT_GT(a[0], 0.f);
   EXPECT_LT(a[0], 1.f);
   EXPECT_EQ(a[1], 0.f);  // not over the one fading out
@@ -131,11 +138,36 @@ TEST(LabelPlacement, TheBudgetDefersWithoutLosing) {
     bids.push_back(bid(k, double(k), 20.f * float(k % 30), 40.f * float(k / 30), 18, 12));
   size_t shown = 0;
   for (int f = 0; f < 12; ++f) {
-    const std::vector<float> a = placer.place(bids, 1.0 / 30, false, 5);
+    const std::vector<float> a = alphas(placer.place(bids, 1.0 / 30, false, 5));
     EXPECT_LE(placer.tried() - shown, 5u + 0u);
     shown = 0;
     for (float v : a)
       shown += v > 0;
   }
   EXPECT_EQ(shown, 30u);
+}
+
+TEST(LabelPlacement, TakesTheNextPlaceAndKeepsIt) {
+  LabelPlacer placer(LabelPlacementOptions{640, 360});
+  LabelBid a = bid(1, 0.1, 100, 100);
+  a.shifts = {{0, 0}, {-80, 0}, {0, -20}};
+  // The right is taken by a chart: the label goes left.
+  const std::vector<ScreenBox> chart = {{95, 95, 170, 120}};
+  auto p = placer.place({a}, 0, true, -1, chart);
+  EXPECT_EQ(p[0].alpha, 1.f);
+  EXPECT_EQ(p[0].shift, 1);
+  // The chart goes: the label stays left (no jump back while shown).
+  p = placer.place({a}, 1.0 / 30, false);
+  EXPECT_EQ(p[0].shift, 1);
+  // Terrain hides the left place: it moves to one still clear.
+  a.clear = {1, 0, 1};
+  p = placer.place({a}, 1.0 / 30, false);
+  EXPECT_GT(p[0].alpha, 0.f);
+  EXPECT_EQ(p[0].shift, 0);
+}
+
+TEST(LabelPlacement, NothingCoversAnObstacle) {
+  LabelPlacer placer(LabelPlacementOptions{640, 360});
+  const auto p = placer.place({bid(1, 1, 100, 100)}, 0, true, -1, {{150, 90, 160, 200}});
+  EXPECT_EQ(p[0].alpha, 0.f);
 }

@@ -122,6 +122,18 @@ bool ChartLayer::reload_style(bool always) {
   }
 }
 
+std::vector<ChartLayer::Mark> ChartLayer::marks() const {
+  std::vector<Mark> out;
+  if (settings_.heatmap) return out;
+  out.reserve(instances_.size());
+  for (const ChartInstance& c : instances_) {
+    const float r = settings_.kind == ChartKind::kPie ? 0.5f * c.params[0]
+                                                      : 0.5f * static_cast<float>(style_.max_px);
+    out.push_back({{c.key[0], c.key[1]}, {c.frac[0], c.frac[1]}, r});
+  }
+  return out;
+}
+
 void ChartLayer::build(const std::vector<TileId>& tiles, const View& view,
                        const WorldFrame& world) {
   const tileformat::PointMetadata& m = cache_.package().meta;

@@ -79,6 +79,15 @@ class ChartLayer final : public SceneLayer {
   std::string pick_json(int x, int y) override;
 
   ChartKind kind() const { return settings_.kind; }
+  // The charts of the last frame as discs for the labels to keep clear of
+  // (docs/labels.md): each place's key point and the radius its chart
+  // reaches on screen (none for a heatmap).
+  struct Mark {
+    int32_t key[2];
+    float frac[2];
+    float radius_px;
+  };
+  std::vector<Mark> marks() const;
   // Cycles pie, bar, stacked, column (skipping those the values cannot show).
   void next_kind();
   // Re-reads the style file if it changed (always: even if not); a broken

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <numbers>
 #include <sstream>
+#include <unordered_map>
 #include <unordered_set>
 
 #include <glm/geometric.hpp>
@@ -64,6 +65,7 @@ struct LabelLayer::Layout {
   float baseline = 0;                        // of the glyphs, px below their pivot
   ScreenBox box;
   std::vector<ScreenBox> boxes;
+  std::vector<BoxShift> shifts = {BoxShift{}};  // the places it may take
   size_t sample_first = 0, sample_count = 0;
   std::vector<float> expected;  // per sample: the label's distance there
 };
@@ -166,6 +168,55 @@ double LabelLayer::draw(const LayerPass& pass) {
     l.expected.push_back(expected);
     ++l.sample_count;
   };
+  // The charts: no label covers one, and a place's label goes beside its chart.
+  std::vector<ScreenBox> obstacles;
+  struct Disc {
+    float x, y, r;
+  };
+  std::vector<Disc> discs;
+  if (charts_) {
+    std::vector<LabelProbe> places;
+    std::vector<float> radii;
+    for (const ChartLayer::Mark& m : charts_->marks()) {
+      places.push_back({{m.key[0], m.key[1]}, {m.frac[0], m.frac[1]}});
+      radii.push_back(m.radius_px);
+    }
+    const std::vector<ProbeResult> at = renderer_.project(places, view, pass.world, pass.terrain,
+                                                          pass.heights, pass.shading.exaggeration);
+    for (size_t c = 0; c < at.size(); ++c) {
+      if (!at[c].front || radii[c] <= 0) continue;
+      const float r = radii[c];
+      discs.push_back({at[c].x, at[c].y, r});
+      obstacles.push_back(
+          {at[c].x - 0.8f * r, at[c].y - 0.8f * r, at[c].x + 0.8f * r, at[c].y + 0.8f * r});
+    }
+  }
+  constexpr float kDiscCell = 64;
+  std::unordered_map<int64_t, std::vector<uint32_t>> disc_cells;
+  auto cell_of = [&](float x, float y) {
+    return (int64_t(std::floor(y / kDiscCell)) << 32) ^
+           int64_t(uint32_t(int32_t(std::floor(x / kDiscCell))));
+  };
+  for (uint32_t c = 0; c < discs.size(); ++c) {
+    const Disc& d = discs[c];
+    for (float y = std::floor((d.y - d.r) / kDiscCell); y <= std::floor((d.y + d.r) / kDiscCell);
+         ++y)
+      for (float x = std::floor((d.x - d.r) / kDiscCell); x <= std::floor((d.x + d.r) / kDiscCell);
+           ++x)
+        disc_cells[cell_of(x * kDiscCell, y * kDiscCell)].push_back(c);
+  }
+  // The radius of the largest chart covering pixel (x, y), 0 for none.
+  auto chart_radius_at = [&](float x, float y) {
+    float r = 0;
+    auto it = disc_cells.find(cell_of(x, y));
+    if (it == disc_cells.end()) return r;
+    for (uint32_t c : it->second) {
+      const Disc& d = discs[c];
+      if (std::hypot(x - d.x, y - d.y) <= d.r + 1) r = std::max(r, d.r);
+    }
+    return r;
+  };
+
   const glm::dmat4 unproject = glm::inverse(view.proj * view.view);
   // The unit sight line through pixel (x, y) from the top-left.
   auto ray = [&](float x, float y) {
@@ -194,19 +245,28 @@ double LabelLayer::draw(const LayerPass& pass) {
       Layout l;
       l.label = i, l.key = uint64_t(i) << 4, l.scale = k, l.distance = a.distance;
       l.legible = sd >= kShowScale;
-      const float gap = area ? -w / 2 : 0.45f * size;
-      const float x0 = a.x + gap;
+      // A point label goes right of its place, else left, above or below,
+      // clear of the place's chart; an area label on its anchor.
+      const float chart_r = area ? 0.f : chart_radius_at(a.x, a.y);
+      const float gap = area ? 0.f : std::max(0.45f * size, chart_r + 3);
+      const float h = asc + desc;
+      const float x0 = area ? a.x - w / 2 : a.x + gap;
       for (const LabelGlyph& g : s.glyphs)
         l.pivots.push_back({x0 + g.x * k, a.y - g.y * k, 0.f});
       l.baseline = baseline;
       l.box = {x0 - 1, a.y + baseline - asc - 1, x0 + w + 1, a.y + baseline + desc + 1};
       l.boxes = {l.box};
+      if (!area)
+        l.shifts = {{0, 0},
+                    {-(2 * gap + w), 0},
+                    {-(gap + w / 2), -(gap + h / 2)},
+                    {-(gap + w / 2), gap + h / 2}};
       l.sample_first = samples.size() / 2;
-      // The anchor and the label's row through it. The label stands on the
-      // ground at its anchor: where a sample's sight line meets terrain
-      // before the ground's tangent plane there, terrain is in front of the
-      // label (a ridge crossing it); the tangent plane keeps the globe's
-      // curvature and the view's perspective from counting.
+      // The anchor, and the middle row of the label in each of its places.
+      // The label stands on the ground at its anchor: where a sample's sight
+      // line meets terrain before the ground's tangent plane there, terrain
+      // is in front of the label (a ridge crossing it); the tangent plane
+      // keeps the globe's curvature and the view's perspective from counting.
       const glm::dvec3 eye = view.eye;
       const glm::dvec3 anchor_point = eye + ray(a.x, a.y) * double(a.distance);
       const glm::dvec2 key = anchor_key_[i];
@@ -215,9 +275,12 @@ double LabelLayer::draw(const LayerPass& pass) {
                          pass.world.key_to_world(key.x, key.y, 0, view.origin));
       const double plane = glm::dot(anchor_point - eye, up);
       add_sample(l, a.x, a.y, a.distance);
-      for (float x : {l.box.x0, (l.box.x0 + l.box.x1) / 2, l.box.x1}) {
-        const double down = glm::dot(ray(x, a.y), up);
-        add_sample(l, x, a.y, down < -1e-6 ? float(plane / down) : -1.f);
+      for (const BoxShift& sh : l.shifts) {
+        const float y = (l.box.y0 + l.box.y1) / 2 + sh.dy;
+        for (float x : {l.box.x0, (l.box.x0 + l.box.x1) / 2, l.box.x1}) {
+          const double down = glm::dot(ray(x + sh.dx, y), up);
+          add_sample(l, x + sh.dx, y, down < -1e-6 ? float(plane / down) : -1.f);
+        }
       }
       lays.push_back(std::move(l));
       continue;
@@ -303,37 +366,54 @@ double LabelLayer::draw(const LayerPass& pass) {
   for (size_t b = 0; b < lays.size(); ++b) {
     const Layout& l = lays[b];
     const bool before = drawn_before.count(l.key) != 0;
-    bool hidden = false;
-    for (size_t s = 0; s < l.sample_count && !hidden; ++s) {
-      const float t = terrain[l.sample_first + s];
-      const float d = l.expected[s];
-      if (d < 0) continue;  // the sight line misses the label's plane
+    auto behind = [&](size_t sample) {
+      const float t = terrain[l.sample_first + sample];
+      const float d = l.expected[sample];
+      if (d < 0) return false;  // the sight line misses the label's plane
       // Hysteresis: a shown label needs more terrain in front to go.
       const float tol = d * (before ? 0.015f : 0.008f) + d * (before ? 4.f : 2.f) / focal;
-      hidden = t >= 0 && t < d - tol;
+      return t >= 0 && t < d - tol;
+    };
+    bool hidden = false;
+    std::vector<char> clear;
+    if (l.shifts.size() > 1) {  // the anchor, then 3 samples per place
+      hidden = behind(0);
+      for (size_t sh = 0; sh < l.shifts.size(); ++sh)
+        clear.push_back(!behind(1 + 3 * sh) && !behind(2 + 3 * sh) && !behind(3 + 3 * sh));
+      hidden = hidden || std::find(clear.begin(), clear.end(), 1) == clear.end();
+    } else {
+      for (size_t sm = 0; sm < l.sample_count && !hidden; ++sm)
+        hidden = behind(sm);
     }
     occluded_ += hidden ? 1 : 0;
     LabelBid& bid = bids[b];
     bid.key = l.key;
     bid.priority = labels[l.label].rank;
     bid.boxes = l.boxes;
+    bid.shifts = l.shifts;
+    bid.clear = std::move(clear);
     bid.drawable = !hidden;
     bid.legible = l.legible ||
                   (before && l.scale * LabelSet::kAtlasPx >= float(settings_.size_px * kKeepScale));
     illegible_ += bid.legible ? 0 : 1;
   }
-  const std::vector<float> alpha =
-      placer_.place(bids, dt, still, pass.loading == Loading::kAsReady ? kMaxNewPerFrame : -1);
+  const std::vector<LabelPlace> placed = placer_.place(
+      bids, dt, still, pass.loading == Loading::kAsReady ? kMaxNewPerFrame : -1, obstacles);
 
   // The glyphs of the labels shown.
   std::vector<GlyphQuad> quads;
   last_placed_keys_.clear();
   for (size_t b = 0; b < lays.size(); ++b) {
-    if (alpha[b] <= 0) continue;
+    if (placed[b].alpha <= 0) continue;
     const Layout& l = lays[b];
+    const BoxShift sh = l.shifts[size_t(placed[b].shift)];
+    const float alpha = placed[b].alpha;
     last_placed_keys_.push_back(l.key);
     const ShapedLabel& s = *labels[l.label].shaped;
-    Placed p{l.label, l.box, alpha[b], {}};
+    Placed p{l.label,
+             {l.box.x0 + sh.dx, l.box.y0 + sh.dy, l.box.x1 + sh.dx, l.box.y1 + sh.dy},
+             alpha,
+             {}};
     const bool line = l.pivots.size() == s.glyphs.size() &&
                       labels[l.label].record.placement == tileformat::LabelPlacement::kLine &&
                       path_probes_[l.label].second >= 2;
@@ -344,7 +424,8 @@ double LabelLayer::draw(const LayerPass& pass) {
       if (!lg.atlas) continue;
       const text::GlyphAtlas::Entry& en = *lg.atlas;
       GlyphQuad q{};
-      q.pivot[0] = pv[0], q.pivot[1] = pv[1], q.pivot[2] = pv[2], q.pivot[3] = l.scale;
+      q.pivot[0] = pv[0] + sh.dx, q.pivot[1] = pv[1] + sh.dy, q.pivot[2] = pv[2];
+      q.pivot[3] = l.scale;
       // Line glyphs pivot about their centre on the line; straight ones
       // about their pen position on the baseline.
       const float x0 = line ? en.left * l.scale - lg.advance / 2 * l.scale : en.left * l.scale;
@@ -353,7 +434,7 @@ double LabelLayer::draw(const LayerPass& pass) {
       q.rect[2] = x0 + en.width * l.scale, q.rect[3] = y0 + en.height * l.scale;
       q.atlas[0] = float(en.x), q.atlas[1] = float(en.y);
       q.atlas[2] = float(en.x + en.width), q.atlas[3] = float(en.y + en.height);
-      q.style[0] = alpha[b], q.style[1] = kHaloPx;
+      q.style[0] = alpha, q.style[1] = kHaloPx;
       quads.push_back(q);
     }
     placed_.push_back(std::move(p));

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "app/chart_layer.hpp"
 #include "app/label_placement.hpp"
 #include "app/label_settings.hpp"
 #include "app/scene_layer.hpp"
@@ -44,6 +45,8 @@ class LabelLayer final : public SceneLayer {
     placer_.reset();
   }
   bool enabled() const { return settings_.enabled; }
+  // The chart layer whose charts labels keep clear of (nullptr: none).
+  void set_charts(const ChartLayer* charts) { charts_ = charts; }
   // The last frame's placed labels as one JSON object (docs/viewer.md
   // "--labels-json"): candidates in view, shown, and per label its text,
   // source, anchor, box, alpha and (line labels) glyphs.
@@ -60,6 +63,7 @@ class LabelLayer final : public SceneLayer {
   void build_probes(const WorldFrame& world);
 
   LabelSettings settings_;
+  const ChartLayer* charts_ = nullptr;
   LabelSet set_;
   LabelRenderer renderer_;
   LabelPlacer placer_;

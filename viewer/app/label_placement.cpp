@@ -58,8 +58,20 @@ class LabelPlacer::Grid {
   std::vector<ScreenBox> boxes_;
 };
 
-std::vector<float> LabelPlacer::place(const std::vector<LabelBid>& bids, double dt_s, bool still,
-                                      int max_new) {
+namespace {
+
+std::vector<ScreenBox> shifted(const std::vector<ScreenBox>& boxes, BoxShift s) {
+  std::vector<ScreenBox> out = boxes;
+  for (ScreenBox& b : out)
+    b = {b.x0 + s.dx, b.y0 + s.dy, b.x1 + s.dx, b.y1 + s.dy};
+  return out;
+}
+
+}  // namespace
+
+std::vector<LabelPlace> LabelPlacer::place(const std::vector<LabelBid>& bids, double dt_s,
+                                           bool still, int max_new,
+                                           const std::vector<ScreenBox>& obstacles) {
   ++frame_;
   tried_ = shown_ = 0;
   // Shown labels first (they keep their place), then by priority, then key.
@@ -76,9 +88,24 @@ std::vector<float> LabelPlacer::place(const std::vector<LabelBid>& bids, double 
     return bids[a].key < bids[b].key;
   });
   Grid grid(o_);
-  std::vector<float> alpha(bids.size(), 0.f);
+  grid.insert(obstacles);
+  std::vector<LabelPlace> out(bids.size());
   const float step = still ? 1.f : static_cast<float>(std::clamp(dt_s, 0.0, 1.0) * o_.fade_per_s);
   int tried_new = 0;
+  // The first of the bid's places (last frame's first) that terrain leaves
+  // clear and no label placed so far covers; -1 for none.
+  auto fit = [&](const LabelBid& b, int preferred, std::vector<ScreenBox>& boxes) {
+    const int n = static_cast<int>(b.shifts.size());
+    for (int k = -1; k < n; ++k) {
+      const int s = k < 0 ? preferred : k;
+      if (s < 0 || s >= n || (k >= 0 && s == preferred)) continue;
+      if (!b.clear.empty() && !b.clear[size_t(s)]) continue;
+      boxes = shifted(b.boxes, b.shifts[size_t(s)]);
+      if (grid.free(boxes)) return s;
+    }
+    return -1;
+  };
+  std::vector<ScreenBox> boxes;
   for (uint32_t i : order) {
     const LabelBid& b = bids[i];
     State& s = state_[b.key];
@@ -89,19 +116,21 @@ std::vector<float> LabelPlacer::place(const std::vector<LabelBid>& bids, double 
       continue;
     }
     if (s.shown) {
-      if (!grid.free(b.boxes)) {  // pushed off by a label shown before it
+      const int at = fit(b, s.shift, boxes);
+      if (at < 0) {  // pushed off by a label shown before it
         s.alpha = 0, s.fits = 0, s.shown = false;
         continue;
       }
       ++tried_;
-      grid.insert(b.boxes);
+      grid.insert(boxes);
+      s.shift = at;
       if (b.legible) {
         s.alpha = std::min(1.f, s.alpha + step);
       } else {  // too small: fades out, keeping its place meanwhile
         s.alpha = std::max(0.f, s.alpha - step);
         if (s.alpha <= 0) s.shown = false, s.fits = 0;
       }
-      alpha[i] = s.alpha;
+      out[i] = {s.alpha, s.shift};
       if (s.alpha > 0) ++shown_;
       continue;
     }
@@ -111,26 +140,25 @@ std::vector<float> LabelPlacer::place(const std::vector<LabelBid>& bids, double 
     }
     if (max_new >= 0 && tried_new >= max_new) continue;  // deferred (keeps its streak)
     ++tried_new, ++tried_;
-    if (!grid.free(b.boxes)) {
+    const int at = fit(b, s.fits > 0 ? s.shift : 0, boxes);
+    if (at < 0) {
       s.fits = 0;
       continue;
     }
     ++s.fits;
-    if (!still && s.fits < o_.frames_to_show) {
-      // Not shown yet, but its room is kept so that the next frame can show it.
-      grid.insert(b.boxes);
-      continue;
-    }
-    grid.insert(b.boxes);
+    s.shift = at;
+    // Its room is kept even before it shows, so that the next frame can show it.
+    grid.insert(boxes);
+    if (!still && s.fits < o_.frames_to_show) continue;
     s.shown = true;
     s.alpha = std::min(1.f, still ? 1.f : s.alpha + step);
-    alpha[i] = s.alpha;
+    out[i] = {s.alpha, s.shift};
     ++shown_;
   }
   // Labels that bid no more are forgotten.
   for (auto it = state_.begin(); it != state_.end();)
     it = it->second.seen == frame_ ? std::next(it) : state_.erase(it);
-  return alpha;
+  return out;
 }
 
 }  // namespace globe::viewer

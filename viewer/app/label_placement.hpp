@@ -24,16 +24,33 @@ struct ScreenBox {
   }
 };
 
+// A shift of a label's boxes: one of the places it may go (a point label
+// right, left, above or below its place).
+struct BoxShift {
+  float dx = 0, dy = 0;
+};
+
 // A label's bid for this frame.
 struct LabelBid {
   uint64_t key = 0;              // stable across frames (which label, which repetition)
   double priority = 0;           // larger first
   std::vector<ScreenBox> boxes;  // what it covers (a line label: one per glyph)
+  // Where it may go, in order of preference (the one it took last frame is
+  // tried first); `clear`: per shift, whether terrain leaves it visible there
+  // (empty: everywhere).
+  std::vector<BoxShift> shifts = {BoxShift{}};
+  std::vector<char> clear;
   // May be drawn at all: anchor in view and not behind terrain (decided by
   // the caller, with its own hysteresis).
   bool drawable = false;
   // Large enough to read; false with `drawable`: fades out, keeping its boxes.
   bool legible = true;
+};
+
+// What a frame decided for one bid.
+struct LabelPlace {
+  float alpha = 0;  // 0: not drawn
+  int shift = 0;    // index into the bid's shifts
 };
 
 struct LabelPlacementOptions {
@@ -49,13 +66,14 @@ class LabelPlacer {
   void set_size(int width, int height) { o_.width = width, o_.height = height; }
 
   // Decides this frame's labels among `bids` and returns each one's alpha
-  // (0: not drawn), in the order of `bids`. dt_s: seconds since the last
-  // frame; still: a picture of a still camera (a snapshot): labels that fit
-  // show at once and at full opacity. max_new: how many labels not shown
-  // before are tried this frame (the placement budget; the rest wait for the
-  // next frame), -1 for all.
-  std::vector<float> place(const std::vector<LabelBid>& bids, double dt_s, bool still,
-                           int max_new = -1);
+  // (0: not drawn) and place, in the order of `bids`. dt_s: seconds since
+  // the last frame; still: a picture of a still camera (a snapshot): labels
+  // that fit show at once and at full opacity. max_new: how many labels not
+  // shown before are tried this frame (the placement budget; the rest wait
+  // for the next frame), -1 for all. obstacles: what no label may cover
+  // (the charts).
+  std::vector<LabelPlace> place(const std::vector<LabelBid>& bids, double dt_s, bool still,
+                                int max_new = -1, const std::vector<ScreenBox>& obstacles = {});
   // Forgets every label's state (labels toggled off).
   void reset() { state_.clear(); }
   // Of the last place(): bids tried and shown.
@@ -68,6 +86,7 @@ class LabelPlacer {
     int fits = 0;        // frames in a row it fitted while hidden
     bool shown = false;  // shown (fading in or full)
     uint32_t seen = 0;   // the frame it last bid in
+    int shift = 0;       // where it went
   };
   class Grid;
   LabelPlacementOptions o_;

@@ -169,6 +169,7 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
   if (!vector_packages.empty() && (settings_.labels.enabled || settings_.labels_json)) {
     auto labels = std::make_unique<LabelLayer>(vector_packages, settings_.labels, *world_,
                                                settings_.width, settings_.height);
+    labels->set_charts(charts_);
     if (labels->has_labels()) labels_ = add(std::move(labels));
   }
 }

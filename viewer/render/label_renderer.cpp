@@ -28,22 +28,24 @@ LabelRenderer::LabelRenderer(int width, int height) {
   depth_ =
       GlProgram("label depth samples", shaders::kLabelDepthVertex, shaders::kLabelPointFragment);
   glyph_ = GlProgram("label glyphs", shaders::kGlyphVertex, shaders::kGlyphFragment);
-  GLuint buffers[5];
-  gl::CreateBuffers(5, buffers);
+  GLuint buffers[6];
+  gl::CreateBuffers(6, buffers);
   probe_vbo_ = buffers[0], depth_vbo_ = buffers[1], corner_vbo_ = buffers[2],
-  glyph_vbo_ = buffers[3], terrain_table_ = buffers[4];
-  for (GLuint b : {probe_vbo_, depth_vbo_, glyph_vbo_, terrain_table_})
+  glyph_vbo_ = buffers[3], terrain_table_ = buffers[4], extra_vbo_ = buffers[5];
+  for (GLuint b : {probe_vbo_, depth_vbo_, glyph_vbo_, terrain_table_, extra_vbo_})
     fill_buffer(b, 0, nullptr);
   const float corners[12] = {0, 0, 1, 0, 0, 1, 0, 1, 1, 0, 1, 1};
   gl::NamedBufferStorage(corner_vbo_, sizeof corners, corners, 0);
 
-  gl::CreateVertexArrays(1, &probe_vao_);
-  gl::EnableVertexArrayAttrib(probe_vao_, 0);
-  gl::VertexArrayAttribIFormat(probe_vao_, 0, 2, GL_INT, offsetof(LabelProbe, key));
-  gl::VertexArrayAttribBinding(probe_vao_, 0, 0);
-  gl::EnableVertexArrayAttrib(probe_vao_, 1);
-  gl::VertexArrayAttribFormat(probe_vao_, 1, 2, GL_FLOAT, GL_FALSE, offsetof(LabelProbe, frac));
-  gl::VertexArrayAttribBinding(probe_vao_, 1, 0);
+  for (GLuint* vao : {&probe_vao_, &extra_vao_}) {
+    gl::CreateVertexArrays(1, vao);
+    gl::EnableVertexArrayAttrib(*vao, 0);
+    gl::VertexArrayAttribIFormat(*vao, 0, 2, GL_INT, offsetof(LabelProbe, key));
+    gl::VertexArrayAttribBinding(*vao, 0, 0);
+    gl::EnableVertexArrayAttrib(*vao, 1);
+    gl::VertexArrayAttribFormat(*vao, 1, 2, GL_FLOAT, GL_FALSE, offsetof(LabelProbe, frac));
+    gl::VertexArrayAttribBinding(*vao, 1, 0);
+  }
 
   gl::CreateVertexArrays(1, &depth_vao_);
   gl::EnableVertexArrayAttrib(depth_vao_, 0);
@@ -67,10 +69,10 @@ LabelRenderer::LabelRenderer(int width, int height) {
 }
 
 LabelRenderer::~LabelRenderer() {
-  GLuint buffers[5] = {probe_vbo_, depth_vbo_, corner_vbo_, glyph_vbo_, terrain_table_};
-  gl::DeleteBuffers(5, buffers);
-  GLuint vaos[3] = {probe_vao_, depth_vao_, glyph_vao_};
-  gl::DeleteVertexArrays(3, vaos);
+  GLuint buffers[6] = {probe_vbo_, depth_vbo_, corner_vbo_, glyph_vbo_, terrain_table_, extra_vbo_};
+  gl::DeleteBuffers(6, buffers);
+  GLuint vaos[4] = {probe_vao_, depth_vao_, glyph_vao_, extra_vao_};
+  gl::DeleteVertexArrays(4, vaos);
   GLuint fbos[2] = {fbo_, result_fbo_};
   gl::DeleteFramebuffers(2, fbos);
   GLuint textures[3] = {color_, result_, atlas_};
@@ -136,8 +138,27 @@ std::vector<ProbeResult> LabelRenderer::project(const View& view, const WorldFra
                                                 const TerrainRenderer& terrain,
                                                 const TerrainHeights& heights,
                                                 double exaggeration) {
-  std::vector<ProbeResult> out(probes_);
-  if (probes_ == 0) return out;
+  return run_probes(probe_vao_, probes_, view, world, terrain, heights, exaggeration);
+}
+
+std::vector<ProbeResult> LabelRenderer::project(const std::vector<LabelProbe>& points,
+                                                const View& view, const WorldFrame& world,
+                                                const TerrainRenderer& terrain,
+                                                const TerrainHeights& heights,
+                                                double exaggeration) {
+  if (points.empty()) return {};
+  fill_buffer(extra_vbo_, points.size() * sizeof(LabelProbe), points.data());
+  gl::VertexArrayVertexBuffer(extra_vao_, 0, extra_vbo_, 0, sizeof(LabelProbe));
+  return run_probes(extra_vao_, points.size(), view, world, terrain, heights, exaggeration);
+}
+
+std::vector<ProbeResult> LabelRenderer::run_probes(GLuint vao, size_t count, const View& view,
+                                                   const WorldFrame& world,
+                                                   const TerrainRenderer& terrain,
+                                                   const TerrainHeights& heights,
+                                                   double exaggeration) {
+  std::vector<ProbeResult> out(count);
+  if (count == 0) return out;
   std::vector<std::pair<tileformat::TileId, uint32_t>> slots;
   for (const auto& [id, slot] : heights.slots)
     slots.emplace_back(id, static_cast<uint32_t>(slot));
@@ -157,8 +178,8 @@ std::vector<ProbeResult> LabelRenderer::project(const View& view, const WorldFra
   gl::Uniform1i(p.uniform("u_steps"), world.steps());
   gl::Uniform1f(p.uniform("u_block_size"), static_cast<float>(heights.block_size));
   gl::Uniform2f(p.uniform("u_viewport"), static_cast<float>(width_), static_cast<float>(height_));
-  const std::vector<float> r = run_points(p, probe_vao_, probes_, 4);
-  for (size_t i = 0; i < probes_; ++i)
+  const std::vector<float> r = run_points(p, vao, count, 4);
+  for (size_t i = 0; i < count; ++i)
     out[i] = {r[i * 4], r[i * 4 + 1], r[i * 4 + 2], r[i * 4 + 3] > 0.5f};
   return out;
 }

@@ -56,6 +56,10 @@ class LabelRenderer {
   std::vector<ProbeResult> project(const View& view, const WorldFrame& world,
                                    const TerrainRenderer& terrain, const TerrainHeights& heights,
                                    double exaggeration);
+  // The same for points of this frame only (the charts' places).
+  std::vector<ProbeResult> project(const std::vector<LabelProbe>& points, const View& view,
+                                   const WorldFrame& world, const TerrainRenderer& terrain,
+                                   const TerrainHeights& heights, double exaggeration);
   // The distance from the eye to the terrain at each pixel (x, y from the
   // top-left) of the G-buffer: -1 where there is none (sky), -2 off screen.
   std::vector<float> terrain_distances(const std::vector<float>& pixels_xy, const GBuffer& g,
@@ -72,10 +76,15 @@ class LabelRenderer {
   // Renders `count` points of `vao` with `p` into a float image `row` texels
   // wide and reads it back.
   std::vector<float> run_points(const GlProgram& p, GLuint vao, size_t count, int channels);
+  // Projects the `count` probes of `vao`.
+  std::vector<ProbeResult> run_probes(GLuint vao, size_t count, const View& view,
+                                      const WorldFrame& world, const TerrainRenderer& terrain,
+                                      const TerrainHeights& heights, double exaggeration);
 
   int width_ = 0, height_ = 0;
   GlProgram probe_, depth_, glyph_;
   GLuint probe_vao_ = 0, probe_vbo_ = 0, depth_vao_ = 0, depth_vbo_ = 0;
+  GLuint extra_vao_ = 0, extra_vbo_ = 0;
   GLuint glyph_vao_ = 0, corner_vbo_ = 0, glyph_vbo_ = 0, terrain_table_ = 0;
   GLuint result_ = 0, result_fbo_ = 0;
   int result_w_ = 0, result_h_ = 0;
