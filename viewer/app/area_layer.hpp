@@ -34,6 +34,10 @@ class AreaLayer final : public SceneLayer {
   GLuint output_texture() const override { return renderer_.output_texture(); }
   bool loading() override { return cache_.loader_busy(); }
   std::string stats_json(double ms) const override;
+  std::vector<glm::vec4> overlay_boxes() const override {
+    if (overlay_.drawn_bounds() == glm::vec4(0)) return {};
+    return {overlay_.drawn_bounds()};
+  }
   bool picks() const override { return true; }
   // "area ID (LAYER): {attributes}" of the polygon filled at (x, y), "" if none.
   std::string pick(int x, int y, bool highlight) override;

@@ -65,9 +65,9 @@ void queue_legend_box(const std::string& title, const std::vector<LegendEntry>& 
   // Font pixels of 2 screen pixels on frames 600 px high or more, else 1.
   const int scale = height >= 600 ? 2 : 1;
   const float f = float(scale), pad = 4 * f, row = 10 * f, mark = mark_units * f;
-  float text_w = TextOverlay::text_width(title, scale);
+  float text_w = overlay.text_width(title, scale);
   for (const LegendEntry& e : entries)
-    text_w = std::max(text_w, mark + pad + TextOverlay::text_width(e.label, scale));
+    text_w = std::max(text_w, mark + pad + overlay.text_width(e.label, scale));
   const float w = pad * 2 + text_w, h = pad * 2 + row * float(entries.size() + 1) - 3 * f;
   const float x = 10, y = float(height) - 10 - h;
   overlay.rect(x - 1, y - 1, w + 2, h + 2, {0.2f, 0.2f, 0.2f, 0.9f});

@@ -284,7 +284,7 @@ void ChartLayer::queue_legend() {
   const float pad = 8, row = 20, swatch = 14;
   float width = 0;
   for (const std::string& f : m.fields)
-    width = std::max(width, TextOverlay::text_width(f));
+    width = std::max(width, overlay_.text_width(f));
   const float w = pad * 3 + swatch + width, h = pad * 2 + row * float(m.fields.size()) - 6;
   const float x = 10, y = 10;
   overlay_.rect(x - 1, y - 1, w + 2, h + 2, {0.2f, 0.2f, 0.2f, 0.9f});

@@ -96,6 +96,10 @@ class ChartLayer final : public SceneLayer {
   ChartLayerStats stats() const;
   bool loading() override { return cache_.loader_busy(); }  // tiles still being read
   std::string stats_json(double ms) const override;
+  std::vector<glm::vec4> overlay_boxes() const override {
+    if (overlay_.drawn_bounds() == glm::vec4(0)) return {};
+    return {overlay_.drawn_bounds()};
+  }
 
  private:
   struct PlaceRef {

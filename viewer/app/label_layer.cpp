@@ -168,8 +168,12 @@ double LabelLayer::draw(const LayerPass& pass) {
     l.expected.push_back(expected);
     ++l.sample_count;
   };
-  // The charts: no label covers one, and a place's label goes beside its chart.
+  // The legends and charts: no label covers one, and a place's label goes
+  // beside its chart.
   std::vector<ScreenBox> obstacles;
+  for (const SceneLayer* layer : below_)
+    for (const glm::vec4& b : layer->overlay_boxes())
+      obstacles.push_back({b.x, b.y, b.z, b.w});
   struct Disc {
     float x, y, r;
   };

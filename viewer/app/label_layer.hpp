@@ -47,6 +47,8 @@ class LabelLayer final : public SceneLayer {
   bool enabled() const { return settings_.enabled; }
   // The chart layer whose charts labels keep clear of (nullptr: none).
   void set_charts(const ChartLayer* charts) { charts_ = charts; }
+  // The layers drawn before, whose legends labels keep clear of.
+  void set_layers_below(std::vector<const SceneLayer*> layers) { below_ = std::move(layers); }
   // The last frame's placed labels as one JSON object (docs/viewer.md
   // "--labels-json"): candidates in view, shown, and per label its text,
   // source, anchor, box, alpha and (line labels) glyphs.
@@ -64,6 +66,7 @@ class LabelLayer final : public SceneLayer {
 
   LabelSettings settings_;
   const ChartLayer* charts_ = nullptr;
+  std::vector<const SceneLayer*> below_;
   LabelSet set_;
   LabelRenderer renderer_;
   LabelPlacer placer_;

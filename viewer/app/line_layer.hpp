@@ -70,6 +70,10 @@ class LineLayer final : public SceneLayer {
   LineLayerStats stats() const { return {cache_.stats(), tiles_used_}; }
   bool loading() override { return cache_.loader_busy(); }  // tiles still being read
   std::string stats_json(double ms) const override;
+  std::vector<glm::vec4> overlay_boxes() const override {
+    if (overlay_.drawn_bounds() == glm::vec4(0)) return {};
+    return {overlay_.drawn_bounds()};
+  }
 
   // The line drawn on top at pixel (x, y) (from the top-left) in the last
   // frame: "" where there is none (deferred mode only). Otherwise its

@@ -7,6 +7,9 @@
 #pragma once
 
 #include <string>
+#include <vector>
+
+#include <glm/vec4.hpp>
 
 #include "camera/camera.hpp"
 #include "camera/world_frame.hpp"
@@ -71,6 +74,9 @@ class SceneLayer {
   }
   // Whether a pick made the next frame look different (a highlight).
   virtual bool picked_highlight() const { return false; }
+  // Screen rectangles (x0, y0, x1, y1 from the top-left) the last frame's
+  // overlays (legends) cover, which labels keep clear of.
+  virtual std::vector<glm::vec4> overlay_boxes() const { return {}; }
   // This layer's members of `--stats`' JSON object, each starting ", "
   // (docs/viewer.md "--stats"); ms: the median of its passes.
   virtual std::string stats_json(double ms) const = 0;

@@ -170,6 +170,10 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
     auto labels = std::make_unique<LabelLayer>(vector_packages, settings_.labels, *world_,
                                                settings_.width, settings_.height);
     labels->set_charts(charts_);
+    std::vector<const SceneLayer*> below;
+    for (const auto& l : layers_)
+      below.push_back(l.get());
+    labels->set_layers_below(std::move(below));
     if (labels->has_labels()) labels_ = add(std::move(labels));
   }
 }

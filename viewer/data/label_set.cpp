@@ -67,36 +67,13 @@ LabelSet::LabelSet(const std::vector<std::string>& packages, const std::string& 
       throw InputError(path + ": " + e.what());
     }
   }
-  if (labels_.empty()) return;
-  try {
-    fonts_ = std::make_unique<text::FontSet>(text::FontSet::debian(font));
-    shaper_ = std::make_unique<text::Shaper>(*fonts_);
-    sdf_ = std::make_unique<text::SdfRenderer>(*fonts_, static_cast<int>(kAtlasPx), 3, 8.0f);
-    atlas_ = std::make_unique<text::GlyphAtlas>(*sdf_, 1024, 1024);
-  } catch (const text::TextError& e) {
-    throw InputError(std::string("labels: ") + e.what());
-  }
+  if (!labels_.empty()) engine_ = std::make_unique<TextEngine>(font);
 }
 
 LabelSet::~LabelSet() = default;
 
 const ShapedLabel& LabelSet::shaped(LabelEntry& l) {
-  if (l.shaped) return *l.shaped;
-  ShapedLabel s;
-  const text::ShapedText t = shaper_->shape(l.record.text, kAtlasPx);
-  s.width = t.width, s.ascent = t.ascent, s.descent = t.descent;
-  s.ok = !t.glyphs.empty();
-  for (const text::PlacedGlyph& g : t.glyphs) {
-    LabelGlyph lg{g.x, g.y, g.advance, atlas_->get(g.font, g.glyph)};
-    if (!lg.atlas) {
-      s.ok = false;
-      ++atlas_misses_;
-      break;
-    }
-    if (lg.atlas->width == 0) lg.atlas = nullptr;
-    s.glyphs.push_back(lg);
-  }
-  l.shaped = std::move(s);
+  if (!l.shaped) l.shaped = engine_->shape(l.record.text);
   return *l.shaped;
 }
 

@@ -11,27 +11,13 @@
 #include <string>
 #include <vector>
 
-#include "text/font_set.hpp"
-#include "text/glyph_atlas.hpp"
-#include "text/sdf_glyph.hpp"
-#include "text/shaping.hpp"
+#include "data/text_engine.hpp"
 #include "tileformat/label_table.hpp"
 
 namespace globe::viewer {
 
-// One glyph of a shaped label, at the atlas's size (kAtlasPx per em).
-struct LabelGlyph {
-  float x = 0;  // pen position from the text's start, px at kAtlasPx
-  float y = 0;  // from the baseline, up
-  float advance = 0;
-  const text::GlyphAtlas::Entry* atlas = nullptr;  // nullptr: blank (a space)
-};
-
-struct ShapedLabel {
-  std::vector<LabelGlyph> glyphs;
-  float width = 0, ascent = 0, descent = 0;  // px at kAtlasPx
-  bool ok = false;                           // shaped and every glyph in the atlas
-};
+using LabelGlyph = ShapedGlyph;
+using ShapedLabel = ShapedString;
 
 struct LabelEntry {
   uint32_t source = 0;  // index into LabelSet::sources()
@@ -42,7 +28,7 @@ struct LabelEntry {
 
 class LabelSet {
  public:
-  static constexpr float kAtlasPx = 24;  // the SDF glyphs' size per em
+  static constexpr float kAtlasPx = TextEngine::kAtlasPx;
   // `packages`: the vector packages of the view (those without a labels
   // table add nothing); `field`: an attribute to label with instead of the
   // stored text ("" for the stored text); `font`: a font file before
@@ -56,18 +42,14 @@ class LabelSet {
   const std::vector<LabelEntry>& labels() const { return labels_; }
   // The label's glyphs (shaped on first use).
   const ShapedLabel& shaped(LabelEntry& l);
-  text::GlyphAtlas& atlas() { return *atlas_; }
+  text::GlyphAtlas& atlas() { return engine_->atlas(); }
   // Labels whose glyphs did not fit the atlas.
-  size_t atlas_misses() const { return atlas_misses_; }
+  size_t atlas_misses() const { return engine_ ? engine_->atlas_misses() : 0; }
 
  private:
   std::vector<std::string> sources_;
   std::vector<LabelEntry> labels_;
-  std::unique_ptr<text::FontSet> fonts_;
-  std::unique_ptr<text::Shaper> shaper_;
-  std::unique_ptr<text::SdfRenderer> sdf_;
-  std::unique_ptr<text::GlyphAtlas> atlas_;
-  size_t atlas_misses_ = 0;
+  std::unique_ptr<TextEngine> engine_;
 };
 
 }  // namespace globe::viewer

@@ -1,15 +1,11 @@
 // 2D overlay (see text_overlay.hpp).
 #include "render/text_overlay.hpp"
 
-#include "render/bitmap_font.hpp"
+#include <algorithm>
 
 namespace globe::viewer {
 
 namespace {
-
-// The font as a texture: glyphs side by side, each cell kGlyphWidth x
-// kGlyphHeight texels (255 = ink).
-constexpr int kAtlasWidth = kGlyphWidth * static_cast<int>(kGlyphs.size());
 
 constexpr const char* kVertex = R"(#version 450 core
 layout(location = 0) in vec4 a_pos_uv;
@@ -25,35 +21,36 @@ void main() {
 }
 )";
 
+// MapLibre's SDF convention: the outline at 0.75.
 constexpr const char* kFragment = R"(#version 450 core
 in vec2 v_uv;
 in vec4 v_color;
-uniform sampler2D u_font;
+uniform sampler2D u_atlas;
 out vec4 o_color;
 void main() {
-  float ink = v_uv.x < 0.0 ? 1.0 : texture(u_font, v_uv).r;
-  if (ink < 0.5) discard;
-  o_color = v_color;
+  float ink = 1.0;
+  if (v_uv.x >= 0.0) {
+    float d = texture(u_atlas, v_uv).r;
+    float aa = max(fwidth(d) * 0.7, 1e-3);
+    ink = smoothstep(0.75 - aa, 0.75 + aa, d);
+  }
+  if (ink <= 0.0) discard;
+  o_color = vec4(v_color.rgb, v_color.a * ink);
 }
 )";
 
 }  // namespace
 
-TextOverlay::TextOverlay() {
+TextOverlay::TextOverlay() : engine_(default_text_engine()) {
   program_ = GlProgram("text overlay", kVertex, kFragment);
-  std::vector<uint8_t> texels(size_t(kAtlasWidth) * kGlyphHeight, 0);
-  for (size_t g = 0; g < kGlyphs.size(); ++g)
-    for (int row = 0; row < kGlyphHeight; ++row)
-      for (int col = 0; col < kGlyphWidth; ++col)
-        if (kGlyphs[g][row] >> (kGlyphWidth - 1 - col) & 1)
-          texels[size_t(row) * kAtlasWidth + g * kGlyphWidth + col] = 255;
-  gl::CreateTextures(GL_TEXTURE_2D, 1, &font_);
-  gl::TextureStorage2D(font_, 1, GL_R8, kAtlasWidth, kGlyphHeight);
-  gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  gl::TextureSubImage2D(font_, 0, 0, 0, kAtlasWidth, kGlyphHeight, GL_RED, GL_UNSIGNED_BYTE,
-                        texels.data());
-  gl::TextureParameteri(font_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  gl::TextureParameteri(font_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  const text::GlyphAtlas& a = engine_.atlas();
+  gl::CreateTextures(GL_TEXTURE_2D, 1, &atlas_);
+  gl::TextureStorage2D(atlas_, 1, GL_R8, a.width(), a.height());
+  gl::TextureParameteri(atlas_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  gl::TextureParameteri(atlas_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  gl::TextureParameteri(atlas_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  gl::TextureParameteri(atlas_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  uploaded_glyphs_ = size_t(-1);
   gl::CreateBuffers(1, &vbo_);
   gl::CreateVertexArrays(1, &vao_);
   gl::VertexArrayVertexBuffer(vao_, 0, vbo_, 0, sizeof(Vertex));
@@ -66,7 +63,7 @@ TextOverlay::TextOverlay() {
 }
 
 TextOverlay::~TextOverlay() {
-  gl::DeleteTextures(1, &font_);
+  gl::DeleteTextures(1, &atlas_);
   gl::DeleteBuffers(1, &vbo_);
   gl::DeleteVertexArrays(1, &vao_);
 }
@@ -82,19 +79,40 @@ void TextOverlay::rect(float x, float y, float w, float h, glm::vec4 rgba) {
   quad(x, y, x + w, y + h, -1, -1, -1, -1, rgba);
 }
 
+float TextOverlay::text_width(const std::string& s, int scale) {
+  return engine_.shape(s).width * size_px(scale) / TextEngine::kAtlasPx;
+}
+
 void TextOverlay::text(float x, float y, const std::string& s, glm::vec4 rgba, int scale) {
-  const float cw = float(kGlyphWidth * scale), ch = float(kGlyphHeight * scale);
-  for (char c : s) {
-    const int g = (c >= kFirstGlyph && c <= kLastGlyph ? c : '?') - kFirstGlyph;
-    const float u0 = float(g * kGlyphWidth) / kAtlasWidth,
-                u1 = float((g + 1) * kGlyphWidth) / kAtlasWidth;
-    if (c != ' ') quad(x, y, x + cw, y + ch, u0, 0, u1, 1, rgba);
-    x += float((kGlyphWidth + 1) * scale);
+  const ShapedString shaped = engine_.shape(s);
+  const float k = size_px(scale) / TextEngine::kAtlasPx;
+  const float baseline = y + text_height(scale);
+  const text::GlyphAtlas& a = engine_.atlas();
+  const float aw = float(a.width()), ah = float(a.height());
+  for (const ShapedGlyph& g : shaped.glyphs) {
+    if (!g.atlas) continue;
+    const text::GlyphAtlas::Entry& e = *g.atlas;
+    const float x0 = x + (g.x + float(e.left)) * k, y0 = baseline - (g.y + float(e.top)) * k;
+    quad(x0, y0, x0 + float(e.width) * k, y0 + float(e.height) * k, float(e.x) / aw,
+         float(e.y) / ah, float(e.x + e.width) / aw, float(e.y + e.height) / ah, rgba);
   }
 }
 
 void TextOverlay::draw(GLuint fbo, int width, int height) {
+  drawn_ = {0, 0, 0, 0};
   if (vertices_.empty()) return;
+  drawn_ = {vertices_[0].x, vertices_[0].y, vertices_[0].x, vertices_[0].y};
+  for (const Vertex& v : vertices_)
+    drawn_ = {std::min(drawn_.x, v.x), std::min(drawn_.y, v.y), std::max(drawn_.z, v.x),
+              std::max(drawn_.w, v.y)};
+  text::GlyphAtlas& a = engine_.atlas();
+  if (a.glyph_count() != uploaded_glyphs_) {  // glyphs added since (by any user of the engine)
+    gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    gl::TextureSubImage2D(atlas_, 0, 0, 0, a.width(), a.height(), GL_RED, GL_UNSIGNED_BYTE,
+                          a.pixels().data());
+    gl::PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    uploaded_glyphs_ = a.glyph_count();
+  }
   gl::NamedBufferData(vbo_, vertices_.size() * sizeof(Vertex), vertices_.data(), GL_STREAM_DRAW);
   gl::BindFramebuffer(GL_FRAMEBUFFER, fbo);
   gl::Viewport(0, 0, width, height);
@@ -103,8 +121,8 @@ void TextOverlay::draw(GLuint fbo, int width, int height) {
   gl::BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   gl::UseProgram(program_.id());
   gl::Uniform2f(program_.uniform("u_viewport"), float(width), float(height));
-  gl::Uniform1i(program_.uniform("u_font"), 0);
-  gl::BindTextureUnit(0, font_);
+  gl::Uniform1i(program_.uniform("u_atlas"), 0);
+  gl::BindTextureUnit(0, atlas_);
   gl::BindVertexArray(vao_);
   gl::DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices_.size()));
   gl::BindVertexArray(0);
