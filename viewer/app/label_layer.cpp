@@ -25,9 +25,11 @@ constexpr double kMaxScale = 1.4;     // labels near the eye grow no further
 constexpr int kMaxNewPerFrame = 400;  // the window's placement budget
 constexpr int kRepeatsEachSide = 3;   // line labels: copies either side of the middle
 constexpr float kMaxTurnDeg = 45;
+constexpr size_t kMaxLinePaths = 1500;  // line labels whose paths a frame projects
 
 struct PathPoint {
   float x, y, s, d;  // screen px, arc length px, distance
+  uint32_t probe;    // its probe
 };
 
 // Position, direction and distance at arc length s of a screen path.
@@ -92,7 +94,7 @@ void LabelLayer::resize(int width, int height) {
 void LabelLayer::build_probes(const WorldFrame& world) {
   std::vector<LabelProbe> probes;
   glm::dvec2 last_key{0, 0};
-  auto probe = [&](double lon, double lat) -> uint32_t {
+  auto probe = [&](std::vector<LabelProbe>& into, double lon, double lat) -> uint32_t {
     if (world.tiling().scheme == tileformat::Scheme::kWebMercator)
       lat = std::clamp(lat, -85.0511, 85.0511);
     glm::dvec2 k;
@@ -109,16 +111,20 @@ void LabelLayer::build_probes(const WorldFrame& world) {
     p.key[1] = static_cast<int32_t>(std::floor(k.y));
     p.frac[0] = static_cast<float>(k.x - std::floor(k.x));
     p.frac[1] = static_cast<float>(k.y - std::floor(k.y));
-    probes.push_back(p);
-    return static_cast<uint32_t>(probes.size() - 1);
+    into.push_back(p);
+    return static_cast<uint32_t>(into.size() - 1);
   };
   for (const LabelEntry& e : set_.labels()) {
-    anchor_probe_.push_back(probe(e.record.lon, e.record.lat));
+    anchor_probe_.push_back(probe(probes, e.record.lon, e.record.lat));
     anchor_key_.push_back(last_key);
-    const auto first = static_cast<uint32_t>(probes.size());
+    // A line's path is projected only while its anchor is in view.
+    const auto first = static_cast<uint32_t>(path_points_.size());
     uint32_t count = 0;
     for (size_t i = 0; i + 1 < e.record.path.size(); i += 2)
-      count += probe(e.record.path[i], e.record.path[i + 1]) != UINT32_MAX ? 1 : 0;
+      if (probe(path_points_, e.record.path[i], e.record.path[i + 1]) != UINT32_MAX) {
+        path_keys_.push_back(last_key);
+        ++count;
+      }
     path_probes_.emplace_back(first, count);
   }
   renderer_.set_probes(probes);
@@ -141,12 +147,57 @@ double LabelLayer::draw(const LayerPass& pass) {
 
   const auto t0 = std::chrono::steady_clock::now();
   const View& view = pass.view;
-  const std::vector<ProbeResult> probes =
-      renderer_.project(view, pass.world, pass.terrain, pass.heights, pass.shading.exaggeration);
+  // GPU passes and their read-backs are timed apart from the CPU's placement.
+  double gpu_ms = 0;
+  auto timed = [&](auto&& fn) {
+    const auto g0 = std::chrono::steady_clock::now();
+    auto r = fn();
+    gpu_ms +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - g0).count();
+    return r;
+  };
+  const std::vector<ProbeResult> probes = timed([&] {
+    return renderer_.project(view, pass.world, pass.terrain, pass.heights,
+                             pass.shading.exaggeration);
+  });
+  // The paths of the line labels whose anchor is in view: those shown last
+  // frame, then by priority, at most kMaxLinePaths (the rest wait).
+  std::vector<uint32_t> lines_in_view;
+  std::unordered_set<uint32_t> shown_lines;
+  for (uint64_t key : last_placed_keys_)
+    shown_lines.insert(static_cast<uint32_t>(key >> 4));
+  for (uint32_t i = 0; i < set_.labels().size(); ++i) {
+    if (path_probes_[i].second < 2 || anchor_probe_[i] == UINT32_MAX) continue;
+    const ProbeResult& a = probes[anchor_probe_[i]];
+    if (a.front && a.x >= 0 && a.y >= 0 && a.x < width_ && a.y < height_)
+      lines_in_view.push_back(i);
+  }
+  if (lines_in_view.size() > kMaxLinePaths) {
+    const std::vector<LabelEntry>& all = set_.labels();
+    std::stable_sort(lines_in_view.begin(), lines_in_view.end(), [&](uint32_t a, uint32_t b) {
+      const bool sa = shown_lines.count(a) != 0, sb = shown_lines.count(b) != 0;
+      if (sa != sb) return sa;
+      return all[a].rank > all[b].rank;
+    });
+    lines_in_view.resize(kMaxLinePaths);
+  }
+  std::vector<LabelProbe> path_in;
+  std::vector<uint32_t> path_base(set_.labels().size(), UINT32_MAX);
+  for (uint32_t i : lines_in_view) {
+    const auto [first, count] = path_probes_[i];
+    path_base[i] = static_cast<uint32_t>(path_in.size());
+    path_in.insert(path_in.end(), path_points_.begin() + first,
+                   path_points_.begin() + first + count);
+  }
+  const std::vector<ProbeResult> path_at_screen = timed([&] {
+    return renderer_.project(path_in, view, pass.world, pass.terrain, pass.heights,
+                             pass.shading.exaggeration);
+  });
   // The distance labels have their nominal size at: the ground at the
   // view's centre (else the median anchor in view).
-  double d_ref =
-      renderer_.terrain_distances({float(width_) / 2, float(height_) / 2}, pass.g, view)[0];
+  double d_ref = timed([&] {
+    return renderer_.terrain_distances({float(width_) / 2, float(height_) / 2}, pass.g, view)[0];
+  });
   if (!(d_ref > 0)) {
     std::vector<float> d;
     for (const ProbeResult& p : probes)
@@ -185,8 +236,10 @@ double LabelLayer::draw(const LayerPass& pass) {
       places.push_back({{m.key[0], m.key[1]}, {m.frac[0], m.frac[1]}});
       radii.push_back(m.radius_px);
     }
-    const std::vector<ProbeResult> at = renderer_.project(places, view, pass.world, pass.terrain,
-                                                          pass.heights, pass.shading.exaggeration);
+    const std::vector<ProbeResult> at = timed([&] {
+      return renderer_.project(places, view, pass.world, pass.terrain, pass.heights,
+                               pass.shading.exaggeration);
+    });
     for (size_t c = 0; c < at.size(); ++c) {
       if (!at[c].front || radii[c] <= 0) continue;
       const float r = radii[c];
@@ -245,6 +298,7 @@ double LabelLayer::draw(const LayerPass& pass) {
     const float baseline = (asc - desc) / 2;  // text centred on its line
     ++candidates_;
     const auto [first, count] = path_probes_[i];
+    if (count >= 2 && path_base[i] == UINT32_MAX) continue;  // a line label deferred
     if (e.record.placement != tileformat::LabelPlacement::kLine || count < 2) {
       Layout l;
       l.label = i, l.key = uint64_t(i) << 4, l.scale = k, l.distance = a.distance;
@@ -292,7 +346,7 @@ double LabelLayer::draw(const LayerPass& pass) {
     // A line label: along the screen path of its line, from its middle.
     std::vector<PathPoint> path;
     for (uint32_t p = first; p < first + count; ++p) {
-      const ProbeResult& q = probes[p];
+      const ProbeResult& q = path_at_screen[path_base[i] + (p - first)];
       const bool usable =
           q.front && q.x > -pad && q.y > -pad && q.x < width_ + pad && q.y < height_ + pad;
       if (!usable) {
@@ -302,7 +356,7 @@ double LabelLayer::draw(const LayerPass& pass) {
       }
       const float s_len =
           path.empty() ? 0 : path.back().s + std::hypot(q.x - path.back().x, q.y - path.back().y);
-      path.push_back({q.x, q.y, s_len, q.distance});
+      path.push_back({q.x, q.y, s_len, q.distance, p});
     }
     if (path.size() < 2 || path.back().s < w + 4) continue;
     // The middle's place on the path: the point nearest the anchor.
@@ -318,6 +372,21 @@ double LabelLayer::draw(const LayerPass& pass) {
     }
     const float spacing = std::max(3 * w, 250.f);
     const float total = path.back().s;
+    // A glyph's sample: where its sight line meets the ground's tangent plane
+    // at the path's nearest point (on a curved globe the ground falls away
+    // from that plane, so a long segment never counts as terrain in front).
+    const glm::dvec2 key = anchor_key_[i];
+    const glm::dvec3 up = glm::normalize(pass.world.key_to_world(key.x, key.y, 1000, view.origin) -
+                                         pass.world.key_to_world(key.x, key.y, 0, view.origin));
+    auto expected_at = [&](float px, float py, float s_along) {
+      size_t v = 1;
+      while (v + 1 < path.size() && path[v].s < s_along)
+        ++v;
+      const PathPoint& near = s_along - path[v - 1].s < path[v].s - s_along ? path[v - 1] : path[v];
+      const glm::dvec3 ground = view.eye + ray(near.x, near.y) * double(near.d);
+      const double down = glm::dot(ray(px, py), up);
+      return down < -1e-6 ? float(glm::dot(ground - view.eye, up) / down) : -1.f;
+    };
     for (int rep = -kRepeatsEachSide; rep <= kRepeatsEachSide; ++rep) {
       const float centre = s_mid + float(rep) * spacing;
       if (centre - w / 2 < 0 || centre + w / 2 > total) continue;
@@ -351,7 +420,7 @@ double LabelLayer::draw(const LayerPass& pass) {
         l.boxes.push_back(b);
         l.box = {std::min(l.box.x0, b.x0), std::min(l.box.y0, b.y0), std::max(l.box.x1, b.x1),
                  std::max(l.box.y1, b.y1)};
-        add_sample(l, q.x, q.y, q.d);
+        add_sample(l, q.x, q.y, expected_at(q.x, q.y, at));
       }
       if (!ok) {
         samples.resize(l.sample_first * 2);
@@ -363,7 +432,8 @@ double LabelLayer::draw(const LayerPass& pass) {
 
   // The terrain's distance at every sample: a label whose samples see
   // terrain nearer than the label is behind it.
-  const std::vector<float> terrain = renderer_.terrain_distances(samples, pass.g, view);
+  const std::vector<float> terrain =
+      timed([&] { return renderer_.terrain_distances(samples, pass.g, view); });
   const std::unordered_set<uint64_t> drawn_before(last_placed_keys_.begin(),
                                                   last_placed_keys_.end());
   std::vector<LabelBid> bids(lays.size());
@@ -449,7 +519,9 @@ double LabelLayer::draw(const LayerPass& pass) {
     atlas.clear_dirty();
     first_upload_ = false;
   }
+  probe_ms_ = gpu_ms;
   place_ms_ =
+      -gpu_ms +
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return renderer_.draw(pass.below_fbo, quads, LabelColors{});
 }
@@ -490,7 +562,7 @@ std::string LabelLayer::stats_json(double ms) const {
   o << ", \"labels\": {\"stored\": " << set_.labels().size() << ", \"candidates\": " << candidates_
     << ", \"shown\": " << placed_.size() << ", \"occluded\": " << occluded_
     << ", \"illegible\": " << illegible_ << ", \"place_ms\": " << number(place_ms_)
-    << ", \"glyphs\": "
+    << ", \"probe_ms\": " << number(probe_ms_) << ", \"glyphs\": "
     << (set_.labels().empty() ? 0 : const_cast<LabelSet&>(set_).atlas().glyph_count())
     << ", \"ms\": " << number(ms) << "}";
   return o.str();

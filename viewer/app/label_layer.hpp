@@ -70,12 +70,15 @@ class LabelLayer final : public SceneLayer {
   LabelSet set_;
   LabelRenderer renderer_;
   LabelPlacer placer_;
-  std::vector<uint32_t> anchor_probe_;                      // per label
-  std::vector<glm::dvec2> anchor_key_;                      // per label: its anchor in key units
-  std::vector<std::pair<uint32_t, uint32_t>> path_probes_;  // per label: first, count
+  std::vector<uint32_t> anchor_probe_;   // per label
+  std::vector<glm::dvec2> anchor_key_;   // per label: its anchor in key units
+  std::vector<LabelProbe> path_points_;  // every line label's path, projected while in view
+  std::vector<glm::dvec2> path_keys_;    // per path point: in key units
+  std::vector<std::pair<uint32_t, uint32_t>> path_probes_;  // per label: first path point, count
   std::vector<Placed> placed_;
   size_t candidates_ = 0, occluded_ = 0, illegible_ = 0;
-  double place_ms_ = 0;
+  double place_ms_ = 0;  // CPU: layout, collision, glyphs
+  double probe_ms_ = 0;  // the GPU passes with their read-backs
   int width_ = 0, height_ = 0;
   bool first_frame_ = true;
   glm::dmat4 last_view_{0.0};

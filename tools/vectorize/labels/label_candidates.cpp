@@ -125,6 +125,19 @@ LinePath line_label_path(const std::vector<std::vector<XY>>& parts) {
     tolerance *= 2;
     out.points = douglas_peucker(*longest, tolerance);
   }
+  // Segments of at most 1/32 of the part, straight in the tiling's frame as
+  // the lines are drawn: a viewer that places glyphs between the path's
+  // points on screen then follows the drawn line on a curved globe too.
+  const double step = longest_length / 32;
+  std::vector<XY> dense;
+  for (size_t i = 0; i + 1 < out.points.size(); ++i) {
+    const XY a = out.points[i], b = out.points[i + 1];
+    const int n = std::max(1, static_cast<int>(std::ceil(std::hypot(b.x - a.x, b.y - a.y) / step)));
+    for (int k = 0; k < n; ++k)
+      dense.push_back({a.x + (b.x - a.x) * k / n, a.y + (b.y - a.y) * k / n});
+  }
+  dense.push_back(out.points.back());
+  out.points = std::move(dense);
   return out;
 }
 

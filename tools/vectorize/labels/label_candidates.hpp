@@ -55,7 +55,9 @@ struct AreaAnchor {
 AreaAnchor area_anchor(const PlaneMultiPolygon& polygons, Geos& geos);
 
 // A line's label path: its longest part, thinned (Douglas-Peucker at 1/500
-// of its length, at most 256 points), and its length in frame units.
+// of its length, at most 256 points) and then cut into segments of at most
+// 1/32 of its length (straight in the frame, as the line is drawn), and the
+// feature's length in frame units.
 struct LinePath {
   std::vector<XY> points;  // frame
   double length = 0;       // of the whole feature, frame units
