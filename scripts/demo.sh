@@ -44,9 +44,10 @@ build/tools/tiler/globe-tiler imagery -q samples/data/bluemarble.tif -o demo/blu
   --force
 build/viewer/globe-view demo/etopo20.mbtiles demo/bluemarble.mbtiles --snapshot demo/globe.png \
   --size 1280x720 --fit --stats
-# Charts: US airports' flights by the region flown to, as pies on the same globe.
+# Charts: US airports' flights by the region flown to, as pies on the same globe, each
+# airport named by its city beside its chart (the busiest first; docs/labels.md).
 build/tools/vectorize/globe-vectorize points samples/data/us_airport_flights.csv \
-  --xy longitude,latitude --fields west,midwest,south,northeast,other --label-field iata \
+  --xy longitude,latitude --fields west,midwest,south,northeast,other --label-field city \
   --tiling geodetic -o demo/flights.mbtiles --force
 build/tools/vectorize/globe-vectorize validate demo/flights.mbtiles
 build/viewer/globe-view demo/etopo20.mbtiles demo/bluemarble.mbtiles demo/flights.mbtiles \
@@ -61,9 +62,11 @@ build/tools/vectorize/globe-vectorize info demo/bundles.mbtiles | grep -A 12 '^b
 build/viewer/globe-view demo/etopo20.mbtiles demo/bluemarble.mbtiles demo/bundles.mbtiles \
   --snapshot demo/bundles.png --size 1280x720 --camera=-97,39,4500000,0,0 --pick 800,400
 # Areas: the world's countries as a choropleth of population density (quantile classes,
-# ColorBrewer YlOrRd), filled per pixel over the relief.
+# ColorBrewer YlOrRd), filled per pixel over the relief, named at their poles of
+# inaccessibility.
 build/tools/vectorize/globe-vectorize areas samples/data/world.gpkg --choropleth pop/area_km2 \
-  --classes 5 --method quantile --colors YlOrRd -o demo/countries.mbtiles --force
+  --classes 5 --method quantile --colors YlOrRd --label-field name_long \
+  -o demo/countries.mbtiles --force
 build/tools/vectorize/globe-vectorize info demo/countries.mbtiles | grep -A 7 '^choropleth'
 build/viewer/globe-view demo/etopo20.mbtiles demo/countries.mbtiles --snapshot demo/countries.png \
   --size 1280x720 --camera=15,30,12000000,0,0
