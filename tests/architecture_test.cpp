@@ -85,14 +85,14 @@ TEST(Architecture, LibraryIncludesNothingAbove) {
       << "a public header includes a private one";
 }
 
-// The viewer stands on lib: its own folders, lib/runtime and lib/tileformat,
-// nothing from tools/ (whose headers are found by bare names). And runtime
-// stands on tileformat only.
+// The viewer stands on lib: its own folders, lib/runtime, lib/tileformat and
+// lib/text, nothing from tools/ (whose headers are found by bare names). And
+// runtime stands on tileformat only; text on nothing of the project.
 TEST(Architecture, ViewerIncludesNothingFromTools) {
   auto foreign = [](const std::string& l) {
     if (!l.starts_with("#include \"")) return false;
     for (const char* ok :
-         {"app/", "camera/", "data/", "render/", "platform/", "runtime/", "tileformat/"})
+         {"app/", "camera/", "data/", "render/", "platform/", "runtime/", "tileformat/", "text/"})
       if (l.starts_with(std::string("#include \"") + ok)) return false;
     return true;
   };
@@ -102,6 +102,13 @@ TEST(Architecture, ViewerIncludesNothingFromTools) {
            !l.starts_with("#include \"tileformat/");
   };
   EXPECT_EQ(joined(matches("lib/runtime", above_runtime)), "");
+  auto outside_text = [](const std::string& l) {
+    if (!l.starts_with("#include \"")) return false;
+    for (const char* ok : {"text/", "bidi.hpp", "freetype_faces.hpp", "utf8.hpp"})
+      if (l.starts_with(std::string("#include \"") + ok)) return false;
+    return true;
+  };
+  EXPECT_EQ(joined(matches("lib/text", outside_text)), "") << "lib/text stands on no project code";
 }
 
 // Each layer includes only its own folder and the layers below it
@@ -113,7 +120,7 @@ TEST(Architecture, LayersIncludeOnlyTheirOwnAndBelow) {
     const char* dir;
     std::vector<std::string> may;  // the first folder of an include
   };
-  const std::vector<std::string> lib = {"runtime", "tileformat"};
+  const std::vector<std::string> lib = {"runtime", "tileformat", "text"};
   auto with = [&](std::vector<std::string> v) {
     v.insert(v.end(), lib.begin(), lib.end());
     return v;

@@ -2,8 +2,9 @@
 // two labels shown overlap (checked against every pair, not the grid); the
 // higher priority wins; a label shown keeps its place against a newcomer of
 // higher priority; a label appears only after fitting twice (a one-frame
-// chance never shows it), fades in, and goes at once when it may not be
-// drawn; the placement budget defers the rest without losing them.
+// chance never shows it) with room around it, fades in, and goes at once
+// when it may not be drawn; the placement budget defers the rest without
+// losing them.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -135,7 +136,7 @@ TEST(LabelPlacement, TheBudgetDefersWithoutLosing) {
   LabelPlacer placer(LabelPlacementOptions{640, 360});
   std::vector<LabelBid> bids;
   for (uint64_t k = 0; k < 30; ++k)
-    bids.push_back(bid(k, double(k), 20.f * float(k % 30), 40.f * float(k / 30), 18, 12));
+    bids.push_back(bid(k, double(k), 40.f * float(k % 15), 40.f * float(k / 15), 18, 12));
   size_t shown = 0;
   for (int f = 0; f < 12; ++f) {
     const std::vector<float> a = alphas(placer.place(bids, 1.0 / 30, false, 5));
@@ -170,4 +171,14 @@ TEST(LabelPlacement, NothingCoversAnObstacle) {
   LabelPlacer placer(LabelPlacementOptions{640, 360});
   const auto p = placer.place({bid(1, 1, 100, 100)}, 0, true, -1, {{150, 90, 160, 200}});
   EXPECT_EQ(p[0].alpha, 0.f);
+}
+
+TEST(LabelPlacement, ANewLabelNeedsRoomAroundItWhileTheCameraMoves) {
+  LabelPlacer placer(LabelPlacementOptions{640, 360});
+  std::vector<LabelBid> bids = {bid(1, 0.9, 100, 100), bid(2, 0.1, 162, 100)};  // 2 px apart
+  for (int f = 0; f < 5; ++f)
+    EXPECT_EQ(alphas(placer.place(bids, 1.0 / 30, false))[1], 0.f) << "frame " << f;
+  // A still picture places them tight.
+  LabelPlacer still(LabelPlacementOptions{640, 360});
+  EXPECT_EQ(alphas(still.place(bids, 0, true))[1], 1.f);
 }

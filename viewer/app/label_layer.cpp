@@ -68,6 +68,7 @@ struct LabelLayer::Layout {
   ScreenBox box;
   std::vector<ScreenBox> boxes;
   std::vector<BoxShift> shifts = {BoxShift{}};  // the places it may take
+  bool along_line = false;                      // glyphs on a line's path
   size_t sample_first = 0, sample_count = 0;
   std::vector<float> expected;  // per sample: the label's distance there
 };
@@ -392,40 +393,45 @@ double LabelLayer::draw(const LayerPass& pass) {
       if (centre - w / 2 < 0 || centre + w / 2 > total) continue;
       // Upright: the text runs left to right on screen.
       const PathAt p0 = path_at(path, centre - w / 2), p1 = path_at(path, centre + w / 2);
-      const bool flip = p1.x < p0.x;
+      // Glyphs along the path one way or the other: upright (every glyph
+      // within 90 degrees of level) and turning at most kMaxTurnDeg between
+      // neighbours, or not at all.
+      auto lay = [&](bool flip, Layout& l) {
+        l.pivots.clear(), l.boxes.clear(), l.expected.clear();
+        l.sample_count = 0;
+        l.sample_first = samples.size() / 2;
+        l.box = {HUGE_VALF, HUGE_VALF, -HUGE_VALF, -HUGE_VALF};
+        float last_angle = 0;
+        bool have_angle = false;
+        for (const LabelGlyph& g : s.glyphs) {
+          const float along = (g.x + g.advance / 2) * k;
+          const float at = flip ? centre + w / 2 - along : centre - w / 2 + along;
+          PathAt q = path_at(path, at);
+          if (flip) q.angle += std::numbers::pi_v<float>;
+          q.angle = std::remainder(q.angle, 2 * std::numbers::pi_v<float>);
+          const float turn = std::remainder(q.angle - last_angle, 2 * std::numbers::pi_v<float>);
+          if (std::abs(q.angle) > std::numbers::pi_v<float> / 2 ||
+              (have_angle && std::abs(turn) > kMaxTurnDeg * std::numbers::pi_v<float> / 180)) {
+            samples.resize(l.sample_first * 2);
+            return false;
+          }
+          last_angle = q.angle, have_angle = true;
+          l.pivots.push_back({q.x, q.y, q.angle});
+          const float r = std::max(asc + desc, g.advance * k) / 2;
+          const ScreenBox b{q.x - r, q.y - r, q.x + r, q.y + r};
+          l.boxes.push_back(b);
+          l.box = {std::min(l.box.x0, b.x0), std::min(l.box.y0, b.y0), std::max(l.box.x1, b.x1),
+                   std::max(l.box.y1, b.y1)};
+          add_sample(l, q.x, q.y, expected_at(q.x, q.y, at));
+        }
+        return true;
+      };
       Layout l;
       l.label = i, l.key = (uint64_t(i) << 4) | uint64_t(rep + kRepeatsEachSide);
       l.scale = k, l.distance = a.distance, l.legible = sd >= kShowScale, l.baseline = baseline;
-      l.sample_first = samples.size() / 2;
-      bool ok = true;
-      float last_angle = 0;
-      bool have_angle = false;
-      l.box = {HUGE_VALF, HUGE_VALF, -HUGE_VALF, -HUGE_VALF};
-      for (const LabelGlyph& g : s.glyphs) {
-        const float along = (g.x + g.advance / 2) * k;
-        const float at = flip ? centre + w / 2 - along : centre - w / 2 + along;
-        PathAt q = path_at(path, at);
-        if (flip) q.angle += std::numbers::pi_v<float>;
-        if (have_angle) {
-          float turn = std::remainder(q.angle - last_angle, 2 * std::numbers::pi_v<float>);
-          if (std::abs(turn) > kMaxTurnDeg * std::numbers::pi_v<float> / 180) {
-            ok = false;
-            break;
-          }
-        }
-        last_angle = q.angle, have_angle = true;
-        l.pivots.push_back({q.x, q.y, q.angle});
-        const float r = std::max(asc + desc, g.advance * k) / 2;
-        const ScreenBox b{q.x - r, q.y - r, q.x + r, q.y + r};
-        l.boxes.push_back(b);
-        l.box = {std::min(l.box.x0, b.x0), std::min(l.box.y0, b.y0), std::max(l.box.x1, b.x1),
-                 std::max(l.box.y1, b.y1)};
-        add_sample(l, q.x, q.y, expected_at(q.x, q.y, at));
-      }
-      if (!ok) {
-        samples.resize(l.sample_first * 2);
-        continue;
-      }
+      l.along_line = true;
+      const bool flip = p1.x < p0.x;
+      if (!lay(flip, l) && !lay(!flip, l)) continue;
       lays.push_back(std::move(l));
     }
   }
@@ -442,8 +448,12 @@ double LabelLayer::draw(const LayerPass& pass) {
     const bool before = drawn_before.count(l.key) != 0;
     auto behind = [&](size_t sample) {
       const float t = terrain[l.sample_first + sample];
-      const float d = l.expected[sample];
-      if (d < 0) return false;  // the sight line misses the label's plane
+      // Terrain hides a label where it is nearer than the label itself and
+      // rises above the ground's plane there (so that neither the ground
+      // falling towards the eye on a globe nor a slope behind the label
+      // counts).
+      const float d = l.along_line ? l.expected[sample] : std::min(l.expected[sample], l.distance);
+      if (l.expected[sample] < 0) return false;  // the sight line misses the ground's plane
       // Hysteresis: a shown label needs more terrain in front to go.
       const float tol = d * (before ? 0.015f : 0.008f) + d * (before ? 4.f : 2.f) / focal;
       return t >= 0 && t < d - tol;

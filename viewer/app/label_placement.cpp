@@ -94,14 +94,25 @@ std::vector<LabelPlace> LabelPlacer::place(const std::vector<LabelBid>& bids, do
   int tried_new = 0;
   // The first of the bid's places (last frame's first) that terrain leaves
   // clear and no label placed so far covers; -1 for none.
-  auto fit = [&](const LabelBid& b, int preferred, std::vector<ScreenBox>& boxes) {
+  // A label that is not shown yet needs room around it too (a margin of
+  // half its height, at most 8 px) unless the camera stands still: then the
+  // small moves of the next frames do not push it off again (no off-on-off).
+  auto fit = [&](const LabelBid& b, int preferred, bool appearing, std::vector<ScreenBox>& boxes) {
     const int n = static_cast<int>(b.shifts.size());
+    std::vector<ScreenBox> roomy;
     for (int k = -1; k < n; ++k) {
       const int s = k < 0 ? preferred : k;
       if (s < 0 || s >= n || (k >= 0 && s == preferred)) continue;
       if (!b.clear.empty() && !b.clear[size_t(s)]) continue;
       boxes = shifted(b.boxes, b.shifts[size_t(s)]);
-      if (grid.free(boxes)) return s;
+      if (appearing) {
+        roomy = boxes;
+        for (ScreenBox& r : roomy) {
+          const float m = std::min(o_.appear_margin * (r.y1 - r.y0), o_.appear_margin_max_px);
+          r = {r.x0 - m, r.y0 - m, r.x1 + m, r.y1 + m};
+        }
+      }
+      if (grid.free(appearing ? roomy : boxes)) return s;
     }
     return -1;
   };
@@ -116,7 +127,7 @@ std::vector<LabelPlace> LabelPlacer::place(const std::vector<LabelBid>& bids, do
       continue;
     }
     if (s.shown) {
-      const int at = fit(b, s.shift, boxes);
+      const int at = fit(b, s.shift, false, boxes);
       if (at < 0) {  // pushed off by a label shown before it
         s.alpha = 0, s.fits = 0, s.shown = false;
         continue;
@@ -140,7 +151,7 @@ std::vector<LabelPlace> LabelPlacer::place(const std::vector<LabelBid>& bids, do
     }
     if (max_new >= 0 && tried_new >= max_new) continue;  // deferred (keeps its streak)
     ++tried_new, ++tried_;
-    const int at = fit(b, s.fits > 0 ? s.shift : 0, boxes);
+    const int at = fit(b, s.fits > 0 ? s.shift : 0, !still, boxes);
     if (at < 0) {
       s.fits = 0;
       continue;

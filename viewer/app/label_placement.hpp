@@ -58,6 +58,9 @@ struct LabelPlacementOptions {
   float cell_px = 25, padding_px = 100;
   float fade_per_s = 5;  // alpha change per second (0.2 s a fade)
   int frames_to_show = 2;
+  // The room a label not shown yet needs around it: this fraction of its
+  // boxes' height, at most appear_margin_max_px.
+  float appear_margin = 0.5f, appear_margin_max_px = 8;
 };
 
 class LabelPlacer {

@@ -24,9 +24,17 @@ uniform vec2 u_viewport;
 uniform int u_row;   // texels per row of the output
 uniform int u_rows;  // and its rows
 out vec4 v_result;
+// Bilinear between the heights at the four key points around the point: the
+// anchor between the finest samples, as the terrain is drawn there.
+float height_at(ivec2 key, vec2 f) {
+  float h00 = terrain_height(key), h10 = terrain_height(key + ivec2(1, 0));
+  float h01 = terrain_height(key + ivec2(0, 1)), h11 = terrain_height(key + ivec2(1, 1));
+  return mix(mix(h00, h10, f.x), mix(h01, h11, f.x), f.y);
+}
+
 void main() {
   ivec2 rel = a_key - u_origin;
-  float h = terrain_height(a_key) * u_scale.z;
+  float h = height_at(a_key, a_frac) * u_scale.z;
   vec3 p = frame_world(rel, a_frac, h);
   vec4 c = u_view_proj * vec4(p, 1.0);
   bool front = c.w > 0.0;
