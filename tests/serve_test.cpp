@@ -8,11 +8,13 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cstdio>
 #include <fstream>
 #include <mutex>
 #include <random>
 #include <set>
+#include <string_view>
 #include <thread>
 
 #include <ogr_api.h>
@@ -540,6 +542,234 @@ TEST(Serve, AreaImagesFillByTheWindingRuleGeodeticToo) {
   const auto tj = tileformat::JsonValue::parse(http_get(port, "/sq.json").body);
   EXPECT_EQ(tj.find("vector_layers")->array().at(0).find("fields")->find("kind")->string(),
             "String");
+}
+
+namespace {
+
+// A MapLibre glyph PBF as this test reads it, written from the message
+// MapLibre documents (glyphs { repeated fontstack stacks = 1 }, fontstack
+// { name = 1, range = 2, repeated glyph glyphs = 3 }, glyph { id = 1,
+// bitmap = 2, width = 3, height = 4, left = 5 (sint32), top = 6 (sint32),
+// advance = 7 }) over the protobuf wire format alone: no code shared with
+// the server's writer. Throws std::runtime_error on anything malformed.
+struct PbfGlyph {
+  uint32_t id = 0, width = 0, height = 0, advance = 0;
+  int32_t left = 0, top = 0;
+  size_t bitmap = 0;  // bytes
+};
+struct PbfFontstack {
+  std::string name, range;
+  std::vector<PbfGlyph> glyphs;
+};
+
+class WireReader {
+ public:
+  explicit WireReader(std::string_view bytes) : in_(bytes) {}
+  bool done() const { return at_ == in_.size(); }
+  uint64_t varint() {
+    uint64_t v = 0;
+    for (int shift = 0; shift < 64; shift += 7) {
+      if (at_ >= in_.size()) throw std::runtime_error("a varint runs past the end");
+      const uint8_t b = uint8_t(in_[at_++]);
+      v |= uint64_t(b & 0x7f) << shift;
+      if (!(b & 0x80)) return v;
+    }
+    throw std::runtime_error("a varint longer than 10 bytes");
+  }
+  // The next field's number and wire type.
+  std::pair<uint32_t, int> key() {
+    const uint64_t k = varint();
+    return {uint32_t(k >> 3), int(k & 7)};
+  }
+  std::string_view bytes() {
+    const uint64_t n = varint();
+    if (n > in_.size() - at_) throw std::runtime_error("a length past the end");
+    const std::string_view out = in_.substr(at_, size_t(n));
+    at_ += size_t(n);
+    return out;
+  }
+  void skip(int wire) {
+    if (wire == 0) {
+      varint();
+    } else if (wire == 2) {
+      bytes();
+    } else if (wire == 1 || wire == 5) {
+      const size_t n = wire == 1 ? 8 : 4;
+      if (n > in_.size() - at_) throw std::runtime_error("a fixed field past the end");
+      at_ += n;
+    } else {
+      throw std::runtime_error("wire type " + std::to_string(wire));
+    }
+  }
+
+ private:
+  std::string_view in_;
+  size_t at_ = 0;
+};
+
+int32_t unzigzag(uint64_t v) {
+  return int32_t(uint32_t(v >> 1) ^ (~uint32_t(v & 1) + 1));
+}
+
+std::vector<PbfFontstack> decode_glyph_pbf(std::string_view data) {
+  std::vector<PbfFontstack> out;
+  WireReader top(data);
+  while (!top.done()) {
+    const auto [field, wire] = top.key();
+    if (field != 1 || wire != 2) {
+      top.skip(wire);
+      continue;
+    }
+    PbfFontstack stack;
+    WireReader fs(top.bytes());
+    while (!fs.done()) {
+      const auto [f, w] = fs.key();
+      if (f == 1 && w == 2) {
+        stack.name = std::string(fs.bytes());
+      } else if (f == 2 && w == 2) {
+        stack.range = std::string(fs.bytes());
+      } else if (f == 3 && w == 2) {
+        PbfGlyph g;
+        WireReader gr(fs.bytes());
+        while (!gr.done()) {
+          const auto [gf, gw] = gr.key();
+          if (gf == 2 && gw == 2) {
+            g.bitmap = gr.bytes().size();
+          } else if (gw == 0 && gf >= 1 && gf <= 7) {
+            const uint64_t v = gr.varint();
+            if (gf == 1) g.id = uint32_t(v);
+            if (gf == 3) g.width = uint32_t(v);
+            if (gf == 4) g.height = uint32_t(v);
+            if (gf == 5) g.left = unzigzag(v);
+            if (gf == 6) g.top = unzigzag(v);
+            if (gf == 7) g.advance = uint32_t(v);
+          } else {
+            gr.skip(gw);
+          }
+        }
+        stack.glyphs.push_back(g);
+      } else {
+        fs.skip(w);
+      }
+    }
+    out.push_back(std::move(stack));
+  }
+  return out;
+}
+
+// A URL path segment with spaces and other reserved bytes percent-encoded.
+std::string path_escape(const std::string& s) {
+  std::string out;
+  for (const unsigned char c : s) {
+    if (std::isalnum(c) || c == '-' || c == '_' || c == '.' || c == '~') {
+      out += char(c);
+    } else {
+      char hex[4];
+      std::snprintf(hex, sizeof hex, "%%%02X", c);
+      out += hex;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+// nc.gpkg's counties labelled by NAME, served: every tile the export writes
+// (names and label points included) is served byte for byte; the TileJSON
+// lists `name` and the `labels` layer; the style's glyphs are this server's
+// /fonts and its symbol layer names their fontstack. That URL answers range
+// 0-255 with a PBF (application/x-protobuf, cacheable, gzipped on request)
+// decoded here by a reader of the protobuf wire format written in this test:
+// one fontstack of that name and range, Latin letters with SDF bitmaps of
+// (width + 6) x (height + 6) bytes, the same bytes as the export's
+// fonts/FONTSTACK/0-255.pbf; a range that is not START-END (START a multiple
+// of 256 in the BMP, END = START + 255), a range no font covers and another
+// fontstack are 404.
+TEST(Serve, LabelledAreasGetNamesAStyleWithLabelsAndTheirGlyphs) {
+  TempDir dir("serve-labels");
+  const std::string pkg = (dir / "nc.mbtiles").string();
+  ASSERT_TRUE(run_all({vectorize() + " areas -q " + sample("nc.gpkg").string() +
+                           " --label-field NAME --max-zoom 6 -o " + pkg,
+                       vectorize() + " export -q " + pkg + " -o " + (dir / "nc").string() +
+                           " --style-json " + (dir / "style.json").string()},
+                      dir.path()));
+  ServeProcess server({pkg}, dir.path());
+  ASSERT_GT(server.port(), 0) << server.log();
+  const int port = server.port();
+  const std::string base = "http://127.0.0.1:" + std::to_string(port);
+  size_t tiles = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir / "nc")) {
+    if (e.path().extension() != ".pbf") continue;
+    const std::string rel = fs::relative(e.path(), dir / "nc").string();
+    const HttpReply r = http_get(port, "/nc/" + rel, "Accept-Encoding: gzip\r\n");
+    ASSERT_EQ(r.status, 200) << rel;
+    EXPECT_TRUE(gunzip(r.body) == gunzip(read_file(e.path()))) << rel;
+    ++tiles;
+  }
+  EXPECT_GT(tiles, 10u);
+  const auto tj = tileformat::JsonValue::parse(http_get(port, "/nc.json").body);
+  std::map<std::string, std::string> name_type;
+  for (const auto& l : tj.find("vector_layers")->array())
+    name_type[l.find("id")->string()] = l.find("fields")->find("name")->string();
+  EXPECT_EQ(name_type,
+            (std::map<std::string, std::string>{{"labels", "String"}, {"nc.gpkg", "String"}}));
+
+  const auto style = tileformat::JsonValue::parse(http_get(port, "/nc/style.json").body);
+  ASSERT_TRUE(style.find("glyphs"));
+  const std::string glyphs = style.find("glyphs")->string();
+  EXPECT_EQ(glyphs, base + "/fonts/{fontstack}/{range}.pbf");
+  const tileformat::JsonValue* symbols = nullptr;
+  for (const auto& l : style.find("layers")->array())
+    if (l.find("type")->string() == "symbol") symbols = &l;
+  ASSERT_TRUE(symbols);
+  EXPECT_EQ(symbols->find("source-layer")->string(), "labels");
+  const std::string font = symbols->find("layout")->find("text-font")->array().at(0).string();
+  ASSERT_FALSE(font.empty());
+
+  const std::string fonts = "/fonts/" + path_escape(font) + "/";
+  const HttpReply latin = http_get(port, fonts + "0-255.pbf");
+  ASSERT_EQ(latin.status, 200) << latin.body;
+  EXPECT_EQ(latin.header("content-type"), "application/x-protobuf");
+  EXPECT_NE(latin.header("cache-control").find("max-age="), std::string::npos);
+  EXPECT_FALSE(latin.header("etag").empty());
+  EXPECT_TRUE(latin.body == read_file(dir / "fonts" / font / "0-255.pbf"))
+      << "the export's glyphs and the server's differ";
+  std::vector<PbfFontstack> stacks;
+  ASSERT_NO_THROW(stacks = decode_glyph_pbf(latin.body));
+  ASSERT_EQ(stacks.size(), 1u);
+  EXPECT_EQ(stacks[0].name, font);
+  EXPECT_EQ(stacks[0].range, "0-255");
+  std::map<uint32_t, PbfGlyph> by_id;
+  for (const PbfGlyph& g : stacks[0].glyphs) {
+    EXPECT_LE(g.id, 255u);
+    if (g.width > 0) {
+      EXPECT_EQ(g.bitmap, size_t(g.width + 6) * (g.height + 6)) << g.id;
+    }
+    by_id[g.id] = g;
+  }
+  for (const char32_t c : U"AZaz09 ") {
+    if (!c) continue;
+    ASSERT_TRUE(by_id.count(c)) << "code point " << uint32_t(c);
+    EXPECT_GT(by_id[c].advance, 0u) << uint32_t(c);
+  }
+  EXPECT_GT(by_id[U'A'].bitmap, 0u);
+  EXPECT_EQ(by_id[U' '].bitmap, 0u);
+  const HttpReply zipped = http_get(port, fonts + "0-255.pbf", "Accept-Encoding: gzip\r\n");
+  EXPECT_EQ(zipped.header("content-encoding"), "gzip");
+  EXPECT_TRUE(gunzip(zipped.body) == latin.body);
+  const HttpReply arabic = http_get(port, fonts + "1536-1791.pbf");
+  EXPECT_EQ(arabic.status, 200);
+  ASSERT_NO_THROW(stacks = decode_glyph_pbf(arabic.body));
+  EXPECT_EQ(stacks.at(0).range, "1536-1791");
+  for (const char* bad :
+       {"1-256", "0-254", "256-767", "00-255", "abc", "-0-255", "65536-65791", "55296-55551"})
+    EXPECT_EQ(http_get(port, fonts + bad + ".pbf").status, 404) << bad;
+  EXPECT_EQ(http_get(port, fonts + "0-255.png").status, 404);
+  EXPECT_EQ(http_get(port, "/fonts/Arial%20Unicode%20MS%20Regular/0-255.pbf").status, 404);
+  EXPECT_EQ(http_get(port, "/fonts/" + path_escape(font) + "/0-255").status, 404);
+  EXPECT_EQ(http_get(port, "/fonts/" + path_escape(font)).status, 404);
+  EXPECT_EQ(http_get(port, "/fonts/../0-255.pbf").status, 400);
+  EXPECT_EQ(http_get(port, "/nc/style.json").status, 200) << "still serving";
 }
 
 // The HTTP contract: ETag and 304, CORS and preflight, methods, PMTiles

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include <gdal.h>
@@ -527,6 +528,231 @@ TEST(ExportMvt, PointsKeepTheirPositionsCountsAndFields) {
   const auto meta = tileformat::JsonValue::parse(read_file(fs::path(out) / "metadata.json"));
   EXPECT_EQ(meta.find("vector_layers")->array().at(0).find("fields")->find("a")->string(),
             "Number");
+}
+
+namespace {
+
+struct LabelRow {
+  int64_t feature = 0;
+  double lon = 0, lat = 0, priority = 0;
+  std::string text;
+};
+
+// The labels table of a package, read with the sqlite3 program, by feature.
+std::map<int64_t, LabelRow> label_rows(const std::string& pkg, const fs::path& dir) {
+  const RunResult r = run("sqlite3 " + pkg +
+                              " \"SELECT feature || char(9) || printf('%.17g', lon) || char(9) "
+                              "|| printf('%.17g', lat) || char(9) || printf('%.17g', priority) "
+                              "|| char(9) || text FROM labels\"",
+                          dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  std::map<int64_t, LabelRow> out;
+  std::istringstream in(r.out);
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream cols(line);
+    LabelRow l;
+    std::string f;
+    std::getline(cols, f, '\t');
+    l.feature = std::stoll(f);
+    std::getline(cols, f, '\t');
+    l.lon = std::stod(f);
+    std::getline(cols, f, '\t');
+    l.lat = std::stod(f);
+    std::getline(cols, f, '\t');
+    l.priority = std::stod(f);
+    std::getline(cols, l.text);
+    out[l.feature] = l;
+  }
+  return out;
+}
+
+// The features of every tile of zoom `z` of an MVT folder export, read by
+// GDAL's MVT driver, with the tile each came from ("x/y").
+std::vector<std::pair<std::string, OgrLine>> zoom_features(const fs::path& out, int z) {
+  std::vector<std::pair<std::string, OgrLine>> all;
+  if (!fs::exists(out / std::to_string(z))) return all;
+  for (const auto& e : fs::recursive_directory_iterator(out / std::to_string(z))) {
+    if (e.path().extension() != ".pbf") continue;
+    const std::string x = e.path().parent_path().filename().string(), y = e.path().stem().string();
+    for (OgrLine& f : read_ogr(e.path().string(),
+                               {"X=" + x, "Y=" + y, "Z=" + std::to_string(z), "CLIP=NO"}, "mvt_id"))
+      all.emplace_back(x + "/" + y, std::move(f));
+  }
+  return all;
+}
+
+// The first symbol layer of a style on `source_layer`.
+const tileformat::JsonValue* symbol_layer(const tileformat::JsonValue& style,
+                                          const std::string& source_layer) {
+  for (const auto& l : style.find("layers")->array())
+    if (l.find("type")->string() == "symbol" && l.find("source-layer")->string() == source_layer)
+      return &l;
+  return nullptr;
+}
+
+}  // namespace
+
+// The world's countries (world.gpkg) as an area package labelled by
+// name_long, exported to a folder of MVT with a style: read back by GDAL's
+// MVT driver, at every zoom 0..3 every polygon of a labelled country carries
+// its label as `name`, and the layer `labels` holds exactly one point per
+// country drawn at that zoom, across all the zoom's tiles (none repeated at
+// a tile edge), inside its tile, within half a tile unit of the stored
+// anchor, with its name and a rank that follows the priorities. The style
+// reads the glyphs the export wrote beside it and writes the label points'
+// names with their fontstack.
+TEST(ExportMvt, AreaLabelsAreOnePointPerPolygonAndTheNames) {
+  TempDir dir;
+  const std::string pkg = (dir / "world.mbtiles").string(), out = (dir / "mvt").string();
+  ASSERT_TRUE(run_all({vectorize() + " areas -q " + sample("world.gpkg").string() +
+                           " --label-field name_long --max-zoom 3 -o " + pkg,
+                       vectorize() + " export -q " + pkg + " -o " + out + " --style-json " +
+                           (dir / "style.json").string()},
+                      dir.path()));
+  const std::map<int64_t, LabelRow> labels = label_rows(pkg, dir.path());
+  ASSERT_EQ(labels.size(), 177u);
+  const double half = 20037508.342789244;
+  for (int z = 0; z <= 3; ++z) {
+    const double tile_m = 2 * half / std::ldexp(1.0, z), unit = tile_m / 4096;
+    std::set<int64_t> drawn;
+    std::map<int64_t, int> points;
+    std::map<int64_t, double> rank;
+    size_t named = 0;
+    for (const auto& [xy, f] : zoom_features(out, z)) {
+      const auto label = labels.find(f.id);
+      if (f.layer == "world") {
+        drawn.insert(f.id);
+        ASSERT_NE(label, labels.end()) << "country " << f.id << " has no label";
+        ASSERT_TRUE(f.fields.count("name")) << "country " << f.id << " in tile " << z << "/" << xy;
+        EXPECT_EQ(f.fields.at("name"), label->second.text);
+        ++named;
+        continue;
+      }
+      ASSERT_EQ(f.layer, "labels");
+      ASSERT_NE(label, labels.end()) << "label point " << f.id;
+      ++points[f.id];
+      EXPECT_EQ(f.fields.at("name"), label->second.text);
+      rank[f.id] = std::stod(f.fields.at("rank"));
+      ASSERT_EQ(f.pts.size(), 1u);
+      // The stored anchor (latitudes past the mercator's edge on it), and
+      // the tile the point came from holds it.
+      const double lat = std::clamp(label->second.lat, -85.0511287798066, 85.0511287798066);
+      const double mx = label->second.lon / 180 * half,
+                   my = std::log(std::tan((90 + lat) * kPi / 360)) / kPi * half;
+      EXPECT_NEAR(f.pts[0].first, mx, unit) << label->second.text << " at zoom " << z;
+      EXPECT_NEAR(f.pts[0].second, my, unit) << label->second.text << " at zoom " << z;
+      const int x = std::stoi(xy.substr(0, xy.find('/'))),
+                y = std::stoi(xy.substr(xy.find('/') + 1));
+      EXPECT_GE(f.pts[0].first, -half + x * tile_m - unit) << label->second.text;
+      EXPECT_LE(f.pts[0].first, -half + (x + 1) * tile_m + unit) << label->second.text;
+      EXPECT_LE(f.pts[0].second, half - y * tile_m + unit) << label->second.text;
+      EXPECT_GE(f.pts[0].second, half - (y + 1) * tile_m - unit) << label->second.text;
+    }
+    EXPECT_GT(named, 150u) << "zoom " << z;
+    for (const int64_t id : drawn)
+      EXPECT_EQ(points[id], 1) << labels.at(id).text << ": label points at zoom " << z;
+    for (const auto& [id, n] : points)
+      EXPECT_TRUE(drawn.count(id)) << labels.at(id).text << " labelled but not drawn at zoom " << z;
+    // Ranks follow the priorities (larger first).
+    std::vector<std::pair<double, int64_t>> by_rank;
+    for (const auto& [id, r] : rank)
+      by_rank.emplace_back(r, id);
+    std::sort(by_rank.begin(), by_rank.end());
+    for (size_t k = 1; k < by_rank.size(); ++k)
+      EXPECT_GE(labels.at(by_rank[k - 1].second).priority, labels.at(by_rank[k].second).priority)
+          << "rank " << by_rank[k].first;
+    if (z == 3) {
+      EXPECT_EQ(points.size(), labels.size()) << "every country at zoom 3";
+    }
+  }
+  const auto style = tileformat::JsonValue::parse(read_file(dir / "style.json"));
+  ASSERT_TRUE(style.find("glyphs")) << read_file(dir / "style.json");
+  EXPECT_EQ(style.find("glyphs")->string(), "fonts/{fontstack}/{range}.pbf");
+  const tileformat::JsonValue* labels_layer = symbol_layer(style, "labels");
+  ASSERT_TRUE(labels_layer) << read_file(dir / "style.json");
+  const tileformat::JsonValue* layout = labels_layer->find("layout");
+  EXPECT_EQ(layout->find("text-field")->text(), R"(["get","name"])");
+  EXPECT_EQ(layout->find("symbol-sort-key")->text(), R"(["get","rank"])");
+  const std::string font = layout->find("text-font")->array().at(0).string();
+  EXPECT_TRUE(fs::is_regular_file(dir / "fonts" / font / "0-255.pbf")) << font;
+  EXPECT_EQ(labels_layer->find("paint")->find("text-halo-width")->number(), 1.5);
+  const auto meta = tileformat::JsonValue::parse(read_file(fs::path(out) / "metadata.json"));
+  bool listed = false;
+  for (const auto& l : meta.find("vector_layers")->array())
+    listed = listed || (l.find("id")->string() == "labels" &&
+                        l.find("fields")->find("rank")->string() == "Number");
+  EXPECT_TRUE(listed) << "the labels layer in vector_layers";
+}
+
+// Lines and places labelled by their "name" attribute: every line of the
+// finest zoom GDAL's MVT driver reads carries its label as `name`, every
+// place of its own too; the styles write them along the lines (line
+// placement, upright, at most 45 degrees a character) and beside the
+// places; a package without labels keeps a style without symbol layers.
+TEST(ExportMvt, LinesAndPlacesCarryTheirLabelsAsName) {
+  TempDir dir;
+  std::ofstream(dir / "rivers.geojson")
+      << R"({"type":"FeatureCollection","features":[)"
+      << R"({"type":"Feature","properties":{"name":"Aare","kind":"river"},"geometry":{"type":"LineString","coordinates":[[7.0,46.9],[7.4,46.95],[7.9,47.3],[8.2,47.6]]}},)"
+      << R"({"type":"Feature","properties":{"name":"Reuss","kind":"river"},"geometry":{"type":"LineString","coordinates":[[8.6,46.6],[8.5,47.0],[8.3,47.4]]}},)"
+      << R"({"type":"Feature","properties":{"name":"","kind":"river"},"geometry":{"type":"LineString","coordinates":[[6.5,46.5],[7.0,46.6]]}}]})";
+  std::ofstream(dir / "towns.csv") << "lon,lat,people,name\n7.45,46.95,134000,Bern\n"
+                                      "8.54,47.37,421000,Zürich\n6.14,46.2,203000,Genève\n";
+  const std::string lines = (dir / "rivers.mbtiles").string(),
+                    towns = (dir / "towns.mbtiles").string();
+  ASSERT_TRUE(run_all(
+      {vectorize() + " lines -q " + (dir / "rivers.geojson").string() +
+           " --label-field name --max-zoom 8 -o " + lines,
+       vectorize() + " points -q " + (dir / "towns.csv").string() +
+           " --xy lon,lat --fields people --label-field name --merge-px 0 --max-zoom 8 -o " + towns,
+       vectorize() + " export -q " + lines + " -o " + (dir / "lines").string() + " --style-json " +
+           (dir / "lines.json").string(),
+       vectorize() + " export -q " + towns + " -o " + (dir / "towns").string() + " --style-json " +
+           (dir / "towns.json").string()},
+      dir.path()));
+  for (const std::string name : {"rivers", "towns"}) {
+    const std::map<int64_t, LabelRow> labels =
+        label_rows((dir / (name + ".mbtiles")).string(), dir.path());
+    ASSERT_EQ(labels.size(), name == "rivers" ? 2u : 3u) << name;
+    std::set<int64_t> named;
+    for (const auto& [xy, f] : zoom_features(dir / (name == "rivers" ? "lines" : "towns"), 8)) {
+      const auto label = labels.find(f.id);
+      if (label == labels.end()) {
+        EXPECT_FALSE(f.fields.count("name") && !f.fields.at("name").empty())
+            << name << " feature " << f.id << " is named without a label";
+        continue;
+      }
+      ASSERT_TRUE(f.fields.count("name")) << name << " feature " << f.id << " in tile 8/" << xy;
+      EXPECT_EQ(f.fields.at("name"), label->second.text);
+      named.insert(f.id);
+    }
+    EXPECT_EQ(named.size(), labels.size()) << name;
+  }
+  const auto line_style = tileformat::JsonValue::parse(read_file(dir / "lines.json"));
+  EXPECT_EQ(line_style.find("glyphs")->string(), "fonts/{fontstack}/{range}.pbf");
+  const tileformat::JsonValue* along = symbol_layer(line_style, "rivers");
+  ASSERT_TRUE(along) << read_file(dir / "lines.json");
+  EXPECT_EQ(along->find("layout")->find("symbol-placement")->string(), "line");
+  EXPECT_EQ(along->find("layout")->find("text-max-angle")->number(), 45);
+  EXPECT_TRUE(along->find("layout")->find("text-keep-upright")->boolean());
+  const auto point_style = tileformat::JsonValue::parse(read_file(dir / "towns.json"));
+  const tileformat::JsonValue* beside = symbol_layer(point_style, "points");
+  ASSERT_TRUE(beside) << read_file(dir / "towns.json");
+  EXPECT_TRUE(beside->find("layout")->find("text-variable-anchor"));
+  const std::string font = beside->find("layout")->find("text-font")->array().at(0).string();
+  EXPECT_TRUE(fs::is_regular_file(dir / "fonts" / font / "0-255.pbf")) << font;
+  // Without labels: no glyphs, no symbol layer, no fonts folder.
+  const fs::path plain = dir / "plain";
+  fs::create_directories(plain);
+  ASSERT_TRUE(run_all({vectorize() + " lines -q " + (dir / "rivers.geojson").string() +
+                           " --max-zoom 5 -o " + (plain / "r.mbtiles").string(),
+                       vectorize() + " export -q " + (plain / "r.mbtiles").string() + " -o " +
+                           (plain / "r").string() + " --style-json " + (plain / "r.json").string()},
+                      dir.path()));
+  const auto unlabelled = tileformat::JsonValue::parse(read_file(plain / "r.json"));
+  EXPECT_FALSE(unlabelled.find("glyphs"));
+  EXPECT_FALSE(symbol_layer(unlabelled, "rivers"));
+  EXPECT_FALSE(fs::exists(plain / "fonts"));
 }
 
 // The same bytes for any thread count (the tiles are encoded in parallel and

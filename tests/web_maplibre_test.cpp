@@ -380,3 +380,91 @@ TEST(WebMapLibre, AreasChoroplethFromGlobeServe) {
       "MapLibre drew %zu counties; %d, %d, %d, %d checked per class at their inside point\n",
       ids.size(), checked[0], checked[1], checked[2], checked[3]);
 }
+
+// The world's countries (world.gpkg) labelled by name_long as an area
+// package, its MVT PMTiles export, the style and, beside it, the glyphs
+// (fonts/), once per test binary.
+const fs::path& world_labels() {
+  static const fs::path dir = shared_folder("maplibre-world-labels", [](const fs::path& d) {
+    const std::string pkg = (d / "world.mbtiles").string();
+    return run_all({vectorize() + " areas -q " + sample("world.gpkg").string() +
+                        " --label-field name_long --max-zoom 4 -o " + pkg,
+                    vectorize() + " export -q " + pkg + " -o " + (d / "world.pmtiles").string() +
+                        " --style-json " + (d / "style.json").string()},
+                   d);
+  });
+  return dir;
+}
+
+// MapLibre writes the countries' names from `source` (the page's query: the
+// style and where its tiles are) with the glyphs the style names, 512 x 256
+// px over Europe at zoom 2.5: the symbol layer's names are labels of the
+// package (read with the sqlite3 program) whose anchors lie in the view (or
+// within 80 px of it: a name's box may reach in), the large countries
+// there among them, and the picture is the expected one.
+void expect_world_labels_drawn(const std::string& source, const TempDir& dir) {
+  const fs::path pkg = world_labels() / "world.mbtiles";
+  const int width = 512, height = 256;
+  const double lon0 = 15, lat0 = 50, zoom = 2.5;
+  const RunResult page = run_web_page("maplibre_mvt.html", world_labels(),
+                                      source + "&center=" + std::to_string(lon0) + "," +
+                                          std::to_string(lat0) + "&zoom=" + std::to_string(zoom),
+                                      dir / "labels.png", dir.path(),
+                                      std::to_string(width) + "x" + std::to_string(height));
+  ASSERT_EQ(page.exit_code, 0) << page.err;
+  const auto result = tileformat::JsonValue::parse(page.out);
+  const RunResult rows =
+      run("sqlite3 -separator '|' " + pkg.string() + " \"SELECT lon, lat, text FROM labels\"",
+          dir.path());
+  ASSERT_EQ(rows.exit_code, 0) << rows.err;
+  const double world = 512 * std::pow(2.0, zoom);
+  auto mercator_y = [](double lat) {
+    return (1 - std::asinh(std::tan(lat * kPi / 180)) / kPi) / 2;
+  };
+  std::map<std::string, std::pair<double, double>> anchors;  // name -> view pixel
+  std::istringstream in(rows.out);
+  for (std::string line; std::getline(in, line);) {
+    const size_t a = line.find('|'), b = line.find('|', a + 1);
+    const double lon = std::stod(line.substr(0, a)), lat = std::stod(line.substr(a + 1, b - a - 1));
+    anchors[line.substr(b + 1)] = {width / 2.0 + (lon - lon0) / 360 * world,
+                                   height / 2.0 + (mercator_y(lat) - mercator_y(lat0)) * world};
+  }
+  ASSERT_EQ(anchors.size(), 177u);
+  const auto* names = result.find("names") ? result.find("names")->find("labels") : nullptr;
+  ASSERT_TRUE(names) << "no names drawn: " << page.out.substr(0, 400);
+  std::set<std::string> drawn;
+  for (const auto& n : names->array()) {
+    ASSERT_TRUE(anchors.count(n.string())) << n.string() << " is no label of the package";
+    const auto [x, y] = anchors.at(n.string());
+    EXPECT_TRUE(x > -80 && x < width + 80 && y > -80 && y < height + 80)
+        << n.string() << " drawn with its anchor at " << x << "," << y;
+    drawn.insert(n.string());
+  }
+  EXPECT_EQ(drawn.size(), names->array().size()) << "a name written twice";
+  for (const char* name :
+       {"France", "Germany", "Poland", "Italy", "Ukraine", "Romania", "United Kingdom", "Belarus"})
+    EXPECT_TRUE(drawn.count(name)) << name << " not written; written: " << page.out.substr(0, 600);
+  EXPECT_GE(drawn.size(), 15u);
+  std::printf("MapLibre wrote %zu country names\n", drawn.size());
+  expect_image((dir / "labels.png").string(), "maplibre_world_labels");
+}
+
+// The export's style, its relative glyphs (fonts/ beside it) and PMTiles.
+TEST(WebMapLibre, ExportedLabelsDrawWithTheirOwnGlyphs) {
+  TempDir dir;
+  expect_world_labels_drawn("style=/data/style.json&pmtiles=/data/world.pmtiles", dir);
+}
+
+// globe-serve's style, tiles and glyphs (/fonts, made on first ask): the
+// same names and picture.
+TEST(WebMapLibre, GlobeServeLabelsDrawWithItsGlyphs) {
+  TempDir dir;
+  ServeProcess server({(world_labels() / "world.mbtiles").string()}, dir.path());
+  ASSERT_GT(server.port(), 0) << server.log();
+  expect_world_labels_drawn(
+      "style=" +
+          query_escape("http://127.0.0.1:" + std::to_string(server.port()) + "/world/style.json"),
+      dir);
+  EXPECT_NE(server.log().find("GET /fonts/"), std::string::npos) << "MapLibre asked for no glyphs";
+  EXPECT_NE(server.log().find("0-255.pbf 200"), std::string::npos) << server.log();
+}

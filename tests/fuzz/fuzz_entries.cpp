@@ -193,6 +193,10 @@ void url_route(std::span<const uint8_t> data) {
   using Kind = globe::serve::Route::Kind;
   if (r.kind == Kind::kTile && (r.z < 0 || r.z > globe::serve::kMaxZoom || r.name.empty()))
     fail("url_route: a tile route out of range");
+  if (r.kind == Kind::kGlyphs &&
+      (r.fontstack.empty() || r.fontstack.find('/') != std::string::npos ||
+       r.glyph_start % 256 != 0 || r.glyph_start > 0xFF00))
+    fail("url_route: a glyph route out of range");
   if (r.kind == Kind::kLibrary) {
     const std::string f = "/" + r.file + "/";
     if (f.find("/../") != std::string::npos || f.find("/./") != std::string::npos ||

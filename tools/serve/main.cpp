@@ -19,6 +19,7 @@
 #include "serve/http_server.hpp"
 #include "serve/package_registry.hpp"
 #include "serve/request_handler.hpp"
+#include "web/glyphs.hpp"
 
 namespace {
 
@@ -48,7 +49,9 @@ int serve(const std::vector<std::string>& args) {
               "            /NAME/style.json (a MapLibre style) and /NAME/{z}/{x}/{y}.png (drawn)\n"
               "  X.pmtiles /X.pmtiles with byte ranges (for the pmtiles:// protocol)\n"
               "and /NAME.json (TileJSON 3.0.0) for each; / lists them with a MapLibre and a\n"
-              "CesiumJS view. Packages are read only and reopened when replaced on disk.\n"
+              "CesiumJS view. Labelled packages' styles write the names with the glyphs of\n"
+              "/fonts/{fontstack}/{start}-{end}.pbf (Debian's Noto fonts, made on first ask).\n"
+              "Packages are read only and reopened when replaced on disk.\n"
               "Listens on 127.0.0.1 unless --bind says otherwise; prints its URL on stdout.");
   cli.option("--bind", "ADDR", "address to listen on (default 127.0.0.1; 0.0.0.0: every interface)",
              [&](const std::string& v) { http.bind = v; });
@@ -89,6 +92,14 @@ int serve(const std::vector<std::string>& args) {
   std::signal(SIGPIPE, SIG_IGN);
 
   one_heap_per_core();
+  // The labels' glyphs: without fonts the packages are served all the same,
+  // their styles without labels.
+  try {
+    handler.glyphs = std::make_shared<const web::GlyphSet>();
+    services.fontstack = handler.glyphs->fontstack();
+  } catch (const InputError& e) {
+    std::cerr << "globe-serve: " << e.what() << "; the styles are left without labels" << std::endl;
+  }
   serve::PackageRegistry registry(*inputs, services);
   serve::HttpServer* server_ptr = nullptr;
   serve::RequestHandler handle(registry, handler);

@@ -34,6 +34,7 @@
 #include "web/lru_cache.hpp"
 #include "web/mesh_tiles.hpp"
 #include "web/mvt_encoder.hpp"
+#include "web/mvt_labels.hpp"
 #include "web/point_mvt.hpp"
 #include "web/raster_dem.hpp"
 #include "web/raster_dem_tile.hpp"
@@ -66,6 +67,15 @@ HttpResponse bytes_response(std::vector<uint8_t> bytes, std::string type, bool c
   r.body.assign(bytes.begin(), bytes.end());
   r.compressible = compressible;
   return r;
+}
+
+// The glyphs of a labelled package's style: /fonts on this server (`base`
+// is http://host/NAME); none without labels or fonts.
+web::StyleGlyphs style_glyphs(const web::MvtLabels& labels, const std::string& fontstack,
+                              const std::string& base, const std::string& name) {
+  if (labels.empty() || fontstack.empty()) return {};
+  return {base.substr(0, base.size() - name.size() - 1) + "/fonts/{fontstack}/{range}.pbf",
+          fontstack};
 }
 
 // TileJSON 3.0.0 of a tile set under `base`.
@@ -349,8 +359,8 @@ HttpResponse answer_vector_route(
 
 class LineService : public PackageService {
  public:
-  LineService(const std::string& path, const std::string& name)
-      : pkg_(open_line_package(path)), name_(name), encoder_(pkg_) {
+  LineService(const std::string& path, const std::string& name, const std::string& fontstack)
+      : pkg_(open_line_package(path)), name_(name), fontstack_(fontstack), encoder_(pkg_) {
     const tileformat::Bounds& b = pkg_.meta.common.lonlat;
     west = b.min_x, south = b.min_y, east = b.max_x, north = b.max_y;
     min_zoom = pkg_.min_zoom, max_zoom = pkg_.max_zoom;
@@ -366,8 +376,10 @@ class LineService : public PackageService {
   std::string tiling() const override { return tileformat::scheme_name(pkg_.tiling.scheme); }
   HttpResponse tilejson(const std::string& base, const HttpRequest&) override {
     std::map<std::string, std::map<std::string, std::string>> layers;
-    for (const auto& [layer, _] : classes_in_)
+    for (const auto& [layer, _] : classes_in_) {
       layers[layer]["class"] = "String";
+      if (!encoder_.labels().empty()) layers[layer]["name"] = "String";
+    }
     return json_response(
         tilejson_text(*this, name_, base + "/{z}/{x}/{y}.pbf",
                       "\"format\":\"pbf\",\"vector_layers\":" + web::vector_layers_json(layers)));
@@ -375,7 +387,10 @@ class LineService : public PackageService {
   HttpResponse answer(const Route& r, const HttpRequest&, const std::string& base) override {
     return answer_vector_route(
         r, name_, pkg_.tiling, min_zoom, max_zoom, mutex_, *pkg_.reader, "a line package",
-        [&] { return web::line_style_json(pkg_, classes_in_, base + ".json"); },
+        [&] {
+          return web::line_style_json(pkg_, classes_in_, base + ".json",
+                                      style_glyphs(encoder_.labels(), fontstack_, base, name_));
+        },
         [&](tileformat::TileId id, std::span<const uint8_t> blob) {
           return web::line_tile_png(pkg_, id, blob);
         },
@@ -386,7 +401,7 @@ class LineService : public PackageService {
 
  private:
   LinePackage pkg_;
-  std::string name_;
+  std::string name_, fontstack_;
   web::LineMvtEncoder encoder_;
   std::map<std::string, std::set<uint32_t>> classes_in_;
   std::mutex mutex_;
@@ -394,8 +409,8 @@ class LineService : public PackageService {
 
 class PointService : public PackageService {
  public:
-  PointService(const std::string& path, const std::string& name)
-      : pkg_(open_point_package(path)), name_(name) {
+  PointService(const std::string& path, const std::string& name, const std::string& fontstack)
+      : pkg_(open_point_package(path)), name_(name), fontstack_(fontstack), labels_(*pkg_.reader) {
     const tileformat::Bounds& b = pkg_.meta.common.lonlat;
     west = b.min_x, south = b.min_y, east = b.max_x, north = b.max_y;
     min_zoom = pkg_.meta.common.min_zoom, max_zoom = pkg_.meta.common.max_zoom;
@@ -405,13 +420,15 @@ class PointService : public PackageService {
     return tileformat::scheme_name(pkg_.meta.common.tiling.scheme);
   }
   HttpResponse tilejson(const std::string& base, const HttpRequest&) override {
-    return json_response(tilejson_text(*this, name_, base + "/{z}/{x}/{y}.pbf",
-                                       "\"format\":\"pbf\",\"vector_layers\":" +
-                                           web::vector_layers_json(web::point_mvt_fields(pkg_))));
+    return json_response(
+        tilejson_text(*this, name_, base + "/{z}/{x}/{y}.pbf",
+                      "\"format\":\"pbf\",\"vector_layers\":" +
+                          web::vector_layers_json(web::point_mvt_fields(pkg_, &labels_))));
   }
   HttpResponse answer(const Route& r, const HttpRequest&, const std::string& base) override {
     if (r.kind == Route::Kind::kStyleJson)
-      return json_response(web::point_style_json(pkg_, base + ".json"));
+      return json_response(web::point_style_json(pkg_, base + ".json",
+                                                 style_glyphs(labels_, fontstack_, base, name_)));
     if (r.kind == Route::Kind::kTile && r.extension == "png") {  // drawn, for image clients
       HttpResponse bad = check_tile(pkg_.meta.common.tiling, name_, r, min_zoom, max_zoom);
       if (bad.status != 200) return bad;
@@ -431,13 +448,14 @@ class PointService : public PackageService {
       blob = pkg_.reader->tile({r.z, r.x, r.y});
     }
     if (!blob) return text_response(204, "");
-    return bytes_response(web::point_tile_mvt(pkg_, {r.z, r.x, r.y}, *blob),
+    return bytes_response(web::point_tile_mvt(pkg_, {r.z, r.x, r.y}, *blob, nullptr, &labels_),
                           "application/vnd.mapbox-vector-tile", true);
   }
 
  private:
   PointPackage pkg_;
-  std::string name_;
+  std::string name_, fontstack_;
+  const web::MvtLabels labels_;
   std::mutex mutex_;
 };
 
@@ -445,8 +463,8 @@ class PointService : public PackageService {
 // mercator and geodetic).
 class AreaService : public PackageService {
  public:
-  AreaService(const std::string& path, const std::string& name)
-      : pkg_(open_area_package(path)), name_(name), encoder_(pkg_) {
+  AreaService(const std::string& path, const std::string& name, const std::string& fontstack)
+      : pkg_(open_area_package(path)), name_(name), fontstack_(fontstack), encoder_(pkg_) {
     const tileformat::CommonMetadata& c = pkg_.meta.common;
     west = c.lonlat.min_x, south = c.lonlat.min_y, east = c.lonlat.max_x, north = c.lonlat.max_y;
     min_zoom = c.min_zoom, max_zoom = c.max_zoom;
@@ -491,7 +509,11 @@ class AreaService : public PackageService {
       classes_in_[layer] = all;
       fields["class"] = pkg_.meta.choropleth ? "Number" : "String";
       if (pkg_.meta.choropleth) fields["value"] = "Number";
+      if (!encoder_.labels().empty()) fields["name"] = "String";
     }
+    // The label points (one per labelled area, web/area_mvt.hpp).
+    if (!encoder_.labels().empty())
+      fields_[web::area_label_layer(pkg_)] = {{"name", "String"}, {"rank", "Number"}};
   }
   std::string kind() const override { return "areas"; }
   std::string tiling() const override {
@@ -505,7 +527,11 @@ class AreaService : public PackageService {
   HttpResponse answer(const Route& r, const HttpRequest&, const std::string& base) override {
     return answer_vector_route(
         r, name_, pkg_.meta.common.tiling, min_zoom, max_zoom, mutex_, *pkg_.reader,
-        "an area package", [&] { return web::area_style_json(pkg_, classes_in_, base + ".json"); },
+        "an area package",
+        [&] {
+          return web::area_style_json(pkg_, classes_in_, base + ".json",
+                                      style_glyphs(encoder_.labels(), fontstack_, base, name_));
+        },
         [&](tileformat::TileId id, std::span<const uint8_t> blob) {
           return web::area_tile_png(pkg_, id, blob);
         },
@@ -516,7 +542,7 @@ class AreaService : public PackageService {
 
  private:
   AreaPackage pkg_;
-  std::string name_;
+  std::string name_, fontstack_;
   web::AreaMvtEncoder encoder_;
   std::map<std::string, std::set<uint32_t>> classes_in_;
   std::map<std::string, std::map<std::string, std::string>> fields_;
@@ -581,11 +607,11 @@ std::unique_ptr<PackageService> open_service(const std::string& path, const std:
     case tileformat::PackageKind::kImage:
       return std::make_unique<ImageService>(path, name);
     case tileformat::PackageKind::kLines:
-      return std::make_unique<LineService>(path, name);
+      return std::make_unique<LineService>(path, name, options.fontstack);
     case tileformat::PackageKind::kPoints:
-      return std::make_unique<PointService>(path, name);
+      return std::make_unique<PointService>(path, name, options.fontstack);
     case tileformat::PackageKind::kAreas:
-      return std::make_unique<AreaService>(path, name);
+      return std::make_unique<AreaService>(path, name, options.fontstack);
     case tileformat::PackageKind::kAnalysis:
       throw InputError(path +
                        ": analysis packages have no web format yet; serve the terrain package");

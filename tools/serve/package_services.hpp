@@ -2,9 +2,9 @@
 // package kind, each answering its routes from the package opened read-only.
 // Terrain: quantized-mesh (layer.json, .terrain, TMS rows) and raster-DEM PNG
 // (?encoding=terrarium|terrain-rgb) cut on the fly; images: tiles as stored;
-// lines, bundles, points and areas: MVT, a MapLibre style and the tiles drawn
-// as PNG images; a .pmtiles file: its bytes (ranges applied by the HTTP
-// layer). Every service is safe to call from several threads.
+// lines, bundles, points and areas: MVT (with the labels' names), a MapLibre
+// style (their symbol layers reading /fonts) and the tiles drawn as PNG images; a .pmtiles file:
+// its bytes (ranges applied by the HTTP layer). Every service is safe to call from several threads.
 #pragma once
 
 #include <memory>
@@ -40,6 +40,9 @@ class PackageService : public TileSetExtent {
 struct ServiceOptions {
   // Per terrain package: decoded blocks, triangle errors and tiles cut on the fly.
   size_t cache_bytes = size_t(512) << 20;
+  // The fontstack of the glyphs under /fonts (web/glyphs.hpp) the styles of
+  // labelled packages write their names with; "" = none: no labels in the styles.
+  std::string fontstack;
 };
 
 // Opens a package (or a .pmtiles file) as its service; `name` is its stem.

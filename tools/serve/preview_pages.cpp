@@ -66,10 +66,11 @@ import * as maplibregl from '@LIB@/maplibre-gl/dist/maplibre-gl.mjs';
 try {
   // Background, the images (first given at the bottom), the terrain's
   // hillshade over them, then the vector packages' own styles on top: the
-  // area packages' fills (and outlines) under the lines and points.
+  // area packages' fills (and outlines) under the lines and points, and
+  // every package's labels over them all.
   const style = { version: 8, sources: {}, layers: [
     { id: 'background', type: 'background', paint: { 'background-color': '#dde6d5' } }] };
-  const images = [], areas = [], vectors = [];
+  const images = [], areas = [], vectors = [], labels = [];
   let dem = null;
   for (const p of shown) {
     if (p.kind === 'pmtiles') continue;
@@ -95,8 +96,9 @@ try {
       const own = await (await fetch('/' + p.name + '/style.json')).json();
       for (const [id, source] of Object.entries(own.sources))
         style.sources[p.name + '/' + id] = source;
+      if (own.glyphs) style.glyphs = own.glyphs;  // the one /fonts of this server
       for (const layer of own.layers)
-        (p.kind === 'areas' ? areas : vectors).push(
+        (layer.type === 'symbol' ? labels : p.kind === 'areas' ? areas : vectors).push(
           { ...layer, id: p.name + '/' + layer.id, source: p.name + '/' + layer.source });
     }
   }
@@ -106,7 +108,7 @@ try {
                         paint: { 'hillshade-exaggeration': images.length ? 0.35 : 0.5 } });
     style.terrain = { source: 'dem' };
   }
-  style.layers.push(...areas, ...vectors);
+  style.layers.push(...areas, ...vectors, ...labels);
   for (const s of skipped) console.log('not shown: ' + s);
   const map = new maplibregl.Map({ container: 'map', style,
     bounds: bounds ? [[bounds[0], bounds[1]], [bounds[2], bounds[3]]] : [[-180, -80], [180, 80]],

@@ -71,6 +71,24 @@ HttpResponse RequestHandler::library_file(const std::string& file) {
   return out;
 }
 
+// A glyph range of the styles' fontstack, made on first ask and kept
+// (web::GlyphSet): cacheable for a day, as the libraries are.
+HttpResponse RequestHandler::glyph_range(const Route& r) {
+  if (!options_.glyphs)
+    return text_response(404, "no glyphs here: globe-serve found no fonts (fonts-noto-core)");
+  if (r.fontstack != options_.glyphs->fontstack())
+    return text_response(404, "no fontstack '" + r.fontstack + "'; the styles' is '" +
+                                  options_.glyphs->fontstack() + "'");
+  const std::shared_ptr<const std::string> pbf = options_.glyphs->range(r.glyph_start);
+  if (!pbf) return text_response(404, "no glyphs in this range");
+  HttpResponse out;
+  out.content_type = "application/x-protobuf";
+  out.body = *pbf;
+  out.compressible = true;
+  out.headers.push_back({"Cache-Control", "public, max-age=86400"});
+  return out;
+}
+
 HttpResponse RequestHandler::route(const HttpRequest& req) {
   const Route r = parse_route(req.path);
   const std::string host = host_of(req, options_.fallback_host);
@@ -97,6 +115,8 @@ HttpResponse RequestHandler::route(const HttpRequest& req) {
     }
     case Route::Kind::kLibrary:
       return library_file(r.file);
+    case Route::Kind::kGlyphs:
+      return glyph_range(r);
     default:
       break;
   }

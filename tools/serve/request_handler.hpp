@@ -1,13 +1,15 @@
 // Every request globe-serve answers (docs/serve.md): the route, then the
-// package service or page; and what every answer carries: CORS, and on an
-// answer with a body its ETag, Cache-Control, gzip for clients that accept
-// it, 304 for If-None-Match, byte ranges with If-Range (http_semantics.hpp).
+// package service, page or glyph range (web/glyphs.hpp); and what every answer carries: CORS, and
+// on an answer with a body its ETag, Cache-Control, gzip for clients that accept it, 304 for
+// If-None-Match, byte ranges with If-Range (http_semantics.hpp).
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "serve/http_server.hpp"
 #include "serve/package_registry.hpp"
+#include "web/glyphs.hpp"
 
 namespace globe::serve {
 
@@ -16,6 +18,8 @@ struct HandlerOptions {
   std::string lib_url = "/lib";  // where the preview pages load MapLibre, CesiumJS, pmtiles
   std::string fallback_host;     // host:port when a request has no usable Host header
   bool log = true;               // one line per request on stderr
+  // The glyphs of the styles' labels under /fonts (nullptr: none, 404).
+  std::shared_ptr<const web::GlyphSet> glyphs;
 };
 
 class RequestHandler {
@@ -28,6 +32,7 @@ class RequestHandler {
  private:
   HttpResponse route(const HttpRequest& request);
   HttpResponse library_file(const std::string& file);
+  HttpResponse glyph_range(const Route& route);
   static void finish(const HttpRequest& request, HttpResponse& answer);
 
   PackageRegistry& registry_;

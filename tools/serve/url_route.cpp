@@ -44,13 +44,36 @@ bool ends_with(std::string_view s, std::string_view tail) {
   return s.size() >= tail.size() && s.substr(s.size() - tail.size()) == tail;
 }
 
+// "/fonts/FONTSTACK/START-END.pbf": START a multiple of 256 in the Basic
+// Multilingual Plane (what MapLibre GL asks for), END = START + 255.
+Route glyph_route(std::string_view fontstack, std::string_view file) {
+  if (fontstack.size() > 200 || fontstack.front() == ' ' || fontstack.back() == ' ')
+    return not_found("no such fontstack");
+  if (!ends_with(file, ".pbf")) return not_found("a glyph range is START-END.pbf");
+  const std::string_view range = file.substr(0, file.size() - 4);
+  const size_t dash = range.find('-');
+  uint64_t start = 0, end = 0;
+  if (dash == std::string_view::npos || !number(range.substr(0, dash), 65536, start) ||
+      !number(range.substr(dash + 1), 65536, end) || start % 256 != 0 || end != start + 255)
+    return not_found(
+        "a glyph range is START-END.pbf, START a multiple of 256 below 65536 and "
+        "END = START + 255");
+  Route r;
+  r.kind = Route::Kind::kGlyphs;
+  r.fontstack = std::string(fontstack);
+  r.glyph_start = uint32_t(start);
+  return r;
+}
+
 }  // namespace
 
 Route parse_route(std::string_view path) {
   if (path.empty() || path[0] != '/') return bad("the path must start with /");
   if (path.size() > 2048) return bad("the path is longer than 2048 bytes");
+  // Fontstacks are font names with spaces ("Noto Sans Regular"); nothing else has one.
+  const bool fonts = path.starts_with("/fonts/");
   for (char c : path)
-    if (c == '\0' || c == '\\' || static_cast<unsigned char>(c) < 0x21 ||
+    if (c == '\0' || c == '\\' || static_cast<unsigned char>(c) < (fonts ? 0x20 : 0x21) ||
         static_cast<unsigned char>(c) > 0x7e)
       return bad("the path holds a character that is not printable ASCII or is a backslash");
   Route r;
@@ -77,6 +100,9 @@ Route parse_route(std::string_view path) {
     r.file = std::string(path.substr(5));
     return r;
   }
+  if (fonts && parts.size() == 3) return glyph_route(parts[1], parts[2]);
+  if (fonts && path.find(' ') != std::string_view::npos)
+    return not_found("glyphs are /fonts/FONTSTACK/START-END.pbf");
   if (parts[0] == "view") {
     if (parts.size() != 2 || (parts[1] != "maplibre.html" && parts[1] != "cesium.html"))
       return not_found("the viewers are /view/maplibre.html and /view/cesium.html");

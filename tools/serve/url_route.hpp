@@ -23,10 +23,13 @@ struct Route {
     kLayerJson,   // "/NAME/layer.json" (quantized-mesh)
     kStyleJson,   // "/NAME/style.json" (MapLibre style of a vector package)
     kTile,        // "/NAME/Z/X/Y.EXT"
+    kGlyphs,      // "/fonts/FONTSTACK/START-END.pbf" (MapLibre glyph PBFs)
   } kind = Kind::kBadRequest;
-  std::string name;       // package name (file stem)
-  std::string file;       // kViewer, kLibrary
-  std::string extension;  // kTile: "terrain", "png", "jpg", "webp", "pbf", "mvt"
+  std::string name;          // package name (file stem)
+  std::string file;          // kViewer, kLibrary
+  std::string fontstack;     // kGlyphs: printable ASCII and spaces, no '/'
+  uint32_t glyph_start = 0;  // kGlyphs: START, a multiple of 256 below 65536 (END = START + 255)
+  std::string extension;     // kTile: "terrain", "png", "jpg", "webp", "pbf", "mvt"
   int z = 0;
   uint32_t x = 0, y = 0;
   std::string reason;  // why kBadRequest / kNotFound
@@ -38,7 +41,10 @@ inline constexpr int kMaxZoom = 30;
 // not absolute, longer than 2048 bytes, hold a NUL, a backslash, an empty,
 // "." or ".." segment, or characters outside printable ASCII; names must be
 // [A-Za-z0-9._-]+ not starting with '.'; z, x, y decimal without sign or
-// leading zeros, z <= 30 (above: kNotFound), x, y < 2^31.
+// leading zeros, z <= 30 (above: kNotFound), x, y < 2^31. Under /fonts/ a
+// fontstack may hold spaces ("Noto Sans Regular", as MapLibre asks for it);
+// a glyph range other than START-END.pbf as above is kNotFound. (A package
+// called "fonts" keeps its other routes: glyph paths have three segments.)
 Route parse_route(std::string_view path);
 
 }  // namespace globe::serve

@@ -115,6 +115,16 @@ GLOBE_WEB_CACHE=$(scripts/web-deps.sh) node tests/web/run_page.mjs --viewport 64
   --query 'style=http://127.0.0.1:18931/nc/style.json&center=-79.890000,35.240000&zoom=5.500000' \
   tests/web/pages/maplibre_mvt.html > /dev/null
 kill $serve
+# Labels in MapLibre GL JS (tests/web_maplibre_test.cpp): the world's countries named by
+# name_long, exported to PMTiles with the style and its glyphs (fonts/ beside it).
+build/tools/vectorize/globe-vectorize areas -q samples/data/world.gpkg --label-field name_long \
+  --max-zoom 4 -o "$tmp/world.mbtiles"
+build/tools/vectorize/globe-vectorize export -q "$tmp/world.mbtiles" -o "$tmp/world.pmtiles" \
+  --style-json "$tmp/style.json"
+GLOBE_WEB_CACHE=$(scripts/web-deps.sh) node tests/web/run_page.mjs --viewport 512x256 \
+  --mount /data="$tmp" --screenshot $out/maplibre_world_labels.png \
+  --query 'style=/data/style.json&pmtiles=/data/world.pmtiles&center=15.000000,50.000000&zoom=2.500000' \
+  tests/web/pages/maplibre_mvt.html > /dev/null
 # The tutorial's pictures (tests/tutorial_test.cpp runs docs/tutorial.md): without expected
 # images the test fails and keeps its folder, whose pictures become the expected ones.
 rm -f $out/tutorial_*.png

@@ -36,19 +36,30 @@ double choropleth_value(const tileformat::Choropleth& c, const tileformat::JsonV
 
 }  // namespace
 
+std::string area_label_layer(const AreaPackage& package) {
+  std::string name = "labels";
+  for (const tileformat::LineLayerInfo& l : package.meta.layers)
+    if (l.name == name) name = "labels_points";
+  return name;
+}
+
 AreaMvtEncoder::AreaMvtEncoder(AreaPackage& package)
     : package_(package),
-      features_(*package.reader, "areas", {"class", "value"},
-                [&package](const tileformat::JsonValue& props, MvtTags& tags) {
-                  // A choropleth's value, as its classes were made from.
-                  if (!package.meta.choropleth) return;
-                  const double v = choropleth_value(*package.meta.choropleth, props);
-                  if (!std::isfinite(v)) return;
-                  MvtValue m;
-                  m.kind = MvtValue::Kind::kDouble;
-                  m.number = v;
-                  tags.emplace_back("value", m);
-                }) {}
+      labels_(*package.reader),
+      label_layer_(area_label_layer(package)),
+      features_(
+          *package.reader, "areas", {"class", "value"},
+          [&package](const tileformat::JsonValue& props, MvtTags& tags) {
+            // A choropleth's value, as its classes were made from.
+            if (!package.meta.choropleth) return;
+            const double v = choropleth_value(*package.meta.choropleth, props);
+            if (!std::isfinite(v)) return;
+            MvtValue m;
+            m.kind = MvtValue::Kind::kDouble;
+            m.number = v;
+            tags.emplace_back("value", m);
+          },
+          &labels_) {}
 
 AreaMvtEncoder::~AreaMvtEncoder() = default;
 
@@ -64,6 +75,7 @@ std::vector<uint8_t> AreaMvtEncoder::encode(tileformat::TileId id, std::span<con
   std::map<std::string, size_t> layer_of;
   const std::vector<uint32_t> offsets = t.ring_offsets();
   std::vector<std::vector<MvtPoint>> rings;
+  std::set<uint64_t> drawn;  // the features of the tile, for their label points
   for (size_t p = 0; p < t.polygons.size();) {
     // One MVT feature for all polygons of a feature (they are consecutive).
     const uint32_t feature_index = t.polygons[p].feature, cls = t.polygons[p].class_id;
@@ -91,15 +103,33 @@ std::vector<uint8_t> AreaMvtEncoder::encode(tileformat::TileId id, std::span<con
     if (fresh) layers.emplace_back(info.layer, t.extent);
     classes_in_[info.layer].insert(cls);
     layers[at->second].add_polygon(fid, rings, tags);
+    drawn.insert(fid);
     ++features_count_;
+  }
+  // Each label point in the one tile that holds its anchor, if its feature
+  // is drawn at this zoom (a polygon below a zoom's grid is not).
+  if (!labels_.empty()) {
+    MvtLayer points(label_layer_, t.extent);
+    for (const MvtLabels::Anchor& a : labels_.anchors_in(id, t.extent)) {
+      if (!drawn.count(a.feature)) continue;
+      MvtValue name, rank;
+      name.text = *labels_.text(a.feature);
+      rank.kind = MvtValue::Kind::kInt;
+      rank.integer = a.rank;
+      const MvtTags tags{{"name", name}, {"rank", rank}};
+      features_.note_fields(label_layer_, tags);
+      points.add_point(a.feature, a.at, tags);
+    }
+    if (!points.empty()) layers.push_back(std::move(points));
   }
   return encode_mvt(layers);
 }
 
 std::string area_style_json(const AreaPackage& pkg,
                             const std::map<std::string, std::set<uint32_t>>& classes_in,
-                            const std::string& source_url) {
+                            const std::string& source_url, const StyleGlyphs& glyphs) {
   std::string out = "{\"version\":8,\"name\":" + quoted(pkg.meta.common.name) +
+                    style_glyphs_member(glyphs) +
                     ",\"sources\":{\"areas\":{\"type\":\"vector\",\"url\":" + quoted(source_url) +
                     "}},\"layers\":[";
   bool first = true;
@@ -150,6 +180,12 @@ std::string area_style_json(const AreaPackage& pkg,
                 number(looks[k].outline_px) + ",\"line-opacity\":" + number(kAreaWebFillOpacity));
     }
   }
+  // The names over everything, in rank order where they collide; long names
+  // wrapped at 8 ems.
+  if (!glyphs.empty())
+    out += (first ? "" : ",") +
+           label_layer_json("labels", "areas", area_label_layer(pkg), glyphs,
+                            ",\"symbol-sort-key\":[\"get\",\"rank\"],\"text-max-width\":8");
   return out + "]}";
 }
 

@@ -2,15 +2,18 @@
 #include "web/feature_tags.hpp"
 
 #include "tileformat/error.hpp"
+#include "web/mvt_labels.hpp"
 
 namespace globe::web {
 
 FeatureTags::FeatureTags(tileformat::PackageReader& reader, std::string fallback_layer,
                          std::set<std::string> reserved,
-                         std::function<void(const tileformat::JsonValue&, MvtTags&)> extra)
+                         std::function<void(const tileformat::JsonValue&, MvtTags&)> extra,
+                         const MvtLabels* labels)
     : fallback_(std::move(fallback_layer)),
       reserved_(std::move(reserved)),
-      extra_(std::move(extra)) {
+      extra_(std::move(extra)),
+      labels_(labels) {
   try {
     table_ = std::make_unique<tileformat::FeatureTableReader>(reader);
   } catch (const tileformat::FormatError&) {
@@ -37,6 +40,8 @@ const FeatureTags::Feature& FeatureTags::get(uint64_t id) {
         // attributes that are not JSON: the feature keeps its id and class
       }
     }
+  if (labels_)
+    if (const std::string* name = labels_->text(id)) set_name_tag(f.tags, *name);
   return cache_.emplace(id, std::move(f)).first->second;
 }
 

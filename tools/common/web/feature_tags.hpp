@@ -1,7 +1,8 @@
 // A vector package's features as MVT tags (docs/web.md "Vector tiles"), for
 // the line and area encoders: each feature's MVT layer (its layer in the
 // features table) and its attributes as tags, read once and cached; and the
-// fields each MVT layer carries, for TileJSON's vector_layers.
+// fields each MVT layer carries, for TileJSON's vector_layers. With the
+// package's labels (mvt_labels.hpp), a labelled feature's "name" is its label.
 #pragma once
 
 #include <cstdint>
@@ -22,6 +23,7 @@
 namespace globe::web {
 
 using MvtTags = std::vector<std::pair<std::string, MvtValue>>;
+class MvtLabels;
 
 class FeatureTags {
  public:
@@ -32,10 +34,13 @@ class FeatureTags {
   // `reserved`: attribute names the encoder sets itself (left out);
   // `fallback_layer`: the layer of features without one (or without a
   // features table: an older package keeps ids and classes only); `extra`
-  // adds tags from a feature's parsed attributes (e.g. a choropleth value).
+  // adds tags from a feature's parsed attributes (e.g. a choropleth value);
+  // `labels` (kept by reference; may be null): a labelled feature's "name"
+  // tag is its label's text, in place of an attribute of that name.
   FeatureTags(tileformat::PackageReader& reader, std::string fallback_layer,
               std::set<std::string> reserved,
-              std::function<void(const tileformat::JsonValue&, MvtTags&)> extra = {});
+              std::function<void(const tileformat::JsonValue&, MvtTags&)> extra = {},
+              const MvtLabels* labels = nullptr);
   ~FeatureTags();
 
   const Feature& get(uint64_t id);
@@ -51,6 +56,7 @@ class FeatureTags {
   std::string fallback_;
   std::set<std::string> reserved_;
   std::function<void(const tileformat::JsonValue&, MvtTags&)> extra_;
+  const MvtLabels* labels_ = nullptr;
   std::unordered_map<uint64_t, Feature> cache_;                       // cleared when large
   std::map<std::string, std::map<std::string, std::string>> fields_;  // layer -> key -> type
 };

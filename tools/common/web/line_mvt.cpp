@@ -25,9 +25,10 @@ std::string number(double v) {
 
 std::string line_style_json(const LinePackage& pkg,
                             const std::map<std::string, std::set<uint32_t>>& classes_in,
-                            const std::string& source_url) {
+                            const std::string& source_url, const StyleGlyphs& glyphs) {
   std::string out = "{\"version\":8,\"name\":\"" + tileformat::json_escape(pkg.meta.common.name) +
-                    "\",\"sources\":{\"lines\":{\"type\":\"vector\",\"url\":\"" +
+                    "\"" + style_glyphs_member(glyphs) +
+                    ",\"sources\":{\"lines\":{\"type\":\"vector\",\"url\":\"" +
                     tileformat::json_escape(source_url) + "\"}},\"layers\":[";
   bool first = true;
   auto width = [](const LineStyle& s, double w) {
@@ -67,11 +68,23 @@ std::string line_style_json(const LinePackage& pkg,
         out += ",\"line-opacity\":" + number(s.opacity) + "}}";
       }
     }
+  // The names along the lines, over every line (MapLibre places them on the
+  // line's course, upright, where it bends less than 45 degrees).
+  if (!glyphs.empty())
+    for (const auto& [layer, classes] : classes_in) {
+      out += first ? "" : ",";
+      first = false;
+      out += label_layer_json(layer + ":labels", "lines", layer, glyphs,
+                              ",\"symbol-placement\":\"line\",\"text-max-angle\":45,"
+                              "\"text-keep-upright\":true");
+    }
   return out + "]}";
 }
 
 LineMvtEncoder::LineMvtEncoder(LinePackage& package)
-    : package_(package), features_(*package.reader, "lines", {"class"}) {}
+    : package_(package),
+      labels_(*package.reader),
+      features_(*package.reader, "lines", {"class"}, {}, &labels_) {}
 
 LineMvtEncoder::~LineMvtEncoder() = default;
 

@@ -2,8 +2,9 @@
 // "Vector tiles"), one tile at a time, for the export and the server: one MVT
 // layer per layer of the package's features table, each run a LINESTRING with
 // the feature's id, its class ("class") and its attributes; lines of zero
-// length as points tagged zero_length. Also the MapLibre style that draws the
-// classes as the viewer does.
+// length as points tagged zero_length; a labelled feature's label as "name"
+// (mvt_labels.hpp). Also the MapLibre style that draws the classes as the
+// viewer does, and the names along the lines.
 #pragma once
 
 #include <cstdint>
@@ -21,6 +22,7 @@
 #include "tileformat/tile_id.hpp"
 #include "web/feature_tags.hpp"
 #include "web/mvt_encoder.hpp"
+#include "web/mvt_labels.hpp"
 
 namespace globe::web {
 
@@ -43,9 +45,11 @@ class LineMvtEncoder {
   const std::map<std::string, std::map<std::string, std::string>>& fields() const {
     return features_.fields();
   }
+  const MvtLabels& labels() const { return labels_; }
 
  private:
   LinePackage& package_;
+  MvtLabels labels_;
   FeatureTags features_;
   uint64_t features_count_ = 0, zero_length_ = 0;
   std::map<std::string, std::set<uint32_t>> classes_in_;  // MVT layer -> classes
@@ -53,9 +57,10 @@ class LineMvtEncoder {
 
 // A MapLibre style (version 8) drawing the classes of `classes_in` as the
 // viewer does (casings under fills, higher class ids on top) from the vector
-// source at `source_url`.
+// source at `source_url`; unless `glyphs` is empty, over them per MVT layer
+// a symbol layer "LAYER:labels" writing each line's "name" along it.
 std::string line_style_json(const LinePackage& package,
                             const std::map<std::string, std::set<uint32_t>>& classes_in,
-                            const std::string& source_url);
+                            const std::string& source_url, const StyleGlyphs& glyphs = {});
 
 }  // namespace globe::web

@@ -10,7 +10,8 @@
 namespace globe::web {
 
 std::vector<uint8_t> point_tile_mvt(const PointPackage& package, tileformat::TileId id,
-                                    std::span<const uint8_t> blob, uint64_t* places) {
+                                    std::span<const uint8_t> blob, uint64_t* places,
+                                    const MvtLabels* labels) {
   tileformat::PointTile t;
   try {
     t = tileformat::decode_point_tile(blob);
@@ -34,6 +35,8 @@ std::vector<uint8_t> point_tile_mvt(const PointPackage& package, tileformat::Til
       v.number = t.value(p, f);
       tags.emplace_back(names[f], v);
     }
+    if (labels && place.count == 1)
+      if (const std::string* name = labels->text(place.id)) set_name_tag(tags, *name);
     layers[0].add_point(place.id, {place.at.x, place.at.y}, tags);
   }
   if (places) *places += t.places.size();
@@ -41,23 +44,34 @@ std::vector<uint8_t> point_tile_mvt(const PointPackage& package, tileformat::Til
 }
 
 std::map<std::string, std::map<std::string, std::string>> point_mvt_fields(
-    const PointPackage& package) {
+    const PointPackage& package, const MvtLabels* labels) {
   std::map<std::string, std::string> fields{{"count", "Number"}};
   for (const std::string& f : package.meta.fields)
     fields[f] = "Number";
+  if (labels && !labels->empty()) fields["name"] = "String";
   return {{"points", fields}};
 }
 
-// Circles whose area follows the count (radius by its square root), white rim.
-std::string point_style_json(const PointPackage& package, const std::string& source_url) {
-  return "{\"version\":8,\"name\":\"" + tileformat::json_escape(package.meta.common.name) +
-         "\",\"sources\":{\"points\":{\"type\":\"vector\",\"url\":\"" +
+// Circles whose area follows the count (radius by its square root), white
+// rim; the names beside the circles, on whichever side they fit.
+std::string point_style_json(const PointPackage& package, const std::string& source_url,
+                             const StyleGlyphs& glyphs) {
+  const std::string names =
+      glyphs.empty()
+          ? std::string()
+          : "," + label_layer_json("points:labels", "points", "points", glyphs,
+                                   ",\"text-variable-anchor\":[\"left\",\"right\",\"top\","
+                                   "\"bottom\"],\"text-radial-offset\":0.6,"
+                                   "\"text-justify\":\"auto\"");
+  return "{\"version\":8,\"name\":\"" + tileformat::json_escape(package.meta.common.name) + "\"" +
+         style_glyphs_member(glyphs) + ",\"sources\":{\"points\":{\"type\":\"vector\",\"url\":\"" +
          tileformat::json_escape(source_url) +
          "\"}},\"layers\":[{\"id\":\"points\",\"type\":\"circle\",\"source\":\"points\","
          "\"source-layer\":\"points\",\"paint\":{\"circle-color\":\"#d7301f\","
          "\"circle-opacity\":0.8,\"circle-stroke-color\":\"#ffffff\",\"circle-stroke-width\":1,"
          "\"circle-radius\":[\"interpolate\",[\"linear\"],[\"sqrt\",[\"get\",\"count\"]],1,3,"
-         "100,30]}}]}";
+         "100,30]}}" +
+         names + "]}";
 }
 
 }  // namespace globe::web

@@ -20,7 +20,9 @@ MvtExportSummary export_area_mvt(const MvtExportSettings& s, Progress& progress)
         info.description = "Areas of " + s.input + " as Mapbox Vector Tiles 2.1 (gzip)";
         info.extra_json = "\"vector_layers\":" + web::vector_layers_json(encoder.fields());
       },
-      [&](const std::string& url) { return web::area_style_json(pkg, encoder.classes_in(), url); });
+      [&](const std::string& url, const web::StyleGlyphs& glyphs) {
+        return web::area_style_json(pkg, encoder.classes_in(), url, glyphs);
+      });
   sum.features = encoder.features();
   return sum;
 }

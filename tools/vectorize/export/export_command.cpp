@@ -20,7 +20,7 @@ int run_export(const std::vector<std::string>& args) {
   CliArgs cli(
       "globe-vectorize export",
       "globe-vectorize export PACKAGE --format mvt -o OUT.pmtiles|OUT.mbtiles|DIR\n"
-      "                       [--style-json STYLE.json]\n\n"
+      "                       [--style-json STYLE.json] [--glyphs DIR]\n\n"
       "Converts a line or bundle package (web mercator) to Mapbox Vector Tiles 2.1 for web\n"
       "maps (MapLibre GL, OpenLayers, QGIS): one MVT layer per layer of the package's\n"
       "features table (e.g. roads, bundles, unrouted), each line with its feature id, its\n"
@@ -33,7 +33,10 @@ int run_export(const std::vector<std::string>& args) {
       "(sums or means, as the package aggregates); its style draws circles sized by count.\n"
       "An area package becomes one layer per source layer, each feature's polygons in a tile\n"
       "one (multi)polygon with its id, 'class', attributes and, in a choropleth, 'value'; its\n"
-      "style fills the classes (a choropleth as a step over 'value') under outlines.\n"
+      "style fills the classes (a choropleth as a step over 'value') under outlines, and a\n"
+      "point layer 'labels' holds one point per labelled area at its label's anchor.\n"
+      "A package built with --label-field gives its labels as 'name'; its style writes them\n"
+      "(symbol layers) with glyph PBFs written into 'fonts' beside the style (--glyphs).\n"
       "docs/web.md has a MapLibre page.");
   cli.option("--format", "mvt", "vector tiles (the only format, the default)",
              [&](const std::string& v) {
@@ -42,6 +45,11 @@ int run_export(const std::vector<std::string>& args) {
              });
   cli.option("--style-json", "STYLE.json", "also write a MapLibre style (version 8) for the tiles",
              [&](const std::string& v) { s.style_json = v; });
+  cli.option("--glyphs", "DIR",
+             "write the labels' MapLibre glyph PBFs into DIR/{fontstack}/{range}.pbf\n"
+             "                              (default: 'fonts' beside --style-json, for a package "
+             "with labels)",
+             [&](const std::string& v) { s.glyphs_dir = v; });
   cli.option("-o,--output", "OUT", "OUT.pmtiles, OUT.mbtiles or a folder",
              [&](const std::string& v) { o.output = CliArgs::to_output_path(v); });
   declare_run_options(cli, o, ResumeOption::kNotOffered);
@@ -67,7 +75,9 @@ int run_export(const std::vector<std::string>& args) {
       << (kind == tileformat::PackageKind::kAreas ? " areas" : " lines and points");
   if (sum.zero_length) msg << " (" << sum.zero_length << " zero-length lines as points)";
   msg << ", " << sum.bytes << " bytes, " << sum.seconds << " s";
+  if (sum.labels) msg << ", " << sum.labels << " labels";
   if (!s.style_json.empty()) msg << "; style " << s.style_json;
+  if (sum.glyph_files) msg << "; " << sum.glyph_files << " glyph PBFs in " << sum.glyphs_dir;
   progress.note(msg.str());
   return kExitOk;
 }

@@ -4,10 +4,13 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include "runtime/errors.hpp"
 #include "runtime/line_package.hpp"
+#include "tileformat/label_table.hpp"
 #include "tileformat/pmtiles.hpp"
+#include "web/glyphs.hpp"
 #include "web/gzip.hpp"
 #include "web/line_mvt.hpp"
 #include "web/mvt_encoder.hpp"
@@ -27,6 +30,17 @@ std::string mvt_source_url(const std::string& output) {
   }
 }
 
+std::string glyphs_url(const std::string& style_json, const std::string& glyphs_dir) {
+  namespace fs = std::filesystem;
+  const fs::path from = fs::absolute(fs::path(style_json)).parent_path().lexically_normal();
+  const fs::path to = fs::absolute(fs::path(glyphs_dir)).lexically_normal();
+  std::string rel = to.lexically_relative(from).generic_string();
+  while (!rel.empty() && rel.back() == '/')
+    rel.pop_back();
+  if (rel.empty() || rel == ".") return "{fontstack}/{range}.pbf";
+  return rel + "/{fontstack}/{range}.pbf";
+}
+
 void write_style_json(const std::string& path, const std::string& style) {
   const std::string tmp = path + ".tmp";
   {
@@ -44,13 +58,22 @@ MvtExportSummary write_vector_tiles(
     const tileformat::CommonMetadata& common,
     const std::function<std::vector<uint8_t>(tileformat::TileId, std::span<const uint8_t>)>& encode,
     const std::function<void(ExportInfo&)>& describe,
-    const std::function<std::string(const std::string&)>& style) {
+    const std::function<std::string(const std::string&, const web::StyleGlyphs&)>& style) {
   const auto start = std::chrono::steady_clock::now();
   if (common.tiling.scheme != tileformat::Scheme::kWebMercator)
     throw UsageError(s.input +
                      ": web maps read web mercator vector tiles and this package is in the " +
                      std::string(tileformat::scheme_name(common.tiling.scheme)) +
                      " tiling; build it with --tiling webmercator");
+  // The glyphs of the style's labels (beside the style unless told where):
+  // their fonts are found before any output is made.
+  const bool labelled = tileformat::has_labels(reader);
+  std::string glyphs_dir = s.glyphs_dir;
+  if (glyphs_dir.empty() && labelled && !s.style_json.empty())
+    glyphs_dir =
+        (std::filesystem::path(s.style_json).parent_path() / "fonts").lexically_normal().string();
+  std::optional<web::GlyphSet> fonts;
+  if (!glyphs_dir.empty()) fonts.emplace();
   const std::vector<tileformat::TileId> items =
       tiles_in_output_order(reader, common.min_zoom, common.max_zoom);
   std::unique_ptr<TileOutput> out = TileOutput::open(s.output, s.force, "pbf", false);
@@ -78,7 +101,16 @@ MvtExportSummary write_vector_tiles(
   MvtExportSummary sum;
   sum.tiles = out->tiles();
   sum.bytes = out->finish(info);
-  if (!s.style_json.empty()) write_style_json(s.style_json, style(mvt_source_url(s.output)));
+  if (labelled) sum.labels = uint64_t(tileformat::LabelTableReader(reader).count());
+  web::StyleGlyphs glyphs;
+  if (fonts) {
+    sum.glyphs_dir = glyphs_dir;
+    sum.glyph_files = fonts->write(glyphs_dir);
+    if (labelled && !s.style_json.empty())
+      glyphs = {glyphs_url(s.style_json, glyphs_dir), fonts->fontstack()};
+  }
+  if (!s.style_json.empty())
+    write_style_json(s.style_json, style(mvt_source_url(s.output), glyphs));
   sum.min_zoom = common.min_zoom, sum.max_zoom = common.max_zoom;
   sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return sum;
@@ -96,7 +128,9 @@ MvtExportSummary export_mvt(const MvtExportSettings& s, Progress& progress) {
         info.description = "Lines of " + s.input + " as Mapbox Vector Tiles 2.1 (gzip)";
         info.extra_json = "\"vector_layers\":" + web::vector_layers_json(encoder.fields());
       },
-      [&](const std::string& url) { return web::line_style_json(pkg, encoder.classes_in(), url); });
+      [&](const std::string& url, const web::StyleGlyphs& glyphs) {
+        return web::line_style_json(pkg, encoder.classes_in(), url, glyphs);
+      });
   sum.features = encoder.features();
   sum.zero_length = encoder.zero_length();
   return sum;

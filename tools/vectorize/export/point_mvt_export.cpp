@@ -10,11 +10,12 @@ namespace globe {
 
 MvtExportSummary export_point_mvt(const MvtExportSettings& s, Progress& progress) {
   PointPackage pkg = open_point_package(s.input);
+  const web::MvtLabels labels(*pkg.reader);
   uint64_t places = 0;
   MvtExportSummary sum = write_vector_tiles(
       s, progress, *pkg.reader, pkg.meta.common,
       [&](tileformat::TileId id, std::span<const uint8_t> blob) {
-        return web::point_tile_mvt(pkg, id, blob, &places);
+        return web::point_tile_mvt(pkg, id, blob, &places, &labels);
       },
       [&](ExportInfo& info) {
         info.description =
@@ -22,9 +23,11 @@ MvtExportSummary export_point_mvt(const MvtExportSettings& s, Progress& progress
             (pkg.meta.aggregate == tileformat::PointAggregate::kMean ? "means" : "sums") +
             " over the places each stands for";
         info.extra_json =
-            "\"vector_layers\":" + web::vector_layers_json(web::point_mvt_fields(pkg));
+            "\"vector_layers\":" + web::vector_layers_json(web::point_mvt_fields(pkg, &labels));
       },
-      [&](const std::string& url) { return web::point_style_json(pkg, url); });
+      [&](const std::string& url, const web::StyleGlyphs& glyphs) {
+        return web::point_style_json(pkg, url, glyphs);
+      });
   sum.features = places;
   return sum;
 }
