@@ -151,3 +151,10 @@ build/tools/vectorize/globe-vectorize areas -q samples/data/nc.gpkg --choropleth
   --classes 5 --method quantile --colors YlOrRd -o "$tmp/nc_sids.mbtiles"
 build/viewer/globe-view "$tmp/nc_sids.mbtiles" --fit --size 320x200 \
   --snapshot $out/viewer_areas_nc.png
+# Labels in many scripts (tests/viewer_label_scripts_test.cpp): the test's own run, kept.
+rm -f $out/label_scripts.png
+GLOBE_TEST_KEEP=1 build/tests/viewer_labels_tests \
+  --gtest_filter='ViewerLabelScripts.EveryScriptDrawsAsExpected' >/dev/null 2>&1 || true
+kept=$(ls -dt /tmp/globe-test-ViewerLabelScripts-EveryScriptDrawsAsExpected-* | head -1)
+cp "$kept"/scripts.png $out/label_scripts.png
+rm -rf "$kept"
