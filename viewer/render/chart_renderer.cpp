@@ -10,6 +10,7 @@
 #include "render/deferred_pass.hpp"
 #include "render/gl_buffer.hpp"
 #include "render/heatmap_shaders.hpp"
+#include "render/key_heights.hpp"
 #include "render/readback.hpp"
 #include "render/terrain_shaders.hpp"
 #include "render/tile_table.hpp"
@@ -239,23 +240,7 @@ void ChartRenderer::copy_input(GLuint input_fbo) {
 void ChartRenderer::prepare(const GlProgram& p, const View& view, const WorldFrame& world,
                             const TerrainRenderer& terrain, const TerrainHeights& heights,
                             double exaggeration) {
-  std::vector<std::pair<tileformat::TileId, uint32_t>> slots;
-  for (const auto& [id, slot] : heights.slots)
-    slots.emplace_back(id, static_cast<uint32_t>(slot));
-  const auto table = build_tile_table(slots);
-  fill_buffer(terrain_table_, table.size() * sizeof(glm::uvec4), table.data());
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTerrainTable, terrain_table_);
-  terrain.set_frame_uniforms(p, view, world, exaggeration);  // uses p
-  gl::Uniform1ui(p.uniform("terrain_mask"), static_cast<uint32_t>(table.size() - 1));
-  gl::Uniform2i(p.uniform("u_origin"), static_cast<int>(view.origin.x),
-                static_cast<int>(view.origin.y));
-  gl::Uniform3f(p.uniform("u_eye"), static_cast<float>(view.eye.x), static_cast<float>(view.eye.y),
-                static_cast<float>(view.eye.z));
-  gl::Uniform1i(p.uniform("u_tmin"), heights.min_zoom);
-  gl::Uniform1i(p.uniform("u_tmax"), heights.max_zoom);
-  gl::Uniform1i(p.uniform("u_key_zoom"), world.key_zoom());
-  gl::Uniform1i(p.uniform("u_steps"), world.steps());
-  gl::Uniform1f(p.uniform("u_block_size"), static_cast<float>(heights.block_size));
+  bind_key_heights(p, terrain_table_, kTerrainTable, view, world, terrain, heights, exaggeration);
 }
 
 double ChartRenderer::draw_heatmap(GLuint input_fbo, const GBuffer& g, const View& view,

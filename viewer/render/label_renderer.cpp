@@ -6,6 +6,7 @@
 #include <cstddef>
 
 #include "render/gl_buffer.hpp"
+#include "render/key_heights.hpp"
 #include "render/label_shaders.hpp"
 #include "render/terrain_shaders.hpp"
 #include "render/tile_table.hpp"
@@ -159,24 +160,8 @@ std::vector<ProbeResult> LabelRenderer::run_probes(GLuint vao, size_t count, con
                                                    double exaggeration) {
   std::vector<ProbeResult> out(count);
   if (count == 0) return out;
-  std::vector<std::pair<tileformat::TileId, uint32_t>> slots;
-  for (const auto& [id, slot] : heights.slots)
-    slots.emplace_back(id, static_cast<uint32_t>(slot));
-  const auto table = build_tile_table(slots);
-  fill_buffer(terrain_table_, table.size() * sizeof(glm::uvec4), table.data());
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTerrainTable, terrain_table_);
   const GlProgram& p = probe_;
-  terrain.set_frame_uniforms(p, view, world, exaggeration);  // uses p
-  gl::Uniform1ui(p.uniform("terrain_mask"), static_cast<uint32_t>(table.size() - 1));
-  gl::Uniform2i(p.uniform("u_origin"), static_cast<int>(view.origin.x),
-                static_cast<int>(view.origin.y));
-  gl::Uniform3f(p.uniform("u_eye"), static_cast<float>(view.eye.x), static_cast<float>(view.eye.y),
-                static_cast<float>(view.eye.z));
-  gl::Uniform1i(p.uniform("u_tmin"), heights.min_zoom);
-  gl::Uniform1i(p.uniform("u_tmax"), heights.max_zoom);
-  gl::Uniform1i(p.uniform("u_key_zoom"), world.key_zoom());
-  gl::Uniform1i(p.uniform("u_steps"), world.steps());
-  gl::Uniform1f(p.uniform("u_block_size"), static_cast<float>(heights.block_size));
+  bind_key_heights(p, terrain_table_, kTerrainTable, view, world, terrain, heights, exaggeration);
   gl::Uniform2f(p.uniform("u_viewport"), static_cast<float>(width_), static_cast<float>(height_));
   const std::vector<float> r = run_points(p, vao, count, 4);
   for (size_t i = 0; i < count; ++i)

@@ -74,21 +74,8 @@ class Builder {
       }
     }
     if (s_.bbox) ro.filter = Bounds{(*s_.bbox)[0], (*s_.bbox)[1], (*s_.bbox)[2], (*s_.bbox)[3]};
-    if (keeps_features && s_.labels.enabled()) {
-      label_field_ = resolve_label_field(s_.labels, VectorReader(s_.inputs, ro).layers());
-      if (label_field_.empty())
-        progress_.note("--label-field auto: no name field (name, NAME, ...) in " +
-                       s_.inputs.front() + "; no labels");
-    }
-    if (!label_field_.empty()) {
-      ro.text_fields.push_back(label_field_);
-      ro.field_options[label_field_] = "--label-field";
-      if (!s_.labels.priority.empty()) {
-        priority_index_ = static_cast<int>(ro.value_fields.size());
-        ro.value_fields.push_back(s_.labels.priority);
-        ro.field_options[s_.labels.priority] = "--priority-field";
-      }
-    }
+    if (keeps_features)
+      label_field_ = request_label_fields(s_.labels, s_.inputs, ro, progress_, &priority_index_);
     VectorReader reader(s_.inputs, ro);
     for (const std::string& table : reader.skipped_tables())
       progress_.note(table + ": no geometry (a table, e.g. QGIS's styles), left out");

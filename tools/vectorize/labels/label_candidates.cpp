@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "areas/area_geometry.hpp"
 #include "runtime/errors.hpp"
 #include "tileformat/json.hpp"
 
@@ -25,17 +26,6 @@ void require_field(const VectorLayerInfo& l, const std::string& f, const char* o
     names += (names.empty() ? "" : ", ") + n;
   throw UsageError(std::string(option) + " '" + f + "': " + l.source + " layer '" + l.name +
                    "' has no such field; its fields are: " + (names.empty() ? "(none)" : names));
-}
-
-// Twice the signed area of a ring (shoelace).
-double ring_area2(const PlaneRing& r) {
-  double a = 0;
-  for (size_t i = 0, n = r.size(); i < n; ++i) {
-    const PlanePoint& p = r[i];
-    const PlanePoint& q = r[(i + 1) % n];
-    a += p.x * q.y - q.x * p.y;
-  }
-  return a;
 }
 
 double polygon_area(const PlanePolygon& p) {
@@ -62,6 +52,26 @@ std::string resolve_label_field(const LabelOptions& o, const std::vector<VectorL
   for (const VectorLayerInfo& l : layers) {
     require_field(l, field, "--label-field");
     if (!o.priority.empty()) require_field(l, o.priority, "--priority-field");
+  }
+  return field;
+}
+
+std::string request_label_fields(const LabelOptions& o, const std::vector<std::string>& inputs,
+                                 VectorReaderOptions& ro, Progress& progress, int* priority_index) {
+  if (priority_index) *priority_index = -1;
+  if (!o.enabled()) return "";
+  const std::string field = resolve_label_field(o, VectorReader(inputs, ro).layers());
+  if (field.empty()) {
+    progress.note("--label-field auto: no name field (name, NAME, ...) in " + inputs.front() +
+                  "; no labels");
+    return "";
+  }
+  ro.text_fields.push_back(field);
+  ro.field_options[field] = "--label-field";
+  if (!o.priority.empty()) {
+    if (priority_index) *priority_index = static_cast<int>(ro.value_fields.size());
+    ro.value_fields.push_back(o.priority);
+    ro.field_options[o.priority] = "--priority-field";
   }
   return field;
 }

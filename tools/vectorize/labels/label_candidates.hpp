@@ -13,6 +13,7 @@
 #include "geo/geos_polygons.hpp"
 #include "geo/spatial_ref.hpp"
 #include "io/vector_reader.hpp"
+#include "kit/progress.hpp"
 #include "lines/line_projector.hpp"
 
 namespace globe {
@@ -30,6 +31,13 @@ struct LabelOptions {
 // no labels). Throws UsageError naming the layer's fields when an explicit
 // field or the priority field is missing from a layer.
 std::string resolve_label_field(const LabelOptions& o, const std::vector<VectorLayerInfo>& layers);
+
+// Resolves the label field (opening the inputs once for their fields) and
+// asks `ro` for it and the priority field; returns the field ("" for no
+// labels, with a note when auto found none). *priority_index: the priority
+// field's index in VectorFeature::values (-1 for none).
+std::string request_label_fields(const LabelOptions& o, const std::vector<std::string>& inputs,
+                                 VectorReaderOptions& ro, Progress& progress, int* priority_index);
 
 // Longitude/latitude (degrees, -180..180) of a point of a vector frame.
 class FrameLonLat {
