@@ -56,7 +56,7 @@ build/viewer/globe-view demo/etopo20.mbtiles demo/bluemarble.mbtiles demo/flight
 # on the same globe; the busiest transcontinental bundle picked and its connections highlighted.
 build/tools/vectorize/globe-vectorize bundle samples/data/us_flights_airport.csv \
   --from-id origin --to-id destination --weight count --locations samples/data/us_airports.csv \
-  --id-field iata --network samples/data/airways.geojson --tiling geodetic \
+  --id-field iata --network samples/data/airways.geojson --tiling geodetic --label-field city \
   -o demo/bundles.mbtiles --force
 build/tools/vectorize/globe-vectorize info demo/bundles.mbtiles | grep -A 12 '^bundled flows'
 build/viewer/globe-view demo/etopo20.mbtiles demo/bluemarble.mbtiles demo/bundles.mbtiles \

@@ -312,6 +312,32 @@ TEST_F(BundleCli, IdsLocationsBadRowsAndUnroutedConnections) {
   EXPECT_EQ(connections, 4);  // dropped from the drawing, not from the table
 }
 
+// --label-field: one label per end of the connections at its location, named
+// by the locations' column (the id where it is empty), ranked by the weight
+// through it (here summed by hand from trips.csv), usable rows only.
+TEST_F(BundleCli, EndsAreLabelledByTheirLocationsName) {
+  write_text(path("grid.geojson"), geojson_lines(grid_lines()));
+  write_text(path("places.csv"),
+             "code,name,latitude,longitude\nA,Alpha,45.004,10.003\nB,,48.002,14.001\n"
+             "C,Gamma,46.5,12.0\nD,Delta,47,13\n");
+  write_text(path("trips.csv"), "src,dst,n\nA,B,10\nB,C,5\nA,C,2\n");
+  const std::string common = path("trips.csv") + " --from-id src --to-id dst --weight n" +
+                             " --id-field code --network " + path("grid.geojson") +
+                             " --locations " + path("places.csv");
+  RunResult r = bundle(common + " --label-field name -o " + path("l.mbtiles"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const RunResult rows =
+      run("sqlite3 " + path("l.mbtiles") +
+              " 'SELECT text, priority, lon, lat, placement FROM labels ORDER BY id'",
+          path(""));
+  EXPECT_EQ(rows.out,
+            "Alpha|12.0|10.003|45.004|0\nB|15.0|14.001|48.002|0\nGamma|7.0|12.0|46.5|0\n");
+  // Without --locations there is nothing to name the ends by.
+  r = bundle(path("trips.csv") + " --from-id src --to-id dst --label-field name -o " +
+             path("x.mbtiles"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+}
+
 // A network split at the antimeridian (as GeoJSON asks) is one network: the
 // connection goes 18 degrees west, not 342 east, and its bundle is drawn on
 // both sides without a segment across the world.

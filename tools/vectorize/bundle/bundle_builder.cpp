@@ -20,6 +20,7 @@
 #include "io/vector_reader.hpp"
 #include "kit/package_output.hpp"
 #include "kit/parallel_batches.hpp"
+#include "labels/label_candidates.hpp"
 #include "lines/line_classes.hpp"
 #include "lines/line_metadata.hpp"
 #include "lines/line_plan.hpp"
@@ -29,6 +30,7 @@
 #include "tileformat/error.hpp"
 #include "tileformat/feature_table.hpp"
 #include "tileformat/json.hpp"
+#include "tileformat/label_table.hpp"
 #include "tileformat/metadata.hpp"
 #include "tileformat/package.hpp"
 #include "tiles/tile_sorter.hpp"
@@ -126,6 +128,11 @@ class Builder {
       stage("features", [&] {
         tileformat::FeatureTableWriter features(*writer);
         if (!features.complete()) write_features(features);
+        if (!s_.flow.label_field.empty()) {
+          tileformat::LabelTableWriter labels(*writer);
+          if (!labels.complete()) write_endpoint_labels(labels);
+          label_count_ = labels.count();
+        }
       });
       writer->checkpoint();  // the features table is committed before any tile
       LineTileOptions tiles;
@@ -146,6 +153,9 @@ class Builder {
     tileformat::LineMetadata meta = line_metadata(s_, frame_, plan_, classes_, facts_);
     meta.bundle_json = bundle_json();
     writer->set_metadata(tileformat::to_metadata(meta));
+    if (!s_.flow.label_field.empty())
+      writer->set_metadata("globe:labels",
+                           labels_metadata_json(s_.flow.label_field, "weight", label_count_));
     commit_package(*writer, s_.output, start, sum_);
     return sum_;
   }
@@ -487,6 +497,34 @@ class Builder {
   }
 
   // Bundles, then straight lines, then one row per connection.
+  // One label per end of the connections (an airport): its --label-field
+  // name (the id where it has none), ranked by the weight that starts or
+  // ends there, in id order.
+  void write_endpoint_labels(tileformat::LabelTableWriter& labels) {
+    struct End {
+      LonLat at;
+      double weight = 0;
+    };
+    std::map<std::string, End> ends;
+    for (const Connection& c : flows_.connections) {
+      for (const auto& [id, at] : {std::pair{&c.origin, c.from}, std::pair{&c.destination, c.to}}) {
+        End& e = ends[*id];
+        e.at = at;
+        e.weight += c.weight;
+      }
+    }
+    for (const auto& [id, e] : ends) {
+      tileformat::LabelRecord r;
+      r.feature = 0;  // an end is no feature of the package
+      const auto name = flows_.names.find(id);
+      r.text = name != flows_.names.end() ? name->second : id;
+      r.priority = e.weight;
+      r.lon = e.at.lon, r.lat = e.at.lat;
+      r.placement = tileformat::LabelPlacement::kPoint;
+      labels.add(r);
+    }
+  }
+
   void write_features(tileformat::FeatureTableWriter& features) {
     const auto& nodes = graph_->nodes();
     int64_t id = 0;
@@ -622,6 +660,7 @@ class Builder {
   LinePlan plan_;
   uint64_t scratch_features_ = 0;
   BundleSummary sum_;
+  int64_t label_count_ = 0;
 };
 
 }  // namespace

@@ -51,6 +51,11 @@ void declare_network_and_flow_options(CliArgs& cli, BundleSettings& s) {
              [&](const std::string& v) { s.flow.locations = v; });
   cli.option("--id-field", "COL", "the id column of --locations",
              [&](const std::string& v) { s.flow.id_field = v; });
+  cli.option("--label-field", "COL",
+             "label the connections' ends (docs/labels.md): a column of --locations naming\n"
+             "                              them (e.g. city; the id where empty), or the id\n"
+             "                              column itself; ranked by the weight through them",
+             [&](const std::string& v) { s.flow.label_field = v; });
   cli.option("--locations-xy", "LONCOL,LATCOL",
              "coordinate columns of a CSV --locations (default: longitude/lon/lng/x, "
              "latitude/lat/y)",

@@ -52,6 +52,10 @@ std::unordered_map<std::string, LonLat> read_locations(const FlowOptions& o, Flo
   ro.properties = false;
   ro.text_fields = {o.id_field};
   ro.field_options[o.id_field] = "--id-field";
+  if (!o.label_field.empty() && o.label_field != o.id_field) {
+    ro.text_fields.push_back(o.label_field);
+    ro.field_options[o.label_field] = "--label-field";
+  }
   ro.s_srs = o.s_srs;
   if (is_csv(o.locations)) {
     // CSV: the coordinate columns given, or the usual names.
@@ -79,7 +83,14 @@ std::unordered_map<std::string, LonLat> read_locations(const FlowOptions& o, Flo
     std::vector<int> ok;
     to_lonlat[f.layer]->transform(x, y, ok);
     if (!ok[0] || !on_the_globe(x[0], y[0])) continue;
-    if (!places.try_emplace(f.texts[0], LonLat{x[0], y[0]}).second) ++in.duplicate_ids;
+    if (!places.try_emplace(f.texts[0], LonLat{x[0], y[0]}).second) {
+      ++in.duplicate_ids;
+      continue;
+    }
+    if (!o.label_field.empty()) {
+      const std::string& name = f.texts.back();
+      if (!name.empty()) in.names.emplace(f.texts[0], name);
+    }
   }
   if (places.empty())
     throw InputError(o.locations + ": no location with an id (--id-field '" + o.id_field +
@@ -109,6 +120,10 @@ void check_flow_options(const FlowOptions& o) {
         "--locations airports.csv --id-field iata)");
   if (!by_id && !o.locations.empty())
     throw UsageError("--locations is for ids: add --from-id COL --to-id COL");
+  if (!o.label_field.empty() && o.locations.empty())
+    throw UsageError(
+        "--label-field names the connections' ends from --locations: add --from-id COL "
+        "--to-id COL --locations FILE --id-field COL");
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -25,6 +26,7 @@ struct FlowOptions {
   std::string id_field;                      // --id-field COL (of the locations)
   std::optional<ColumnPair> locations_xy;    // --locations-xy LONCOL,LATCOL (CSV)
   std::string weight;                        // --weight COL ("" = 1 per row)
+  std::string label_field;                   // --label-field COL of the locations ("" none)
   std::string s_srs;                         // CRS of coordinates without one (lon/lat)
 };
 
@@ -43,6 +45,8 @@ struct FlowInput {
   uint64_t bad_weights = 0;      // missing, not a number, negative
   uint64_t zero_weights = 0;     // weight 0: nothing to draw
   uint64_t locations = 0, duplicate_ids = 0;
+  // --label-field: each location id's name (ids without one are absent).
+  std::unordered_map<std::string, std::string> names;
   std::vector<std::string> examples;  // the first few bad rows, described
   uint64_t bad_rows() const { return bad_coordinates + unknown_ids + bad_weights; }
 };
