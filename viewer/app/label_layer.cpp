@@ -1,6 +1,9 @@
 // The labels of one view (see label_layer.hpp).
 #include "app/label_layer.hpp"
 
+#include "app/chart_discs.hpp"
+#include "app/label_layout.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -27,27 +30,6 @@ constexpr int kRepeatsEachSide = 3;   // line labels: copies either side of the 
 constexpr float kMaxTurnDeg = 45;
 constexpr size_t kMaxLinePaths = 1500;  // line labels whose paths a frame projects
 
-struct PathPoint {
-  float x, y, s, d;  // screen px, arc length px, distance
-  uint32_t probe;    // its probe
-};
-
-// Position, direction and distance at arc length s of a screen path.
-struct PathAt {
-  float x, y, angle, d;
-};
-PathAt path_at(const std::vector<PathPoint>& p, float s) {
-  size_t i = 1;
-  while (i + 1 < p.size() && p[i].s < s)
-    ++i;
-  const PathPoint& a = p[i - 1];
-  const PathPoint& b = p[i];
-  const float len = std::max(b.s - a.s, 1e-6f);
-  const float t = std::clamp((s - a.s) / len, 0.f, 1.f);
-  return {a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t, std::atan2(b.y - a.y, b.x - a.x),
-          a.d + (b.d - a.d) * t};
-}
-
 std::string number(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.6g", v);
@@ -55,23 +37,6 @@ std::string number(double v) {
 }
 
 }  // namespace
-
-// One bid's geometry: where its glyphs go and what it covers.
-struct LabelLayer::Layout {
-  uint32_t label = 0;
-  uint64_t key = 0;
-  float scale = 1;     // screen px per atlas texel
-  float distance = 0;  // of its anchor (expected depth of the samples)
-  bool legible = true;
-  std::vector<std::array<float, 3>> pivots;  // per glyph: x, y, angle (radians)
-  float baseline = 0;                        // of the glyphs, px below their pivot
-  ScreenBox box;
-  std::vector<ScreenBox> boxes;
-  std::vector<BoxShift> shifts = {BoxShift{}};  // the places it may take
-  bool along_line = false;                      // glyphs on a line's path
-  size_t sample_first = 0, sample_count = 0;
-  std::vector<float> expected;  // per sample: the label's distance there
-};
 
 LabelLayer::LabelLayer(const std::vector<std::string>& packages, const LabelSettings& settings,
                        const WorldFrame& world, int width, int height)
@@ -208,17 +173,9 @@ double LabelLayer::draw(const LayerPass& pass) {
     d_ref = d[d.size() / 2];
   }
   const float focal = static_cast<float>(view.pixels_per_radian);
-  const float pad = 100;  // labels may reach this far past the screen's edge
+  const float pad = 100;  // a line's path may reach this far past the screen's edge
   auto on_screen = [&](float x, float y) {
     return x >= 0 && y >= 0 && x < float(width_) && y < float(height_);
-  };
-
-  std::vector<Layout> lays;
-  std::vector<float> samples;  // x, y
-  auto add_sample = [&](Layout& l, float x, float y, float expected) {
-    samples.push_back(x), samples.push_back(y);
-    l.expected.push_back(expected);
-    ++l.sample_count;
   };
   // The legends and charts: no label covers one, and a place's label goes
   // beside its chart.
@@ -226,10 +183,7 @@ double LabelLayer::draw(const LayerPass& pass) {
   for (const SceneLayer* layer : below_)
     for (const glm::vec4& b : layer->overlay_boxes())
       obstacles.push_back({b.x, b.y, b.z, b.w});
-  struct Disc {
-    float x, y, r;
-  };
-  std::vector<Disc> discs;
+  ChartDiscs discs;
   if (charts_) {
     std::vector<LabelProbe> places;
     std::vector<float> radii;
@@ -241,49 +195,22 @@ double LabelLayer::draw(const LayerPass& pass) {
       return renderer_.project(places, view, pass.world, pass.terrain, pass.heights,
                                pass.shading.exaggeration);
     });
-    for (size_t c = 0; c < at.size(); ++c) {
-      if (!at[c].front || radii[c] <= 0) continue;
-      const float r = radii[c];
-      discs.push_back({at[c].x, at[c].y, r});
-      obstacles.push_back(
-          {at[c].x - 0.8f * r, at[c].y - 0.8f * r, at[c].x + 0.8f * r, at[c].y + 0.8f * r});
-    }
+    for (size_t c = 0; c < at.size(); ++c)
+      if (at[c].front && radii[c] > 0) discs.add(at[c].x, at[c].y, radii[c]);
+    const std::vector<ScreenBox> charts = discs.obstacles();
+    obstacles.insert(obstacles.end(), charts.begin(), charts.end());
   }
-  constexpr float kDiscCell = 64;
-  std::unordered_map<int64_t, std::vector<uint32_t>> disc_cells;
-  auto cell_of = [&](float x, float y) {
-    return (int64_t(std::floor(y / kDiscCell)) << 32) ^
-           int64_t(uint32_t(int32_t(std::floor(x / kDiscCell))));
-  };
-  for (uint32_t c = 0; c < discs.size(); ++c) {
-    const Disc& d = discs[c];
-    for (float y = std::floor((d.y - d.r) / kDiscCell); y <= std::floor((d.y + d.r) / kDiscCell);
-         ++y)
-      for (float x = std::floor((d.x - d.r) / kDiscCell); x <= std::floor((d.x + d.r) / kDiscCell);
-           ++x)
-        disc_cells[cell_of(x * kDiscCell, y * kDiscCell)].push_back(c);
-  }
-  // The radius of the largest chart covering pixel (x, y), 0 for none.
-  auto chart_radius_at = [&](float x, float y) {
-    float r = 0;
-    auto it = disc_cells.find(cell_of(x, y));
-    if (it == disc_cells.end()) return r;
-    for (uint32_t c : it->second) {
-      const Disc& d = discs[c];
-      if (std::hypot(x - d.x, y - d.y) <= d.r + 1) r = std::max(r, d.r);
-    }
-    return r;
-  };
 
-  const glm::dmat4 unproject = glm::inverse(view.proj * view.view);
-  // The unit sight line through pixel (x, y) from the top-left.
-  auto ray = [&](float x, float y) {
-    const double nx = 2.0 * x / width_ - 1, ny = 1 - 2.0 * y / height_;
-    const glm::dvec4 p0 = unproject * glm::dvec4(nx, ny, -1, 1);
-    const glm::dvec4 p1 = unproject * glm::dvec4(nx, ny, 1, 1);
-    return glm::normalize(glm::dvec3(p1) / p1.w - glm::dvec3(p0) / p0.w);
+  // Each candidate's layouts and the pixels to test them at.
+  const SightLines sight(view);
+  auto up_at = [&](glm::dvec2 key) {
+    return glm::normalize(pass.world.key_to_world(key.x, key.y, 1000, view.origin) -
+                          pass.world.key_to_world(key.x, key.y, 0, view.origin));
   };
+  std::vector<LabelLayout> lays;
+  LabelSamples samples;
   std::vector<LabelEntry>& labels = set_.labels();
+  std::vector<ScreenPathPoint> path;
   for (uint32_t i = 0; i < labels.size(); ++i) {
     if (anchor_probe_[i] == UINT32_MAX) continue;
     const ProbeResult& a = probes[anchor_probe_[i]];
@@ -291,160 +218,52 @@ double LabelLayer::draw(const LayerPass& pass) {
     LabelEntry& e = labels[i];
     const ShapedLabel& s = set_.shaped(e);
     if (!s.ok) continue;
+    // Sized by distance (MapLibre's perspective ratio), areas a little larger.
     const double sd = std::min(kMaxScale, 0.5 + 0.5 * d_ref / std::max(a.distance, 1e-3f));
     const bool area = e.record.placement == tileformat::LabelPlacement::kArea;
-    const float size = static_cast<float>(settings_.size_px * (area ? 1.1 : 1.0) * sd);
-    const float k = size / LabelSet::kAtlasPx;
-    const float w = s.width * k, asc = s.ascent * k, desc = s.descent * k;
-    const float baseline = (asc - desc) / 2;  // text centred on its line
+    LabelText t{s};
+    t.size = static_cast<float>(settings_.size_px * (area ? 1.1 : 1.0) * sd);
+    t.k = t.size / LabelSet::kAtlasPx;
+    t.width = s.width * t.k, t.ascent = s.ascent * t.k, t.descent = s.descent * t.k;
     ++candidates_;
+    const size_t first_layout = lays.size();
     const auto [first, count] = path_probes_[i];
-    if (count >= 2 && path_base[i] == UINT32_MAX) continue;  // a line label deferred
-    if (e.record.placement != tileformat::LabelPlacement::kLine || count < 2) {
-      Layout l;
-      l.label = i, l.key = uint64_t(i) << 4, l.scale = k, l.distance = a.distance;
-      l.legible = sd >= kShowScale;
-      // A point label goes right of its place, else left, above or below,
-      // clear of the place's chart; an area label on its anchor.
-      const float chart_r = area ? 0.f : chart_radius_at(a.x, a.y);
-      const float gap = area ? 0.f : std::max(0.45f * size, chart_r + 3);
-      const float h = asc + desc;
-      const float x0 = area ? a.x - w / 2 : a.x + gap;
-      for (const LabelGlyph& g : s.glyphs)
-        l.pivots.push_back({x0 + g.x * k, a.y - g.y * k, 0.f});
-      l.baseline = baseline;
-      l.box = {x0 - 1, a.y + baseline - asc - 1, x0 + w + 1, a.y + baseline + desc + 1};
-      l.boxes = {l.box};
-      if (!area)
-        l.shifts = {{0, 0},
-                    {-(2 * gap + w), 0},
-                    {-(gap + w / 2), -(gap + h / 2)},
-                    {-(gap + w / 2), gap + h / 2}};
-      l.sample_first = samples.size() / 2;
-      // The anchor, and the middle row of the label in each of its places.
-      // The label stands on the ground at its anchor: where a sample's sight
-      // line meets terrain before the ground's tangent plane there, terrain
-      // is in front of the label (a ridge crossing it); the tangent plane
-      // keeps the globe's curvature and the view's perspective from counting.
-      const glm::dvec3 eye = view.eye;
-      const glm::dvec3 anchor_point = eye + ray(a.x, a.y) * double(a.distance);
-      const glm::dvec2 key = anchor_key_[i];
-      const glm::dvec3 up =
-          glm::normalize(pass.world.key_to_world(key.x, key.y, 1000, view.origin) -
-                         pass.world.key_to_world(key.x, key.y, 0, view.origin));
-      const double plane = glm::dot(anchor_point - eye, up);
-      add_sample(l, a.x, a.y, a.distance);
-      for (const BoxShift& sh : l.shifts) {
-        const float y = (l.box.y0 + l.box.y1) / 2 + sh.dy;
-        for (float x : {l.box.x0, (l.box.x0 + l.box.x1) / 2, l.box.x1}) {
-          const double down = glm::dot(ray(x + sh.dx, y), up);
-          add_sample(l, x + sh.dx, y, down < -1e-6 ? float(plane / down) : -1.f);
+    if (count < 2) {
+      const float chart_r = area ? 0.f : discs.radius_at(a.x, a.y);
+      lays.push_back(
+          lay_out_at_anchor(i, t, a, area, chart_r, up_at(anchor_key_[i]), sight, samples));
+    } else {
+      if (path_base[i] == UINT32_MAX) continue;  // deferred to a later frame
+      // The first stretch of the path on the near side, in and around the view.
+      path.clear();
+      for (uint32_t p = first; p < first + count; ++p) {
+        const ProbeResult& q = path_at_screen[path_base[i] + (p - first)];
+        if (!q.front || !(q.x > -pad && q.y > -pad && q.x < width_ + pad && q.y < height_ + pad)) {
+          if (path.size() >= 2) break;
+          path.clear();
+          continue;
         }
+        const float along =
+            path.empty() ? 0 : path.back().s + std::hypot(q.x - path.back().x, q.y - path.back().y);
+        path.push_back({q.x, q.y, along, q.distance, p});
       }
-      lays.push_back(std::move(l));
-      continue;
+      lay_out_along_path(
+          i, t, a, path, kRepeatsEachSide, kMaxTurnDeg,
+          [&](uint32_t point) { return up_at(path_keys_[point]); }, sight, samples, lays);
     }
-    // A line label: along the screen path of its line, from its middle.
-    std::vector<PathPoint> path;
-    for (uint32_t p = first; p < first + count; ++p) {
-      const ProbeResult& q = path_at_screen[path_base[i] + (p - first)];
-      const bool usable =
-          q.front && q.x > -pad && q.y > -pad && q.x < width_ + pad && q.y < height_ + pad;
-      if (!usable) {
-        if (path.size() >= 2) break;  // keep the first usable stretch
-        path.clear();
-        continue;
-      }
-      const float s_len =
-          path.empty() ? 0 : path.back().s + std::hypot(q.x - path.back().x, q.y - path.back().y);
-      path.push_back({q.x, q.y, s_len, q.distance, p});
-    }
-    if (path.size() < 2 || path.back().s < w + 4) continue;
-    // The middle's place on the path: the point nearest the anchor.
-    float s_mid = 0, best = HUGE_VALF;
-    for (size_t p = 1; p < path.size(); ++p) {
-      const float dx = path[p].x - path[p - 1].x, dy = path[p].y - path[p - 1].y;
-      const float len2 = std::max(dx * dx + dy * dy, 1e-9f);
-      const float t =
-          std::clamp(((a.x - path[p - 1].x) * dx + (a.y - path[p - 1].y) * dy) / len2, 0.f, 1.f);
-      const float ex = path[p - 1].x + dx * t - a.x, ey = path[p - 1].y + dy * t - a.y;
-      if (ex * ex + ey * ey < best)
-        best = ex * ex + ey * ey, s_mid = path[p - 1].s + t * std::sqrt(len2);
-    }
-    const float spacing = std::max(3 * w, 250.f);
-    const float total = path.back().s;
-    // A glyph's sample: where its sight line meets the ground's tangent plane
-    // at the path's nearest point (on a curved globe the ground falls away
-    // from that plane, so a long segment never counts as terrain in front).
-    const glm::dvec2 key = anchor_key_[i];
-    const glm::dvec3 up = glm::normalize(pass.world.key_to_world(key.x, key.y, 1000, view.origin) -
-                                         pass.world.key_to_world(key.x, key.y, 0, view.origin));
-    auto expected_at = [&](float px, float py, float s_along) {
-      size_t v = 1;
-      while (v + 1 < path.size() && path[v].s < s_along)
-        ++v;
-      const PathPoint& near = s_along - path[v - 1].s < path[v].s - s_along ? path[v - 1] : path[v];
-      const glm::dvec3 ground = view.eye + ray(near.x, near.y) * double(near.d);
-      const double down = glm::dot(ray(px, py), up);
-      return down < -1e-6 ? float(glm::dot(ground - view.eye, up) / down) : -1.f;
-    };
-    for (int rep = -kRepeatsEachSide; rep <= kRepeatsEachSide; ++rep) {
-      const float centre = s_mid + float(rep) * spacing;
-      if (centre - w / 2 < 0 || centre + w / 2 > total) continue;
-      // Upright: the text runs left to right on screen.
-      const PathAt p0 = path_at(path, centre - w / 2), p1 = path_at(path, centre + w / 2);
-      // Glyphs along the path one way or the other: upright (every glyph
-      // within 90 degrees of level) and turning at most kMaxTurnDeg between
-      // neighbours, or not at all.
-      auto lay = [&](bool flip, Layout& l) {
-        l.pivots.clear(), l.boxes.clear(), l.expected.clear();
-        l.sample_count = 0;
-        l.sample_first = samples.size() / 2;
-        l.box = {HUGE_VALF, HUGE_VALF, -HUGE_VALF, -HUGE_VALF};
-        float last_angle = 0;
-        bool have_angle = false;
-        for (const LabelGlyph& g : s.glyphs) {
-          const float along = (g.x + g.advance / 2) * k;
-          const float at = flip ? centre + w / 2 - along : centre - w / 2 + along;
-          PathAt q = path_at(path, at);
-          if (flip) q.angle += std::numbers::pi_v<float>;
-          q.angle = std::remainder(q.angle, 2 * std::numbers::pi_v<float>);
-          const float turn = std::remainder(q.angle - last_angle, 2 * std::numbers::pi_v<float>);
-          if (std::abs(q.angle) > std::numbers::pi_v<float> / 2 ||
-              (have_angle && std::abs(turn) > kMaxTurnDeg * std::numbers::pi_v<float> / 180)) {
-            samples.resize(l.sample_first * 2);
-            return false;
-          }
-          last_angle = q.angle, have_angle = true;
-          l.pivots.push_back({q.x, q.y, q.angle});
-          const float r = std::max(asc + desc, g.advance * k) / 2;
-          const ScreenBox b{q.x - r, q.y - r, q.x + r, q.y + r};
-          l.boxes.push_back(b);
-          l.box = {std::min(l.box.x0, b.x0), std::min(l.box.y0, b.y0), std::max(l.box.x1, b.x1),
-                   std::max(l.box.y1, b.y1)};
-          add_sample(l, q.x, q.y, expected_at(q.x, q.y, at));
-        }
-        return true;
-      };
-      Layout l;
-      l.label = i, l.key = (uint64_t(i) << 4) | uint64_t(rep + kRepeatsEachSide);
-      l.scale = k, l.distance = a.distance, l.legible = sd >= kShowScale, l.baseline = baseline;
-      l.along_line = true;
-      const bool flip = p1.x < p0.x;
-      if (!lay(flip, l) && !lay(!flip, l)) continue;
-      lays.push_back(std::move(l));
-    }
+    for (size_t l = first_layout; l < lays.size(); ++l)
+      lays[l].legible = sd >= kShowScale;
   }
 
   // The terrain's distance at every sample: a label whose samples see
   // terrain nearer than the label is behind it.
   const std::vector<float> terrain =
-      timed([&] { return renderer_.terrain_distances(samples, pass.g, view); });
+      timed([&] { return renderer_.terrain_distances(samples.xy, pass.g, view); });
   const std::unordered_set<uint64_t> drawn_before(last_placed_keys_.begin(),
                                                   last_placed_keys_.end());
   std::vector<LabelBid> bids(lays.size());
   for (size_t b = 0; b < lays.size(); ++b) {
-    const Layout& l = lays[b];
+    const LabelLayout& l = lays[b];
     const bool before = drawn_before.count(l.key) != 0;
     auto behind = [&](size_t sample) {
       const float t = terrain[l.sample_first + sample];
@@ -489,7 +308,7 @@ double LabelLayer::draw(const LayerPass& pass) {
   last_placed_keys_.clear();
   for (size_t b = 0; b < lays.size(); ++b) {
     if (placed[b].alpha <= 0) continue;
-    const Layout& l = lays[b];
+    const LabelLayout& l = lays[b];
     const BoxShift sh = l.shifts[size_t(placed[b].shift)];
     const float alpha = placed[b].alpha;
     last_placed_keys_.push_back(l.key);

@@ -61,7 +61,6 @@ class LabelLayer final : public SceneLayer {
     float alpha;
     std::vector<std::array<float, 3>> glyphs;  // line labels: x, y, angle (degrees)
   };
-  struct Layout;  // one bid's geometry (label_layer.cpp)
   void build_probes(const WorldFrame& world);
 
   LabelSettings settings_;
