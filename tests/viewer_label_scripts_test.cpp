@@ -43,3 +43,32 @@ TEST(ViewerLabelScripts, EveryScriptDrawsAsExpected) {
     EXPECT_EQ(drawn.count(name), 1u) << name << " not drawn";
   expect_image(out, "label_scripts");
 }
+
+// --labels FIELD shows another attribute of the labelled features (their
+// ISO codes instead of the stored long names), --labels off none.
+TEST(ViewerLabelScripts, LabelsFieldAndOff) {
+  TempDir dir;
+  const std::string pkg = (dir / "w.mbtiles").string();
+  RunResult r = run(vectorize() + " areas -q " + sample("world.gpkg").string() +
+                        " --label-field name_long --tiling geodetic -o " + pkg,
+                    dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto texts = [&](const std::string& option) {
+    const std::string json = (dir / "l.json").string();
+    const RunResult v = run(viewer() + " " + pkg + " --size 320x180 --camera=10,48,4000000,0,0 " +
+                                option + " --labels-json " + json,
+                            dir.path());
+    EXPECT_EQ(v.exit_code, 0) << v.err;
+    std::set<std::string> out;
+    const tileformat::JsonValue j = tileformat::JsonValue::parse(read_file(json));
+    for (const tileformat::JsonValue& l : j.find("frames")->array().at(0).find("labels")->array())
+      out.insert(l.find("text")->string());
+    return out;
+  };
+  const std::set<std::string> names = texts(""), codes = texts("--labels iso_a2");
+  EXPECT_TRUE(names.count("Germany") || names.count("France")) << names.size();
+  EXPECT_TRUE(codes.count("DE") || codes.count("FR")) << codes.size();
+  for (const std::string& c : codes)
+    EXPECT_EQ(c.size(), 2u) << c;
+  EXPECT_TRUE(texts("--labels off").empty());
+}
