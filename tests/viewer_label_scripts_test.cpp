@@ -72,3 +72,21 @@ TEST(ViewerLabelScripts, LabelsFieldAndOff) {
     EXPECT_EQ(c.size(), 2u) << c;
   EXPECT_TRUE(texts("--labels off").empty());
 }
+
+// A --label-font that cannot be read is an input error naming the file (exit
+// 1), and no picture is written under the snapshot's name.
+TEST(ViewerLabelScripts, AnUnreadableFontNamesItself) {
+  TempDir dir;
+  const std::string pkg = (dir / "w.mbtiles").string(), out = (dir / "x.png").string();
+  RunResult r = run(vectorize() + " areas -q " + sample("world.gpkg").string() +
+                        " --label-field name_long -o " + pkg,
+                    dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run(viewer() + " " + pkg + " --size 160x90 --label-font " + (dir / "no.ttf").string() +
+              " --snapshot " + out,
+          dir.path());
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("no.ttf"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--label-font"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}

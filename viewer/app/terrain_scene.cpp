@@ -167,8 +167,17 @@ TerrainScene::TerrainScene(const ViewerSettings& settings) : settings_(settings)
   for (const std::optional<std::string>& p : {set.areas, set.lines, set.points})
     if (p) vector_packages.push_back(*p);
   if (!vector_packages.empty() && (settings_.labels.enabled || settings_.labels_json)) {
-    auto labels = std::make_unique<LabelLayer>(vector_packages, settings_.labels, *world_,
-                                               settings_.width, settings_.height);
+    std::unique_ptr<LabelLayer> labels;
+    try {
+      labels = std::make_unique<LabelLayer>(vector_packages, settings_.labels, *world_,
+                                            settings_.width, settings_.height);
+    } catch (const InputError& e) {
+      // No fonts installed: the map without its names, not no map (a
+      // --label-font the user named that cannot be read stays an error).
+      if (!settings_.labels.font.empty() || std::string(e.what()).find("text:") != 0) throw;
+      std::fprintf(stderr, "globe-view: %s; drawing no labels\n", e.what());
+    }
+    if (!labels) return;
     labels->set_charts(charts_);
     std::vector<const SceneLayer*> below;
     for (const auto& l : layers_)

@@ -1,6 +1,8 @@
 // Text for the viewer (see text_engine.hpp).
 #include "data/text_engine.hpp"
 
+#include <cstdio>
+
 #include "runtime/errors.hpp"
 
 namespace globe::viewer {
@@ -36,9 +38,16 @@ ShapedString TextEngine::shape(std::string_view utf8) {
   return s;
 }
 
-TextEngine& default_text_engine() {
-  static TextEngine engine;
-  return engine;
+TextEngine* default_text_engine() {
+  static std::unique_ptr<TextEngine> engine = [] {
+    try {
+      return std::make_unique<TextEngine>();
+    } catch (const InputError& e) {
+      std::fprintf(stderr, "globe-view: %s; legends are drawn without text\n", e.what());
+      return std::unique_ptr<TextEngine>();
+    }
+  }();
+  return engine.get();
 }
 
 }  // namespace globe::viewer

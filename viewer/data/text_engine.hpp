@@ -52,7 +52,9 @@ class TextEngine {
   size_t atlas_misses_ = 0;
 };
 
-// The engine of Debian's default chain, made on first use.
-TextEngine& default_text_engine();
+// The engine of Debian's default chain, made on first use; nullptr (after a
+// note on stderr, once) where no font is installed: legends then go without
+// their text rather than the viewer without its picture.
+TextEngine* default_text_engine();
 
 }  // namespace globe::viewer

@@ -43,9 +43,9 @@ void main() {
 
 TextOverlay::TextOverlay() : engine_(default_text_engine()) {
   program_ = GlProgram("text overlay", kVertex, kFragment);
-  const text::GlyphAtlas& a = engine_.atlas();
   gl::CreateTextures(GL_TEXTURE_2D, 1, &atlas_);
-  gl::TextureStorage2D(atlas_, 1, GL_R8, a.width(), a.height());
+  gl::TextureStorage2D(atlas_, 1, GL_R8, engine_ ? engine_->atlas().width() : 1,
+                       engine_ ? engine_->atlas().height() : 1);
   gl::TextureParameteri(atlas_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   gl::TextureParameteri(atlas_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   gl::TextureParameteri(atlas_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -80,14 +80,16 @@ void TextOverlay::rect(float x, float y, float w, float h, glm::vec4 rgba) {
 }
 
 float TextOverlay::text_width(const std::string& s, int scale) {
-  return engine_.shape(s).width * size_px(scale) / TextEngine::kAtlasPx;
+  if (!engine_) return 0;
+  return engine_->shape(s).width * size_px(scale) / TextEngine::kAtlasPx;
 }
 
 void TextOverlay::text(float x, float y, const std::string& s, glm::vec4 rgba, int scale) {
-  const ShapedString shaped = engine_.shape(s);
+  if (!engine_) return;
+  const ShapedString shaped = engine_->shape(s);
   const float k = size_px(scale) / TextEngine::kAtlasPx;
   const float baseline = y + text_height(scale);
-  const text::GlyphAtlas& a = engine_.atlas();
+  const text::GlyphAtlas& a = engine_->atlas();
   const float aw = float(a.width()), ah = float(a.height());
   for (const ShapedGlyph& g : shaped.glyphs) {
     if (!g.atlas) continue;
@@ -105,8 +107,9 @@ void TextOverlay::draw(GLuint fbo, int width, int height) {
   for (const Vertex& v : vertices_)
     drawn_ = {std::min(drawn_.x, v.x), std::min(drawn_.y, v.y), std::max(drawn_.z, v.x),
               std::max(drawn_.w, v.y)};
-  text::GlyphAtlas& a = engine_.atlas();
-  if (a.glyph_count() != uploaded_glyphs_) {  // glyphs added since (by any user of the engine)
+  if (engine_ && engine_->atlas().glyph_count() != uploaded_glyphs_) {
+    // Glyphs added since (by any user of the engine).
+    const text::GlyphAtlas& a = engine_->atlas();
     gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
     gl::TextureSubImage2D(atlas_, 0, 0, 0, a.width(), a.height(), GL_RED, GL_UNSIGNED_BYTE,
                           a.pixels().data());

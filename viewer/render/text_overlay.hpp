@@ -44,7 +44,7 @@ class TextOverlay {
   static float size_px(int scale) { return 9.0f * float(scale); }
   void quad(float x0, float y0, float x1, float y1, float u0, float v0, float u1, float v1,
             glm::vec4 rgba);
-  TextEngine& engine_;
+  TextEngine* engine_;  // nullptr: no fonts, no text
   GlProgram program_;
   GLuint atlas_ = 0, vao_ = 0, vbo_ = 0;
   size_t uploaded_glyphs_ = 0;  // the atlas's glyphs when last uploaded
