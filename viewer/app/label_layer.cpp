@@ -13,6 +13,7 @@
 #include <unordered_set>
 
 #include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 
 #include "tileformat/json.hpp"
@@ -29,6 +30,14 @@ constexpr int kMaxNewPerFrame = 400;  // the window's placement budget
 constexpr int kRepeatsEachSide = 3;   // line labels: copies either side of the middle
 constexpr float kMaxTurnDeg = 45;
 constexpr size_t kMaxLinePaths = 1500;  // line labels whose paths a frame projects
+constexpr int kCellPx = 48;             // the crowding grid's cells
+constexpr uint8_t kPerCell = 4;         // labels laid out per cell a frame (and those shown)
+
+// The ellipsoid's outward normal at lon/lat (degrees), in ECEF axes.
+glm::vec3 ecef_up(double lon, double lat) {
+  const double l = lon * std::numbers::pi / 180, p = lat * std::numbers::pi / 180;
+  return glm::vec3(std::cos(p) * std::cos(l), std::cos(p) * std::sin(l), std::sin(p));
+}
 
 std::string number(double v) {
   char buf[32];
@@ -59,7 +68,6 @@ void LabelLayer::resize(int width, int height) {
 
 void LabelLayer::build_probes(const WorldFrame& world) {
   std::vector<LabelProbe> probes;
-  glm::dvec2 last_key{0, 0};
   auto probe = [&](std::vector<LabelProbe>& into, double lon, double lat) -> uint32_t {
     if (world.tiling().scheme == tileformat::Scheme::kWebMercator)
       lat = std::clamp(lat, -85.0511, 85.0511);
@@ -71,7 +79,6 @@ void LabelLayer::build_probes(const WorldFrame& world) {
       return UINT32_MAX;  // not in this frame's CRS
     }
     if (!std::isfinite(k.x) || !std::isfinite(k.y)) return UINT32_MAX;
-    last_key = k;
     LabelProbe p{};
     p.key[0] = static_cast<int32_t>(std::floor(k.x));
     p.key[1] = static_cast<int32_t>(std::floor(k.y));
@@ -82,13 +89,13 @@ void LabelLayer::build_probes(const WorldFrame& world) {
   };
   for (const LabelEntry& e : set_.labels()) {
     anchor_probe_.push_back(probe(probes, e.record.lon, e.record.lat));
-    anchor_key_.push_back(last_key);
+    anchor_up_.push_back(ecef_up(e.record.lon, e.record.lat));
     // A line's path is projected only while its anchor is in view.
     const auto first = static_cast<uint32_t>(path_points_.size());
     uint32_t count = 0;
     for (size_t i = 0; i + 1 < e.record.path.size(); i += 2)
       if (probe(path_points_, e.record.path[i], e.record.path[i + 1]) != UINT32_MAX) {
-        path_keys_.push_back(last_key);
+        path_up_.push_back(ecef_up(e.record.path[i], e.record.path[i + 1]));
         ++count;
       }
     path_probes_.emplace_back(first, count);
@@ -126,31 +133,58 @@ double LabelLayer::draw(const LayerPass& pass) {
     return renderer_.project(view, pass.world, pass.terrain, pass.heights,
                              pass.shading.exaggeration);
   });
-  // The paths of the line labels whose anchor is in view: those shown last
-  // frame, then by priority, at most kMaxLinePaths (the rest wait).
-  std::vector<uint32_t> lines_in_view;
-  std::unordered_set<uint32_t> shown_lines;
+  // The candidates: labels whose anchor is in view, those shown last frame
+  // first, then by priority. In the window, where many crowd one spot, only
+  // the first kPerCell of each 48 px cell (and every label shown before)
+  // are laid out and tested a frame - the placement budget: the work
+  // follows what a view can hold, not how many labels it covers, and a cell
+  // the crowds leave empty still gets its own labels. Line labels wait
+  // beyond kMaxLinePaths a frame (their paths are projected).
+  std::vector<LabelEntry>& labels = set_.labels();
+  std::unordered_set<uint32_t> shown_before;
   for (uint64_t key : last_placed_keys_)
-    shown_lines.insert(static_cast<uint32_t>(key >> 4));
-  for (uint32_t i = 0; i < set_.labels().size(); ++i) {
-    if (path_probes_[i].second < 2 || anchor_probe_[i] == UINT32_MAX) continue;
+    shown_before.insert(static_cast<uint32_t>(key >> 4));
+  auto on_screen = [&](float x, float y) {
+    return x >= 0 && y >= 0 && x < float(width_) && y < float(height_);
+  };
+  std::vector<uint32_t> in_view;
+  for (uint32_t i = 0; i < labels.size(); ++i) {
+    if (anchor_probe_[i] == UINT32_MAX) continue;
     const ProbeResult& a = probes[anchor_probe_[i]];
-    if (a.front && a.x >= 0 && a.y >= 0 && a.x < width_ && a.y < height_)
-      lines_in_view.push_back(i);
+    if (a.front && on_screen(a.x, a.y))
+      in_view.push_back(i);  // a label shows while its anchor does
   }
-  if (lines_in_view.size() > kMaxLinePaths) {
-    const std::vector<LabelEntry>& all = set_.labels();
-    std::stable_sort(lines_in_view.begin(), lines_in_view.end(), [&](uint32_t a, uint32_t b) {
-      const bool sa = shown_lines.count(a) != 0, sb = shown_lines.count(b) != 0;
-      if (sa != sb) return sa;
-      return all[a].rank > all[b].rank;
-    });
-    lines_in_view.resize(kMaxLinePaths);
+  candidates_ = in_view.size();
+  std::vector<char> was_shown(labels.size(), 0);
+  for (uint32_t i : shown_before)
+    if (i < labels.size()) was_shown[i] = 1;
+  std::sort(in_view.begin(), in_view.end(), [&](uint32_t a, uint32_t b) {
+    if (was_shown[a] != was_shown[b]) return was_shown[a] > was_shown[b];
+    if (labels[a].rank != labels[b].rank) return labels[a].rank > labels[b].rank;
+    return a < b;
+  });
+  // The window only: a headless picture places every candidate.
+  const bool crowd_cap = pass.loading == Loading::kAsReady;
+  const int cols = width_ / kCellPx + 1, rows = height_ / kCellPx + 1;
+  std::vector<uint8_t> crowd(size_t(cols) * size_t(rows), 0);
+  std::vector<uint32_t> admitted;
+  size_t lines = 0;
+  for (uint32_t i : in_view) {
+    const ProbeResult& a = probes[anchor_probe_[i]];
+    uint8_t& n = crowd[size_t(int(a.y) / kCellPx) * size_t(cols) + size_t(int(a.x) / kCellPx)];
+    if (crowd_cap && !was_shown[i] && n >= kPerCell) continue;
+    const bool line = path_probes_[i].second >= 2;
+    if (line && lines >= kMaxLinePaths) continue;
+    n = uint8_t(std::min(255, n + 1));
+    lines += line ? 1 : 0;
+    admitted.push_back(i);
   }
+  std::sort(admitted.begin(), admitted.end());  // label order, as before: deterministic bids
   std::vector<LabelProbe> path_in;
   std::vector<uint32_t> path_base(set_.labels().size(), UINT32_MAX);
-  for (uint32_t i : lines_in_view) {
+  for (uint32_t i : admitted) {
     const auto [first, count] = path_probes_[i];
+    if (count < 2) continue;
     path_base[i] = static_cast<uint32_t>(path_in.size());
     path_in.insert(path_in.end(), path_points_.begin() + first,
                    path_points_.begin() + first + count);
@@ -174,9 +208,6 @@ double LabelLayer::draw(const LayerPass& pass) {
   }
   const float focal = static_cast<float>(view.pixels_per_radian);
   const float pad = 100;  // a line's path may reach this far past the screen's edge
-  auto on_screen = [&](float x, float y) {
-    return x >= 0 && y >= 0 && x < float(width_) && y < float(height_);
-  };
   // The legends and charts: no label covers one, and a place's label goes
   // beside its chart.
   std::vector<ScreenBox> obstacles;
@@ -203,18 +234,17 @@ double LabelLayer::draw(const LayerPass& pass) {
 
   // Each candidate's layouts and the pixels to test them at.
   const SightLines sight(view);
-  auto up_at = [&](glm::dvec2 key) {
-    return glm::normalize(pass.world.key_to_world(key.x, key.y, 1000, view.origin) -
-                          pass.world.key_to_world(key.x, key.y, 0, view.origin));
+  // The ground's up in the world: the ellipsoid's normal turned into the
+  // view's east-north-up frame on the globe; straight up on the flat frame.
+  const glm::dmat3 enu = pass.world.globe() ? pass.world.anchor(view.origin).enu : glm::dmat3(0.0);
+  auto up_of = [&](const glm::vec3& ecef) {
+    return pass.world.globe() ? glm::normalize(enu * glm::dvec3(ecef)) : glm::dvec3(0, 0, 1);
   };
   std::vector<LabelLayout> lays;
   LabelSamples samples;
-  std::vector<LabelEntry>& labels = set_.labels();
   std::vector<ScreenPathPoint> path;
-  for (uint32_t i = 0; i < labels.size(); ++i) {
-    if (anchor_probe_[i] == UINT32_MAX) continue;
+  for (uint32_t i : admitted) {
     const ProbeResult& a = probes[anchor_probe_[i]];
-    if (!a.front || !on_screen(a.x, a.y)) continue;  // a label shows while its anchor does
     LabelEntry& e = labels[i];
     const ShapedLabel& s = set_.shaped(e);
     if (!s.ok) continue;
@@ -225,13 +255,12 @@ double LabelLayer::draw(const LayerPass& pass) {
     t.size = static_cast<float>(settings_.size_px * (area ? 1.1 : 1.0) * sd);
     t.k = t.size / LabelSet::kAtlasPx;
     t.width = s.width * t.k, t.ascent = s.ascent * t.k, t.descent = s.descent * t.k;
-    ++candidates_;
     const size_t first_layout = lays.size();
     const auto [first, count] = path_probes_[i];
     if (count < 2) {
       const float chart_r = area ? 0.f : discs.radius_at(a.x, a.y);
       lays.push_back(
-          lay_out_at_anchor(i, t, a, area, chart_r, up_at(anchor_key_[i]), sight, samples));
+          lay_out_at_anchor(i, t, a, area, chart_r, up_of(anchor_up_[i]), sight, samples));
     } else {
       if (path_base[i] == UINT32_MAX) continue;  // deferred to a later frame
       // The first stretch of the path on the near side, in and around the view.
@@ -249,7 +278,7 @@ double LabelLayer::draw(const LayerPass& pass) {
       }
       lay_out_along_path(
           i, t, a, path, kRepeatsEachSide, kMaxTurnDeg,
-          [&](uint32_t point) { return up_at(path_keys_[point]); }, sight, samples, lays);
+          [&](uint32_t point) { return up_of(path_up_[point]); }, sight, samples, lays);
     }
     for (size_t l = first_layout; l < lays.size(); ++l)
       lays[l].legible = sd >= kShowScale;

@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 #include "app/chart_layer.hpp"
 #include "app/label_placement.hpp"
 #include "app/label_settings.hpp"
@@ -70,9 +72,9 @@ class LabelLayer final : public SceneLayer {
   LabelRenderer renderer_;
   LabelPlacer placer_;
   std::vector<uint32_t> anchor_probe_;   // per label
-  std::vector<glm::dvec2> anchor_key_;   // per label: its anchor in key units
+  std::vector<glm::vec3> anchor_up_;     // per label: the ground's up at its anchor (ECEF)
   std::vector<LabelProbe> path_points_;  // every line label's path, projected while in view
-  std::vector<glm::dvec2> path_keys_;    // per path point: in key units
+  std::vector<glm::vec3> path_up_;       // per path point: the ground's up there (ECEF)
   std::vector<std::pair<uint32_t, uint32_t>> path_probes_;  // per label: first path point, count
   std::vector<Placed> placed_;
   size_t candidates_ = 0, occluded_ = 0, illegible_ = 0;

@@ -38,17 +38,17 @@ float plane_distance(const SightLines& sight, float x, float y, const glm::dvec3
 
 }  // namespace
 
-SightLines::SightLines(const View& view)
-    : unproject_(glm::inverse(view.proj * view.view)),
-      eye_(view.eye),
-      width_(view.width),
-      height_(view.height) {}
-
-glm::dvec3 SightLines::through(float x, float y) const {
-  const double nx = 2.0 * x / width_ - 1, ny = 1 - 2.0 * y / height_;
-  const glm::dvec4 p0 = unproject_ * glm::dvec4(nx, ny, -1, 1);
-  const glm::dvec4 p1 = unproject_ * glm::dvec4(nx, ny, 1, 1);
-  return glm::normalize(glm::dvec3(p1) / p1.w - glm::dvec3(p0) / p0.w);
+SightLines::SightLines(const View& view) : eye_(view.eye) {
+  const glm::dmat4 unproject = glm::inverse(view.proj * view.view);
+  auto direction = [&](double x, double y) {
+    const double nx = 2.0 * x / view.width - 1, ny = 1 - 2.0 * y / view.height;
+    const glm::dvec4 p0 = unproject * glm::dvec4(nx, ny, -1, 1);
+    const glm::dvec4 p1 = unproject * glm::dvec4(nx, ny, 1, 1);
+    return glm::dvec3(p1) / p1.w - glm::dvec3(p0) / p0.w;
+  };
+  d00_ = direction(0, 0);
+  dx_ = direction(1, 0) - d00_;
+  dy_ = direction(0, 1) - d00_;
 }
 
 LabelLayout lay_out_at_anchor(uint32_t label, const LabelText& t, const ProbeResult& a, bool area,

@@ -12,6 +12,7 @@
 #include <functional>
 #include <vector>
 
+#include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
@@ -38,17 +39,20 @@ struct LabelLayout {
   std::vector<float> expected;                  // per pixel: the ground's distance there
 };
 
-// The unit sight line through a pixel (from the top-left) of a view.
+// The unit sight line through a pixel (from the top-left) of a view: the
+// unprojected far point minus the near point is linear in the pixel (both
+// planes have one w), so three of them give every other.
 class SightLines {
  public:
   explicit SightLines(const View& view);
-  glm::dvec3 through(float x, float y) const;
+  glm::dvec3 through(float x, float y) const {
+    return glm::normalize(d00_ + double(x) * dx_ + double(y) * dy_);
+  }
   const glm::dvec3& eye() const { return eye_; }
 
  private:
-  glm::dmat4 unproject_;
+  glm::dvec3 d00_, dx_, dy_;  // the direction at pixel (0, 0) and per pixel right and down
   glm::dvec3 eye_;
-  double width_, height_;
 };
 
 // The pixels a frame tests against the terrain, for all its labels.
