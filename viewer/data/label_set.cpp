@@ -67,7 +67,13 @@ LabelSet::LabelSet(const std::vector<std::string>& packages, const std::string& 
       throw InputError(path + ": " + e.what());
     }
   }
-  if (!labels_.empty()) engine_ = std::make_unique<TextEngine>(font);
+  if (labels_.empty()) return;
+  if (!font.empty()) {
+    own_engine_ = std::make_unique<TextEngine>(font);
+    engine_ = own_engine_.get();
+  } else if (!(engine_ = default_text_engine())) {
+    throw InputError("text: no fonts (install fonts-noto-core or fonts-dejavu-core)");
+  }
 }
 
 LabelSet::~LabelSet() = default;

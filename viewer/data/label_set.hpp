@@ -49,7 +49,10 @@ class LabelSet {
  private:
   std::vector<std::string> sources_;
   std::vector<LabelEntry> labels_;
-  std::unique_ptr<TextEngine> engine_;
+  // Debian's chain is the legends' engine, shared (one atlas, the fonts read
+  // once); a --label-font has an engine of its own.
+  std::unique_ptr<TextEngine> own_engine_;
+  TextEngine* engine_ = nullptr;
 };
 
 }  // namespace globe::viewer

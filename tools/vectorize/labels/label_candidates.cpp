@@ -60,7 +60,11 @@ std::string request_label_fields(const LabelOptions& o, const std::vector<std::s
                                  VectorReaderOptions& ro, Progress& progress, int* priority_index) {
   if (priority_index) *priority_index = -1;
   if (!o.enabled()) return "";
-  const std::string field = resolve_label_field(o, VectorReader(inputs, ro).layers());
+  // Only `auto` needs the layers' fields before the reader opens; an
+  // explicit field is checked by the reader itself (a UsageError naming the
+  // layer's fields), so the inputs are not opened twice for it.
+  const std::string field =
+      o.field == "auto" ? resolve_label_field(o, VectorReader(inputs, ro).layers()) : o.field;
   if (field.empty()) {
     progress.note("--label-field auto: no name field (name, NAME, ...) in " + inputs.front() +
                   "; no labels");

@@ -32,7 +32,8 @@ struct LabelOptions {
 // field or the priority field is missing from a layer.
 std::string resolve_label_field(const LabelOptions& o, const std::vector<VectorLayerInfo>& layers);
 
-// Resolves the label field (opening the inputs once for their fields) and
+// Resolves the label field (for `auto`, opening the inputs once for their
+// fields; an explicit one the caller's reader checks) and
 // asks `ro` for it and the priority field; returns the field ("" for no
 // labels, with a note when auto found none). *priority_index: the priority
 // field's index in VectorFeature::values (-1 for none).
