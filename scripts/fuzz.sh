@@ -6,11 +6,24 @@
 # are saved under build-fuzz/crashes/<target>/ and the script fails; copy each into
 # tests/data/fuzz/<target>/ and fix the decoder: the regression test
 # (FuzzRegression, label unit) replays every file there.
-# Usage: scripts/fuzz.sh [SECONDS] [TARGET...]
+# --build-only builds and stops; --no-build runs what build-fuzz/ holds;
+# --jobs N runs N targets at once (default: the cores; .ci/run runs one at a
+# time beside the slow tests, which leave the cores partly idle: docs/ci.md).
+# Usage: scripts/fuzz.sh [--build-only|--no-build] [--jobs N] [SECONDS] [TARGET...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 . scripts/lib/stage.sh
 . scripts/lib/ccache.sh
+do_build=1 do_run=1 jobs=$(nproc)
+while [ $# -gt 0 ]; do
+  case $1 in
+    --build-only) do_run=0 ;;
+    --no-build) do_build=0 ;;
+    --jobs) jobs=$2; shift ;;
+    *) break ;;
+  esac
+  shift
+done
 seconds=${1:-60}
 shift || true
 targets=("$@")
@@ -42,7 +55,7 @@ fuzz_all() {
   local t failed=()
   local -A pid_of
   for t in "${targets[@]}"; do
-    while [ "$(jobs -rp | wc -l)" -ge "$(nproc)" ]; do wait -n || true; done
+    while [ "$(jobs -rp | wc -l)" -ge "$jobs" ]; do wait -n || true; done
     echo "fuzz: $t for ${seconds}s" >&2
     fuzz_one "$t" &
     pid_of[$t]=$!
@@ -63,5 +76,5 @@ fuzz_all() {
   echo "fuzz: no crash in ${targets[*]}" >&2
 }
 
-stage "build (build-fuzz/)" build_fuzz
-stage "fuzz (${#targets[@]} x ${seconds}s)" fuzz_all
+if [ $do_build = 1 ]; then stage "build (build-fuzz/)" build_fuzz; fi
+if [ $do_run = 1 ]; then stage "fuzz (${#targets[@]} x ${seconds}s, $jobs at once)" fuzz_all; fi

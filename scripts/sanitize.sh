@@ -9,11 +9,13 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 . scripts/lib/stage.sh
+. scripts/lib/ctest_costs.sh
 # clang, not GCC: the same sanitizers, built in half the time (GCC 12 spent
 # 2.2x clang 14's CPU on ASan-instrumented code; docs/ci.md).
 BUILD_DIR=build-asan stage "build (build-asan/)" scripts/build.sh -DCMAKE_C_COMPILER=clang \
   -DCMAKE_CXX_COMPILER=clang++ -DGLOBE_SANITIZE=address,undefined
 supp=$(pwd)/scripts/lsan.supp
+seed_ctest_costs build-asan
 cd build-asan
 export LSAN_OPTIONS=suppressions=$supp:print_suppressions=0 UBSAN_OPTIONS=print_stacktrace=1
 # The tests that open Mesa through EGL or GLX (a GLFW window under xvfb) run

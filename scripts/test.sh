@@ -9,6 +9,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 . scripts/lib/stage.sh
+. scripts/lib/ctest_costs.sh
 selection=(-LE slow)
 if [ "${1:-}" = "--all" ]; then
   selection=()
@@ -19,5 +20,6 @@ fi
 stage "install" scripts/install-deps.sh
 stage "build (build/)" scripts/build.sh
 stage "samples" samples/fetch.sh small
+seed_ctest_costs build
 cd build
 stage "tests (build/)" ctest --output-on-failure -j "$(nproc)" "${selection[@]}" "$@"
