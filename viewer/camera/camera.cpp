@@ -78,7 +78,10 @@ View make_view(const CameraPose& pose, WorldFrame& frame, int width, int height,
     v.far_m = std::max(horizon(pose.height_m) + horizon(z_top_world) + 1000, v.near_m * 10);
   } else {
     const double depth = std::max(v.eye.z - z_bottom_world, 1.0);
-    v.far_m = std::clamp(depth / std::max(std::cos(p + fovy / 2), 0.02), v.near_m * 10, 4e7);
+    // At most 40,000 km, or twice the eye's depth above the lowest ground:
+    // the whole web mercator square, framed from above, lies 50,000 km down.
+    v.far_m = std::clamp(depth / std::max(std::cos(p + fovy / 2), 0.02), v.near_m * 10,
+                         std::max(4e7, 2 * depth));
   }
   v.proj = glm::perspective(fovy, double(width) / height, v.near_m, v.far_m);
   const glm::dmat4 vp = v.proj * v.view;
