@@ -5,7 +5,7 @@
 
 #include <random>
 
-#include "terrain/error_tree.hpp"
+#include "runtime/error_tree.hpp"
 #include "tileformat/kpatch.hpp"
 #include "tileformat/mblock.hpp"
 

@@ -1,5 +1,8 @@
 // KPatch error trees (docs/terrain.md "Error trees"). All errors are in
-// height quanta, rounded up.
+// height quanta, rounded up. In lib/runtime because two writers of MBlocks
+// share it: the tiler (tools/tiler/terrain) and the viewer, which
+// synthesizes blocks from raster-DEM tiles (viewer/data/block_synthesizer).
+// Pure arithmetic on tileformat's KPatch layout; touches nothing else.
 //
 // Node errors Ê(n): an upper bound of the vertical distance between node n
 // drawn as its L x L lattice and the finest data under it, saturated so a

@@ -1,5 +1,5 @@
 // KPatch error trees (see error_tree.hpp).
-#include "terrain/error_tree.hpp"
+#include "runtime/error_tree.hpp"
 
 #include <algorithm>
 #include <cmath>
