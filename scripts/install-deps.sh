@@ -15,6 +15,8 @@ packages=(
   libgdal-dev libgeos-dev libproj-dev libtiff-dev libzstd-dev libsqlite3-dev libpng-dev zlib1g-dev
   # globe-serve: HTTP from GNU libmicrohttpd (docs/serve.md "HTTP")
   libmicrohttpd-dev
+  # globe-view as a web client: HTTP(S) from libcurl (lib/net, docs/viewer.md "Remote sources")
+  libcurl4-openssl-dev
   # viewer image tile decoding without GDAL
   libjpeg62-turbo-dev libwebp-dev
   # lib/text: FreeType, HarfBuzz, FriBiDi, protozero, the fonts it falls back on, and

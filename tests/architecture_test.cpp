@@ -85,14 +85,15 @@ TEST(Architecture, LibraryIncludesNothingAbove) {
       << "a public header includes a private one";
 }
 
-// The viewer stands on lib: its own folders, lib/runtime, lib/tileformat and
-// lib/text, nothing from tools/ (whose headers are found by bare names). And
-// runtime stands on tileformat only; text on nothing of the project.
+// The viewer stands on lib: its own folders, lib/runtime, lib/tileformat,
+// lib/text and lib/net, nothing from tools/ (whose headers are found by bare
+// names). And runtime stands on tileformat only; text and net on nothing of
+// the project.
 TEST(Architecture, ViewerIncludesNothingFromTools) {
   auto foreign = [](const std::string& l) {
     if (!l.starts_with("#include \"")) return false;
-    for (const char* ok :
-         {"app/", "camera/", "data/", "render/", "platform/", "runtime/", "tileformat/", "text/"})
+    for (const char* ok : {"app/", "camera/", "data/", "render/", "platform/", "runtime/",
+                           "tileformat/", "text/", "net/"})
       if (l.starts_with(std::string("#include \"") + ok)) return false;
     return true;
   };
@@ -109,6 +110,11 @@ TEST(Architecture, ViewerIncludesNothingFromTools) {
     return true;
   };
   EXPECT_EQ(joined(matches("lib/text", outside_text)), "") << "lib/text stands on no project code";
+  auto outside_net = [](const std::string& l) {
+    return l.starts_with("#include \"") && !l.starts_with("#include \"net/") &&
+           !l.starts_with("#include \"curl_multi.hpp\"");
+  };
+  EXPECT_EQ(joined(matches("lib/net", outside_net)), "") << "lib/net stands on no project code";
 }
 
 // Each layer includes only its own folder and the layers below it
@@ -120,7 +126,7 @@ TEST(Architecture, LayersIncludeOnlyTheirOwnAndBelow) {
     const char* dir;
     std::vector<std::string> may;  // the first folder of an include
   };
-  const std::vector<std::string> lib = {"runtime", "tileformat", "text"};
+  const std::vector<std::string> lib = {"runtime", "tileformat", "text", "net"};
   auto with = [&](std::vector<std::string> v) {
     v.insert(v.end(), lib.begin(), lib.end());
     return v;
@@ -272,7 +278,13 @@ TEST(Architecture, EachCApiIsCalledOnlyFromItsWrapper) {
       "")
       << "call GDAL/OGR/OSR through tools/common/geo (docs/architecture.md rule 3)";
   auto sqlite = [](const std::string& l) { return calls_c_api(l, {"sqlite3_"}); };
-  EXPECT_EQ(joined(outside(matches("lib", sqlite), {"lib/tileformat/src/sqlite_db."})), "");
+  EXPECT_EQ(joined(outside(matches("lib", sqlite),
+                           {"lib/tileformat/src/sqlite_db.", "lib/net/src/disk_cache."})),
+            "");
+  // libcurl (lib/net's HTTP client) in its one wrapper.
+  auto curl = [](const std::string& l) { return calls_c_api(l, {"curl_"}); };
+  for (const char* dir : {"lib", "tools", "viewer"})
+    EXPECT_EQ(joined(outside(matches(dir, curl), {"lib/net/src/curl_multi."})), "") << dir;
   auto zstd = [](const std::string& l) { return calls_c_api(l, {"ZSTD_"}); };
   EXPECT_EQ(joined(outside(matches("lib", zstd), {"lib/tileformat/src/zstd_codec."})), "");
   auto png = [](const std::string& l) { return calls_c_api(l, {"png_"}); };

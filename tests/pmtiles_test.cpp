@@ -5,7 +5,9 @@
 // spec's values and the reader's conversion.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <fstream>
+#include <optional>
 #include <random>
 #include <sstream>
 
@@ -13,6 +15,7 @@
 #include "test_support.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/pmtiles.hpp"
+#include "tileformat/pmtiles_read.hpp"
 
 namespace {
 
@@ -132,4 +135,61 @@ TEST(Pmtiles, TilesOutOfOrderOrAnUnfinishedWriterLeaveNothing) {
   EXPECT_THROW(pm::PmtilesWriter(path.string(), tileformat::IfExists::kFail),
                tileformat::PackageError);
   EXPECT_EQ(read_file(path), "there");
+}
+
+// The reading half (pmtiles_read.hpp, what globe-view's PMTiles source uses)
+// finds every tile of an archive with leaf directories, following the
+// header, root and leaves as a client does; absent tiles are absent.
+TEST(PmtilesRead, FindsEveryTileThroughTheLeafDirectories) {
+  TempDir dir;
+  std::mt19937 rng(9);
+  std::vector<Tile> tiles;
+  for (uint32_t x = 0; x < 256; ++x)
+    for (uint32_t y = 0; y < 160; ++y)
+      tiles.push_back({8, x, y, rng() % 4 == 0 ? "sea" : "tile " + std::to_string(rng() % 9000)});
+  const std::string file = write_archive(dir / "leaves.pmtiles", tiles);
+  const auto bytes = [&](uint64_t at, uint64_t n) {
+    return std::vector<uint8_t>(file.begin() + long(at), file.begin() + long(at + n));
+  };
+  const pm::Header h = pm::decode_header(bytes(0, pm::kHeaderSize));
+  ASSERT_GT(h.leaf_length, 0u);
+  EXPECT_EQ(h.info.min_zoom, 0);
+  const std::vector<pm::Entry> root = pm::decode_directory(bytes(h.root_offset, h.root_length));
+  const auto find = [&](int z, uint32_t x, uint32_t y) -> std::optional<std::string> {
+    const uint64_t id = pm::tile_id(z, x, y);
+    std::vector<pm::Entry> dir = root;
+    for (int depth = 0; depth < 4; ++depth) {
+      const pm::Entry* e = pm::find_entry(dir, id);
+      if (!e) return std::nullopt;
+      if (e->run_length > 0) {
+        const auto b = bytes(h.data_offset + e->offset, e->length);
+        return std::string(b.begin(), b.end());
+      }
+      dir = pm::decode_directory(bytes(h.leaf_offset + e->offset, e->length));
+    }
+    return std::nullopt;
+  };
+  for (size_t i = 0; i < tiles.size(); i += 37)
+    ASSERT_EQ(find(8, tiles[i].x, tiles[i].y).value_or("<none>"), tiles[i].bytes) << i;
+  EXPECT_FALSE(find(8, 0, 200));  // row 200 was never written
+  EXPECT_FALSE(find(7, 0, 0));
+}
+
+TEST(PmtilesRead, MalformedBytesAreErrorsNotCrashes) {
+  std::vector<uint8_t> h(pm::kHeaderSize, 0);
+  EXPECT_THROW(pm::decode_header(std::span(h).first(100)), pm::PmtilesError);
+  EXPECT_THROW(pm::decode_header(h), pm::PmtilesError);  // no magic
+  std::memcpy(h.data(), "PMTiles\x02", 8);
+  EXPECT_THROW(pm::decode_header(h), pm::PmtilesError);  // version 2
+  // A directory that claims more entries than it has bytes, or ends mid-varint.
+  EXPECT_THROW(pm::decode_directory(std::vector<uint8_t>{0xff, 0x7f}), pm::PmtilesError);
+  EXPECT_THROW(pm::decode_directory(std::vector<uint8_t>{2, 1, 0x80}), pm::PmtilesError);
+  // A first offset "right after the previous" has no previous.
+  EXPECT_THROW(pm::decode_directory(std::vector<uint8_t>{1, 5, 1, 10, 0}), pm::PmtilesError);
+  const std::vector<pm::Entry> ok = pm::decode_directory(std::vector<uint8_t>{1, 5, 2, 10, 1});
+  ASSERT_EQ(ok.size(), 1u);
+  EXPECT_EQ(ok[0].tile_id, 5u);
+  EXPECT_EQ(pm::find_entry(ok, 6), &ok[0]);   // inside the run of 2
+  EXPECT_EQ(pm::find_entry(ok, 7), nullptr);  // past it
+  EXPECT_EQ(pm::find_entry(ok, 4), nullptr);  // before it
 }

@@ -1136,3 +1136,73 @@ TEST(Serve, TwoHundredConcurrentClientsAllAnsweredCorrectly) {
             << " ms, p99 " << latency_ms[latency_ms.size() * 99 / 100] << " ms\n";
   EXPECT_TRUE(server.alive());
 }
+
+// Every package's own tiles, as stored, for globe-view's remote sources:
+// /NAME/{z}/{x}/{y}.globe answers the blob sqlite3 reads from the file, 404
+// where there is none; the TileJSON's "globe" member has the template, each
+// zoom's tile range and the metadata as the file holds it.
+TEST(Serve, NativeTilesAndTheirTileJsonMemberAreTheFilesOwn) {
+  TempDir dir;
+  const std::string roads = (vector_packages() / "roads.mbtiles").string();
+  ServeProcess serve({roads}, dir.path());
+  ASSERT_GT(serve.port(), 0);
+  const RunResult rows = run("sqlite3 " + roads +
+                                 " 'select zoom_level, tile_column, tile_row, hex(tile_data) from "
+                                 "tiles where zoom_level in (0, 5, 8) order by 1, 2, 3 limit 40'",
+                             dir.path());
+  ASSERT_EQ(rows.exit_code, 0) << rows.err;
+  std::istringstream in(rows.out);
+  int checked = 0;
+  for (std::string line; std::getline(in, line);) {
+    int z = 0;
+    unsigned x = 0, tms_row = 0;
+    char hex[8];
+    ASSERT_EQ(std::sscanf(line.c_str(), "%d|%u|%u|%1s", &z, &x, &tms_row, hex), 4) << line;
+    const std::string want_hex = line.substr(line.rfind('|') + 1);
+    const unsigned y = (1u << z) - 1 - tms_row;
+    const HttpReply r =
+        http_get(serve.port(), "/roads/" + std::to_string(z) + "/" + std::to_string(x) + "/" +
+                                   std::to_string(y) + ".globe");
+    ASSERT_EQ(r.status, 200) << z << "/" << x << "/" << y;
+    EXPECT_EQ(r.header("content-type"), "application/vnd.globe.tile");
+    std::string got_hex;
+    for (unsigned char c : r.body) {
+      char b[3];
+      std::snprintf(b, sizeof b, "%02X", c);
+      got_hex += b;
+    }
+    EXPECT_EQ(got_hex, want_hex) << z << "/" << x << "/" << y;
+    ++checked;
+  }
+  EXPECT_GT(checked, 3);
+  EXPECT_EQ(http_get(serve.port(), "/roads/8/0/0.globe").status, 404);  // the Pacific: no tile
+  // The TileJSON's member.
+  const HttpReply tj = http_get(serve.port(), "/roads.json");
+  ASSERT_EQ(tj.status, 200);
+  const tileformat::JsonValue doc = tileformat::JsonValue::parse(tj.body);
+  const tileformat::JsonValue* globe = doc.find("globe");
+  ASSERT_TRUE(globe && globe->is_object()) << tj.body;
+  EXPECT_EQ(globe->find("tiles")->array()[0].string(),
+            "http://127.0.0.1:" + std::to_string(serve.port()) + "/roads/{z}/{x}/{y}.globe");
+  const RunResult fmt = run("sqlite3 " + roads +
+                                " \"select value from metadata where name = "
+                                "'globe:classes'\"",
+                            dir.path());
+  std::string classes = fmt.out;
+  while (!classes.empty() && classes.back() == '\n')
+    classes.pop_back();
+  EXPECT_EQ(globe->find("metadata")->find("globe:classes")->string(), classes);
+  const RunResult ranges = run("sqlite3 " + roads +
+                                   " 'select min(tile_column), max(tile_column) from tiles where "
+                                   "zoom_level = 8'",
+                               dir.path());
+  bool found = false;
+  for (const tileformat::JsonValue& z : globe->find("zooms")->array())
+    if (z.array()[0].number() == 8) {
+      found = true;
+      EXPECT_EQ(std::to_string(int(z.array()[1].number())) + "|" +
+                    std::to_string(int(z.array()[2].number())) + "\n",
+                ranges.out);
+    }
+  EXPECT_TRUE(found);
+}

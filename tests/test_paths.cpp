@@ -25,6 +25,9 @@ std::string gdal_plugin_dir() {
 std::string kill_after_commit() {
   return GLOBE_KILL_AFTER_COMMIT_PATH;
 }
+std::string fault_server() {
+  return GLOBE_FAULT_SERVER_PATH;
+}
 std::string source_dir() {
   return GLOBE_SOURCE_DIR;
 }

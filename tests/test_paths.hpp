@@ -17,6 +17,7 @@ std::string serve();              // globe-serve
 std::string lib_tests();          // the lib_tests executable
 std::string gdal_plugin_dir();    // gdal_GlobeTiles.so's folder
 std::string kill_after_commit();  // the LD_PRELOAD shim of the crash tests
+std::string fault_server();       // the misbehaving HTTP server (support/fault_server.cpp)
 std::string source_dir();         // the repository
 std::string binary_dir();         // this build tree
 std::string samples_dir();        // samples/data

@@ -386,7 +386,7 @@ class LineService : public PackageService {
   }
   HttpResponse answer(const Route& r, const HttpRequest&, const std::string& base) override {
     return answer_vector_route(
-        r, name_, pkg_.tiling, min_zoom, max_zoom, mutex_, *pkg_.reader, "a line package",
+        r, name_, pkg_.tiling, min_zoom, max_zoom, mutex_, pkg_.file(), "a line package",
         [&] {
           return web::line_style_json(pkg_, classes_in_, base + ".json",
                                       style_glyphs(encoder_.labels(), fontstack_, base, name_));
@@ -410,7 +410,7 @@ class LineService : public PackageService {
 class PointService : public PackageService {
  public:
   PointService(const std::string& path, const std::string& name, const std::string& fontstack)
-      : pkg_(open_point_package(path)), name_(name), fontstack_(fontstack), labels_(*pkg_.reader) {
+      : pkg_(open_point_package(path)), name_(name), fontstack_(fontstack), labels_(pkg_.file()) {
     const tileformat::Bounds& b = pkg_.meta.common.lonlat;
     west = b.min_x, south = b.min_y, east = b.max_x, north = b.max_y;
     min_zoom = pkg_.meta.common.min_zoom, max_zoom = pkg_.meta.common.max_zoom;
@@ -485,7 +485,7 @@ class AreaService : public PackageService {
     struct Enough {};
     int64_t read = 0;
     try {
-      tileformat::FeatureTableReader(*pkg_.reader)
+      tileformat::FeatureTableReader(pkg_.file())
           .for_each([&](int64_t, const tileformat::FeatureRecord& f) {
             if (++read > 10000) throw Enough{};
             std::map<std::string, std::string>& known =
@@ -526,7 +526,7 @@ class AreaService : public PackageService {
   }
   HttpResponse answer(const Route& r, const HttpRequest&, const std::string& base) override {
     return answer_vector_route(
-        r, name_, pkg_.meta.common.tiling, min_zoom, max_zoom, mutex_, *pkg_.reader,
+        r, name_, pkg_.meta.common.tiling, min_zoom, max_zoom, mutex_, pkg_.file(),
         "an area package",
         [&] {
           return web::area_style_json(pkg_, classes_in_, base + ".json",
@@ -595,10 +595,25 @@ HttpResponse text_response(int status, const std::string& text) {
   return r;
 }
 
+static std::unique_ptr<PackageService> open_kind_service(const std::string& path,
+                                                         const std::string& name,
+                                                         const ServiceOptions& options);
+
 std::unique_ptr<PackageService> open_service(const std::string& path, const std::string& name,
                                              const ServiceOptions& options) {
   if (path.size() > 8 && path.compare(path.size() - 8, 8, ".pmtiles") == 0)
     return std::make_unique<PmtilesService>(path, name);
+  std::unique_ptr<PackageService> service = open_kind_service(path, name, options);
+  try {
+    service->native = std::make_unique<NativeTiles>(path);
+  } catch (const tileformat::PackageError& e) {
+    throw InputError(e.what());
+  }
+  return service;
+}
+
+std::unique_ptr<PackageService> open_kind_service(const std::string& path, const std::string& name,
+                                                  const ServiceOptions& options) {
   const std::optional<tileformat::PackageKind> kind = package_kind(path);
   if (!kind) throw InputError(path + ": not a package of this project nor a .pmtiles file");
   switch (*kind) {

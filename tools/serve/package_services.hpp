@@ -11,6 +11,7 @@
 #include <string>
 
 #include "serve/http_server.hpp"
+#include "serve/native_tiles.hpp"
 #include "serve/url_route.hpp"
 
 namespace globe::serve {
@@ -32,6 +33,9 @@ class PackageService : public TileSetExtent {
   // request's query may choose among a kind's tile sets (terrain: ?encoding=
   // gives the raster-DEM PNGs').
   virtual HttpResponse tilejson(const std::string& base, const HttpRequest& request) = 0;
+  // The package's own tiles and metadata as stored, for globe-view's remote
+  // sources; null for a .pmtiles file. Set by open_service.
+  std::unique_ptr<NativeTiles> native;
   // kTile, kLayerJson, kStyleJson, kPmtiles; 404 for routes the kind lacks.
   virtual HttpResponse answer(const Route& route, const HttpRequest& request,
                               const std::string& base) = 0;

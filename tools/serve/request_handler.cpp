@@ -44,6 +44,25 @@ std::string host_of(const HttpRequest& req, const std::string& fallback) {
   return h;
 }
 
+// /NAME/{z}/{x}/{y}.globe: the blob as the package stores it (zstd inside:
+// not gzipped again); 404 where there is none.
+HttpResponse native_tile(NativeTiles* native, const Route& r) {
+  if (!native) return text_response(404, r.name + " has no native tiles (a .pmtiles file)");
+  std::optional<std::vector<uint8_t>> blob;
+  try {
+    blob = native->tile({r.z, r.x, r.y});
+  } catch (const std::exception& e) {
+    return text_response(503, r.name + ": " + e.what());
+  }
+  if (!blob)
+    return text_response(404, "no tile " + std::to_string(r.z) + "/" + std::to_string(r.x) + "/" +
+                                  std::to_string(r.y));
+  HttpResponse out;
+  out.content_type = "application/vnd.globe.tile";
+  out.body.assign(blob->begin(), blob->end());
+  return out;
+}
+
 }  // namespace
 
 RequestHandler::RequestHandler(PackageRegistry& registry, HandlerOptions options)
@@ -123,7 +142,14 @@ HttpResponse RequestHandler::route(const HttpRequest& req) {
   const PackageRegistry::Found found = registry_.find(r.name);
   if (!found.service) return text_response(found.status, found.error);
   const std::string base = "http://" + host + "/" + r.name;
-  if (r.kind == Route::Kind::kTileJson) return found.service->tilejson(base, req);
+  NativeTiles* native = found.service->native.get();
+  if (r.kind == Route::Kind::kTileJson) {
+    HttpResponse out = found.service->tilejson(base, req);
+    if (native && out.status == 200)
+      out.body = with_member(out.body, native->tilejson_member(base));
+    return out;
+  }
+  if (r.kind == Route::Kind::kTile && r.extension == "globe") return native_tile(native, r);
   return found.service->answer(r, req, base);
 }
 

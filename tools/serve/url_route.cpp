@@ -142,7 +142,8 @@ Route parse_route(std::string_view path) {
   if (dot == std::string_view::npos) return bad("a tile path ends in Y.EXT");
   r.extension = std::string(parts[3].substr(dot + 1));
   if (r.extension != "terrain" && r.extension != "png" && r.extension != "jpg" &&
-      r.extension != "webp" && r.extension != "pbf" && r.extension != "mvt")
+      r.extension != "webp" && r.extension != "pbf" && r.extension != "mvt" &&
+      r.extension != "globe")
     return bad("tile extensions are terrain, png, jpg, webp, pbf and mvt");
   uint64_t z, x, y;
   if (!number(parts[1], uint64_t{1} << 31, z) || !number(parts[2], uint64_t{1} << 31, x) ||

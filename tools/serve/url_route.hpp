@@ -29,7 +29,7 @@ struct Route {
   std::string file;          // kViewer, kLibrary
   std::string fontstack;     // kGlyphs: printable ASCII and spaces, no '/'
   uint32_t glyph_start = 0;  // kGlyphs: START, a multiple of 256 below 65536 (END = START + 255)
-  std::string extension;     // kTile: "terrain", "png", "jpg", "webp", "pbf", "mvt"
+  std::string extension;     // kTile: "terrain", "png", "jpg", "webp", "pbf", "mvt", "globe"
   int z = 0;
   uint32_t x = 0, y = 0;
   std::string reason;  // why kBadRequest / kNotFound

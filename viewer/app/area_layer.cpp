@@ -34,7 +34,7 @@ std::vector<AreaStyle> area_styles(const AreaPackage& p, double opacity) {
 AreaLayer::AreaLayer(const std::string& path, AreaPackage package, double opacity,
                      uint64_t budget_bytes, int width, int height, CrsCross cross)
     : path_(path),
-      features_(open_package(path)),
+      features_(open_source(path)),
       cache_(path, std::move(package), budget_bytes),
       renderer_(cache_.arena_words(), width, height, cross),
       width_(width),
@@ -91,7 +91,7 @@ std::optional<uint64_t> AreaLayer::feature_at(int x, int y) const {
 
 std::pair<std::string, std::string> AreaLayer::feature_record(uint64_t id) const {
   try {
-    if (const auto f = tileformat::FeatureTableReader(*features_).get(int64_t(id)))
+    if (const auto f = tileformat::FeatureTableReader(package_file(*features_)).get(int64_t(id)))
       return {f->layer, f->properties};
   } catch (const std::exception& e) {
     std::fprintf(stderr, "globe-view: %s: feature %llu: %s\n", path_.c_str(),

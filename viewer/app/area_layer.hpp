@@ -54,7 +54,7 @@ class AreaLayer final : public SceneLayer {
   void queue_legend();
 
   std::string path_;
-  std::unique_ptr<tileformat::PackageReader> features_;  // its own connection, for picking
+  std::unique_ptr<tileformat::TileReader> features_;  // its own connection, for picking
   AreaCache cache_;
   AreaRenderer renderer_;
   std::vector<AreaStyle> styles_;

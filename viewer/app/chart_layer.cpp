@@ -1,5 +1,6 @@
 // Charts of a view (see chart_layer.hpp).
 #include "app/chart_layer.hpp"
+#include "runtime/package_open.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -88,7 +89,7 @@ ChartLayer::ChartLayer(PointPackage package, const ChartSettings& settings, uint
     }
     heat_field_ = static_cast<int>(f - m.fields.begin());
   }
-  labels_ = std::make_unique<tileformat::PackageReader>(path);
+  if (!is_url(path)) labels_ = std::make_unique<tileformat::PackageReader>(path);
 }
 
 ChartLayer::~ChartLayer() = default;
@@ -410,6 +411,7 @@ std::string ChartLayer::describe(int x, int y) {
   const tileformat::Place& pl = t->places[ref.index];
   std::string label = "place " + std::to_string(pl.id);
   try {
+    if (!labels_) return label;  // a remote source: no features table
     tileformat::FeatureTableReader features(*labels_);
     if (auto f = features.get(static_cast<int64_t>(pl.id)); f && !m.label_field.empty()) {
       const tileformat::JsonValue props = tileformat::JsonValue::parse(f->properties);

@@ -1,6 +1,8 @@
 // Headless session (see headless_run.hpp).
 #include "app/headless_run.hpp"
 
+#include "data/network.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -196,6 +198,18 @@ int run_headless(const ViewerSettings& settings) {
                 dr.sky_low);
     for (size_t l = 0; l < scene.layers().size(); ++l)
       std::printf("%s", scene.layers()[l]->stats_json(median(layer_ms[l])).c_str());
+    if (Network* net = Network::current())
+      if (const auto n = net->stats())
+        std::printf(
+            ", \"network\": {\"requests\": %llu, \"bytes\": %llu, \"cache_hits\": %llu, "
+            "\"revalidated\": %llu, \"retries\": %llu, \"no_content\": %llu, \"broken\": %llu, "
+            "\"failed\": %llu}",
+            static_cast<unsigned long long>(n->requests), static_cast<unsigned long long>(n->bytes),
+            static_cast<unsigned long long>(n->cache_hits),
+            static_cast<unsigned long long>(n->revalidated),
+            static_cast<unsigned long long>(n->retries),
+            static_cast<unsigned long long>(n->no_content),
+            static_cast<unsigned long long>(n->broken), static_cast<unsigned long long>(n->failed));
     std::printf("}\n");
   }
   if (most_ground == 0 && scene.cache().stats().broken > 0) {

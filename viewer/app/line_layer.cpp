@@ -1,5 +1,6 @@
 // The lines of one view (see line_layer.hpp).
 #include "app/line_layer.hpp"
+#include "runtime/package_open.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -88,7 +89,7 @@ LineLayer::LineLayer(const std::string& path, LinePackage package,
       style_path_(std::move(style_path)),
       package_styles_(package.classes),
       bundled_(!package.meta.bundle_json.empty()),
-      features_(std::make_unique<tileformat::PackageReader>(path)),
+      features_(open_source(path)),
       mode_(mode),
       cache_(path, std::move(package), budget_bytes),
       renderer_(cache_.arena_words(), width, height, cross),
@@ -276,7 +277,8 @@ std::optional<uint64_t> LineLayer::feature_at(int x, int y) {
 const LineLayer::BundleIndex& LineLayer::bundle_index() {
   if (bundles_) return *bundles_;
   bundles_ = std::make_unique<BundleIndex>();
-  tileformat::FeatureTableReader table(*features_);
+  if (!features_->package()) return *bundles_;  // a remote source: no features table
+  tileformat::FeatureTableReader table(*features_->package());
   table.for_each([&](int64_t id, const tileformat::FeatureRecord& f) {
     if (f.layer != "connections") return;
     const tileformat::JsonValue props = tileformat::JsonValue::parse(f.properties);
@@ -295,7 +297,7 @@ std::string LineLayer::describe(uint64_t feature, std::vector<uint64_t>& lit) {
   std::string text = "feature " + std::to_string(feature);
   try {
     const std::optional<tileformat::FeatureRecord> f =
-        tileformat::FeatureTableReader(*features_).get(int64_t(feature));
+        tileformat::FeatureTableReader(package_file(*features_)).get(int64_t(feature));
     if (!f) return text;
     const tileformat::JsonValue props = tileformat::JsonValue::parse(f->properties);
     if (bundled_ && f->layer == "bundles") {
@@ -328,7 +330,8 @@ std::string LineLayer::pick_json(int x, int y) {
   if (!feature) return "null";
   std::string layer, attributes = "{}";
   try {
-    if (const auto f = tileformat::FeatureTableReader(*features_).get(int64_t(*feature))) {
+    if (const auto f =
+            tileformat::FeatureTableReader(package_file(*features_)).get(int64_t(*feature))) {
       layer = f->layer;
       if (!f->properties.empty()) attributes = f->properties;
     }

@@ -114,8 +114,8 @@ class LineLayer final : public SceneLayer {
   std::optional<std::string> style_path_;
   std::filesystem::file_time_type style_time_{};
   std::vector<NamedLineStyle> package_styles_;
-  bool bundled_ = false;                                 // a §7.5 package
-  std::unique_ptr<tileformat::PackageReader> features_;  // tiles and features table, for picking
+  bool bundled_ = false;                              // a §7.5 package
+  std::unique_ptr<tileformat::TileReader> features_;  // tiles and features table, for picking
   std::unique_ptr<BundleIndex> bundles_;
   std::vector<uint64_t> highlighted_;
   LineMode mode_;

@@ -15,7 +15,7 @@ namespace globe::viewer {
 PackageSet sort_packages(const std::vector<std::string>& paths) {
   PackageSet set;
   for (const std::string& path : paths) {
-    const std::string format = package_format(*open_package(path), path);
+    const std::string format = package_format(*open_source(path), path);
     const auto kind = tileformat::package_kind_of_format(format);
     if (kind == tileformat::PackageKind::kTerrain) {
       if (!set.terrain.empty())

@@ -195,6 +195,9 @@ void TerrainScene::make_renderer(const std::string& path,
       std::make_unique<TerrainRenderer>(cache_->package().block_size, cache_->package().lattice,
                                         static_cast<int>(cache_->slot_count()), settings_.width,
                                         settings_.height, analysis.has_value());
+  // Blocks a remote source's tiles were made into are not nested: skirts
+  // (block_synthesizer.hpp), a twentieth of a patch's leg deep.
+  if (cache_->package().reader->meta("globe:synthesized")) renderer_->set_skirts(0.05f);
   auto holds = [&](tileformat::AnalysisLayer l) {
     return std::find(analysis_layers_.begin(), analysis_layers_.end(), l) != analysis_layers_.end();
   };

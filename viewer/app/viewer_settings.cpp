@@ -427,6 +427,51 @@ void declare_heatmap_options(CliArgs& cli, ViewerSettings& s) {
              });
 }
 
+// Remote sources: --cache-dir … --max-connections (docs/viewer.md "Remote sources").
+void declare_network_options(CliArgs& cli, ViewerSettings& s) {
+  cli.option("--cache-dir", "DIR",
+             "where tiles read from URLs are kept between runs (one SQLite file; default "
+             "$XDG_CACHE_HOME/globe-view or ~/.cache/globe-view; 'none': keep nothing)",
+             [&](const std::string& v) {
+               if (v == "none")
+                 s.network.no_cache = true;
+               else
+                 s.network.cache_dir = v;
+             });
+  cli.option("--http-cache-mb", "MB",
+             "size of that cache; the least recently used tiles go first (default 1024)",
+             [&](const std::string& v) {
+               s.network.cache_mb = uint64_t(CliArgs::to_int("--http-cache-mb", v, 1, 1 << 22));
+             });
+  cli.flag("--offline", "read URLs from the cache only: no request leaves the machine",
+           [&] { s.network.offline = true; });
+  cli.option("--dem-encoding", "terrarium|terrain-rgb",
+             "read an XYZ template or .pmtiles URL of PNG/WebP tiles as elevation in this "
+             "encoding (Terrarium: h = R*256 + G + B/256 - 32768; Mapbox Terrain-RGB: "
+             "h = -10000 + (R*65536 + G*256 + B) * 0.1); without it such URLs are imagery",
+             [&](const std::string& v) {
+               if (v != "terrarium" && v != "terrain-rgb")
+                 throw UsageError("--dem-encoding: '" + v + "' is not terrarium or terrain-rgb");
+               s.network.remote.dem_encoding = v;
+             });
+  cli.option("--source-zooms", "MIN-MAX",
+             "the zooms an XYZ template URL has tiles at (default 0-19 for imagery, 0-15 for "
+             "elevation)",
+             [&](const std::string& v) {
+               const size_t dash = v.find('-');
+               if (dash == std::string::npos)
+                 throw UsageError("--source-zooms: MIN-MAX, e.g. 0-14");
+               const int a = CliArgs::to_int("--source-zooms", v.substr(0, dash), 0, 30);
+               const int b = CliArgs::to_int("--source-zooms", v.substr(dash + 1), 0, 30);
+               if (b < a) throw UsageError("--source-zooms: MAX below MIN");
+               s.network.remote.source_zooms = std::pair{a, b};
+             });
+  cli.option("--max-connections", "N", "connections per server at most (default 6)",
+             [&](const std::string& v) {
+               s.network.max_connections_per_host = CliArgs::to_int("--max-connections", v, 1, 64);
+             });
+}
+
 // What a headless run writes or prints, and the platform.
 void declare_output_options(CliArgs& cli, ViewerSettings& s) {
   cli.flag("--stats", "print frame statistics as JSON on stdout (headless)",
@@ -484,7 +529,11 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
               "--stats or --export-mesh (OSMesa or EGL; no display needed). Packages are told\n"
               "apart by their format; layers may be tiled geodetic over a webmercator terrain\n"
               "or the other way round. Without a terrain, layers lie on zero heights (the\n"
-              "ellipsoid on the globe, a flat base on the map frame).");
+              "ellipsoid on the globe, a flat base on the map frame).\n"
+              "A package may be a URL: http(s)://HOST/NAME.json, the TileJSON globe-serve\n"
+              "publishes for it; an XYZ template …/{z}/{x}/{y}.png ({-y}: TMS rows) or a\n"
+              "…/FILE.pmtiles of imagery (elevation with --dem-encoding); a quantized-mesh\n"
+              "…/layer.json. Tiles are streamed and kept in a disk cache (--cache-dir).");
   cli.epilogue(
       "window: drag to orbit, right-drag to pan, wheel or W/S to zoom, arrows to pan,\n"
       "  R home view, P screenshot (globe-view-N.png), Esc quit;\n"
@@ -505,6 +554,7 @@ std::optional<ViewerSettings> parse_viewer_settings(const std::vector<std::strin
   declare_map_options(cli, s);
   declare_layer_options(cli, s);
   declare_heatmap_options(cli, s);
+  declare_network_options(cli, s);
   declare_output_options(cli, s);
   auto positional = cli.parse_command(args, 1, 11, "package");
   if (!positional) return std::nullopt;

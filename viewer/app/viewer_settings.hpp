@@ -9,6 +9,7 @@
 #include "app/chart_layer.hpp"
 #include "app/label_settings.hpp"
 #include "camera/camera.hpp"
+#include "data/network.hpp"
 #include "render/line_renderer.hpp"
 #include "render/terrain_renderer.hpp"
 
@@ -54,6 +55,7 @@ struct ViewerSettings {
   LabelSettings labels;               // --labels, --label-size, --label-font
   std::optional<std::string> labels_json;  // --labels-json FILE
   bool lens_mode_given = false;            // --lens named its mode
+  NetworkSettings network;  // --cache-dir, --http-cache-mb, --offline, --max-connections
 
   bool headless() const {
     return snapshot || export_mesh || stats || !picks.empty() || labels_json ||

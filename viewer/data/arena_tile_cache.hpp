@@ -49,7 +49,7 @@ struct ArenaCacheStats {
 // instead of a broken one.
 struct ArenaCacheSource {
   std::string path;
-  tileformat::PackageReader* reader = nullptr;  // outlives the cache
+  tileformat::TileReader* reader = nullptr;  // outlives the cache
   tileformat::Tiling tiling;
   int min_zoom = 0, max_zoom = 0;
   std::string tile_name;   // "line tile"
@@ -109,6 +109,10 @@ class ArenaTileCache {
       if (it == entries_.end()) continue;
       it->second.loading = false;
       stats_.bytes_read += d.bytes;
+      if (d.absent) {  // as a tile has_tile() had known to be missing
+        it->second.record = static_cast<int>(new_record(id));
+        continue;
+      }
       if (!d.ok) {
         std::fprintf(stderr, "globe-view: warning: %s: %s %s: %s; %s\n", source_.path.c_str(),
                      source_.tile_name.c_str(), id.str().c_str(), d.error.c_str(),

@@ -239,6 +239,11 @@ std::vector<LoadedBlock> BlockCache::take_loaded() {
     const int slot = d.job.tag;
     Entry& e = entries_[id];
     stats_.bytes_read += d.bytes;
+    if (d.absent) {
+      e.state = BlockState::kAbsent;
+      free_slots_.push_back(slot);
+      continue;
+    }
     if (!d.ok) {
       std::fprintf(stderr,
                    "globe-view: warning: %s: tile %s: %s; nothing to draw in its stead (no "

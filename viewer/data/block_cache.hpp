@@ -64,7 +64,7 @@ struct LoadedBlock {
 // used by the loader thread only.
 struct AnalysisSource {
   std::string path;
-  std::unique_ptr<tileformat::PackageReader> reader;
+  std::unique_ptr<tileformat::TileReader> reader;
 };
 
 // What the loader thread makes of one blob.

@@ -122,6 +122,10 @@ std::vector<std::pair<uint32_t, ImageMips>> ImageCache::take_loaded() {
     if (it == entries_.end()) continue;
     it->second.loading = false;
     stats_.bytes_read += d.bytes;
+    if (d.absent) {
+      it->second.value = kImageAbsent;
+      continue;
+    }
     if (!d.ok) {
       std::fprintf(stderr,
                    "globe-view: warning: %s: image tile %s: %s; the image of its finer or coarser "

@@ -1,7 +1,9 @@
 // The view's labels (see label_set.hpp).
 #include "data/label_set.hpp"
+#include "runtime/package_open.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <numeric>
 
 #include "runtime/errors.hpp"
@@ -37,6 +39,11 @@ std::string attribute_text(tileformat::FeatureTableReader& features, int64_t id,
 LabelSet::LabelSet(const std::vector<std::string>& packages, const std::string& field,
                    const std::string& font) {
   for (const std::string& path : packages) {
+    if (is_url(path)) {  // the labels table is not served (docs/viewer.md "Remote sources")
+      std::fprintf(stderr, "globe-view: note: %s: labels of remote sources are not read\n",
+                   path.c_str());
+      continue;
+    }
     try {
       tileformat::PackageReader reader(path);
       if (!tileformat::has_labels(reader)) continue;

@@ -83,6 +83,10 @@ size_t PointCache::take_loaded() {
     stats_.bytes_read += d.bytes;
     auto it = entries_.find(d.job.id);
     if (it == entries_.end()) continue;
+    if (d.absent) {
+      it->second.state = State::kAbsent;
+      continue;
+    }
     if (!d.ok) {
       ++stats_.broken;
       std::fprintf(stderr,

@@ -3,8 +3,10 @@
 // serialized, so the caller may call has_tile() meanwhile, and both see the one
 // file opened at start even if the path is replaced), decodes them with the
 // caller's function, and hands the results back to the render thread, which
-// never waits unless it asks to. Used by the terrain block cache and the line
-// tile cache.
+// never waits unless it asks to. Used by every tile cache of the viewer.
+// A remote reader (viewer/data/remote_reader.hpp) is told of each batch as it
+// is queued (prefetch), so its requests run at once while this thread decodes
+// in queue order; a tile it finds missing (404) comes back `absent`.
 #pragma once
 
 #include <algorithm>
@@ -39,12 +41,13 @@ class TileLoader {
     Job job;
     Decoded value{};
     bool ok = true;
-    std::string error;  // when !ok
+    bool absent = false;  // !ok because the source has no tile there (a remote source's 404)
+    std::string error;    // when !ok
     uint64_t bytes = 0;
   };
 
   // `reader` must outlive the loader.
-  TileLoader(tileformat::PackageReader& reader, Decode decode)
+  TileLoader(tileformat::TileReader& reader, Decode decode)
       : reader_(reader), decode_(std::move(decode)), thread_([this] { main(); }) {}
   ~TileLoader() {
     {
@@ -59,6 +62,11 @@ class TileLoader {
 
   void submit(const std::vector<Job>& jobs) {
     if (jobs.empty()) return;
+    std::vector<tileformat::TileId> ids;
+    ids.reserve(jobs.size());
+    for (const Job& j : jobs)
+      ids.push_back(j.id);
+    reader_.prefetch(ids);
     {
       std::lock_guard lock(mutex_);
       jobs_.insert(jobs_.end(), jobs.begin(), jobs.end());
@@ -107,7 +115,11 @@ class TileLoader {
       }
       try {
         const auto blob = reader_.tile(d.job.id);
-        if (!blob) throw std::runtime_error("tile vanished from the package");
+        if (!blob) {
+          d.absent = reader_.package() == nullptr;  // a file's tile cannot vanish
+          throw std::runtime_error(d.absent ? "the source has no such tile"
+                                            : "tile vanished from the package");
+        }
         d.bytes = blob->size();
         d.value = decode_(d.job.id, *blob);
       } catch (const std::exception& e) {
@@ -123,7 +135,7 @@ class TileLoader {
     }
   }
 
-  tileformat::PackageReader& reader_;
+  tileformat::TileReader& reader_;
   Decode decode_;
   std::mutex mutex_;
   std::condition_variable wake_loader_, wake_main_;

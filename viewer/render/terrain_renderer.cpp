@@ -14,6 +14,9 @@ namespace globe::viewer {
 
 namespace {
 
+// Added to a lattice vertex's i to mark it a skirt vertex (set_skirts).
+constexpr int kSkirtFlag = 1 << 16;
+
 struct Instance {  // matches the vertex shader's per-instance attributes
   int32_t origin_x, origin_y, apex_x, apex_y;
   int32_t ux, uy, vx, vy;
@@ -28,8 +31,12 @@ TerrainRenderer::TerrainRenderer(int block_size, int lattice, int slots, int wid
     : size_(block_size), lattice_(lattice), slots_(slots) {
   edge_scales_.fill(0.05f);
   relief_stretches_.fill(1.0f);
-  const std::string vertex = std::string(shaders::kTerrainVertexHead) + shaders::kFrameWorldGlsl +
-                             shaders::kTerrainVertexMain;
+  // The head's first line is #version; the skirt flag and lattice follow it.
+  std::string head = shaders::kTerrainVertexHead;
+  const size_t eol = head.find('\n') + 1;
+  head.insert(eol, "#define SKIRT_FLAG " + std::to_string(kSkirtFlag) + "\n#define LATTICE " +
+                       std::to_string(lattice) + "\n");
+  const std::string vertex = head + shaders::kFrameWorldGlsl + shaders::kTerrainVertexMain;
   draw_program_ = GlProgram("terrain", vertex, with_shading_defines(shaders::kTerrainFragment));
   capture_program_ = GlProgram("terrain capture", vertex, "", {"v_world", "v_key", "v_height"});
 
@@ -53,6 +60,28 @@ TerrainRenderer::TerrainRenderer(int block_size, int lattice, int slots, int wid
         indices.insert(indices.end(), {at(i + 1, j + 1), at(i, j + 1), at(i + 1, j)});
     }
   index_count_ = static_cast<GLsizei>(indices.size());
+  // Skirts (set_skirts): each perimeter vertex again, flagged (i + kSkirtFlag)
+  // for the vertex shader to lower, and a wall of two triangles per
+  // perimeter edge, after the lattice's indices (drawn only when enabled).
+  std::vector<std::pair<int, int>> rim;  // the perimeter in order: j = 0, the hypotenuse, i = 0
+  for (int i = 0; i <= L; ++i)
+    rim.push_back({i, 0});
+  for (int j = 1; j <= L; ++j)
+    rim.push_back({L - j, j});
+  for (int j = L - 1; j >= 1; --j)
+    rim.push_back({0, j});
+  const auto skirt_base = static_cast<uint32_t>(verts.size() / 2);
+  for (const auto& [i, j] : rim) {
+    verts.push_back(i + kSkirtFlag);
+    verts.push_back(j);
+  }
+  for (size_t k = 0; k < rim.size(); ++k) {
+    const size_t n = (k + 1) % rim.size();
+    const uint32_t a = at(rim[k].first, rim[k].second), b = at(rim[n].first, rim[n].second);
+    const uint32_t a2 = skirt_base + uint32_t(k), b2 = skirt_base + uint32_t(n);
+    indices.insert(indices.end(), {a, b, b2, a, b2, a2});
+  }
+  skirt_index_count_ = static_cast<GLsizei>(indices.size()) - index_count_;
 
   gl::CreateBuffers(1, &lattice_vbo_);
   gl::NamedBufferStorage(lattice_vbo_, verts.size() * sizeof(int32_t), verts.data(), 0);
@@ -291,9 +320,16 @@ RenderTimes TerrainRenderer::draw(const std::vector<Patch>& patches, const View&
   gl::Uniform3f(p.uniform("u_iso_rgb"), s.isoline_rgb[0], s.isoline_rgb[1], s.isoline_rgb[2]);
   gl::BindVertexArray(vao_);
   gl::BeginQuery(GL_TIME_ELAPSED, timer_);
-  if (!patches.empty())
+  gl::Uniform1f(p.uniform("u_skirt"), skirt_fraction_);
+  if (!patches.empty()) {
     gl::DrawElementsInstanced(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr,
                               static_cast<GLsizei>(patches.size()));
+    if (skirt_fraction_ > 0)
+      gl::DrawElementsInstanced(
+          GL_TRIANGLES, skirt_index_count_, GL_UNSIGNED_INT,
+          reinterpret_cast<const void*>(static_cast<uintptr_t>(index_count_) * sizeof(uint32_t)),
+          static_cast<GLsizei>(patches.size()));
+  }
   gl::EndQuery(GL_TIME_ELAPSED);
   GLuint64 ns = 0;
   gl::GetQueryObjectui64v(timer_, GL_QUERY_RESULT, &ns);

@@ -132,6 +132,13 @@ class TerrainRenderer {
   std::vector<CapturedVertex> capture_triangles(const std::vector<Patch>& patches, const View& view,
                                                 const WorldFrame& frame, double exaggeration);
   size_t triangles_per_patch() const { return static_cast<size_t>(lattice_) * lattice_; }
+  // Skirts: a wall hanging from every patch's rim, `fraction` of the patch's
+  // leg deep (0: none, the default). For terrain whose blocks are not nested
+  // (made from a remote source's tiles, which each zoom resamples on its own:
+  // data/block_synthesizer.hpp), so that a patch beside one of the next zoom
+  // shows no crack between them — CesiumJS's answer to the same problem.
+  // Drawn only, never captured (--export-mesh gives the surface).
+  void set_skirts(float fraction) { skirt_fraction_ = fraction; }
   int width() const { return g_.width; }
   int height() const { return g_.height; }
 
@@ -140,7 +147,8 @@ class TerrainRenderer {
                         const WorldFrame& frame);
 
   int size_, lattice_, slots_;
-  GLsizei index_count_ = 0;
+  GLsizei index_count_ = 0, skirt_index_count_ = 0;
+  float skirt_fraction_ = 0;
   GlProgram draw_program_, capture_program_;
   GLuint vao_ = 0, lattice_vbo_ = 0, index_buffer_ = 0, instance_buffer_ = 0;
   GLuint heights_ = 0, mask_ = 0, ramp_ = 0;

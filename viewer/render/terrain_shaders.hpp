@@ -130,6 +130,7 @@ layout(location = 3) in ivec2 i_layer_shift;  // texture layer, log2(key units p
 layout(location = 4) in ivec4 i_neighbours;   // layers of the same zoom's blocks W, E, N, S (-1: none)
 uniform mat4 u_view_proj;
 uniform vec2 u_ground;  // ground units per key unit (x, y), flat frame at the view latitude
+uniform float u_skirt;  // skirt depth as a fraction of the patch's leg (TerrainRenderer::set_skirts)
 uniform sampler2DArray u_heights;
 out vec3 v_world;
 out vec2 v_ground;
@@ -145,8 +146,15 @@ out float v_height;       // for mesh capture: metres
 
 inline constexpr const char* kTerrainVertexMain = R"(
 void main() {
-  ivec2 local = i_origin_apex.zw + a_lattice.x * i_uv.xy + a_lattice.y * i_uv.zw;
+  // A skirt vertex: a rim vertex again, flagged, lowered below the rim.
+  bool skirt = a_lattice.x >= SKIRT_FLAG;
+  ivec2 lattice = ivec2(skirt ? a_lattice.x - SKIRT_FLAG : a_lattice.x, a_lattice.y);
+  ivec2 local = i_origin_apex.zw + lattice.x * i_uv.xy + lattice.y * i_uv.zw;
   float h = texelFetch(u_heights, ivec3(local, i_layer_shift.x), 0).r;
+  if (skirt) {
+    float leg_samples = length(vec2(i_uv.xy)) * float(LATTICE);
+    h -= u_skirt * leg_samples * u_scale.x * float(1 << i_layer_shift.y);
+  }
   ivec2 key = i_origin_apex.xy + (local << i_layer_shift.y);
   vec2 spacing = u_scale.xy;
   if (u_globe == 0) {

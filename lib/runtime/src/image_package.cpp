@@ -23,7 +23,7 @@ ImagePackage open_image_package(const std::string& path) {
   p.tile_size = 256;
   p.colour = 3;
   bool found = false;
-  p.reader->for_each_tile([&](tileformat::TileId, std::span<const uint8_t> blob) {
+  p.file().for_each_tile([&](tileformat::TileId, std::span<const uint8_t> blob) {
     if (found) return;
     try {
       const auto h = tileformat::inspect_image_tile(blob);

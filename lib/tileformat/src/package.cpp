@@ -307,12 +307,6 @@ PackageReader::PackageReader(const std::string& path) {
   }
 }
 
-std::optional<std::string> PackageReader::meta(const std::string& key) const {
-  auto it = metadata_.find(key);
-  if (it == metadata_.end()) return std::nullopt;
-  return it->second;
-}
-
 std::optional<std::vector<uint8_t>> PackageReader::tile(TileId id) {
   if (id.z < 0 || id.z > kMaxZoom || id.x >= 2 * TileId::tiles_per_axis(id.z) ||
       id.y >= TileId::tiles_per_axis(id.z))

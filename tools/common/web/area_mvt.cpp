@@ -45,10 +45,10 @@ std::string area_label_layer(const AreaPackage& package) {
 
 AreaMvtEncoder::AreaMvtEncoder(AreaPackage& package)
     : package_(package),
-      labels_(*package.reader),
+      labels_(package.file()),
       label_layer_(area_label_layer(package)),
       features_(
-          *package.reader, "areas", {"class", "value"},
+          package.file(), "areas", {"class", "value"},
           [&package](const tileformat::JsonValue& props, MvtTags& tags) {
             // A choropleth's value, as its classes were made from.
             if (!package.meta.choropleth) return;

@@ -83,8 +83,8 @@ std::string line_style_json(const LinePackage& pkg,
 
 LineMvtEncoder::LineMvtEncoder(LinePackage& package)
     : package_(package),
-      labels_(*package.reader),
-      features_(*package.reader, "lines", {"class"}, {}, &labels_) {}
+      labels_(package.file()),
+      features_(package.file(), "lines", {"class"}, {}, &labels_) {}
 
 LineMvtEncoder::~LineMvtEncoder() = default;
 

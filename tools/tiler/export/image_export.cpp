@@ -22,7 +22,7 @@ ExportSummary export_images(const ImageExportSettings& s, Progress& progress) {
                      " tiling; build it with --tiling webmercator");
   namespace pm = tileformat::pmtiles;
   const std::vector<tileformat::TileId> items =
-      tiles_in_output_order(*pkg.reader, pkg.min_zoom, pkg.max_zoom);
+      tiles_in_output_order(pkg.file(), pkg.min_zoom, pkg.max_zoom);
 
   ExportInfo info;
   switch (pkg.format) {

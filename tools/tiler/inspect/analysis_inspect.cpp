@@ -69,10 +69,10 @@ int analysis_info(const std::string& path, bool json) {
                               .number("radius_m", p.meta.skyview_radius_m)
                               .objects("radius_by_zoom", by_zoom));
     }
-    print_kind_info_json(*p.reader, path, tileformat::PackageKind::kAnalysis, a);
+    print_kind_info_json(p.file(), path, tileformat::PackageKind::kAnalysis, a);
     return kExitOk;
   }
-  print_package_info(*p.reader, path);
+  print_package_info(p.file(), path);
   std::printf("analysis: %s; from terrain %s; %d x %d samples per block\n",
               layer_list(p.meta.layers).c_str(), p.meta.terrain.c_str(), p.block_size,
               p.block_size);
@@ -83,10 +83,10 @@ int analysis_info(const std::string& path, bool json) {
 int validate_analysis(const std::string& path) {
   AnalysisPackage p = open_analysis_package(path);
   ValidationReport r;
-  if (p.reader->application_id() != tileformat::kApplicationId)
+  if (p.file().application_id() != tileformat::kApplicationId)
     r.warning("PRAGMA application_id is not 0x4d504258 (tileformat §3.1)");
   uint64_t tiles = 0;
-  p.reader->for_each_tile([&](tileformat::TileId id, std::span<const uint8_t> blob) {
+  p.file().for_each_tile([&](tileformat::TileId id, std::span<const uint8_t> blob) {
     ++tiles;
     const std::string where = "tile " + id.str();
     if (!p.tiling.contains(id) || id.z < p.min_zoom || id.z > p.max_zoom) {
@@ -122,7 +122,7 @@ int extract_analysis(const ExtractRequest& rq) {
     throw UsageError("--layer " + rq.layer + ": " + rq.package + " holds " +
                      layer_list(p.meta.layers));
   const auto& info = tileformat::analysis_layer_info(*layer);
-  const ExtractTiles t = tiles_to_extract(*p.reader, p.tiling, rq, p.min_zoom, p.max_zoom);
+  const ExtractTiles t = tiles_to_extract(p.file(), p.tiling, rq, p.min_zoom, p.max_zoom);
   const SampleGrid grid = write_block_samples(
       rq, p.tiling, t, p.block_size, GDT_Float32, [&](TileId id, std::vector<double>& samples) {
         tileformat::AnalysisBlock b;

@@ -34,7 +34,7 @@ int validate_image(const std::string& path) {
   ImagePackage p = open_image_package(path);
   ValidationReport r;
   const bool ours = p.reader->meta("globe:scheme").has_value();
-  if (ours && p.reader->application_id() != tileformat::kApplicationId)
+  if (ours && p.file().application_id() != tileformat::kApplicationId)
     r.warning("PRAGMA application_id is not 0x4d504258 (tileformat §3.1)");
   for (const char* key :
        {"name", "bounds", "center", "minzoom", "maxzoom", "type", "version", "description"})
@@ -47,7 +47,7 @@ int validate_image(const std::string& path) {
         r.warning(std::string("metadata key '") + key + "' is missing (tileformat §3.2)");
 
   std::vector<TileId> ids;
-  p.reader->for_each_tile([&](TileId id, std::span<const uint8_t>) { ids.push_back(id); });
+  p.file().for_each_tile([&](TileId id, std::span<const uint8_t>) { ids.push_back(id); });
   std::map<TileId, bool> present;
   for (const TileId& id : ids)
     present[id] = true;
@@ -105,7 +105,7 @@ int validate_image(const std::string& path) {
 int image_info(const std::string& path, bool json) {
   ImagePackage p = open_image_package(path);
   uint64_t counts[3] = {0, 0, 0}, bad = 0;
-  p.reader->for_each_tile([&](tileformat::TileId, std::span<const uint8_t> blob) {
+  p.file().for_each_tile([&](tileformat::TileId, std::span<const uint8_t> blob) {
     try {
       ++counts[static_cast<int>(tileformat::inspect_image_tile(blob).format)];
     } catch (const tileformat::FormatError&) {
@@ -121,10 +121,10 @@ int image_info(const std::string& path, bool json) {
                               .integer("jpg", counts[1])
                               .integer("webp", counts[2]))
         .integer("not_images", bad);
-    print_kind_info_json(*p.reader, path, tileformat::PackageKind::kImage, image);
+    print_kind_info_json(p.file(), path, tileformat::PackageKind::kImage, image);
     return kExitOk;
   }
-  print_package_info(*p.reader, path);
+  print_package_info(p.file(), path);
   std::printf("image: %d x %d px tiles, %s + alpha; tiles stored as png %llu, jpg %llu, webp %llu",
               p.tile_size, p.tile_size, p.colour == 1 ? "gray" : "RGB",
               static_cast<unsigned long long>(counts[0]),
@@ -139,7 +139,7 @@ int extract_image(const ExtractRequest& rq) {
   if (!rq.layer.empty()) throw UsageError("--layer applies to analysis packages only");
   const std::string& path = rq.package;
   ImagePackage p = open_image_package(path);
-  const ExtractTiles t = tiles_to_extract(*p.reader, p.tiling, rq, p.min_zoom, p.max_zoom);
+  const ExtractTiles t = tiles_to_extract(p.file(), p.tiling, rq, p.min_zoom, p.max_zoom);
   const auto& ids = t.ids;
   const uint32_t x0 = t.x0, y0 = t.y0;
   const int n = p.tile_size;

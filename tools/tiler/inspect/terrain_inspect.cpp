@@ -62,7 +62,7 @@ void check_saturation(const KPatchLayout& l, const MBlock& b, const std::string&
 int validate_terrain(const std::string& path) {
   TerrainPackage p = open_terrain_package(path);
   ValidationReport r;
-  if (p.reader->application_id() != tileformat::kApplicationId)
+  if (p.file().application_id() != tileformat::kApplicationId)
     r.warning("PRAGMA application_id is not 0x4d504258 (tileformat §3.1)");
   for (const char* key : {"name", "bounds", "center", "minzoom", "maxzoom", "type", "version",
                           "description", "globe:format_version", "globe:command_line"})
@@ -70,7 +70,7 @@ int validate_terrain(const std::string& path) {
       r.warning(std::string("metadata key '") + key + "' is missing (tileformat §3.2)");
 
   std::map<TileId, bool> ids;
-  p.reader->for_each_tile([&](TileId id, std::span<const uint8_t>) { ids[id] = true; });
+  p.file().for_each_tile([&](TileId id, std::span<const uint8_t>) { ids[id] = true; });
   const std::array<KPatchLayout, 2> layouts{KPatchLayout(p.block_size - 1, p.lattice, 0),
                                             KPatchLayout(p.block_size - 1, p.lattice, 1)};
   auto load = [&](TileId id) -> std::optional<MBlock> {
@@ -159,17 +159,17 @@ int terrain_info(const std::string& path, bool json) {
         .number("height_step_m", p.step_m)
         .integer("min_zoom", uint64_t(p.min_zoom))
         .integer("max_zoom", uint64_t(p.max_zoom));
-    print_kind_info_json(*p.reader, path, tileformat::PackageKind::kTerrain, terrain);
+    print_kind_info_json(p.file(), path, tileformat::PackageKind::kTerrain, terrain);
     return kExitOk;
   }
-  print_package_info(*p.reader, path);
+  print_package_info(p.file(), path);
   return kExitOk;
 }
 
 int extract_terrain(const ExtractRequest& rq) {
   if (!rq.layer.empty()) throw UsageError("--layer applies to analysis packages only");
   TerrainPackage p = open_terrain_package(rq.package);
-  const ExtractTiles t = tiles_to_extract(*p.reader, p.tiling, rq, p.min_zoom, p.max_zoom);
+  const ExtractTiles t = tiles_to_extract(p.file(), p.tiling, rq, p.min_zoom, p.max_zoom);
   const SampleGrid grid = write_block_samples(
       rq, p.tiling, t, p.block_size, GDT_Float64, [&](TileId id, std::vector<double>& samples) {
         tileformat::MBlock b;

@@ -12,7 +12,7 @@ MvtExportSummary export_area_mvt(const MvtExportSettings& s, Progress& progress)
   AreaPackage pkg = open_area_package(s.input);
   web::AreaMvtEncoder encoder(pkg);
   MvtExportSummary sum = write_vector_tiles(
-      s, progress, *pkg.reader, pkg.meta.common,
+      s, progress, pkg.file(), pkg.meta.common,
       [&](tileformat::TileId id, std::span<const uint8_t> blob) {
         return encoder.encode(id, blob);
       },

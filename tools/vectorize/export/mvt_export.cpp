@@ -120,7 +120,7 @@ MvtExportSummary export_mvt(const MvtExportSettings& s, Progress& progress) {
   LinePackage pkg = open_line_package(s.input);
   web::LineMvtEncoder encoder(pkg);
   MvtExportSummary sum = write_vector_tiles(
-      s, progress, *pkg.reader, pkg.meta.common,
+      s, progress, pkg.file(), pkg.meta.common,
       [&](tileformat::TileId id, std::span<const uint8_t> blob) {
         return encoder.encode(id, blob);
       },

@@ -10,10 +10,10 @@ namespace globe {
 
 MvtExportSummary export_point_mvt(const MvtExportSettings& s, Progress& progress) {
   PointPackage pkg = open_point_package(s.input);
-  const web::MvtLabels labels(*pkg.reader);
+  const web::MvtLabels labels(pkg.file());
   uint64_t places = 0;
   MvtExportSummary sum = write_vector_tiles(
-      s, progress, *pkg.reader, pkg.meta.common,
+      s, progress, pkg.file(), pkg.meta.common,
       [&](tileformat::TileId id, std::span<const uint8_t> blob) {
         return web::point_tile_mvt(pkg, id, blob, &places, &labels);
       },

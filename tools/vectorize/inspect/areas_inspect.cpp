@@ -33,7 +33,7 @@ struct ZoomCounts {
 
 std::map<int, ZoomCounts> zoom_counts(AreaPackage& p) {
   std::map<int, ZoomCounts> zooms;
-  p.reader->for_each_tile([&](tileformat::TileId id, std::span<const uint8_t> blob) {
+  p.file().for_each_tile([&](tileformat::TileId id, std::span<const uint8_t> blob) {
     const tileformat::AreaTileCounts c = tileformat::peek_area_tile_counts(blob);
     ZoomCounts& z = zooms[id.z];
     ++z.tiles;
@@ -95,10 +95,10 @@ int areas_info(const std::string& path, bool json) {
                                      .integer("no_data", c->no_data));
     }
     areas.objects("per_zoom", per_zoom);
-    print_kind_info_json(*p.reader, path, tileformat::PackageKind::kAreas, areas);
+    print_kind_info_json(p.file(), path, tileformat::PackageKind::kAreas, areas);
     return kExitOk;
   }
-  print_package_info(*p.reader, path);
+  print_package_info(p.file(), path);
   std::printf("features: %llu (%llu repaired by MakeValid)\n",
               static_cast<unsigned long long>(m.features),
               static_cast<unsigned long long>(m.repaired));
@@ -134,13 +134,13 @@ int areas_validate(const std::string& path) {
   AreaPackage p = open_area_package(path);
   const tileformat::AreaMetadata& m = p.meta;
   ValidationReport r;
-  tileformat::FeatureTableReader features(*p.reader);
+  tileformat::FeatureTableReader features(p.file());
   const int64_t max_id = features.max_id();
   const uint64_t classes =
       m.choropleth ? m.choropleth->classes.size() + 1 : std::max<size_t>(p.classes.size(), 1);
   Geos geos;
   uint64_t tiles = 0, polygons = 0, invalid = 0;
-  p.reader->for_each_tile([&](tileformat::TileId id, std::span<const uint8_t> blob) {
+  p.file().for_each_tile([&](tileformat::TileId id, std::span<const uint8_t> blob) {
     const std::string where = path + " tile " + id.str();
     ++tiles;
     tileformat::AreaTile t;
@@ -189,10 +189,10 @@ int areas_extract(const ExtractRequest& rq) {
   VectorWriter out(rq.output,
                    rq.force ? tileformat::IfExists::kOverwrite : tileformat::IfExists::kFail,
                    m.common.tiling.crs);
-  tileformat::FeatureTableReader features(*p.reader);
+  tileformat::FeatureTableReader features(p.file());
   const tileformat::Tiling& tiling = m.common.tiling;
   Geos geos;
-  p.reader->for_each_tile(
+  p.file().for_each_tile(
       [&](tileformat::TileId id, std::span<const uint8_t> blob) {
         const tileformat::AreaTile t = tileformat::decode_area_tile(blob);
         const tileformat::Bounds b = tiling.tile_bounds(id);

@@ -89,7 +89,7 @@ void print_bundle_info(const std::string& json, const std::string& path) {
 int lines_info(const std::string& path, bool json) {
   LinePackage p = open_line_package(path);
   std::map<int, tileformat::LineTileCounts> per_zoom;
-  p.reader->for_each_tile([&](tileformat::TileId id, std::span<const uint8_t> blob) {
+  p.file().for_each_tile([&](tileformat::TileId id, std::span<const uint8_t> blob) {
     const auto c = tileformat::peek_line_tile_counts(blob);
     auto& z = per_zoom[id.z];
     z.runs += c.runs;
@@ -97,7 +97,7 @@ int lines_info(const std::string& path, bool json) {
     z.points += c.points;
     z.cell_entries += c.cell_entries;
   });
-  const int64_t features = tileformat::FeatureTableReader(*p.reader).count();
+  const int64_t features = tileformat::FeatureTableReader(p.file()).count();
   if (json) {
     std::vector<std::string> classes;
     for (const auto& c : p.classes)
@@ -118,10 +118,10 @@ int lines_info(const std::string& path, bool json) {
       bundle_json(p.meta.bundle_json, path);  // checked: it is JSON
       lines.raw("bundle", p.meta.bundle_json);
     }
-    print_kind_info_json(*p.reader, path, tileformat::PackageKind::kLines, lines);
+    print_kind_info_json(p.file(), path, tileformat::PackageKind::kLines, lines);
     return kExitOk;
   }
-  print_package_info(*p.reader, path);
+  print_package_info(p.file(), path);
   std::printf("classes:\n");
   for (size_t i = 0; i < p.classes.size(); ++i)
     std::printf("  %4zu %s\n", i, p.classes[i].name.c_str());
@@ -131,7 +131,7 @@ int lines_info(const std::string& path, bool json) {
               "points", "cell entries", "per cell");
   const double cells = double(p.cluster_grid) * p.cluster_grid;
   std::map<int, uint64_t> tiles;
-  for (const tileformat::ZoomSummary& s : p.reader->zoom_summaries())
+  for (const tileformat::ZoomSummary& s : p.file().zoom_summaries())
     tiles[s.zoom] = s.tiles;
   for (const auto& [z, c] : per_zoom)
     std::printf("  %4d %12u %12u %10u %14u %10.2f\n", z, c.segments, c.runs, c.points,
@@ -142,7 +142,7 @@ int lines_info(const std::string& path, bool json) {
 int lines_validate(const std::string& path) {
   LinePackage p = open_line_package(path);
   ValidationReport r;
-  tileformat::FeatureTableReader features(*p.reader);
+  tileformat::FeatureTableReader features(p.file());
   const int64_t max_id = features.max_id();
   const int64_t count = features.count();
   // A shard of a sharded build but shard 0 has an empty features table
@@ -158,7 +158,7 @@ int lines_validate(const std::string& path) {
               std::to_string(max_id) + ")");
   std::map<int, uint32_t> reach;
   uint64_t tiles = 0, segments = 0;
-  p.reader->for_each_tile([&](tileformat::TileId id, std::span<const uint8_t> blob) {
+  p.file().for_each_tile([&](tileformat::TileId id, std::span<const uint8_t> blob) {
     ++tiles;
     const std::string where = path + " tile " + id.str();
     tileformat::LineTile t;
@@ -222,7 +222,7 @@ int lines_extract(const ExtractRequest& rq) {
                      std::to_string(p.min_zoom) + ".." + std::to_string(p.max_zoom));
 
   std::map<uint64_t, std::pair<std::string, std::string>> feature_cache;  // layer, properties
-  tileformat::FeatureTableReader features(*p.reader);
+  tileformat::FeatureTableReader features(p.file());
   auto feature = [&](uint64_t id) -> const std::pair<std::string, std::string>& {
     auto it = feature_cache.find(id);
     if (it != feature_cache.end()) return it->second;
@@ -235,7 +235,7 @@ int lines_extract(const ExtractRequest& rq) {
   VectorWriter out(rq.output,
                    rq.force ? tileformat::IfExists::kOverwrite : tileformat::IfExists::kFail,
                    p.tiling.crs);
-  p.reader->for_each_tile(
+  p.file().for_each_tile(
       [&](tileformat::TileId id, std::span<const uint8_t> blob) {
         const tileformat::LineTile t = tileformat::decode_line_tile(blob);
         const tileformat::Bounds b = p.tiling.tile_bounds(id);

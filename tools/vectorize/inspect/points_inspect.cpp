@@ -40,7 +40,7 @@ struct ZoomTotals {
 // entries, from every tile.
 std::map<int, ZoomTotals> zoom_totals(PointPackage& p) {
   std::map<int, ZoomTotals> zooms;
-  p.reader->for_each_tile([&](tileformat::TileId id, std::span<const uint8_t> blob) {
+  p.file().for_each_tile([&](tileformat::TileId id, std::span<const uint8_t> blob) {
     const tileformat::PointTile t = tileformat::decode_point_tile(blob);
     ZoomTotals& z = zooms[id.z];
     ++z.tiles;
@@ -75,10 +75,10 @@ int points_info(const std::string& path, bool json) {
         .text("label_field", m.label_field)
         .integer("places", m.features)
         .objects("per_zoom", per_zoom);
-    print_kind_info_json(*p.reader, path, tileformat::PackageKind::kPoints, points);
+    print_kind_info_json(p.file(), path, tileformat::PackageKind::kPoints, points);
     return kExitOk;
   }
-  print_package_info(*p.reader, path);
+  print_package_info(p.file(), path);
   std::printf("fields:");
   for (const std::string& f : m.fields)
     std::printf(" %s", f.c_str());
@@ -103,7 +103,7 @@ int points_validate(const std::string& path) {
   PointPackage p = open_point_package(path);
   const tileformat::PointMetadata& m = p.meta;
   ValidationReport r;
-  tileformat::FeatureTableReader features(*p.reader);
+  tileformat::FeatureTableReader features(p.file());
   const int64_t max_id = features.max_id();
   if (features.count() != max_id || uint64_t(max_id) != m.features)
     r.warning("features table ids are not 1.." + std::to_string(m.features) + " (" +
@@ -112,7 +112,7 @@ int points_validate(const std::string& path) {
   std::map<int, ZoomTotals> zooms;
   std::map<int, std::vector<uint8_t>> seen;  // per zoom: whether an id was met
   std::map<int, uint32_t> reach;
-  p.reader->for_each_tile([&](tileformat::TileId id, std::span<const uint8_t> blob) {
+  p.file().for_each_tile([&](tileformat::TileId id, std::span<const uint8_t> blob) {
     const std::string where = path + " tile " + id.str();
     tileformat::PointTile t;
     try {
@@ -187,7 +187,7 @@ int points_validate(const std::string& path) {
   uint64_t tiles = 0, places = 0;
   for (const auto& [zoom, z] : zooms)
     places += z.places;
-  for (const tileformat::ZoomSummary& s : p.reader->zoom_summaries())
+  for (const tileformat::ZoomSummary& s : p.file().zoom_summaries())
     tiles += s.tiles;
   std::printf("%s: %llu tiles, %llu places, %lld source places: %llu errors, %llu warnings\n",
               path.c_str(), static_cast<unsigned long long>(tiles),
@@ -213,10 +213,10 @@ int points_extract(const ExtractRequest& rq) {
                    rq.force ? tileformat::IfExists::kOverwrite : tileformat::IfExists::kFail,
                    p.meta.common.tiling.crs);
   out.set_value_fields(names);
-  tileformat::FeatureTableReader features(*p.reader);
+  tileformat::FeatureTableReader features(p.file());
   const tileformat::Tiling& tiling = p.meta.common.tiling;
   uint64_t n = 0;
-  p.reader->for_each_tile(
+  p.file().for_each_tile(
       [&](tileformat::TileId id, std::span<const uint8_t> blob) {
         const tileformat::PointTile t = tileformat::decode_point_tile(blob);
         const tileformat::Bounds b = tiling.tile_bounds(id);

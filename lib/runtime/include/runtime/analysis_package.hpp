@@ -5,13 +5,18 @@
 #include <memory>
 #include <string>
 
+#include "runtime/package_open.hpp"
 #include "tileformat/metadata.hpp"
 #include "tileformat/package.hpp"
 
 namespace globe {
 
 struct AnalysisPackage {
-  std::unique_ptr<tileformat::PackageReader> reader;
+  // The package file or, in globe-view, a remote source (package_open.hpp).
+  std::unique_ptr<tileformat::TileReader> reader;
+  // The file itself, for its other tables and whole-package reads; throws
+  // InputError for a remote source.
+  tileformat::PackageReader& file() const { return package_file(*reader); }
   tileformat::AnalysisMetadata meta;
   tileformat::Tiling tiling;
   int block_size = 0, min_zoom = 0, max_zoom = 0;

@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "runtime/package_open.hpp"
 #include "tileformat/image_tile.hpp"
 #include "tileformat/package.hpp"
 #include "tileformat/tiling.hpp"
@@ -16,7 +17,11 @@
 namespace globe {
 
 struct ImagePackage {
-  std::unique_ptr<tileformat::PackageReader> reader;
+  // The package file or, in globe-view, a remote source (package_open.hpp).
+  std::unique_ptr<tileformat::TileReader> reader;
+  // The file itself, for its other tables and whole-package reads; throws
+  // InputError for a remote source.
+  tileformat::PackageReader& file() const { return package_file(*reader); }
   tileformat::ImageMetadata meta;  // every key, as lib/tileformat reads it
   tileformat::Tiling tiling;       // the fields below repeat meta for brevity
   tileformat::ImageFormat format = tileformat::ImageFormat::kPng;

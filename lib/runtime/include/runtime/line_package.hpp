@@ -9,13 +9,18 @@
 #include <vector>
 
 #include "runtime/line_style.hpp"
+#include "runtime/package_open.hpp"
 #include "tileformat/package.hpp"
 #include "tileformat/tiling.hpp"
 
 namespace globe {
 
 struct LinePackage {
-  std::unique_ptr<tileformat::PackageReader> reader;
+  // The package file or, in globe-view, a remote source (package_open.hpp).
+  std::unique_ptr<tileformat::TileReader> reader;
+  // The file itself, for its other tables and whole-package reads; throws
+  // InputError for a remote source.
+  tileformat::PackageReader& file() const { return package_file(*reader); }
   tileformat::LineMetadata meta;  // every key, as lib/tileformat reads it
   tileformat::Tiling tiling;      // the fields below repeat meta for brevity
   int extent = 0, cluster_grid = 0, min_zoom = 0, max_zoom = 0;

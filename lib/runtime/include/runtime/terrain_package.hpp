@@ -7,13 +7,18 @@
 #include <memory>
 #include <string>
 
+#include "runtime/package_open.hpp"
 #include "tileformat/package.hpp"
 #include "tileformat/tiling.hpp"
 
 namespace globe {
 
 struct TerrainPackage {
-  std::unique_ptr<tileformat::PackageReader> reader;
+  // The package file or, in globe-view, a remote source (package_open.hpp).
+  std::unique_ptr<tileformat::TileReader> reader;
+  // The file itself, for its other tables and whole-package reads; throws
+  // InputError for a remote source.
+  tileformat::PackageReader& file() const { return package_file(*reader); }
   tileformat::TerrainMetadata meta;  // every key, as lib/tileformat reads it
   tileformat::Tiling tiling;         // the fields below repeat meta for brevity
   int block_size = 0, lattice = 0, min_zoom = 0, max_zoom = 0;

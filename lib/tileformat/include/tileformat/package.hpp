@@ -34,6 +34,7 @@
 
 #include "tileformat/sqlite_db.hpp"
 #include "tileformat/tile_id.hpp"
+#include "tileformat/tile_reader.hpp"
 
 namespace tileformat {
 
@@ -113,29 +114,29 @@ struct ZoomSummary {
   uint32_t min_x = 0, max_x = 0, min_y = 0, max_y = 0;  // XYZ
 };
 
-class PackageReader {
+class PackageReader final : public TileReader {
  public:
   explicit PackageReader(const std::string& path);  // throws PackageError
 
-  const std::map<std::string, std::string>& metadata() const { return metadata_; }
-  std::optional<std::string> meta(const std::string& key) const;
+  const std::map<std::string, std::string>& metadata() const override { return metadata_; }
   int64_t application_id() const { return application_id_; }
 
   // Copy of the tile blob, or nullopt if the package has none at `id`.
-  std::optional<std::vector<uint8_t>> tile(TileId id);
+  std::optional<std::vector<uint8_t>> tile(TileId id) override;
   // Calls fn for every tile in (zoom, row, column) order of the TMS index.
   void for_each_tile(const std::function<void(TileId, std::span<const uint8_t>)>& fn,
                      std::optional<int> zoom = std::nullopt);
   // Whether the package has a tile at `id` (without reading it). One thread
   // at a time; it may run while another thread calls tile().
-  bool has_tile(TileId id);
+  bool has_tile(TileId id) override;
   // The tiles of one zoom, in (y, x) order; throws FormatError for an index
   // outside the zoom's range.
-  std::vector<TileId> tile_ids(int zoom);
+  std::vector<TileId> tile_ids(int zoom) override;
   std::vector<ZoomSummary> zoom_summaries();
   uint64_t unique_blobs();
   // The file this reader opened, for messages.
-  const std::string& path() const;
+  const std::string& path() const override;
+  PackageReader* package() override { return this; }
 
  private:
   // The tables beyond the tiles (the features and shard tables) are read by

@@ -1,0 +1,14 @@
+// URLs as TileJSON and layer.json use them: a tile template relative to the
+// document that names it ("tiles/{z}/{x}/{y}.png", "/x/{z}.png",
+// "//host/x.png") resolved against the document's URL (RFC 3986 §5.2, for
+// the forms such documents hold; the base's query and fragment dropped).
+// Template braces are kept as they are.
+#pragma once
+
+#include <string>
+
+namespace globe::net {
+
+std::string resolve_url(const std::string& base, const std::string& reference);
+
+}  // namespace globe::net
