@@ -139,11 +139,11 @@ BlockSynthesizer::BlockSynthesizer(int block_size, int lattice, double height_st
       lattice_(lattice),
       step_(height_step),
       grid_(std::move(grid)),
-      capacity_(std::max<size_t>(cached_blocks, 1)),
       tiling_(std::move(tiling)),
       fill_q_(0),
       layouts_{tileformat::KPatchLayout(checked_steps(block_size, lattice), lattice, 0),
-               tileformat::KPatchLayout(block_size - 1, lattice, 1)} {
+               tileformat::KPatchLayout(block_size - 1, lattice, 1)},
+      blocks_(std::max<size_t>(cached_blocks, 1)) {
   if (!(height_step > 0) || !std::isfinite(height_step))
     throw std::invalid_argument("block synthesizer: the height step must be a positive number");
   if (!grid_) throw std::invalid_argument("block synthesizer: no grid function");
@@ -209,26 +209,7 @@ std::shared_ptr<const BlockSynthesizer::Block> BlockSynthesizer::make_block(Tile
 }
 
 std::shared_ptr<const BlockSynthesizer::Block> BlockSynthesizer::block(TileId id) {
-  std::shared_ptr<Slot> slot;
-  {
-    std::lock_guard lock(mutex_);
-    auto it = slots_.find(id);
-    if (it != slots_.end()) {
-      lru_.splice(lru_.begin(), lru_, it->second.at);
-      slot = it->second.slot;
-    } else {
-      lru_.push_front(id);
-      slot = std::make_shared<Slot>();
-      slots_.emplace(id, Entry{slot, lru_.begin()});
-      while (slots_.size() > capacity_) {  // a slot in use lives on in its users
-        slots_.erase(lru_.back());
-        lru_.pop_back();
-      }
-    }
-  }
-  std::lock_guard fill(slot->fill);
-  if (!slot->block) slot->block = make_block(id);  // a throw leaves it empty: tried again
-  return slot->block;
+  return blocks_.get(id, [&] { return make_block(id); });
 }
 
 std::optional<std::vector<uint8_t>> BlockSynthesizer::blob(TileId id) {

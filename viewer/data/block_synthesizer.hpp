@@ -53,6 +53,7 @@
 #include <string>
 #include <vector>
 
+#include "data/fill_once_cache.hpp"
 #include "tileformat/kpatch.hpp"
 #include "tileformat/metadata.hpp"
 #include "tileformat/tile_id.hpp"
@@ -107,11 +108,6 @@ class BlockSynthesizer {
     std::vector<uint8_t> valid;  // empty: all valid
     std::vector<uint32_t> node_errors;
   };
-  // A cache slot: filled once, by the first thread that needs it.
-  struct Slot {
-    std::mutex fill;
-    std::shared_ptr<const Block> block;  // null until filled
-  };
   std::shared_ptr<const Block> block(tileformat::TileId id);
   std::shared_ptr<const Block> make_block(tileformat::TileId id);
   std::optional<tileformat::TileId> neighbour(tileformat::TileId id, int dx, int dy) const;
@@ -120,18 +116,11 @@ class BlockSynthesizer {
   double step_;
   GridFn grid_;
   std::function<double(int)> level_error_;
-  size_t capacity_;
   tileformat::Tiling tiling_;
   int32_t fill_q_;
   tileformat::KPatchLayout layouts_[2];  // by TileId::diagonal()
 
-  std::mutex mutex_;                   // guards lru_ and slots_
-  std::list<tileformat::TileId> lru_;  // most recent first
-  struct Entry {
-    std::shared_ptr<Slot> slot;
-    std::list<tileformat::TileId>::iterator at;
-  };
-  std::map<tileformat::TileId, Entry> slots_;
+  FillOnceCache<tileformat::TileId, Block> blocks_;
 };
 
 // CesiumJS's estimate of a terrain level's geometric error, in metres: the

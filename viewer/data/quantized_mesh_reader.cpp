@@ -353,7 +353,7 @@ void QuantizedMeshReader::prefetch(std::span<const TileId> ids) {
     if (listed(id)) wanted.push_back(id);
   std::lock_guard lock(shared_->mutex);
   for (const TileId& id : wanted)
-    if (!absent_.count(id) && !tiles_.count(id)) ask(id, next_priority_ -= 1);
+    if (!absent_.count(id) && !tiles_.contains(id)) ask(id, next_priority_ -= 1);
 }
 
 void QuantizedMeshReader::forget(std::span<const TileId> ids) {
@@ -406,26 +406,7 @@ std::shared_ptr<const QuantizedMeshReader::Sampled> QuantizedMeshReader::fetch_a
 }
 
 std::shared_ptr<const QuantizedMeshReader::Sampled> QuantizedMeshReader::own(TileId id) {
-  std::shared_ptr<Slot> slot;
-  {
-    std::lock_guard lock(shared_->mutex);
-    auto it = tiles_.find(id);
-    if (it != tiles_.end()) {
-      lru_.splice(lru_.begin(), lru_, it->second.at);
-      slot = it->second.slot;
-    } else {
-      lru_.push_front(id);
-      slot = std::make_shared<Slot>();
-      tiles_.emplace(id, Entry{slot, lru_.begin()});
-      while (tiles_.size() > kCachedTiles) {  // a slot in use lives on in its users
-        tiles_.erase(lru_.back());
-        lru_.pop_back();
-      }
-    }
-  }
-  std::lock_guard fill(slot->fill);
-  if (!slot->tile) slot->tile = fetch_and_sample(id);  // a throw leaves it empty: tried again
-  return slot->tile;
+  return tiles_.get(id, [&] { return fetch_and_sample(id); });
 }
 
 std::optional<std::vector<float>> QuantizedMeshReader::samples(TileId id) {

@@ -70,6 +70,7 @@
 #include <vector>
 
 #include "data/block_synthesizer.hpp"
+#include "data/fill_once_cache.hpp"
 #include "data/quantized_mesh_decode.hpp"
 #include "net/http_client.hpp"
 #include "tileformat/tile_reader.hpp"
@@ -138,10 +139,6 @@ class QuantizedMeshReader final : public tileformat::TileReader {
     bool present = false;
     std::vector<float> h;  // the tile's own samples (mesh_grid), kBlockSize²
   };
-  struct Slot {
-    std::mutex fill;
-    std::shared_ptr<const Sampled> tile;  // null until sampled
-  };
 
   bool listed(tileformat::TileId id) const;
   std::optional<tileformat::TileId> neighbour(tileformat::TileId id, int dx, int dy) const;
@@ -164,13 +161,8 @@ class QuantizedMeshReader final : public tileformat::TileReader {
   std::shared_ptr<Shared> shared_;  // its mutex guards the members below
   std::unordered_map<uint64_t, std::shared_ptr<Pending>> pending_;  // by key(id)
   std::set<tileformat::TileId> absent_;                             // answered 404/204
-  double next_priority_ = 0;           // later batches go after earlier ones
-  std::list<tileformat::TileId> lru_;  // most recent first
-  struct Entry {
-    std::shared_ptr<Slot> slot;
-    std::list<tileformat::TileId>::iterator at;
-  };
-  std::map<tileformat::TileId, Entry> tiles_;
+  double next_priority_ = 0;  // later batches go after earlier ones
+  FillOnceCache<tileformat::TileId, Sampled> tiles_{kCachedTiles};
 
   // Last (destroyed first: its GridFn calls samples()); made once the
   // layer.json gave the tiling.

@@ -165,26 +165,7 @@ std::shared_ptr<const RasterDemReader::Decoded> RasterDemReader::fetch_and_decod
 }
 
 std::shared_ptr<const RasterDemReader::Decoded> RasterDemReader::source(TileId id) {
-  std::shared_ptr<Slot> slot;
-  {
-    std::lock_guard lock(mutex_);
-    auto it = tiles_.find(id);
-    if (it != tiles_.end()) {
-      lru_.splice(lru_.begin(), lru_, it->second.at);
-      slot = it->second.slot;
-    } else {
-      lru_.push_front(id);
-      slot = std::make_shared<Slot>();
-      tiles_.emplace(id, Entry{slot, lru_.begin()});
-      while (tiles_.size() > kCachedTiles) {  // a slot in use lives on in its users
-        tiles_.erase(lru_.back());
-        lru_.pop_back();
-      }
-    }
-  }
-  std::lock_guard fill(slot->fill);
-  if (!slot->tile) slot->tile = fetch_and_decode(id);  // a throw leaves it empty: tried again
-  return slot->tile;
+  return tiles_.get(id, [&] { return fetch_and_decode(id); });
 }
 
 std::optional<std::vector<float>> RasterDemReader::samples(TileId id) {
@@ -279,10 +260,8 @@ void RasterDemReader::request(std::span<const TileId> ids, int reach) {
     for (int dy = -reach; dy <= reach; ++dy)
       for (int dx = -reach; dx <= reach; ++dx)
         if (auto t = neighbour(id, dx, dy)) add(*t);
-  {
-    std::lock_guard lock(mutex_);  // what is decoded (or being fetched) needs no request
-    std::erase_if(out, [&](const TileId& t) { return tiles_.count(t) != 0; });
-  }
+  // What is decoded (or being fetched) needs no request.
+  std::erase_if(out, [&](const TileId& t) { return tiles_.contains(t); });
   if (!out.empty()) fetcher_.prefetch(out);
 }
 

@@ -44,6 +44,7 @@
 #include <vector>
 
 #include "data/block_synthesizer.hpp"
+#include "data/fill_once_cache.hpp"
 #include "data/raster_tile_fetcher.hpp"
 #include "tileformat/tile_reader.hpp"
 #include "tileformat/tiling.hpp"
@@ -101,10 +102,6 @@ class RasterDemReader final : public tileformat::TileReader {
     bool present = false;
     std::vector<float> h;  // kTilePx^2 heights, NaN = no data
   };
-  struct Slot {
-    std::mutex fill;
-    std::shared_ptr<const Decoded> tile;  // null until decoded
-  };
   // The decoded source tile (decoded once; an LRU of kCachedTiles).
   std::shared_ptr<const Decoded> source(tileformat::TileId id);
   std::shared_ptr<const Decoded> fetch_and_decode(tileformat::TileId id) const;
@@ -123,13 +120,8 @@ class RasterDemReader final : public tileformat::TileReader {
   tileformat::Bounds mercator_bounds_;  // the source's bounds in EPSG:3857 metres
   std::map<std::string, std::string> metadata_;
 
-  std::mutex mutex_;                   // guards the members below
-  std::list<tileformat::TileId> lru_;  // most recent first
-  struct Entry {
-    std::shared_ptr<Slot> slot;
-    std::list<tileformat::TileId>::iterator at;
-  };
-  std::map<tileformat::TileId, Entry> tiles_;
+  FillOnceCache<tileformat::TileId, Decoded> tiles_{kCachedTiles};
+  std::mutex mutex_;                     // guards absent_
   std::set<tileformat::TileId> absent_;  // blocks answered absent
 
   BlockSynthesizer blocks_;  // last: its GridFn calls samples()
