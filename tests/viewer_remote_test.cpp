@@ -403,6 +403,12 @@ TEST(ViewerRemoteErrors, UnreachableAndForeignSourcesAreNamed) {
     EXPECT_NE(r.err.find(c.says), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir / "x.png"));
   }
+  // A cache folder that cannot be made: exit 1, naming it and what to do.
+  const RunResult r = snapshot(server.url("/p.json") + " --cache-dir /proc/no-such-folder",
+                               dir / "x.png", dir.path());
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("/proc/no-such-folder"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--cache-dir"), std::string::npos) << r.err;
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "data/remote_open.hpp"
+#include "runtime/errors.hpp"
 #include "runtime/package_open.hpp"
 
 namespace globe::viewer {
@@ -45,7 +46,11 @@ net::HttpClient& Network::client() {
     o.cache_dir = settings_.no_cache ? "" : resolve_cache_dir(settings_);
     o.cache_max_bytes = settings_.cache_mb << 20;
     o.offline = settings_.offline;
-    client_ = std::make_unique<net::HttpClient>(std::move(o));
+    try {
+      client_ = std::make_unique<net::HttpClient>(std::move(o));
+    } catch (const net::NetError& e) {  // the cache folder: the user's to fix
+      throw InputError(std::string(e.what()) + " (--cache-dir DIR elsewhere, or none)");
+    }
   }
   return *client_;
 }
