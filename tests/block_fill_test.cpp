@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "terrain/block_fill.hpp"
+#include "runtime/block_fill.hpp"
 
 namespace {
 constexpr int kSize = 33;

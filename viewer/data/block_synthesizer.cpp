@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "runtime/block_fill.hpp"
 #include "runtime/error_tree.hpp"
 #include "tileformat/mblock.hpp"
 #include "tileformat/package_kinds.hpp"
@@ -35,91 +36,6 @@ int32_t quantize(double h_m, double step) {
   const double q = std::round(h_m / step);
   const double lim = tileformat::kMaxQuantum;
   return static_cast<int32_t>(std::clamp(q, -lim, lim));
-}
-
-// Fills q where valid is 0, by the rules of docs/terrain.md "Holes" (as the
-// tiler's tools/tiler/terrain/block_fill.cpp, which the viewer cannot link):
-// 1. corners without data take fill_q; 2. edge samples are interpolated
-// along their edge between the nearest known ones; 3. interior holes are
-// filled in synchronous waves, each sample the rounded mean of its known
-// 4-neighbours. Rules 1 and 2 read only the edge, so neighbours that share
-// an edge fill it alike.
-void fill_holes(std::vector<int32_t>& q, const std::vector<uint8_t>& valid, int size,
-                int32_t fill_q) {
-  std::vector<uint8_t> known(valid);
-  const int last = size - 1;
-  const auto at = [size](int x, int y) { return static_cast<size_t>(y) * size + x; };
-  for (size_t c : {at(0, 0), at(last, 0), at(0, last), at(last, last)})
-    if (!known[c]) {
-      q[c] = fill_q;
-      known[c] = 1;
-    }
-  // The four edges, each from one corner to the other.
-  const std::pair<size_t, size_t> edges[] = {{at(0, 0), 1},
-                                             {at(0, last), 1},
-                                             {at(0, 0), static_cast<size_t>(size)},
-                                             {at(last, 0), static_cast<size_t>(size)}};
-  for (const auto& [first, stride] : edges) {
-    int prev = 0;
-    for (int i = 1; i < size; ++i) {
-      if (!known[first + i * stride]) continue;
-      const int64_t a = q[first + prev * stride], b = q[first + i * stride];
-      for (int j = prev + 1; j < i; ++j) {
-        const double t = static_cast<double>(j - prev) / (i - prev);
-        q[first + j * stride] =
-            static_cast<int32_t>(a + std::llround(static_cast<double>(b - a) * t));
-        known[first + j * stride] = 1;
-      }
-      prev = i;
-    }
-  }
-  const size_t n = static_cast<size_t>(size) * size;
-  auto neighbours = [&](size_t i, auto&& visit) {
-    const int x = static_cast<int>(i % size), y = static_cast<int>(i / size);
-    if (x > 0) visit(i - 1);
-    if (x < last) visit(i + 1);
-    if (y > 0) visit(i - size);
-    if (y < last) visit(i + size);
-  };
-  std::vector<size_t> frontier;
-  std::vector<uint8_t> queued(n, 0);
-  for (size_t i = 0; i < n; ++i) {
-    if (known[i]) continue;
-    bool next_to_known = false;
-    neighbours(i, [&](size_t j) { next_to_known = next_to_known || known[j]; });
-    if (next_to_known) {
-      frontier.push_back(i);
-      queued[i] = 1;
-    }
-  }
-  std::vector<int32_t> values;
-  while (!frontier.empty()) {
-    values.assign(frontier.size(), 0);
-    for (size_t k = 0; k < frontier.size(); ++k) {
-      int64_t sum = 0;
-      int count = 0;
-      neighbours(frontier[k], [&](size_t j) {
-        if (known[j]) {
-          sum += q[j];
-          ++count;
-        }
-      });
-      values[k] = static_cast<int32_t>(std::llround(static_cast<double>(sum) / count));
-    }
-    for (size_t k = 0; k < frontier.size(); ++k) {
-      q[frontier[k]] = values[k];
-      known[frontier[k]] = 1;
-    }
-    std::vector<size_t> next;
-    for (size_t i : frontier)
-      neighbours(i, [&](size_t j) {
-        if (!known[j] && !queued[j]) {
-          queued[j] = 1;
-          next.push_back(j);
-        }
-      });
-    frontier.swap(next);
-  }
 }
 
 // Web mercator y (metres) of a latitude in degrees.

@@ -1,5 +1,5 @@
 // Hole filling (see block_fill.hpp).
-#include "terrain/block_fill.hpp"
+#include "runtime/block_fill.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,6 @@
-// Hole filling for block geometry (docs/terrain.md "Holes"). Samples without
+// Hole filling for block geometry (docs/terrain.md "Holes"): the tiler's
+// blocks and the viewer's blocks made from remote elevation tiles
+// (viewer/data/block_synthesizer) fill alike. Samples without
 // data keep valid = 0 in the mask but need a height for the mesh. The fill
 // must give identical values on an edge shared by two blocks, so it depends
 // only on what both blocks see:
