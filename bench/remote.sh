@@ -10,7 +10,8 @@
 #   - a warm disk cache (the tiles fresh: no request at all),
 # each as a ratio to the local run, with the requests and bytes the frame
 # took. Goals: <= 1.5x at 50 ms, <= 1.2x from a warm cache. Fastest of RUNS.
-# Usage: bench/remote.sh [RUNS]
+# GLOBE_REMOTE_ARGS adds options to every globe-view run (e.g.
+# "--max-connections 16"). Usage: bench/remote.sh [RUNS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 runs=${1:-3}
@@ -49,7 +50,7 @@ serve=$(start serve $B/tools/serve/globe-serve "$tmp/terrain.mbtiles" "$tmp/imag
 fs=$B/tests/fault_server
 s50=$(start s50 $fs --root "$tmp/www" --port 0 --latency 50:50 --max-age 3600)
 s150=$(start s150 $fs --root "$tmp/www" --port 0 --latency 150:150 --max-age 3600)
-view=(--globe --camera 10,40,6000000,0,20 --size 1280x720 --frames 1)
+view=(--globe --camera 10,40,6000000,0,20 --size 1280x720 --frames 1 ${GLOBE_REMOTE_ARGS:-})
 # time_of LABEL SOURCES... : the fastest wall time of RUNS snapshots (a fresh
 # cache each run unless LABEL is "warm"), and the last run's --stats network.
 time_of() {
