@@ -8,6 +8,8 @@
 namespace globe::viewer {
 namespace {
 
+constexpr size_t kMaxPending = 1024;
+
 uint64_t key(tileformat::TileId id) {
   return (uint64_t(id.z) << 58) | (uint64_t(id.x) << 29) | id.y;
 }
@@ -30,6 +32,10 @@ TileRequests::~TileRequests() {
 std::shared_ptr<TileRequests::Pending> TileRequests::ask(tileformat::TileId id,
                                                          const std::string& url,
                                                          const std::string& range) {
+  // Answers nobody read (prefetched for a view that moved on) are let go
+  // past a bound, so a long flight does not keep every tile's body.
+  if (pending_.size() > kMaxPending)
+    std::erase_if(pending_, [&](const auto& e) { return e.second->done && e.first != key(id); });
   std::shared_ptr<Pending>& slot = pending_[key(id)];
   // A request forgotten and answered kCancelled is asked again.
   if (slot && !(slot->done && slot->response.outcome == net::Outcome::kCancelled)) return slot;
