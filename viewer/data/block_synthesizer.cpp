@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "data/web_mercator.hpp"
 #include "runtime/block_fill.hpp"
 #include "runtime/error_tree.hpp"
 #include "tileformat/mblock.hpp"
@@ -36,14 +37,6 @@ int32_t quantize(double h_m, double step) {
   const double q = std::round(h_m / step);
   const double lim = tileformat::kMaxQuantum;
   return static_cast<int32_t>(std::clamp(q, -lim, lim));
-}
-
-// Web mercator y (metres) of a latitude in degrees.
-double mercator_y(double lat_deg) {
-  const double lat =
-      std::clamp(lat_deg, -tileformat::kWebMercatorMaxLat, tileformat::kWebMercatorMaxLat);
-  constexpr double pi = std::numbers::pi;
-  return tileformat::kWebMercatorHalf / pi * std::log(std::tan(pi / 4 + lat * pi / 360));
 }
 
 }  // namespace

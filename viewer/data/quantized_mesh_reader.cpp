@@ -3,6 +3,7 @@
 // with quantized_mesh_decode, samples with mesh_grid, makes the blobs with
 // BlockSynthesizer; writes nothing but its caches.
 #include "data/quantized_mesh_reader.hpp"
+#include "data/web_mercator.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,6 +12,7 @@
 #include <stdexcept>
 
 #include "data/mesh_grid.hpp"
+#include "net/url.hpp"
 #include "runtime/errors.hpp"
 #include "tileformat/error.hpp"
 #include "tileformat/json.hpp"
@@ -30,41 +32,8 @@ uint64_t key(TileId id) {
   return (uint64_t(id.z) << 58) | (uint64_t(id.x) << 29) | id.y;
 }
 
-std::string replace_all(std::string s, const std::string& what, const std::string& with) {
-  for (size_t at = s.find(what); at != std::string::npos; at = s.find(what, at + with.size()))
-    s.replace(at, what.size(), with);
-  return s;
-}
-
 std::string outcome_text(const net::Response& r) {
   return r.error.empty() ? std::string(net::to_string(r.outcome)) : r.error;
-}
-
-double mercator_x(double lon_deg) {
-  return lon_deg * (tileformat::kWebMercatorHalf / 180.0);
-}
-double mercator_y(double lat_deg) {
-  constexpr double pi = std::numbers::pi;
-  const double lat =
-      std::clamp(lat_deg, -tileformat::kWebMercatorMaxLat, tileformat::kWebMercatorMaxLat);
-  return tileformat::kWebMercatorHalf / pi * std::log(std::tan(pi / 4 + lat * pi / 360));
-}
-
-// `reference` resolved against the URL `base` (RFC 3986's common cases:
-// absolute, scheme-relative, host-relative, path-relative).
-std::string resolve(const std::string& base, const std::string& reference) {
-  if (reference.find("://") != std::string::npos) return reference;
-  const size_t scheme_end = base.find("://");
-  const size_t host_end = scheme_end == std::string::npos ? 0 : base.find('/', scheme_end + 3);
-  if (reference.starts_with("//"))
-    return (scheme_end == std::string::npos ? "" : base.substr(0, scheme_end + 1)) + reference;
-  if (reference.starts_with("/"))
-    return (host_end == std::string::npos ? base : base.substr(0, host_end)) + reference;
-  const size_t slash = base.rfind('/');
-  if (slash == std::string::npos ||
-      (host_end == std::string::npos && scheme_end != std::string::npos))
-    return base + "/" + reference;
-  return base.substr(0, slash + 1) + reference;
 }
 
 }  // namespace
@@ -119,7 +88,8 @@ QuantizedMeshReader::QuantizedMeshReader(const std::string& url, net::HttpClient
   if (tiles && tiles->is_array())
     for (const JsonValue& t : tiles->array())
       if (t.is_string() && !t.string().empty())
-        templates_.push_back(replace_all(resolve(base, t.string()), "{version}", version));
+        templates_.push_back(
+            net::fill_placeholder(net::resolve_url(base, t.string()), "{version}", version));
   if (templates_.empty()) throw InputError(url + ": the layer.json has no tiles URL template");
 
   // Zooms and availability.
@@ -245,9 +215,9 @@ std::string QuantizedMeshReader::tile_url(TileId id) const {
   const uint32_t tms_y = uint32_t(tiling_.tiles_y(id.z) - 1 - id.y);
   // CesiumJS spreads tiles over several templates (hosts) by x + y + level.
   const std::string& t = templates_[(uint64_t(id.x) + tms_y + uint64_t(id.z)) % templates_.size()];
-  std::string u = replace_all(t, "{z}", std::to_string(id.z));
-  u = replace_all(u, "{x}", std::to_string(id.x));
-  u = replace_all(u, "{y}", std::to_string(tms_y));
+  std::string u = net::fill_placeholder(t, "{z}", std::to_string(id.z));
+  u = net::fill_placeholder(u, "{x}", std::to_string(id.x));
+  u = net::fill_placeholder(u, "{y}", std::to_string(tms_y));
   if (!query_.empty()) u += (u.find('?') == std::string::npos ? "?" : "&") + query_;
   return u;
 }

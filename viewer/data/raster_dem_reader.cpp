@@ -16,6 +16,7 @@
 // either, and its 8 mm rounding is below what any source holds. The blob is
 // decoded at once, so its size only matters while it is passed on.
 #include "data/raster_dem_reader.hpp"
+#include "data/web_mercator.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -44,18 +45,6 @@ bool is_png(std::span<const uint8_t> b) {
 bool is_webp(std::span<const uint8_t> b) {
   return b.size() >= 12 && std::memcmp(b.data(), "RIFF", 4) == 0 &&
          std::memcmp(b.data() + 8, "WEBP", 4) == 0;
-}
-
-// EPSG:3857 metres of a longitude / latitude in degrees (latitude clamped
-// to the tiling's +-85.0511).
-double mercator_x(double lon_deg) {
-  return lon_deg * (tileformat::kWebMercatorHalf / 180.0);
-}
-double mercator_y(double lat_deg) {
-  constexpr double pi = std::numbers::pi;
-  const double lat =
-      std::clamp(lat_deg, -tileformat::kWebMercatorMaxLat, tileformat::kWebMercatorMaxLat);
-  return tileformat::kWebMercatorHalf / pi * std::log(std::tan(pi / 4 + lat * pi / 360));
 }
 
 const char* encoding_name(DemEncoding e) {

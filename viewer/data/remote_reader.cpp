@@ -14,12 +14,6 @@ namespace {
 
 using tileformat::TileId;
 
-std::string replace_all(std::string s, const std::string& what, const std::string& with) {
-  for (size_t at = s.find(what); at != std::string::npos; at = s.find(what, at + with.size()))
-    s.replace(at, what.size(), with);
-  return s;
-}
-
 }  // namespace
 
 namespace {
@@ -79,9 +73,9 @@ RemoteReader::RemoteReader(const std::string& url, const tileformat::JsonValue& 
 }
 
 std::string RemoteReader::tile_url(TileId id) const {
-  std::string u = replace_all(template_, "{z}", std::to_string(id.z));
-  u = replace_all(u, "{x}", std::to_string(id.x));
-  return replace_all(u, "{y}", std::to_string(id.y));
+  std::string u = net::fill_placeholder(template_, "{z}", std::to_string(id.z));
+  u = net::fill_placeholder(u, "{x}", std::to_string(id.x));
+  return net::fill_placeholder(u, "{y}", std::to_string(id.y));
 }
 
 void RemoteReader::prefetch(std::span<const TileId> ids) {

@@ -1,18 +1,10 @@
 // Raster tiles from an XYZ URL template (see xyz_fetcher.hpp).
 #include "data/xyz_fetcher.hpp"
 
+#include "net/url.hpp"
 #include "runtime/errors.hpp"
 
 namespace globe::viewer {
-namespace {
-
-std::string replace_all(std::string s, const std::string& what, const std::string& with) {
-  for (size_t at = s.find(what); at != std::string::npos; at = s.find(what, at + with.size()))
-    s.replace(at, what.size(), with);
-  return s;
-}
-
-}  // namespace
 
 XyzFetcher::XyzFetcher(std::string url_template, net::HttpClient& client, int min_zoom,
                        int max_zoom, std::array<double, 4> bounds)
@@ -28,10 +20,10 @@ XyzFetcher::XyzFetcher(std::string url_template, net::HttpClient& client, int mi
 }
 
 std::string XyzFetcher::url(tileformat::TileId id) const {
-  std::string u = replace_all(template_, "{z}", std::to_string(id.z));
-  u = replace_all(u, "{x}", std::to_string(id.x));
-  u = replace_all(u, "{-y}", std::to_string((uint64_t{1} << id.z) - 1 - id.y));
-  return replace_all(u, "{y}", std::to_string(id.y));
+  std::string u = net::fill_placeholder(template_, "{z}", std::to_string(id.z));
+  u = net::fill_placeholder(u, "{x}", std::to_string(id.x));
+  u = net::fill_placeholder(u, "{-y}", std::to_string((uint64_t{1} << id.z) - 1 - id.y));
+  return net::fill_placeholder(u, "{y}", std::to_string(id.y));
 }
 
 std::optional<std::vector<uint8_t>> XyzFetcher::fetch(tileformat::TileId id) {

@@ -57,4 +57,10 @@ std::string resolve_url(const std::string& base, const std::string& ref) {
   return authority + remove_dots(path + ref);
 }
 
+std::string fill_placeholder(std::string s, const std::string& what, const std::string& with) {
+  for (size_t at = s.find(what); at != std::string::npos; at = s.find(what, at + with.size()))
+    s.replace(at, what.size(), with);
+  return s;
+}
+
 }  // namespace globe::net

@@ -11,4 +11,9 @@ namespace globe::net {
 
 std::string resolve_url(const std::string& base, const std::string& reference);
 
+// `url_template` with every `placeholder` ("{z}", "{-y}", "{version}") replaced
+// by `value`: one step of filling a tile URL template.
+std::string fill_placeholder(std::string url_template, const std::string& placeholder,
+                             const std::string& value);
+
 }  // namespace globe::net
