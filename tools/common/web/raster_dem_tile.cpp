@@ -39,7 +39,8 @@ std::vector<uint8_t> raster_dem_tile(TerrainSampler& sampler, const tileformat::
   }
   if (missing == uint64_t(size) * size) return {};  // a tile with no data at all is left out
   if (without_data) *without_data += missing;
-  return encode_png(rgb.data(), size, size, 3, png_effort);
+  return encode_png(rgb.data(), size, size, 3, png_effort,
+                    png_effort == kPngFast ? PngFilter::kAdaptive : PngFilter::kUp);
 }
 
 }  // namespace globe::web

@@ -19,12 +19,13 @@ namespace globe::web {
 // coarsest whose samples are at least as fine as the pixels.
 int raster_dem_source_zoom(const TerrainPackage& package, int z, int tile_size);
 
-// PNG efforts (png_codec.hpp). Measured on the 4096² synthetic DEM's
-// Terrarium tiles of zoom 14: adaptive filters at deflate 6, 23.2 KB a tile
-// in 10.5 ms (the exports: files are written once, fetched often); Paeth and
-// run-length deflate, 31.9 KB in 1.8 ms (the server, which cuts a tile while
-// its client waits). zlib's entropy coding alone costs 1.3 ms a tile.
-constexpr int kPngSmall = 6, kPngFast = 1;
+// PNG efforts (png_codec.hpp), measured side by side (bench/README.md
+// "Raster-DEM PNG"). The exports (files written once, fetched often): every
+// row predicted from the one above, deflate level 4 — against libpng's
+// adaptive filters at level 6, 2.7-3.1x faster, 7 % smaller on a global 5'
+// relief grid and 6 % larger on the 10 m synthetic DEM. The server, which
+// cuts a tile while its client waits: Paeth and run-length deflate (effort 1).
+constexpr int kPngSmall = 4, kPngFast = 1;
 
 // The PNG, or empty bytes where no block lies under any pixel;
 // `without_data` counts the pixels without a block (written as 0 m).

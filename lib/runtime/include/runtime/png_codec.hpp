@@ -10,13 +10,20 @@
 
 namespace globe {
 
-// effort 1: Paeth prediction and run-length deflate (fastest; on photographs
-// also the smallest); 2..9: libpng's adaptive filters and deflate at that
-// level (smaller for graphics with repeated patterns). `pixels`: rows from
-// the top, `channels` (1..4) interleaved bytes per pixel. Throws
-// std::runtime_error if libpng fails.
+// Which prediction each row gets. kAdaptive: with effort 1, Paeth and
+// run-length deflate (fastest; on photographs also the smallest); with 2..9,
+// libpng's per-row choice among all five filters and deflate at that level
+// (smaller for graphics with repeated patterns). kUp: every row predicted
+// from the row above, deflate at level `effort` (1..9): encoded heights
+// (Terrarium, Terrain-RGB), whose rows are smooth but whose low bytes are
+// noise that the adaptive choice's sum-of-differences heuristic misjudges
+// (bench/README.md "Raster-DEM PNG").
+enum class PngFilter { kAdaptive, kUp };
+
+// `pixels`: rows from the top, `channels` (1..4) interleaved bytes per pixel.
+// Throws std::runtime_error if libpng fails.
 std::vector<uint8_t> encode_png(const uint8_t* pixels, int width, int height, int channels,
-                                int effort);
+                                int effort, PngFilter filter = PngFilter::kAdaptive);
 
 // Decodes a PNG in memory to 8-bit RGBA rows from the top (any bit depth,
 // palette, gray or transparency key). Throws std::runtime_error with libpng's
