@@ -176,7 +176,7 @@ class TerrainService : public PackageService {
     const CutSlot slot(cutting_);
     web::MeshTileSource source(blocks_, own_errors_);
     const web::TileGrid grid = source.grid(id);
-    const web::MeshErrors errors = source.errors(id);
+    const web::MeshErrors errors = source.errors(id, options.threshold(id.z, t.roots_x));
     std::vector<uint8_t> bytes = web::encode_mesh_tile(t, id, grid, errors, options);
     tiles_.put(cache_key, std::make_shared<const std::string>(bytes.begin(), bytes.end()),
                cache_key.size() + bytes.size());

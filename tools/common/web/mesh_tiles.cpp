@@ -48,20 +48,42 @@ double length(const Vec3& a) {
   return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
 }
 
+// The longitudes and latitudes of one tile's sample columns and rows,
+// apron included (index k is grid position k - 1): in both schemes a
+// sample's longitude depends on its column only and its latitude on its row
+// only, so their trigonometry is done n + 3 times, not per vertex.
+struct TileFrame {
+  std::vector<double> lon, lat;
+  std::vector<EcefLongitude> lon_trig;
+  std::vector<EcefLatitude> lat_trig;
+  TileFrame(const SampleGeometry& geo, int64_t gx0, int64_t gy0) {
+    const int n = geo.steps;
+    for (int k = -1; k <= n + 1; ++k) {
+      double lon_k, lat_k, unused;
+      geo.lonlat(gx0 + k, gy0, lon_k, unused);
+      geo.lonlat(gx0, gy0 + k, unused, lat_k);
+      lon.push_back(lon_k), lat.push_back(lat_k);
+      lon_trig.push_back(ecef_longitude(lon_k));
+      lat_trig.push_back(ecef_latitude(lat_k));
+    }
+  }
+  double lon_at(int i) const { return lon[size_t(i + 1)]; }
+  double lat_at(int j) const { return lat[size_t(j + 1)]; }
+  Vec3 position(int i, int j, double h) const {
+    return ecef(lon_trig[size_t(i + 1)], lat_trig[size_t(j + 1)], h);
+  }
+};
+
 // The vertex normal at grid point (i, j): central differences of the ECEF
 // positions of the samples around it (one-sided where the apron has none);
 // the ellipsoid's normal where they collapse (the poles).
-Vec3 vertex_normal(const TileGrid& g, const SampleGeometry& geo, int64_t gx0, int64_t gy0, int i,
-                   int j) {
+Vec3 vertex_normal(const TileGrid& g, const TileFrame& frame, int i, int j) {
   auto position = [&](int a, int b) -> std::optional<Vec3> {
     const double h = g.at(a, b);
     if (std::isnan(h)) return std::nullopt;
-    double lon, lat;
-    geo.lonlat(gx0 + a, gy0 + b, lon, lat);
-    return ecef(lon, lat, h);
+    return frame.position(a, b, h);
   };
-  double lon, lat;
-  geo.lonlat(gx0 + i, gy0 + j, lon, lat);
+  const double lon = frame.lon_at(i), lat = frame.lat_at(j);
   if (std::fabs(lat) >= 90 - 1e-9) return {0, 0, lat > 0 ? 1.0 : -1.0};  // a pole
   const Vec3 centre = *position(i, j);
   const Vec3 east = sub(position(i + 1, j).value_or(centre), position(i - 1, j).value_or(centre));
@@ -107,20 +129,20 @@ bool MeshTileSource::has_tile(TileId id) {
   return id.z == 0 || id.z < package_.min_zoom || sampler_.block(id) != nullptr;
 }
 
-std::shared_ptr<const std::vector<float>> MeshTileSource::own(TileId id) {
+std::shared_ptr<const std::vector<float>> MeshTileSource::own(TileId id, double limit) {
   const uint64_t key = tile_key(id);
   std::shared_ptr<const std::vector<float>> e;
   if (own_errors_.get(key, e)) return e;
   if (has_tile(id)) {
     const TileGrid g = grid(id);
     e = std::make_shared<const std::vector<float>>(
-        own_errors(g, mesh_sample_metres(package_.tiling, id.z, g.steps)));
+        own_errors(g, mesh_sample_metres(package_.tiling, id.z, g.steps), limit));
   }
   own_errors_.put(key, e, 64 + (e ? e->size() * sizeof(float) : 0));
   return e;
 }
 
-MeshErrors MeshTileSource::errors(TileId id) {
+MeshErrors MeshTileSource::errors(TileId id, double threshold) {
   const tileformat::Tiling& t = package_.tiling;
   const int64_t cols = int64_t(t.tiles_x(id.z)), rows = int64_t(t.tiles_y(id.z));
   std::array<std::shared_ptr<const std::vector<float>>, 9> held;
@@ -129,7 +151,7 @@ MeshErrors MeshTileSource::errors(TileId id) {
     int64_t x = int64_t(id.x) + k % 3 - 1, y = int64_t(id.y) + k / 3 - 1;
     if (t.wraps_x()) x = (x % cols + cols) % cols;
     if (x < 0 || y < 0 || x >= cols || y >= rows) continue;
-    held[size_t(k)] = own({id.z, uint32_t(x), uint32_t(y)});
+    held[size_t(k)] = own({id.z, uint32_t(x), uint32_t(y)}, threshold);
     around[size_t(k)] = held[size_t(k)].get();
   }
   return MeshErrors(package_.block_size - 1, int((id.x + id.y) & 1), around);
@@ -211,13 +233,13 @@ std::vector<uint8_t> encode_mesh_tile(const tileformat::Tiling& tiling, TileId i
   double north_lat, south_lat, lon;
   geo.lonlat(gx0, gy0, lon, north_lat);
   geo.lonlat(gx0, gy0 + n, lon, south_lat);
+  const TileFrame frame(geo, gx0, gy0);
   std::vector<Vec3> positions;
   positions.reserve(vertices.size());
   for (const GridPoint& p : vertices) {
     const double h = grid.at(p.i, p.j);
     const int hq = range > 0 ? int(std::lround((h - flo) / range * kQuantizedMax)) : 0;
-    double plon, plat;
-    geo.lonlat(gx0 + p.i, gy0 + p.j, plon, plat);
+    const double plat = frame.lat_at(p.j);
     t.u.push_back(uint16_t((int64_t(p.i) * 2 * kQuantizedMax + n) / (2 * n)));
     if (tiling.scheme == tileformat::Scheme::kWebMercator)
       t.v.push_back(uint16_t(
@@ -227,9 +249,9 @@ std::vector<uint8_t> encode_mesh_tile(const tileformat::Tiling& tiling, TileId i
     else
       t.v.push_back(uint16_t((int64_t(n - p.j) * 2 * kQuantizedMax + n) / (2 * n)));
     t.height.push_back(uint16_t(hq));
-    positions.push_back(ecef(plon, plat, flo + range * hq / kQuantizedMax));
+    positions.push_back(frame.position(p.i, p.j, flo + range * hq / kQuantizedMax));
     if (options.normals) {
-      const std::array<uint8_t, 2> oct = oct_encode(vertex_normal(grid, geo, gx0, gy0, p.i, p.j));
+      const std::array<uint8_t, 2> oct = oct_encode(vertex_normal(grid, frame, p.i, p.j));
       t.oct_normals.push_back(oct[0]);
       t.oct_normals.push_back(oct[1]);
     }

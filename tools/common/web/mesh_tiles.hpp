@@ -47,13 +47,16 @@ class MeshTileSource {
   // every tile of the Earth, elsewhere those with a block.
   bool has_tile(tileformat::TileId id);
   // The tile's saturated errors, from its own and its eight neighbours' own
-  // errors (each computed once while the cache keeps it).
-  MeshErrors errors(tileformat::TileId id);
+  // errors (each computed once while the cache keeps it), for cutting the
+  // tile at `threshold` only (own_errors' limit: they decide that cut as the
+  // exact errors would). The threshold must be the same for every tile of a
+  // zoom that shares the cache.
+  MeshErrors errors(tileformat::TileId id, double threshold);
   const TerrainPackage& package() const { return package_; }
 
  private:
   // nullptr: no such tile.
-  std::shared_ptr<const std::vector<float>> own(tileformat::TileId id);
+  std::shared_ptr<const std::vector<float>> own(tileformat::TileId id, double limit);
 
   TerrainPackage& package_;
   TerrainSampler sampler_;

@@ -105,12 +105,24 @@ std::vector<uint8_t> encode_quantized_mesh(const QuantizedMeshTile& t) {
   return std::move(w.bytes);
 }
 
-Vec3 ecef(double lon_deg, double lat_deg, double height_m) {
-  const double lon = lon_deg * kPi / 180, lat = lat_deg * kPi / 180;
+EcefLongitude ecef_longitude(double lon_deg) {
+  const double lon = lon_deg * kPi / 180;
+  return {std::cos(lon), std::sin(lon)};
+}
+
+EcefLatitude ecef_latitude(double lat_deg) {
+  const double lat = lat_deg * kPi / 180;
   const double s = std::sin(lat), c = std::cos(lat);
-  const double n = kA / std::sqrt(1 - kE2 * s * s);
-  return {(n + height_m) * c * std::cos(lon), (n + height_m) * c * std::sin(lon),
-          (n * (1 - kE2) + height_m) * s};
+  return {c, s, kA / std::sqrt(1 - kE2 * s * s)};
+}
+
+Vec3 ecef(const EcefLongitude& lon, const EcefLatitude& lat, double height_m) {
+  return {(lat.n + height_m) * lat.c * lon.c, (lat.n + height_m) * lat.c * lon.s,
+          (lat.n * (1 - kE2) + height_m) * lat.s};
+}
+
+Vec3 ecef(double lon_deg, double lat_deg, double height_m) {
+  return ecef(ecef_longitude(lon_deg), ecef_latitude(lat_deg), height_m);
 }
 
 Vec3 ellipsoid_normal(double lon_deg, double lat_deg) {

@@ -36,6 +36,18 @@ std::vector<uint8_t> encode_quantized_mesh(const QuantizedMeshTile& tile);
 
 // WGS84: geodetic degrees and metres to Earth-centred, Earth-fixed metres.
 Vec3 ecef(double lon_deg, double lat_deg, double height_m);
+// The same in two halves, for grids whose longitudes and latitudes repeat
+// along columns and rows: the trigonometry of each computed once, the
+// positions bit for bit those of ecef().
+struct EcefLongitude {
+  double c, s;  // cos, sin
+};
+struct EcefLatitude {
+  double c, s, n;  // cos, sin, prime vertical radius
+};
+EcefLongitude ecef_longitude(double lon_deg);
+EcefLatitude ecef_latitude(double lat_deg);
+Vec3 ecef(const EcefLongitude& lon, const EcefLatitude& lat, double height_m);
 // The ellipsoid's outward unit normal at a longitude and latitude.
 Vec3 ellipsoid_normal(double lon_deg, double lat_deg);
 // Cigolle et al.'s octahedral coding of a unit vector in two bytes, as Cesium

@@ -105,9 +105,18 @@ const ScaleStencils& scale_stencils(int stride, int s) {
   return *slot;
 }
 
+// A float that exceeds `limit` (w does): float(w) may round down onto it.
+float past(double limit, double w) {
+  float f = float(limit);
+  if (double(f) <= limit) f = std::nextafter(f, INFINITY);
+  return std::max(float(w), f);
+}
+
 // Largest |height - plane| over the samples of triangle a b c (inclusive),
-// the plane through the heights at its corners; `st` is its shape.
-float triangle_error(const TileGrid& g, GridPoint a, GridPoint b, GridPoint c, const Stencil& st) {
+// the plane through the heights at its corners; `st` is its shape. Past
+// `limit` the scan stops: the result is then only known to exceed it.
+float triangle_error(const TileGrid& g, GridPoint a, GridPoint b, GridPoint c, const Stencil& st,
+                     double limit) {
   if (st.corners_only) return 0;
   const double ha = g.at(a.i, a.j), db = g.at(b.i, b.j) - ha, dc = g.at(c.i, c.j) - ha;
   // The plane's gradient: (b - a) . grad = db, (c - a) . grad = dc.
@@ -121,6 +130,7 @@ float triangle_error(const TileGrid& g, GridPoint a, GridPoint b, GridPoint c, c
     const StencilPoint& v = st.points[p + 1];
     w0 = std::max(w0, std::fabs(at_a[u.offset] - (ha + u.wb * db + u.wc * dc)));
     w1 = std::max(w1, std::fabs(at_a[v.offset] - (ha + v.wb * db + v.wc * dc)));
+    if (w0 > limit || w1 > limit) return past(limit, std::max(w0, w1));
   }
   if (p < st.points.size()) {
     const StencilPoint& u = st.points[p];
@@ -135,17 +145,44 @@ float triangle_error(const TileGrid& g, GridPoint a, GridPoint b, GridPoint c, c
       w1 = std::max(w1, std::fabs(h[k + 1] - (base + (k + 1) * gi)));
     }
     if (k < r.count) w0 = std::max(w0, std::fabs(h[k] - (base + k * gi)));
+    if (w0 > limit || w1 > limit) return past(limit, std::max(w0, w1));
   }
   return float(std::max(w0, w1));
 }
 
 }  // namespace
 
-std::vector<float> own_errors(const TileGrid& grid, double sample_metres) {
+std::vector<float> own_errors(const TileGrid& grid, double sample_metres, double limit) {
   const int n = grid.steps;
   std::vector<float> e(size_t(n + 1) * (n + 1), 0.0f);
   auto ref = [&](int i, int j) -> float& { return e[size_t(j) * (n + 1) + size_t(i)]; };
   constexpr double kEarthRadius = 6378137.0;
+  const bool bounded = std::isfinite(limit);
+  // Triangle a (right angle), b, c's error, or with a limit a cheaper answer
+  // that decides a cut at it the same way. Its children (a; b, m) and
+  // (a; m, c) split at the midpoints of its legs, whose errors are known
+  // (finer first). Every sample lies in a child, whose plane departs from
+  // this one by at most |h(m) - (h(b) + h(c)) / 2| (at m; 0 at the corners
+  // they share): the children's errors plus that bound this one's. Within
+  // the limit the bound stands in for the error; past it the scan decides;
+  // and a child already past it splits this triangle's vertex anyway
+  // (saturation), whatever its own error.
+  auto error = [&](GridPoint a, GridPoint b, GridPoint c, const Stencil& st) -> float {
+    if (!bounded) return triangle_error(grid, a, b, c, st, limit);
+    float children = 0;
+    if ((a.i + b.i) % 2 == 0 && (a.j + b.j) % 2 == 0)
+      children =
+          std::max(ref((a.i + b.i) / 2, (a.j + b.j) / 2), ref((a.i + c.i) / 2, (a.j + c.j) / 2));
+    if (children > limit) return 0.0f;
+    const double mid = grid.at((b.i + c.i) / 2, (b.j + c.j) / 2);
+    const double bound = children + std::fabs(mid - (grid.at(b.i, b.j) + grid.at(c.i, c.j)) / 2);
+    if (bound <= limit) {
+      float f = float(bound);
+      if (double(f) > limit) f = std::nextafter(f, -INFINITY);
+      return f;
+    }
+    return triangle_error(grid, a, b, c, st, limit);
+  };
   for (int s = 2; s <= n; s *= 2) {
     const int h = s / 2;
     const ScaleStencils& st = scale_stencils(n + 3, s);
@@ -161,14 +198,18 @@ std::vector<float> own_errors(const TileGrid& grid, double sample_metres) {
         const bool vertical = (i0 % s == 0) && (j0 % s == h);
         if (!horizontal && !vertical) continue;
         float err = 0;
+        if (edge_sagitta > limit) {  // split at any threshold up to the limit
+          ref(i0, j0) = edge_sagitta;
+          continue;
+        }
         for (int side : {-1, 1}) {
           const GridPoint c =
               horizontal ? GridPoint{i0, j0 + side * h} : GridPoint{i0 + side * h, j0};
           if (c.i < 0 || c.i > n || c.j < 0 || c.j > n) continue;
           const GridPoint p1 = horizontal ? GridPoint{i0 - h, j0} : GridPoint{i0, j0 - h};
           const GridPoint p2 = horizontal ? GridPoint{i0 + h, j0} : GridPoint{i0, j0 + h};
-          err = std::max(
-              {err, edge_sagitta, triangle_error(grid, c, p1, p2, st.edge[vertical][side > 0])});
+          err = std::max({err, edge_sagitta, error(c, p1, p2, st.edge[vertical][side > 0])});
+          if (err > limit) break;
         }
         ref(i0, j0) = err;
       }
@@ -177,12 +218,14 @@ std::vector<float> own_errors(const TileGrid& grid, double sample_metres) {
       for (int i0 = 0; i0 < n; i0 += s) {
         const int orient = s == n ? grid.diagonal : ((i0 / s + j0 / s) & 1);
         const GridPoint tl{i0, j0}, tr{i0 + s, j0}, bl{i0, j0 + s}, br{i0 + s, j0 + s};
-        ref(i0 + h, j0 + h) =
-            orient == 0
-                ? std::max({square_sagitta, triangle_error(grid, tr, tl, br, st.square[0][0]),
-                            triangle_error(grid, bl, tl, br, st.square[0][1])})
-                : std::max({square_sagitta, triangle_error(grid, tl, tr, bl, st.square[1][0]),
-                            triangle_error(grid, br, tr, bl, st.square[1][1])});
+        float& err = ref(i0 + h, j0 + h);
+        err = square_sagitta;
+        if (err > limit) continue;
+        err = std::max(err, orient == 0 ? error(tr, tl, br, st.square[0][0])
+                                        : error(tl, tr, bl, st.square[1][0]));
+        if (err > limit) continue;
+        err = std::max(err, orient == 0 ? error(bl, tl, br, st.square[0][1])
+                                        : error(br, tr, bl, st.square[1][1]));
       }
   }
   return e;
@@ -190,29 +233,37 @@ std::vector<float> own_errors(const TileGrid& grid, double sample_metres) {
 
 MeshErrors::MeshErrors(int steps, int diagonal, const std::array<const std::vector<float>*, 9>& own)
     : steps_(steps), diagonal_(diagonal) {
-  // The 3 x 3 tiles' own errors on one grid; a shared edge's vertex takes
-  // the larger of its two halves (the corners, never split vertices here, 0).
-  const int n = steps, big = 3 * n;
-  const size_t stride = size_t(big) + 1;
+  // The 3 x 3 tiles' own errors on one grid, global coordinates 0..3n with
+  // the centre tile at n..2n; a shared edge's vertex takes the larger of its
+  // two halves (the corners, never split vertices here, 0). A vertex's
+  // descendants lie in its diamond, at most half its scale (n / 2 for the
+  // centre tile's) away, so only the centre tile and a margin of n / 2
+  // around it are kept: 4 n^2 values instead of 9 n^2.
+  const int n = steps, lo = n / 2, hi = 2 * n + n / 2;
+  const size_t stride = size_t(hi - lo) + 1;
   std::vector<float> e(stride * stride, 0.0f);
+  auto at = [&](int i, int j) -> float& { return e[size_t(j - lo) * stride + size_t(i - lo)]; };
   for (int t = 0; t < 9; ++t) {
     if (!own[t]) continue;
     const int ox = (t % 3) * n, oy = (t / 3) * n;
-    for (int j = 0; j <= n; ++j)
-      for (int i = 0; i <= n; ++i) {
-        float& dst = e[size_t(oy + j) * stride + size_t(ox + i)];
-        dst = std::max(dst, (*own[t])[size_t(j) * (n + 1) + size_t(i)]);
+    const int i0 = std::max(ox, lo), i1 = std::min(ox + n, hi);
+    const int j0 = std::max(oy, lo), j1 = std::min(oy + n, hi);
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        float& dst = at(i, j);
+        dst = std::max(dst, (*own[t])[size_t(j - oy) * (n + 1) + size_t(i - ox)]);
       }
   }
   // Saturation bottom up, scale s = 2 .. n: first the midpoints of the edges
   // of length s (children: the centres of scale s / 2 around them), then the
   // centres of the squares of side s (children: their edges' midpoints).
-  auto at = [&](int i, int j) -> float& { return e[size_t(j) * stride + size_t(i)]; };
+  // lo is a multiple of s / 2, so the loops start on the global lattice;
+  // children outside the kept region belong to no vertex that matters.
   for (int s = 2; s <= n; s *= 2) {
     const int h = s / 2, q = s / 4;
     if (q > 0)
-      for (int j0 = 0; j0 <= big; j0 += h)
-        for (int i0 = 0; i0 <= big; i0 += h) {
+      for (int j0 = lo; j0 <= hi; j0 += h)
+        for (int i0 = lo; i0 <= hi; i0 += h) {
           const bool horizontal = (j0 % s == 0) && (i0 % s == h);
           const bool vertical = (i0 % s == 0) && (j0 % s == h);
           if (!horizontal && !vertical) continue;
@@ -220,11 +271,11 @@ MeshErrors::MeshErrors(int steps, int diagonal, const std::array<const std::vect
           for (int a : {-q, q})
             for (int b : {-q, q}) {
               const int ci = i0 + a, cj = j0 + b;
-              if (ci >= 0 && cj >= 0 && ci <= big && cj <= big) v = std::max(v, at(ci, cj));
+              if (ci >= lo && cj >= lo && ci <= hi && cj <= hi) v = std::max(v, at(ci, cj));
             }
         }
-    for (int j0 = 0; j0 < big; j0 += s)
-      for (int i0 = 0; i0 < big; i0 += s) {
+    for (int j0 = (lo + s - 1) / s * s; j0 + s <= hi; j0 += s)
+      for (int i0 = (lo + s - 1) / s * s; i0 + s <= hi; i0 += s) {
         float& v = at(i0 + h, j0 + h);
         v = std::max({v, at(i0 + h, j0), at(i0 + h, j0 + s), at(i0, j0 + h), at(i0 + s, j0 + h)});
       }

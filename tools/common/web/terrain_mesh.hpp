@@ -48,7 +48,14 @@ struct TileGrid {
 // Per split vertex of a tile ((steps+1)^2, row-major; 0 where none), the
 // largest error of the triangles of its diamond that lie inside the tile
 // (both for inner vertices, one for edge vertices), the sagitta included.
-std::vector<float> own_errors(const TileGrid& grid, double sample_metres);
+// With a finite `limit`, each value only decides the cut at that threshold
+// as the exact errors would: an error within it may be reported as any
+// bound of it that is within it too (from the triangle's children, without
+// scanning its samples), and one past it as anything past it (the scan stops
+// at the first sample past it; a scale whose sagitta passes it is not
+// scanned). An export or server, which cuts each zoom at one threshold,
+// gives it as the limit and skips most of the work.
+std::vector<float> own_errors(const TileGrid& grid, double sample_metres, double limit = INFINITY);
 
 // The saturated errors of one tile's vertices, from the own errors of the
 // tile and its eight neighbours (row-major from the north-west, the tile at

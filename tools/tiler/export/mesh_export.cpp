@@ -52,9 +52,11 @@ ExportSummary export_quantized_mesh(const MeshExportSettings& s, Progress& progr
             [&](const TileId& a, const TileId& b) { return order(a) < order(b); });
 
   // The workers share the decoded blocks and each tile's own errors (a tile's
-  // are needed by its eight neighbours too).
-  web::TerrainBlocks blocks(pkg, size_t(256) << 20);
-  web::OwnErrorCache own_errors(size_t(256) << 20);
+  // are needed by its eight neighbours too). The budgets bound the export's
+  // memory whatever the package's size (bench/README.md "Exports"): errors,
+  // computed from nine grids, are worth more than blocks, decoded from one.
+  web::TerrainBlocks blocks(pkg, size_t(64) << 20);
+  web::OwnErrorCache own_errors(size_t(192) << 20);
   std::vector<std::unique_ptr<web::MeshTileSource>> sources;
   for (int t = 0; t < s.threads; ++t)
     sources.push_back(std::make_unique<web::MeshTileSource>(blocks, own_errors));
@@ -76,7 +78,8 @@ ExportSummary export_quantized_mesh(const MeshExportSettings& s, Progress& progr
       [&](size_t i, int worker, const NoInputs&) {
         web::MeshTileSource& source = *sources[size_t(worker)];
         const web::TileGrid grid = source.grid(tiles[i]);
-        const web::MeshErrors errors = source.errors(tiles[i]);
+        const web::MeshErrors errors =
+            source.errors(tiles[i], options.threshold(tiles[i].z, tiling.roots_x));
         std::vector<uint8_t> bytes = web::encode_mesh_tile(tiling, tiles[i], grid, errors, options);
         return s.gzip ? web::gzip(bytes, 6) : bytes;
       },
