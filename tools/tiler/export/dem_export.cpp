@@ -88,7 +88,9 @@ ExportSummary export_raster_dem(const DemExportSettings& s, Progress& progress) 
   const std::string ext = "png";
   std::unique_ptr<TileOutput> out = TileOutput::open(s.output, s.force, ext, false);
   const int size = s.tile_size;
-  web::TerrainBlocks blocks(pkg, size_t(256) << 20);
+  // Tiles come in PMTiles (Hilbert) order: a tile's blocks are mostly its
+  // predecessors'; the budget bounds memory whatever the package's size.
+  web::TerrainBlocks blocks(pkg, size_t(64) << 20);
   std::vector<std::unique_ptr<web::TerrainSampler>> samplers;
   for (int t = 0; t < s.threads; ++t)
     samplers.push_back(std::make_unique<web::TerrainSampler>(blocks));
