@@ -194,8 +194,8 @@ std::vector<float> own_errors(const TileGrid& grid, double sample_metres, double
     // the centres of scale s on either side that lie in the tile.
     for (int j0 = 0; j0 <= n; j0 += h)
       for (int i0 = 0; i0 <= n; i0 += h) {
-        const bool horizontal = (j0 % s == 0) && (i0 % s == h);
-        const bool vertical = (i0 % s == 0) && (j0 % s == h);
+        const bool horizontal = (j0 & (s - 1)) == 0 && (i0 & (s - 1)) == h;  // s: a power of 2
+        const bool vertical = (i0 & (s - 1)) == 0 && (j0 & (s - 1)) == h;
         if (!horizontal && !vertical) continue;
         float err = 0;
         if (edge_sagitta > limit) {  // split at any threshold up to the limit
@@ -264,8 +264,8 @@ MeshErrors::MeshErrors(int steps, int diagonal, const std::array<const std::vect
     if (q > 0)
       for (int j0 = lo; j0 <= hi; j0 += h)
         for (int i0 = lo; i0 <= hi; i0 += h) {
-          const bool horizontal = (j0 % s == 0) && (i0 % s == h);
-          const bool vertical = (i0 % s == 0) && (j0 % s == h);
+          const bool horizontal = (j0 & (s - 1)) == 0 && (i0 & (s - 1)) == h;
+          const bool vertical = (i0 & (s - 1)) == 0 && (j0 & (s - 1)) == h;
           if (!horizontal && !vertical) continue;
           float& v = at(i0, j0);
           for (int a : {-q, q})

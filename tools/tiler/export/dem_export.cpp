@@ -89,8 +89,9 @@ ExportSummary export_raster_dem(const DemExportSettings& s, Progress& progress) 
   std::unique_ptr<TileOutput> out = TileOutput::open(s.output, s.force, ext, false);
   const int size = s.tile_size;
   // Tiles come in PMTiles (Hilbert) order: a tile's blocks are mostly its
-  // predecessors'; the budget bounds memory whatever the package's size.
-  web::TerrainBlocks blocks(pkg, size_t(64) << 20);
+  // predecessors'; the budget, in blocks, bounds memory whatever the
+  // package's size (64 MB of 256-sample blocks).
+  web::TerrainBlocks blocks(pkg, 192 * size_t(pkg.block_size) * size_t(pkg.block_size) * 5);
   std::vector<std::unique_ptr<web::TerrainSampler>> samplers;
   for (int t = 0; t < s.threads; ++t)
     samplers.push_back(std::make_unique<web::TerrainSampler>(blocks));

@@ -52,11 +52,13 @@ ExportSummary export_quantized_mesh(const MeshExportSettings& s, Progress& progr
             [&](const TileId& a, const TileId& b) { return order(a) < order(b); });
 
   // The workers share the decoded blocks and each tile's own errors (a tile's
-  // are needed by its eight neighbours too). The budgets bound the export's
-  // memory whatever the package's size (bench/README.md "Exports"): errors,
-  // computed from nine grids, are worth more than blocks, decoded from one.
-  web::TerrainBlocks blocks(pkg, size_t(64) << 20);
-  web::OwnErrorCache own_errors(size_t(192) << 20);
+  // are needed by its eight neighbours too), within budgets counted in tiles,
+  // not bytes: what the Hilbert order needs is a number of neighbours, and
+  // memory stays flat whatever the package's size (bench/README.md
+  // "Exports"). 256-sample blocks: 64 MB of blocks, 192 MB of errors.
+  const size_t samples = size_t(pkg.block_size) * size_t(pkg.block_size);
+  web::TerrainBlocks blocks(pkg, 192 * samples * 5);  // heights, validity
+  web::OwnErrorCache own_errors(720 * samples * sizeof(float));
   std::vector<std::unique_ptr<web::MeshTileSource>> sources;
   for (int t = 0; t < s.threads; ++t)
     sources.push_back(std::make_unique<web::MeshTileSource>(blocks, own_errors));
