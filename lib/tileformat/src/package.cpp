@@ -307,6 +307,10 @@ PackageReader::PackageReader(const std::string& path) {
   }
 }
 
+void PackageReader::stream() {
+  db_->exec("PRAGMA mmap_size = 0");
+}
+
 std::optional<std::vector<uint8_t>> PackageReader::tile(TileId id) {
   if (id.z < 0 || id.z > kMaxZoom || id.x >= 2 * TileId::tiles_per_axis(id.z) ||
       id.y >= TileId::tiles_per_axis(id.z))

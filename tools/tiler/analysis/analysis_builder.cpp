@@ -220,6 +220,7 @@ AnalysisSummary build_analysis(const AnalysisSettings& s, Progress& progress) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::string& path = s.inputs[0];
   TerrainPackage p = open_terrain_package(path);
+  p.file().stream();  // one pass: no mapped pages held (PackageReader::stream)
   std::vector<TileId> items;
   for (int z = p.min_zoom; z <= p.max_zoom; ++z)
     for (const TileId& id : p.reader->tile_ids(z))

@@ -55,6 +55,7 @@ void tiles_over(double west, double south, double east, double north, int z, int
 ExportSummary export_raster_dem(const DemExportSettings& s, Progress& progress) {
   const auto start = std::chrono::steady_clock::now();
   TerrainPackage pkg = open_terrain_package(s.input);
+  pkg.file().stream();  // one pass: no mapped pages held (PackageReader::stream)
   const tileformat::Scheme scheme = pkg.tiling.scheme;
   if (scheme == tileformat::Scheme::kLocal)
     throw UsageError(s.input +

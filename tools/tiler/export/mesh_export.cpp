@@ -27,6 +27,7 @@ std::function<WaterMask(const std::string& path)>& water_mask_factory() {
 ExportSummary export_quantized_mesh(const MeshExportSettings& s, Progress& progress) {
   const auto start = std::chrono::steady_clock::now();
   TerrainPackage pkg = open_terrain_package(s.input);
+  pkg.file().stream();  // one pass: no mapped pages held (PackageReader::stream)
   const tileformat::Tiling& tiling = pkg.tiling;
   if (tiling.scheme == tileformat::Scheme::kLocal)
     throw UsageError(s.input +

@@ -118,6 +118,13 @@ class PackageReader final : public TileReader {
  public:
   explicit PackageReader(const std::string& path);  // throws PackageError
 
+  // Reads through SQLite's small page cache instead of the memory map the
+  // reader starts with (which suits the viewer and the server, who read the
+  // same tiles again): for one pass over a large package, whose mapped pages
+  // would otherwise stay in the process's resident memory, counted by a
+  // cluster scheduler's limit, up to the whole file.
+  void stream();
+
   const std::map<std::string, std::string>& metadata() const override { return metadata_; }
   int64_t application_id() const { return application_id_; }
 
