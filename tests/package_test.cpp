@@ -50,6 +50,27 @@ TEST(Package, WritesReadsAndDeduplicates) {
             3);
 }
 
+// A reader starts memory-mapped (the viewer and the server read tiles again);
+// stream() turns the map off for one-pass readers (the exports, analyze),
+// whose mapped pages would otherwise stay resident, and reads the same tiles.
+TEST(Package, StreamedReaderDropsTheMapAndReadsTheSameTiles) {
+  TempDir dir;
+  const auto path = (dir / "p.mbtiles").string();
+  const std::vector<uint8_t> a(70000, 7);  // spans several database pages
+  {
+    PackageWriter w(path, tileformat::IfExists::kFail);
+    w.put_tile({3, 1, 2}, a);
+    w.set_metadata("format", "application/vnd.globe.mblock");
+    w.commit();
+  }
+  PackageReader r(path);
+  tileformat::SqliteDb& db = tileformat::PackageTestAccess::db(r);
+  EXPECT_GT(db.query_int("PRAGMA mmap_size").value_or(0), 0);
+  r.stream();
+  EXPECT_EQ(db.query_int("PRAGMA mmap_size").value_or(-1), 0);
+  EXPECT_EQ(*r.tile({3, 1, 2}), a);
+}
+
 TEST(Package, UncommittedWriterLeavesNothing) {
   TempDir dir;
   const auto path = (dir / "p.mbtiles").string();
