@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "quantized_mesh_fixtures.hpp"
+#include "spec_readers/gunzip.hpp"
 #include "test_support.hpp"
 #include "tileformat/json.hpp"
 #include "web_surfaces.hpp"
@@ -322,6 +323,41 @@ TEST(QuantizedMesh, SameTilesForAnyThreadsAndInMbtiles) {
   std::string expected = read_file(a / "layer.json");
   expected.replace(expected.find("\"out\""), 5, "\"c\"");
   EXPECT_EQ(layer.out, expected + "\n");
+}
+
+// --gzip-level: the same tiles inside the gzip, at another deflate level
+// (more bytes at 1 than at the default 6); out of range, or with a PNG
+// format, a usage error (exit 2).
+TEST(QuantizedMesh, GzipLevelKeepsTheTilesAndTradesBytes) {
+  const fs::path& d = surface_dem();
+  TempDir dir("qm-gzip");
+  const std::string pkg = (d / "geodetic.mbtiles").string();
+  const fs::path a = dir.path() / "six", b = dir.path() / "one";
+  ASSERT_TRUE(run_all(
+      {tiler() + " export -q " + pkg + " --format quantized-mesh --gzip -o " + a.string(),
+       tiler() + " export -q " + pkg + " --format quantized-mesh --gzip-level 1 -o " + b.string()},
+      dir.path()));
+  size_t files = 0, bytes_six = 0, bytes_one = 0;
+  for (const auto& e : fs::recursive_directory_iterator(a)) {
+    if (!e.is_regular_file() || e.path().extension() != ".terrain") continue;
+    const fs::path rel = fs::relative(e.path(), a);
+    const std::string six = read_file(e.path()), one = read_file(b / rel);
+    ASSERT_EQ(spec_readers::gunzip(six, rel.string(), 1 << 26),
+              spec_readers::gunzip(one, rel.string(), 1 << 26))
+        << rel;
+    bytes_six += six.size(), bytes_one += one.size();
+    ++files;
+  }
+  EXPECT_GT(files, 10u);
+  EXPECT_GT(bytes_one, bytes_six);
+  for (const std::string& bad :
+       {" --format quantized-mesh --gzip-level 0", " --format quantized-mesh --gzip-level 10",
+        " --format terrarium --gzip"}) {
+    const RunResult r = run(
+        tiler() + " export -q " + pkg + bad + " -o " + (dir.path() / "bad").string(), dir.path());
+    EXPECT_EQ(r.exit_code, 2) << bad << ": " << r.err;
+    EXPECT_FALSE(fs::exists(dir.path() / "bad")) << bad;
+  }
 }
 
 // Clear errors and nothing written: a local tiling, a PMTiles output.

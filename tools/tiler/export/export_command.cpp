@@ -21,6 +21,7 @@ struct TerrainExport {
   std::string format;  // terrarium, terrain-rgb or quantized-mesh
   int tile_size = 256;
   bool gzip = false, normals = true;
+  int gzip_level = 6;
   double mesh_error = 1.0, finest_error = 2.0;
   std::string watermask;
 };
@@ -34,11 +35,16 @@ ExportSummary export_terrain(const std::string& input, const BuildOptions& o,
                      "quantized-mesh");
   if (!t.watermask.empty() && t.format != "quantized-mesh")
     throw UsageError("--watermask is for --format quantized-mesh");
+  if (t.gzip && t.format != "quantized-mesh")
+    throw UsageError(
+        "--gzip and --gzip-level are for --format quantized-mesh (PNG tiles are "
+        "compressed already)");
   if (t.format == "quantized-mesh") {
     MeshExportSettings m;
     m.input = input, m.output = o.output, m.force = o.force;
     m.threads = o.worker_threads();
-    m.gzip = t.gzip, m.normals = t.normals, m.error_scale = t.mesh_error;
+    m.gzip = t.gzip, m.gzip_level = t.gzip_level;
+    m.normals = t.normals, m.error_scale = t.mesh_error;
     m.finest_error = t.finest_error;
     m.watermask = t.watermask;
     return export_quantized_mesh(m, progress);
@@ -89,6 +95,13 @@ int run_export(const std::vector<std::string>& args) {
            "quantized-mesh: gzip each tile (the server must then send them with "
            "Content-Encoding: gzip)",
            [&] { t.gzip = true; });
+  cli.option("--gzip-level", "N",
+             "quantized-mesh: gzip each tile at deflate level N, 1-9 (implies --gzip; default 6; "
+             "3 took 0.55-0.6x the export's time for 11 % more bytes)",
+             [&](const std::string& v) {
+               t.gzip_level = CliArgs::to_int("--gzip-level", v, 1, 9);
+               t.gzip = true;
+             });
   cli.option("--watermask", "POLYGONS",
              "quantized-mesh: water polygons (any OGR source) as each tile's water mask "
              "(extension watermask: CesiumJS draws water there)",

@@ -84,7 +84,7 @@ ExportSummary export_quantized_mesh(const MeshExportSettings& s, Progress& progr
         const web::MeshErrors errors =
             source.errors(tiles[i], options.threshold(tiles[i].z, tiling.roots_x));
         std::vector<uint8_t> bytes = web::encode_mesh_tile(tiling, tiles[i], grid, errors, options);
-        return s.gzip ? web::gzip(bytes, 6) : bytes;
+        return s.gzip ? web::gzip(bytes, s.gzip_level) : bytes;
       },
       [&](size_t i, std::vector<uint8_t>&& bytes) {
         out->put(tiles[i].z, tiles[i].x, tiles[i].y, bytes);

@@ -22,6 +22,7 @@ struct MeshExportSettings {
   int threads = 1;
   bool force = false;
   bool gzip = false;          // gzip each tile (servers then send Content-Encoding: gzip)
+  int gzip_level = 6;         // zlib's deflate level, 1..9
   bool normals = true;        // extension octvertexnormals
   double error_scale = 1.0;   // of CesiumJS's geometric error per level
   double finest_error = 2.0;  // metres, at the package's finest zoom
