@@ -350,7 +350,7 @@ TEST(QuantizedMesh, GzipLevelKeepsTheTilesAndTradesBytes) {
   }
   EXPECT_GT(files, 10u);
   EXPECT_GT(bytes_one, bytes_six);
-  for (const std::string& bad :
+  for (const char* bad :
        {" --format quantized-mesh --gzip-level 0", " --format quantized-mesh --gzip-level 10",
         " --format terrarium --gzip"}) {
     const RunResult r = run(
