@@ -32,9 +32,6 @@ src="$scratch/global5r_inside.tif"
 [ -f "$src" ] || gdal_translate -q -srcwin 1 1 4319 2159 -co TILED=YES -co COMPRESS=DEFLATE \
   "$relief" "$src"
 
-best() { # runs "$@" 3 times -> "wall rss cpu" of the least CPU
-  for _ in 1 2 3; do usage "$@"; done | fastest_cpu
-}
 accuracy() { # DIR -> "p99 max cracks zero_area"
   python3 bench/terrain_accuracy.py "$src" "$1" --json | python3 -c '
 import json, sys

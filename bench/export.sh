@@ -21,9 +21,6 @@ echo "bench/export.sh: $(nproc) threads"
 synthetic="$scratch/synthetic-4096.tif"
 [ -f "$synthetic" ] || $B/bench/make_synthetic_dem 4096 "$synthetic" >/dev/null
 
-best() { # runs "$@" 3 times -> "wall rss cpu" of the least CPU
-  for _ in 1 2 3; do usage "$@"; done | fastest_cpu
-}
 row() { # NAME BUILD_WALL OUT ARGS...
   local name=$1 build=$2 out=$3
   shift 3

@@ -26,9 +26,6 @@ echo "bench/rgbify.sh: $threads threads"
 src="$scratch/synthetic-2048.tif"
 [ -f "$src" ] || $B/bench/make_synthetic_dem 2048 "$src" >/dev/null
 
-best() { # runs "$@" 3 times -> "wall rss cpu" of the least CPU
-  for _ in 1 2 3; do usage "$@"; done | fastest_cpu
-}
 accuracy() { # TILESET -> "p50 p99 max"
   python3 bench/terrain_accuracy.py "$src" "$1" --format terrain-rgb --json | python3 -c '
 import json, sys

@@ -105,11 +105,16 @@ const ScaleStencils& scale_stencils(int stride, int s) {
   return *slot;
 }
 
-// A float that exceeds `limit` (w does): float(w) may round down onto it.
+// w as a float on the same side of `limit` as w: float(w) may round onto or
+// across it. past: w > limit; within: w <= limit.
 float past(double limit, double w) {
   float f = float(limit);
   if (double(f) <= limit) f = std::nextafter(f, INFINITY);
   return std::max(float(w), f);
+}
+float within(double limit, double w) {
+  const float f = float(w);
+  return double(f) > limit ? std::nextafter(f, -INFINITY) : f;
 }
 
 // Largest |height - plane| over the samples of triangle a b c (inclusive),
@@ -176,12 +181,7 @@ std::vector<float> own_errors(const TileGrid& grid, double sample_metres, double
     if (children > limit) return 0.0f;
     const double mid = grid.at((b.i + c.i) / 2, (b.j + c.j) / 2);
     const double bound = children + std::fabs(mid - (grid.at(b.i, b.j) + grid.at(c.i, c.j)) / 2);
-    if (bound <= limit) {
-      float f = float(bound);
-      if (double(f) > limit) f = std::nextafter(f, -INFINITY);
-      return f;
-    }
-    return triangle_error(grid, a, b, c, st, limit);
+    return bound <= limit ? within(limit, bound) : triangle_error(grid, a, b, c, st, limit);
   };
   for (int s = 2; s <= n; s *= 2) {
     const int h = s / 2;
